@@ -1,0 +1,47 @@
+/* The chip core: a PMD Navigator/Pilot-class motion processor's trajectory
+ * side. Plain C, no FMI inside; the FMI wrappers in ../fmi drive it. */
+#ifndef PMD_CHIP_H
+#define PMD_CHIP_H
+
+#include "chip_types.h"
+#include "pmd_constants.h"
+
+/* Chip-wide life cycle. The memory belongs to the caller; Reset keeps its contents. */
+void pmd_chip_init(PmdChip *chip, uint32_t *memory, uint32_t memorySize);
+void pmd_chip_reset(PmdChip *chip);
+
+/* Runs one chip cycle: every axis's trajectory, then the status registers,
+ * the breakpoints and the interrupt line. */
+void pmd_chip_cycle(PmdChip *chip);
+
+/* Executes a batch of host words (whole commands as C-Motion sends them).
+ * Get replies are appended to reply (at most PMD_BATCH_WORDS words).
+ * Returns the host I/O error code of the first failing command, or 0. */
+int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *reply, int *replyCount);
+
+/* The dual-port memory path: writes count words at address, bypassing the
+ * processor. Returns 0, or -1 (nothing written) if the block leaves the memory. */
+int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data);
+
+/* Register views. */
+uint16_t pmd_activity_status(const PmdChip *chip, int axis);
+uint16_t pmd_signal_status(const PmdChip *chip, int axis);
+int pmd_host_interrupt(const PmdChip *chip);
+int32_t pmd_commanded_velocity(const PmdTrajectory *t);
+int32_t pmd_commanded_acceleration(const PmdTrajectory *t);
+
+/* Engine entry points used by the command handlers and the cycle. */
+void pmd_profile_cycle(PmdChip *chip, int axis);
+int pmd_update(PmdChip *chip, int axis);
+void pmd_abrupt_stop(PmdChip *chip, int axis);
+void pmd_set_event(PmdChip *chip, int axis, uint16_t mask);
+
+/* Logging: pmd_log formats only when the category is enabled. */
+void pmd_log(const PmdChip *chip, PmdLogCategory category, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+#define PMD_LOGGING(chip, category) ((chip)->logMask & (1u << (category)))
+
+#endif

@@ -1,0 +1,150 @@
+/* The chip's state: plain data, no pointers, so a copy is a snapshot.
+ * Register names follow the Navigator/Pilot programmer's reference. */
+#ifndef PMD_CHIP_TYPES_H
+#define PMD_CHIP_TYPES_H
+
+#include <stdint.h>
+
+#define PMD_AXES 4
+#define PMD_BUFFERS 32       /* buffer IDs 0..31; 0 and 1 belong to the trace (seed 000, 1.1) */
+#define PMD_FIRST_PROFILE_BUFFER 2
+#define PMD_FUNCTIONS 5      /* PMDBufferFunctionPosition .. PMDBufferFunctionTime */
+#define PMD_MAX_FIELDS 8     /* argument or reply values of one command */
+#define PMD_BATCH_WORDS 64   /* host.word[1..64], host.reply[1..64] */
+
+/* A 32-bit register read as a signed value (two's complement, portably). */
+static inline int32_t pmd_int32(uint32_t u)
+{
+    return u <= (uint32_t)INT32_MAX ? (int32_t)u : -(int32_t)(~u) - 1;
+}
+
+
+/* Exact trajectory state.
+ *
+ * Seed 000's external-profile recurrence, run once per cycle,
+ *     P += V + A/2 + J/6,   V += A + J/2,   A += J,
+ * with P in 32.0 counts, V and A in 16.16 and J in 0.32, has only integer
+ * terms in the unit U = 2^-32/6 count:
+ *     J/6 = j (the raw 0.32 value),  J/2 = 3j,  J = 6j,
+ *     V = 6 * 2^16 * v and A = 6 * 2^16 * a for raw 16.16 values v, a.
+ * A stays a multiple of 6, so A/2 is exact too. Holding V and A in U and the
+ * position as whole counts plus a fraction in U makes every cycle exact: no
+ * rounding, no drift, however long a segment runs (CONTRACT 2.3). Register
+ * reads truncate toward minus infinity: GetCommandedVelocity = floor(V / (6 * 2^16)). */
+#define PMD_U_PER_COUNT (6LL << 32)
+#define PMD_U_PER_1616 (6LL << 16)
+
+typedef struct {
+    int32_t position;      /* whole counts; wraps like the 32-bit register */
+    int64_t fraction;      /* 0 <= fraction < PMD_U_PER_COUNT */
+    int64_t velocity;      /* U per cycle */
+    int64_t acceleration;  /* U per cycle^2 */
+    int32_t jerk;          /* raw 0.32: 2^-32 counts per cycle^3 */
+} PmdTrajectory;
+
+/* The double-buffered trajectory registers (reference 4.1): the host writes
+ * the buffered set, Update copies it to the active set. */
+typedef struct {
+    int32_t position;        /* destination, counts */
+    int32_t velocity;        /* maximum velocity, 16.16 */
+    uint32_t acceleration;   /* 16.16 */
+    uint32_t deceleration;   /* 16.16, 0 = use acceleration */
+    uint32_t jerk;           /* 0.32 */
+    uint16_t profileMode;
+    uint16_t stopMode;
+} PmdProfileRegisters;
+
+typedef struct {
+    uint16_t sourceAxis;
+    uint16_t action;
+    uint16_t trigger;        /* 0 = disabled; reset to 0 when it fires */
+    int32_t value;
+} PmdBreakpoint;
+
+/* What the trajectory generator is doing. */
+typedef enum {
+    PMD_MOTION_IDLE = 0,           /* at rest, no profile executing */
+    PMD_MOTION_TRAPEZOIDAL,        /* point-to-point move toward the active destination */
+    PMD_MOTION_SMOOTH_STOP,        /* braking at the deceleration rate to rest */
+    PMD_MOTION_EXTERNAL            /* reading segments from the buffers (seed 000) */
+} PmdMotion;
+
+typedef struct {
+    PmdProfileRegisters buffered, active;
+    PmdTrajectory trajectory;
+    uint8_t motion;              /* PmdMotion */
+    uint8_t atMaximumVelocity;
+    uint8_t motorOn;
+    uint8_t underrunWarned;      /* a read-past-write warning was logged and not yet cleared by a refill */
+    uint32_t segmentTime;        /* external profile: cycles left in the segment (seed 000 pseudo code) */
+    int16_t bufferOfFunction[PMD_FUNCTIONS];   /* SetBufferFunction: buffer ID or -1 */
+    uint16_t eventStatus;
+    uint16_t interruptMask;
+    PmdBreakpoint breakpoint[2];
+    int32_t actualPosition;
+    /* inputs from the plant */
+    int32_t actualPositionInput;
+    uint8_t positiveLimitInput, negativeLimitInput, homeInput;
+} PmdAxis;
+
+typedef struct {
+    uint32_t start;          /* in 32-bit words */
+    uint32_t length;         /* in 32-bit words */
+    uint32_t readIndex;
+    uint32_t writeIndex;
+    uint32_t unread;         /* entries written by WriteBuffer and not yet read (for the overrun warnings) */
+    uint8_t streamed;        /* written through WriteBuffer or SetBufferWriteIndex since set up */
+} PmdBuffer;
+
+typedef struct {
+    PmdAxis axis[PMD_AXES];
+    PmdBuffer buffer[PMD_BUFFERS];
+    uint32_t time;           /* GetTime: chip time of the last executed cycle */
+    uint32_t nextTime;       /* chip time of the next cycle */
+    uint16_t hostIOError;    /* first error since last read; 1 after reset */
+    uint8_t loopback;        /* actual position := commanded position */
+} PmdChipState;
+
+/* Log categories, in the order of modelDescription/generate.py's LOG_CATEGORIES. */
+typedef enum {
+    PMD_LOG_ERRORS, PMD_LOG_WARNINGS, PMD_LOG_COMMANDS, PMD_LOG_BUFFERS, PMD_LOG_SEGMENTS, PMD_LOG_EVENTS,
+    PMD_LOG_CATEGORY_COUNT
+} PmdLogCategory;
+
+typedef void (*PmdLogger)(void *context, PmdLogCategory category, const char *message);
+
+/* The chip: its state, its external memory and where it logs. */
+typedef struct PmdChip {
+    PmdChipState s;
+    uint32_t *memory;
+    uint32_t memorySize;     /* in 32-bit words */
+    PmdLogger logger;
+    void *logContext;
+    unsigned logMask;        /* bit per PmdLogCategory: format messages only when someone listens */
+} PmdChip;
+
+/* Command table types (the table itself is generated from modelDescription/commands.csv). */
+typedef enum { PMD_U16, PMD_I16, PMD_U32, PMD_I32, PMD_BITS } PmdFieldKind;
+
+typedef struct {
+    unsigned char kind;      /* PmdFieldKind */
+    unsigned char word;      /* first data word of the value */
+    unsigned char shift;     /* PMD_BITS: position and width inside the word */
+    unsigned char width;
+} PmdField;
+
+/* A handler gets the decoded argument values, fills the reply values and
+ * returns 0 or the host I/O error code; on error it has changed nothing. */
+typedef int (*PmdHandler)(struct PmdChip *chip, int axis, const int64_t *arg, int64_t *reply);
+
+typedef struct {
+    unsigned char opcode;
+    const char *name;
+    unsigned char chipWide;  /* C-Motion sends it with axis 0; the axis field is not used */
+    unsigned char argWords, replyWords, nArgs, nReply;
+    PmdField args[PMD_MAX_FIELDS];
+    PmdField reply[PMD_MAX_FIELDS];
+    PmdHandler handler;
+} PmdCommand;
+
+#endif

@@ -1,0 +1,514 @@
+/* Command handlers, one per row of modelDescription/commands.csv. The
+ * dispatcher (host.c) has decoded the arguments by the table; a handler checks
+ * their ranges (reference 1.2, 4.3), acts, and returns 0 or the host I/O
+ * error code, having changed nothing when it refuses. */
+#include <stddef.h>
+
+#include "chip.h"
+#include "commands.h"
+
+#define AXIS(n) (&chip->s.axis[n])
+
+/* ---- miscellaneous ---- */
+
+int cmd_NoOperation(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)chip; (void)axis; (void)arg; (void)reply;
+    return 0;
+}
+
+int cmd_Reset(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg; (void)reply;
+    pmd_chip_reset(chip);
+    return 0;
+}
+
+int cmd_GetVersion(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)chip; (void)axis; (void)arg;
+    reply[0] = 2;            /* generation: Navigator (reference 1.2, GetVersion) */
+    reply[1] = 1;            /* motor type: brushed servo */
+    reply[2] = PMD_AXES;
+    reply[3] = 0;            /* special */
+    reply[4] = 0;            /* custom */
+    reply[5] = 1;            /* major */
+    reply[6] = 0;            /* minor */
+    return 0;
+}
+
+int cmd_GetTime(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    reply[0] = chip->s.time;
+    return 0;
+}
+
+int cmd_GetHostIOError(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    reply[0] = chip->s.hostIOError;
+    chip->s.hostIOError = 0;                /* reading clears it (reference 2.4) */
+    return 0;
+}
+
+/* ---- profile registers (buffered: reference 4.1) ---- */
+
+int cmd_SetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    if (arg[0] != PMDTrapezoidalProfile && arg[0] != PMDExternalProfile) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetProfileMode(%d): only trapezoidal (0) and external (4) "
+                "are implemented", axis + 1, (int)arg[0]);
+        return PMD_ERR_InvalidParameter;
+    }
+    AXIS(axis)->buffered.profileMode = (uint16_t)arg[0];
+    return 0;
+}
+
+int cmd_GetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->buffered.profileMode;
+    return 0;
+}
+
+int cmd_SetPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    AXIS(axis)->buffered.position = (int32_t)arg[0];
+    return 0;
+}
+
+int cmd_GetPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->buffered.position;
+    return 0;
+}
+
+int cmd_SetVelocity(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    AXIS(axis)->buffered.velocity = (int32_t)arg[0];   /* the sign is checked by Update, per profile mode */
+    return 0;
+}
+
+int cmd_GetVelocity(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->buffered.velocity;
+    return 0;
+}
+
+/* Acceleration, deceleration and jerk are unsigned, 0 .. 2^31-1 (reference 4.7). */
+static int unsigned_31(const PmdChip *chip, int axis, const char *name, int64_t value)
+{
+    if (value > INT32_MAX) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: %s(0x%08X): out of range 0..0x7FFFFFFF", axis + 1, name,
+                (unsigned)value);
+        return PMD_ERR_InvalidParameter;
+    }
+    return 0;
+}
+
+int cmd_SetAcceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = unsigned_31(chip, axis, "SetAcceleration", arg[0]);
+    (void)reply;
+    if (!err)
+        AXIS(axis)->buffered.acceleration = (uint32_t)arg[0];
+    return err;
+}
+
+int cmd_GetAcceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->buffered.acceleration;
+    return 0;
+}
+
+int cmd_SetDeceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = unsigned_31(chip, axis, "SetDeceleration", arg[0]);
+    (void)reply;
+    if (!err)
+        AXIS(axis)->buffered.deceleration = (uint32_t)arg[0];
+    return err;
+}
+
+int cmd_GetDeceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->buffered.deceleration;
+    return 0;
+}
+
+int cmd_SetJerk(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = unsigned_31(chip, axis, "SetJerk", arg[0]);
+    (void)reply;
+    if (!err)
+        AXIS(axis)->buffered.jerk = (uint32_t)arg[0];
+    return err;
+}
+
+int cmd_GetJerk(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->buffered.jerk;
+    return 0;
+}
+
+int cmd_SetStopMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    if (arg[0] > PMDSmoothStopMode) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetStopMode(%d): not 0, 1 or 2", axis + 1, (int)arg[0]);
+        return PMD_ERR_InvalidParameter;
+    }
+    AXIS(axis)->buffered.stopMode = (uint16_t)arg[0];
+    return 0;
+}
+
+int cmd_GetStopMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->buffered.stopMode;
+    return 0;
+}
+
+int cmd_Update(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg; (void)reply;
+    return pmd_update(chip, axis);
+}
+
+/* Axes update in ascending order; the first failure aborts the rest (reference 4.1). */
+int cmd_MultiUpdate(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int n;
+    (void)axis; (void)reply;
+    if (arg[0] & ~0xF) {
+        pmd_log(chip, PMD_LOG_ERRORS, "MultiUpdate(0x%X): mask has bits beyond axis 4", (unsigned)arg[0]);
+        return PMD_ERR_InvalidParameter;
+    }
+    for (n = 0; n < PMD_AXES; n++) {
+        if (arg[0] & (1 << n)) {
+            int err = pmd_update(chip, n);
+            if (err)
+                return err;
+        }
+    }
+    return 0;
+}
+
+/* ---- trajectory outputs ---- */
+
+int cmd_GetCommandedPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->trajectory.position;
+    return 0;
+}
+
+int cmd_GetCommandedVelocity(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = pmd_commanded_velocity(&AXIS(axis)->trajectory);
+    return 0;
+}
+
+int cmd_GetCommandedAcceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = pmd_commanded_acceleration(&AXIS(axis)->trajectory);
+    return 0;
+}
+
+int cmd_GetActualPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->actualPosition;
+    return 0;
+}
+
+/* ---- breakpoints (reference 2.5, seed 004) ---- */
+
+static int breakpoint_id(const PmdChip *chip, int axis, const char *name, int64_t id)
+{
+    if (id > 1) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: %s: breakpoint %d is not 0 or 1", axis + 1, name, (int)id);
+        return PMD_ERR_InvalidParameter;
+    }
+    return 0;
+}
+
+int cmd_SetBreakpoint(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    PmdBreakpoint *bp;
+    int err = breakpoint_id(chip, axis, "SetBreakpoint", arg[0]);
+    (void)reply;
+    if (err)
+        return err;
+    if (arg[1] >= PMD_AXES || arg[2] > PMDBreakpointActionMotorOff || arg[3] > PMDBreakpointSignalStatus) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetBreakpoint: source axis %d, action %d or trigger %d out of range",
+                axis + 1, (int)arg[1], (int)arg[2], (int)arg[3]);
+        return PMD_ERR_InvalidParameter;
+    }
+    bp = &AXIS(axis)->breakpoint[arg[0]];
+    bp->sourceAxis = (uint16_t)arg[1];
+    bp->action = (uint16_t)arg[2];
+    bp->trigger = (uint16_t)arg[3];
+    /* A "crossed" trigger becomes >= or <= by where the source is now (reference 2.5). */
+    if (bp->trigger == PMDBreakpointCommandedPositionCrossed)
+        bp->trigger = AXIS(bp->sourceAxis)->trajectory.position < bp->value
+                          ? PMDBreakpointGreaterOrEqualCommandedPosition : PMDBreakpointLessOrEqualCommandedPosition;
+    else if (bp->trigger == PMDBreakpointActualPositionCrossed)
+        bp->trigger = AXIS(bp->sourceAxis)->actualPosition < bp->value
+                          ? PMDBreakpointGreaterOrEqualActualPosition : PMDBreakpointLessOrEqualActualPosition;
+    return 0;
+}
+
+int cmd_GetBreakpoint(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    const PmdBreakpoint *bp;
+    int err = breakpoint_id(chip, axis, "GetBreakpoint", arg[0]);
+    if (err)
+        return err;
+    bp = &AXIS(axis)->breakpoint[arg[0]];
+    reply[0] = bp->sourceAxis;
+    reply[1] = bp->action;
+    reply[2] = bp->trigger;
+    return 0;
+}
+
+int cmd_SetBreakpointValue(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = breakpoint_id(chip, axis, "SetBreakpointValue", arg[0]);
+    (void)reply;
+    if (!err)
+        AXIS(axis)->breakpoint[arg[0]].value = (int32_t)arg[1];
+    return err;
+}
+
+int cmd_GetBreakpointValue(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = breakpoint_id(chip, axis, "GetBreakpointValue", arg[0]);
+    if (!err)
+        reply[0] = AXIS(axis)->breakpoint[arg[0]].value;
+    return err;
+}
+
+/* ---- status registers and interrupts ---- */
+
+int cmd_SetInterruptMask(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    AXIS(axis)->interruptMask = (uint16_t)arg[0];
+    return 0;
+}
+
+int cmd_GetInterruptMask(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->interruptMask;
+    return 0;
+}
+
+int cmd_GetEventStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->eventStatus;
+    return 0;
+}
+
+int cmd_ResetEventStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    AXIS(axis)->eventStatus &= (uint16_t)arg[0];     /* bits written as 0 are cleared */
+    return 0;
+}
+
+int cmd_GetActivityStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = pmd_activity_status(chip, axis);
+    return 0;
+}
+
+/* ---- buffer memory (reference 4.3) ---- */
+
+static PmdBuffer *buffer(PmdChip *chip, const char *name, int64_t id)
+{
+    if (id >= PMD_BUFFERS) {
+        pmd_log(chip, PMD_LOG_ERRORS, "%s: buffer ID %d is not 0..31", name, (int)id);
+        return NULL;
+    }
+    return &chip->s.buffer[id];
+}
+
+/* start + length must stay inside the memory; both reset the indexes. */
+static int set_block(PmdChip *chip, const char *name, int64_t id, int64_t start, int64_t length)
+{
+    PmdBuffer *b = buffer(chip, name, id);
+    if (!b)
+        return PMD_ERR_InvalidParameter;
+    if (start < 0 || length < 0 || length > 0x3FFFFFFF || start + length > chip->memorySize) {
+        pmd_log(chip, PMD_LOG_ERRORS, "%s: buffer %d at 0x%llX length 0x%llX leaves the %u-word memory",
+                name, (int)id, (long long)start, (long long)length, (unsigned)chip->memorySize);
+        return PMD_ERR_BlockOutOfBounds;
+    }
+    b->start = (uint32_t)start;
+    b->length = (uint32_t)length;
+    b->readIndex = b->writeIndex = b->unread = 0;
+    b->streamed = 0;
+    pmd_log(chip, PMD_LOG_BUFFERS, "buffer %d: start 0x%X length %u", (int)id, (unsigned)b->start,
+            (unsigned)b->length);
+    return 0;
+}
+
+int cmd_SetBufferStart(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)reply;
+    if (arg[0] >= PMD_BUFFERS)
+        return set_block(chip, "SetBufferStart", arg[0], 0, 0);
+    return set_block(chip, "SetBufferStart", arg[0], arg[1], chip->s.buffer[arg[0]].length);
+}
+
+int cmd_SetBufferLength(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)reply;
+    if (arg[0] >= PMD_BUFFERS)
+        return set_block(chip, "SetBufferLength", arg[0], 0, 0);
+    return set_block(chip, "SetBufferLength", arg[0], chip->s.buffer[arg[0]].start, arg[1]);
+}
+
+#define GET_BUFFER_REGISTER(command, field)                                      \
+    int cmd_##command(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply) \
+    {                                                                            \
+        const PmdBuffer *b = buffer(chip, #command, arg[0]);                     \
+        (void)axis;                                                              \
+        if (!b)                                                                  \
+            return PMD_ERR_InvalidParameter;                                     \
+        reply[0] = b->field;                                                     \
+        return 0;                                                                \
+    }
+
+GET_BUFFER_REGISTER(GetBufferStart, start)
+GET_BUFFER_REGISTER(GetBufferLength, length)
+GET_BUFFER_REGISTER(GetBufferWriteIndex, writeIndex)
+GET_BUFFER_REGISTER(GetBufferReadIndex, readIndex)
+
+/* An index at or past the length is refused with 0x07 (reference 4.3). */
+static int set_index(PmdChip *chip, const char *name, int64_t id, int64_t index, int write)
+{
+    PmdBuffer *b = buffer(chip, name, id);
+    if (!b)
+        return PMD_ERR_InvalidParameter;
+    if (index >= b->length) {
+        pmd_log(chip, PMD_LOG_ERRORS, "%s: index %lld is not below buffer %d's length %u", name, (long long)index,
+                (int)id, (unsigned)b->length);
+        return PMD_ERR_BlockOutOfBounds;
+    }
+    if (write) {
+        b->writeIndex = (uint32_t)index;
+        b->streamed = 1;
+    } else {
+        b->readIndex = (uint32_t)index;
+    }
+    b->unread = (b->writeIndex + b->length - b->readIndex) % b->length;
+    return 0;
+}
+
+int cmd_SetBufferWriteIndex(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)reply;
+    return set_index(chip, "SetBufferWriteIndex", arg[0], arg[1], 1);
+}
+
+int cmd_SetBufferReadIndex(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)reply;
+    return set_index(chip, "SetBufferReadIndex", arg[0], arg[1], 0);
+}
+
+static int nonempty(const PmdChip *chip, const char *name, int64_t id, const PmdBuffer *b)
+{
+    if (b->length == 0) {
+        pmd_log(chip, PMD_LOG_ERRORS, "%s: buffer %d has length 0", name, (int)id);
+        return PMD_ERR_BlockOutOfBounds;
+    }
+    return 0;
+}
+
+int cmd_WriteBuffer(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    PmdBuffer *b = buffer(chip, "WriteBuffer", arg[0]);
+    int err;
+    (void)axis; (void)reply;
+    if (!b)
+        return PMD_ERR_InvalidParameter;
+    if ((err = nonempty(chip, "WriteBuffer", arg[0], b)) != 0)
+        return err;
+    if (b->streamed && b->unread == b->length)
+        pmd_log(chip, PMD_LOG_WARNINGS, "WriteBuffer: buffer %d write index %u overtakes its read index: "
+                "overwriting unread data, as the chip does", (int)arg[0], (unsigned)b->writeIndex);
+    chip->memory[b->start + b->writeIndex] = (uint32_t)arg[1];
+    b->writeIndex = b->writeIndex + 1 == b->length ? 0 : b->writeIndex + 1;
+    if (b->unread < b->length)
+        b->unread++;
+    b->streamed = 1;
+    return 0;
+}
+
+int cmd_ReadBuffer(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    PmdBuffer *b = buffer(chip, "ReadBuffer", arg[0]);
+    int err;
+    (void)axis;
+    if (!b)
+        return PMD_ERR_InvalidParameter;
+    if ((err = nonempty(chip, "ReadBuffer", arg[0], b)) != 0)
+        return err;
+    reply[0] = (int32_t)chip->memory[b->start + b->readIndex];
+    b->readIndex = b->readIndex + 1 == b->length ? 0 : b->readIndex + 1;
+    if (b->unread > 0)
+        b->unread--;
+    return 0;
+}
+
+static int buffer_function(const PmdChip *chip, int axis, const char *name, int64_t function)
+{
+    if (function < PMDBufferFunctionPosition || function > PMDBufferFunctionTime) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: %s: function %d is not 0 (position) .. 4 (time)", axis + 1, name,
+                (int)function);
+        return PMD_ERR_InvalidParameter;
+    }
+    return 0;
+}
+
+int cmd_SetBufferFunction(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = buffer_function(chip, axis, "SetBufferFunction", arg[0]);
+    (void)reply;
+    if (err)
+        return err;
+    /* IDs 0 and 1 belong to the trace (seed 000, 1.1). */
+    if (arg[1] != PMDBufferFunctionNone && (arg[1] < PMD_FIRST_PROFILE_BUFFER || arg[1] >= PMD_BUFFERS)) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetBufferFunction: buffer %d is not 2..31 or -1", axis + 1,
+                (int)arg[1]);
+        return PMD_ERR_InvalidParameter;
+    }
+    AXIS(axis)->bufferOfFunction[arg[0]] = (int16_t)arg[1];
+    pmd_log(chip, PMD_LOG_BUFFERS, "axis %d: buffer %d feeds function %d", axis + 1, (int)arg[1], (int)arg[0]);
+    return 0;
+}
+
+int cmd_GetBufferFunction(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = buffer_function(chip, axis, "GetBufferFunction", arg[0]);
+    if (!err)
+        reply[0] = AXIS(axis)->bufferOfFunction[arg[0]];
+    return err;
+}

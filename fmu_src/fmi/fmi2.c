@@ -1,0 +1,334 @@
+/* FMI 2.0 Co-Simulation over the instance (instance.h). Every function
+ * checks its component, its pointers and the state it is called in, and
+ * answers a bad call with fmi2Error and a log message naming the function,
+ * the value and the reason. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi2Functions.h"
+#include "instance.h"
+
+/* The environment's callbacks live beside the instance. */
+typedef struct {
+    PmdInstance *inst;
+    fmi2CallbackFunctions functions;
+} Component;
+
+static const fmi2Status status_of[] = {fmi2OK, fmi2Warning, fmi2Discard, fmi2Error, fmi2Fatal};
+
+static void log_to_environment(void *environment, const char *instanceName, PmdStatus status, const char *category,
+                               const char *message)
+{
+    const Component *comp = (const Component *)environment;
+    comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category,
+                           message);
+}
+
+static const char *state_name(PmdState state)
+{
+    switch (state) {
+    case PMD_INSTANTIATED: return "instantiated";
+    case PMD_INITIALIZATION_MODE: return "initialization mode";
+    case PMD_STEP_MODE: return "step mode";
+    default: return "terminated";
+    }
+}
+
+#define ANY_STATE (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
+#define GET_STATES (PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
+#define SET_STATES (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE)
+
+/* Returns the instance if the call is legal in its state, else logs and returns NULL. */
+static PmdInstance *begin(fmi2Component c, const char *fn, unsigned states)
+{
+    PmdInstance *inst;
+    if (!c)
+        return NULL;
+    inst = ((Component *)c)->inst;
+    if (!(inst->state & states)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not allowed in %s", fn, state_name(inst->state));
+        return NULL;
+    }
+    return inst;
+}
+
+static int arrays_given(PmdInstance *inst, const char *fn, size_t n, const void *vr, const void *values)
+{
+    if (n > 0 && (!vr || !values)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %zu values but the %s array is NULL", fn, n,
+                         !vr ? "value reference" : "value");
+        return 0;
+    }
+    return 1;
+}
+
+static fmi2Status unsupported(fmi2Component c, const char *fn, const char *why)
+{
+    PmdInstance *inst = begin(c, fn, ANY_STATE);
+    if (inst)
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not supported: %s", fn, why);
+    return fmi2Error;
+}
+
+/* ---- inquiry, logging, life cycle ---- */
+
+const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
+const char *fmi2GetVersion(void) { return fmi2Version; }
+
+fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
+                               const fmi2String categories[])
+{
+    PmdInstance *inst = begin(c, "fmi2SetDebugLogging", ANY_STATE);
+    size_t i;
+    if (!inst || !arrays_given(inst, "fmi2SetDebugLogging", nCategories, categories, categories))
+        return fmi2Error;
+    for (i = 0; i < nCategories; i++) {
+        int known = 0, k;
+        for (k = 0; k < PMD_LOG_CATEGORY_COUNT; k++)
+            known |= categories[i] && strcmp(categories[i], pmd_log_category_names[k]) == 0;
+        if (!known) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2SetDebugLogging: unknown log category \"%s\"",
+                             categories[i] ? categories[i] : "(NULL)");
+            return fmi2Error;
+        }
+    }
+    pmd_set_debug_logging(inst, loggingOn, nCategories, categories);
+    return fmi2OK;
+}
+
+fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
+                              fmi2String fmuResourceLocation, const fmi2CallbackFunctions *functions,
+                              fmi2Boolean visible, fmi2Boolean loggingOn)
+{
+    Component *comp;
+    (void)fmuResourceLocation;
+    (void)visible;
+    if (!functions || !functions->logger)
+        return NULL;
+    if (!instanceName) {
+        functions->logger(functions->componentEnvironment, "?", fmi2Error, "errors",
+                          "fmi2Instantiate: instanceName is NULL");
+        return NULL;
+    }
+    if (fmuType != fmi2CoSimulation) {
+        functions->logger(functions->componentEnvironment, instanceName, fmi2Error, "errors",
+                          "fmi2Instantiate: this FMU supports Co-Simulation only");
+        return NULL;
+    }
+    if (!fmuGUID || strcmp(fmuGUID, PMD_INSTANTIATION_TOKEN) != 0) {
+        functions->logger(functions->componentEnvironment, instanceName, fmi2Error, "errors",
+                          "fmi2Instantiate: the GUID does not match this binary's " PMD_INSTANTIATION_TOKEN);
+        return NULL;
+    }
+    comp = (Component *)calloc(1, sizeof *comp);
+    if (!comp)
+        return NULL;
+    comp->functions = *functions;
+    comp->inst = pmd_instance_new(instanceName, log_to_environment, comp);
+    if (!comp->inst) {
+        free(comp);
+        return NULL;
+    }
+    pmd_set_debug_logging(comp->inst, loggingOn, 0, NULL);
+    return comp;
+}
+
+void fmi2FreeInstance(fmi2Component c)
+{
+    if (!c)
+        return;
+    pmd_instance_free(((Component *)c)->inst);
+    free(c);
+}
+
+fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
+                               fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime)
+{
+    PmdInstance *inst = begin(c, "fmi2SetupExperiment", PMD_INSTANTIATED);
+    (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
+    if (!inst)
+        return fmi2Error;
+    inst->time = startTime;
+    return fmi2OK;
+}
+
+fmi2Status fmi2EnterInitializationMode(fmi2Component c)
+{
+    PmdInstance *inst = begin(c, "fmi2EnterInitializationMode", PMD_INSTANTIATED);
+    return inst ? status_of[pmd_enter_initialization(inst, inst->time)] : fmi2Error;
+}
+
+fmi2Status fmi2ExitInitializationMode(fmi2Component c)
+{
+    PmdInstance *inst = begin(c, "fmi2ExitInitializationMode", PMD_INITIALIZATION_MODE);
+    return inst ? status_of[pmd_exit_initialization(inst)] : fmi2Error;
+}
+
+fmi2Status fmi2Terminate(fmi2Component c)
+{
+    PmdInstance *inst = begin(c, "fmi2Terminate", PMD_INITIALIZATION_MODE | PMD_STEP_MODE);
+    if (!inst)
+        return fmi2Error;
+    inst->state = PMD_TERMINATED;
+    return fmi2OK;
+}
+
+fmi2Status fmi2Reset(fmi2Component c)
+{
+    PmdInstance *inst = begin(c, "fmi2Reset", ANY_STATE);
+    if (!inst)
+        return fmi2Error;
+    pmd_instance_reset(inst);
+    return fmi2OK;
+}
+
+/* ---- variables ---- */
+
+/* Gets see pending port writes executed first: a host reads its replies at the
+ * time it wrote the batch (CONTRACT 2.2). */
+#define GET_FUNCTION(fn, T, get)                                                                  \
+    fmi2Status fn(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, T value[])        \
+    {                                                                                            \
+        PmdInstance *inst = begin(c, #fn, GET_STATES);                                           \
+        size_t i;                                                                                \
+        if (!inst || !arrays_given(inst, #fn, nvr, vr, value))                                   \
+            return fmi2Error;                                                                    \
+        if (inst->state != PMD_TERMINATED)                                                       \
+            pmd_commit_ports(inst);                                                              \
+        for (i = 0; i < nvr; i++)                                                                \
+            if (get(inst, #fn, vr[i], &value[i]) != PMD_OK)                                      \
+                return fmi2Error;                                                                \
+        return fmi2OK;                                                                           \
+    }
+
+GET_FUNCTION(fmi2GetReal, fmi2Real, pmd_get_real)
+GET_FUNCTION(fmi2GetInteger, fmi2Integer, pmd_get_integer)
+GET_FUNCTION(fmi2GetBoolean, fmi2Boolean, pmd_get_boolean)
+
+/* Sets are all or nothing: every value is checked before any is applied. */
+#define SET_FUNCTION(fn, T, set)                                                                  \
+    fmi2Status fn(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const T value[])  \
+    {                                                                                            \
+        PmdInstance *inst = begin(c, #fn, SET_STATES);                                           \
+        size_t i;                                                                                \
+        if (!inst || !arrays_given(inst, #fn, nvr, vr, value))                                   \
+            return fmi2Error;                                                                    \
+        for (i = 0; i < nvr; i++)                                                                \
+            if (set(inst, #fn, vr[i], value[i], 0) != PMD_OK)                                    \
+                return fmi2Error;                                                                \
+        for (i = 0; i < nvr; i++)                                                                \
+            if (set(inst, #fn, vr[i], value[i], 1) != PMD_OK)                                    \
+                return fmi2Error;                                                                \
+        return status_of[pmd_check_memory_port(inst, #fn)];                                      \
+    }
+
+SET_FUNCTION(fmi2SetReal, fmi2Real, pmd_set_real)
+SET_FUNCTION(fmi2SetInteger, fmi2Integer, pmd_set_integer)
+SET_FUNCTION(fmi2SetBoolean, fmi2Boolean, pmd_set_boolean)
+
+fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[])
+{
+    PmdInstance *inst = begin(c, "fmi2GetString", GET_STATES);
+    if (!inst || !arrays_given(inst, "fmi2GetString", nvr, vr, value))
+        return fmi2Error;
+    return nvr == 0 ? fmi2OK : status_of[pmd_no_variable(inst, "fmi2GetString", vr[0], "String")];
+}
+
+fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[])
+{
+    PmdInstance *inst = begin(c, "fmi2SetString", SET_STATES);
+    if (!inst || !arrays_given(inst, "fmi2SetString", nvr, vr, value))
+        return fmi2Error;
+    return nvr == 0 ? fmi2OK : status_of[pmd_no_variable(inst, "fmi2SetString", vr[0], "String")];
+}
+
+/* ---- co-simulation ---- */
+
+fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,
+                      fmi2Boolean noSetFMUStatePriorToCurrentPoint)
+{
+    PmdInstance *inst = begin(c, "fmi2DoStep", PMD_STEP_MODE);
+    (void)noSetFMUStatePriorToCurrentPoint;
+    return inst ? status_of[pmd_do_step(inst, currentCommunicationPoint, communicationStepSize)] : fmi2Error;
+}
+
+fmi2Status fmi2CancelStep(fmi2Component c)
+{
+    return unsupported(c, "fmi2CancelStep", "doStep never runs asynchronously");
+}
+
+#define STATUS_FUNCTION(fn, T)                                                   \
+    fmi2Status fn(fmi2Component c, const fmi2StatusKind s, T *value)            \
+    {                                                                            \
+        (void)s; (void)value;                                                    \
+        return unsupported(c, #fn, "doStep never returns fmi2Pending");          \
+    }
+
+STATUS_FUNCTION(fmi2GetStatus, fmi2Status)
+STATUS_FUNCTION(fmi2GetRealStatus, fmi2Real)
+STATUS_FUNCTION(fmi2GetIntegerStatus, fmi2Integer)
+STATUS_FUNCTION(fmi2GetBooleanStatus, fmi2Boolean)
+STATUS_FUNCTION(fmi2GetStringStatus, fmi2String)
+
+fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                       const fmi2Integer order[], const fmi2Real value[])
+{
+    (void)vr; (void)nvr; (void)order; (void)value;
+    return unsupported(c, "fmi2SetRealInputDerivatives", "canInterpolateInputs is false");
+}
+
+fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                        const fmi2Integer order[], fmi2Real value[])
+{
+    (void)vr; (void)nvr; (void)order; (void)value;
+    return unsupported(c, "fmi2GetRealOutputDerivatives", "maxOutputDerivativeOrder is 0");
+}
+
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
+                                        const fmi2ValueReference vKnown_ref[], size_t nKnown,
+                                        const fmi2Real dvKnown[], fmi2Real dvUnknown[])
+{
+    (void)vUnknown_ref; (void)nUnknown; (void)vKnown_ref; (void)nKnown; (void)dvKnown; (void)dvUnknown;
+    return unsupported(c, "fmi2GetDirectionalDerivative", "providesDirectionalDerivative is false");
+}
+
+/* ---- FMU state ---- */
+
+#define NO_STATE "canGetAndSetFMUstate is false"
+
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
+{
+    (void)state;
+    return unsupported(c, "fmi2GetFMUstate", NO_STATE);
+}
+
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state)
+{
+    (void)state;
+    return unsupported(c, "fmi2SetFMUstate", NO_STATE);
+}
+
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *state)
+{
+    (void)state;
+    return unsupported(c, "fmi2FreeFMUstate", NO_STATE);
+}
+
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t *size)
+{
+    (void)state; (void)size;
+    return unsupported(c, "fmi2SerializedFMUstateSize", NO_STATE);
+}
+
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte serializedState[], size_t size)
+{
+    (void)state; (void)serializedState; (void)size;
+    return unsupported(c, "fmi2SerializeFMUstate", NO_STATE);
+}
+
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
+                                   fmi2FMUstate *state)
+{
+    (void)serializedState; (void)size; (void)state;
+    return unsupported(c, "fmi2DeSerializeFMUstate", NO_STATE);
+}

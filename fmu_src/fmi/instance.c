@@ -1,0 +1,441 @@
+/* The FMU instance over the chip core: variables, ports and the time grid
+ * (CONTRACT 2.1, 2.2). */
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "instance.h"
+
+const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT] = {
+    "errors", "warnings", "commands", "buffers", "segments", "events"};
+
+#define DEFAULT_CYCLE_TIME 1e-4
+#define DEFAULT_MEMORY_SIZE 0x4000     /* seed 000, 1.1: memory_size = 0x4000 (16Kx32) */
+
+void pmd_instance_log(const PmdInstance *inst, PmdStatus status, PmdLogCategory category, const char *format, ...)
+{
+    char message[1024];
+    va_list args;
+    /* errors are always logged; the rest as SetDebugLogging says */
+    if (!inst->logger || (status < PMD_ERROR && !(inst->loggingOn && (inst->categories & (1u << category)))))
+        return;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    inst->logger(inst->environment, inst->instanceName, status, pmd_log_category_names[category], message);
+}
+
+/* The chip formats a message only when its category is enabled (chip.logMask).
+ * A refused command is the chip's answer, not an FMU failure: it goes out
+ * under "errors" with status Warning. */
+static void chip_logger(void *context, PmdLogCategory category, const char *message)
+{
+    const PmdInstance *inst = (const PmdInstance *)context;
+    PmdStatus status = category <= PMD_LOG_WARNINGS ? PMD_WARNING : PMD_OK;
+    if (inst->logger)
+        inst->logger(inst->environment, inst->instanceName, status, pmd_log_category_names[category], message);
+}
+
+static void update_chip_log_mask(PmdInstance *inst)
+{
+    inst->chip.logMask = inst->loggingOn ? inst->categories : 0;
+}
+
+static void set_defaults(PmdInstance *inst)
+{
+    inst->state = PMD_INSTANTIATED;
+    inst->cycleTime = DEFAULT_CYCLE_TIME;
+    inst->time = 0;
+    inst->nextCycle = 0;
+    memset(inst->hostWord, 0, sizeof inst->hostWord);
+    memset(inst->hostReply, 0, sizeof inst->hostReply);
+    memset(inst->memoryData, 0, sizeof inst->memoryData);
+    inst->hostWordCount = inst->hostStrobe = inst->hostAck = inst->hostReplyCount = inst->hostError = 0;
+    inst->memoryAddress = inst->memoryCount = inst->memoryStrobe = inst->memoryStrobeSeen = 0;
+    memset(&inst->chip.s, 0, sizeof inst->chip.s);
+    inst->chip.s.loopback = 1;
+    memset(inst->chip.memory, 0, (size_t)inst->memorySize * sizeof(uint32_t));
+    pmd_chip_init(&inst->chip, inst->chip.memory, (uint32_t)inst->memorySize);
+}
+
+PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment)
+{
+    PmdInstance *inst = (PmdInstance *)calloc(1, sizeof *inst);
+    if (!inst)
+        return NULL;
+    inst->instanceName = (char *)malloc(strlen(instanceName) + 1);
+    inst->memorySize = DEFAULT_MEMORY_SIZE;
+    inst->chip.memory = (uint32_t *)calloc((size_t)inst->memorySize, sizeof(uint32_t));
+    if (!inst->instanceName || !inst->chip.memory) {
+        pmd_instance_free(inst);
+        return NULL;
+    }
+    strcpy(inst->instanceName, instanceName);
+    inst->logger = logger;
+    inst->environment = environment;
+    inst->chip.logger = chip_logger;
+    inst->chip.logContext = inst;
+    set_defaults(inst);
+    return inst;
+}
+
+void pmd_instance_free(PmdInstance *inst)
+{
+    if (!inst)
+        return;
+    free(inst->chip.memory);
+    free(inst->instanceName);
+    free(inst);
+}
+
+void pmd_instance_reset(PmdInstance *inst)
+{
+    uint32_t *memory = (uint32_t *)realloc(inst->chip.memory, DEFAULT_MEMORY_SIZE * sizeof(uint32_t));
+    if (memory) {   /* shrinking cannot fail in practice; if it does, keep the larger block */
+        inst->chip.memory = memory;
+        inst->memorySize = DEFAULT_MEMORY_SIZE;
+    }
+    set_defaults(inst);
+}
+
+void pmd_set_debug_logging(PmdInstance *inst, int loggingOn, size_t nCategories, const char *const categories[])
+{
+    size_t i;
+    int c;
+    inst->loggingOn = loggingOn;
+    if (nCategories == 0) {
+        inst->categories = loggingOn ? (1u << PMD_LOG_CATEGORY_COUNT) - 1u : 0;
+    } else {
+        inst->categories = 0;
+        for (i = 0; i < nCategories; i++) {
+            for (c = 0; c < PMD_LOG_CATEGORY_COUNT; c++)
+                if (categories[i] && strcmp(categories[i], pmd_log_category_names[c]) == 0)
+                    inst->categories |= 1u << c;
+        }
+    }
+    update_chip_log_mask(inst);
+}
+
+/* ---- time grid ---------------------------------------------------------------- */
+
+/* Cycles with k * cycleTime < t are before t. A master's t is a sum of
+ * floating-point steps, so k * cycleTime == t can arrive as a hair above or
+ * below; within the tolerance a grid point counts as "at t". */
+static int64_t cycles_before(const PmdInstance *inst, double t)
+{
+    double x = t / inst->cycleTime;
+    return (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
+}
+
+PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime)
+{
+    inst->time = startTime;
+    inst->state = PMD_INITIALIZATION_MODE;
+    return PMD_OK;
+}
+
+PmdStatus pmd_exit_initialization(PmdInstance *inst)
+{
+    inst->nextCycle = cycles_before(inst, inst->time);
+    inst->state = PMD_STEP_MODE;
+    return PMD_OK;
+}
+
+#define MAX_CYCLES_PER_STEP ((double)(1LL << 53))
+
+PmdStatus pmd_do_step(PmdInstance *inst, double t, double h)
+{
+    int64_t end;
+    double x;
+    if (!isfinite(t) || !isfinite(h) || h <= 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: communication point %g, step size %g: the step "
+                         "size must be finite and > 0", t, h);
+        return PMD_ERROR;
+    }
+    if (fabs(t - inst->time) > 1e-6 * inst->cycleTime + 8 * DBL_EPSILON * fabs(inst->time)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: communication point %.17g is not the current "
+                         "time %.17g", t, inst->time);
+        return PMD_ERROR;
+    }
+    x = (t + h) / inst->cycleTime;
+    if (!(x < MAX_CYCLES_PER_STEP)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: step to %g s is beyond 2^53 cycles of %g s",
+                         t + h, inst->cycleTime);
+        return PMD_ERROR;
+    }
+    pmd_commit_ports(inst);
+    end = cycles_before(inst, t + h);
+    while (inst->nextCycle < end) {
+        pmd_chip_cycle(&inst->chip);
+        inst->nextCycle++;
+    }
+    inst->time = t + h;
+    return PMD_OK;
+}
+
+/* ---- ports ---------------------------------------------------------------- */
+
+PmdStatus pmd_check_memory_port(PmdInstance *inst, const char *fn)
+{
+    if (inst->memoryStrobe == inst->memoryStrobeSeen)
+        return PMD_OK;
+    if ((uint32_t)inst->memoryAddress > (uint32_t)inst->memorySize ||
+        (uint32_t)inst->memoryCount > (uint32_t)inst->memorySize - (uint32_t)inst->memoryAddress) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: memory.strobe %d: writing %d words at address %d "
+                         "leaves the %d-word memory: write refused", fn, inst->memoryStrobe, inst->memoryCount,
+                         inst->memoryAddress, inst->memorySize);
+        inst->memoryStrobeSeen = inst->memoryStrobe;
+        return PMD_ERROR;
+    }
+    return PMD_OK;
+}
+
+void pmd_commit_ports(PmdInstance *inst)
+{
+    int i;
+    if (inst->hostStrobe != inst->hostAck) {
+        uint16_t words[PMD_BATCH_WORDS], reply[PMD_BATCH_WORDS];
+        int count = 0;
+        for (i = 0; i < inst->hostWordCount; i++)
+            words[i] = (uint16_t)(inst->hostWord[i] & 0xFFFF);
+        inst->hostError = pmd_host_batch(&inst->chip, words, inst->hostWordCount, reply, &count);
+        for (i = 0; i < PMD_BATCH_WORDS; i++)
+            inst->hostReply[i] = i < count ? reply[i] : 0;
+        inst->hostReplyCount = count;
+        inst->hostAck = inst->hostStrobe;
+    }
+    if (inst->memoryStrobe != inst->memoryStrobeSeen) {
+        uint32_t data[PMD_BATCH_WORDS];
+        for (i = 0; i < inst->memoryCount; i++)
+            data[i] = (uint32_t)inst->memoryData[i];
+        pmd_memory_write(&inst->chip, (uint32_t)inst->memoryAddress, (uint32_t)inst->memoryCount, data);
+        inst->memoryStrobeSeen = inst->memoryStrobe;
+    }
+}
+
+/* ---- variables ------------------------------------------------------------- */
+
+static const char *const type_names[] = {"Real", "Integer", "Boolean", "String"};
+
+static const PmdVariable *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdType type)
+{
+    const PmdVariable *v;
+    if (vr > PMD_VR_MAX || pmd_variable_of_vr[vr] < 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
+        return NULL;
+    }
+    v = &pmd_variables[pmd_variable_of_vr[vr]];
+    if (v->type != type) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a %s, not %s", fn, vr,
+                         v->name, type_names[v->type], type_names[type]);
+        return NULL;
+    }
+    return v;
+}
+
+PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const char *type)
+{
+    if (vr <= PMD_VR_MAX && pmd_variable_of_vr[vr] >= 0)
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a %s, not %s", fn, vr,
+                         pmd_variables[pmd_variable_of_vr[vr]].name,
+                         type_names[pmd_variables[pmd_variable_of_vr[vr]].type], type);
+    else
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
+    return PMD_ERROR;
+}
+
+/* Parameters are fixed: settable before the end of initialization only;
+ * outputs never. */
+static int settable(PmdInstance *inst, const char *fn, const PmdVariable *v)
+{
+    if (v->causality == PMD_OUTPUT) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s is an output and cannot be set", fn, v->name);
+        return 0;
+    }
+    if (v->causality == PMD_PARAMETER && !(inst->state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE))) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s is a fixed parameter and cannot be set after "
+                         "initialization", fn, v->name);
+        return 0;
+    }
+    return 1;
+}
+
+static const PmdAxis *axis_of(const PmdInstance *inst, const PmdVariable *v)
+{
+    return &inst->chip.s.axis[v->index];
+}
+
+PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
+    const PmdTrajectory *t;
+    if (!v)
+        return PMD_ERROR;
+    if (v->family == VAR_cycleTime) {
+        *value = inst->cycleTime;
+        return PMD_OK;
+    }
+    t = &axis_of(inst, v)->trajectory;
+    switch (v->family) {
+    case VAR_axis_position:
+        *value = (double)t->position + (double)t->fraction / (double)PMD_U_PER_COUNT;
+        break;
+    case VAR_axis_velocity:
+        *value = (double)t->velocity / (double)PMD_U_PER_COUNT / inst->cycleTime;
+        break;
+    default:   /* VAR_axis_acceleration */
+        *value = (double)t->acceleration / (double)PMD_U_PER_COUNT / (inst->cycleTime * inst->cycleTime);
+        break;
+    }
+    return PMD_OK;
+}
+
+PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
+    const PmdAxis *ax;
+    if (!v)
+        return PMD_ERROR;
+    ax = axis_of(inst, v);
+    switch (v->family) {
+    case VAR_memorySize: *value = inst->memorySize; break;
+    case VAR_chipTime: *value = pmd_int32(inst->chip.s.time); break;
+    case VAR_axis_commandedPosition: *value = ax->trajectory.position; break;
+    case VAR_axis_commandedVelocity: *value = pmd_commanded_velocity(&ax->trajectory); break;
+    case VAR_axis_commandedAcceleration: *value = pmd_commanded_acceleration(&ax->trajectory); break;
+    case VAR_axis_activityStatus: *value = pmd_activity_status(&inst->chip, v->index); break;
+    case VAR_axis_eventStatus: *value = ax->eventStatus; break;
+    case VAR_axis_actualPosition: *value = ax->actualPositionInput; break;
+    case VAR_host_word: *value = inst->hostWord[v->index]; break;
+    case VAR_host_wordCount: *value = inst->hostWordCount; break;
+    case VAR_host_strobe: *value = inst->hostStrobe; break;
+    case VAR_host_ack: *value = inst->hostAck; break;
+    case VAR_host_reply: *value = inst->hostReply[v->index]; break;
+    case VAR_host_replyCount: *value = inst->hostReplyCount; break;
+    case VAR_host_error: *value = inst->hostError; break;
+    case VAR_memory_address: *value = inst->memoryAddress; break;
+    case VAR_memory_count: *value = inst->memoryCount; break;
+    case VAR_memory_strobe: *value = inst->memoryStrobe; break;
+    default: *value = inst->memoryData[v->index]; break;   /* VAR_memory_data */
+    }
+    return PMD_OK;
+}
+
+PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
+    const PmdAxis *ax;
+    if (!v)
+        return PMD_ERROR;
+    ax = axis_of(inst, v);
+    switch (v->family) {
+    case VAR_loopback: *value = inst->chip.s.loopback; break;
+    case VAR_axis_positiveLimit: *value = ax->positiveLimitInput; break;
+    case VAR_axis_negativeLimit: *value = ax->negativeLimitInput; break;
+    case VAR_axis_home: *value = ax->homeInput; break;
+    default: *value = pmd_host_interrupt(&inst->chip); break;   /* VAR_host_interrupt */
+    }
+    return PMD_OK;
+}
+
+static PmdStatus out_of_range(PmdInstance *inst, const char *fn, const PmdVariable *v, double value,
+                              const char *range)
+{
+    pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s = %.17g is out of range (%s): not set", fn, v->name,
+                     value, range);
+    return PMD_ERROR;
+}
+
+PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
+    if (!v || !settable(inst, fn, v))
+        return PMD_ERROR;
+    /* the only Real that can be set is cycleTime */
+    if (!(isfinite(value) && value > 0))
+        return out_of_range(inst, fn, v, value, "finite and > 0");
+    if (apply)
+        inst->cycleTime = value;
+    return PMD_OK;
+}
+
+static PmdStatus set_memory_size(PmdInstance *inst, int32_t words)
+{
+    uint32_t *memory = (uint32_t *)realloc(inst->chip.memory, (size_t)words * sizeof(uint32_t));
+    if (!memory) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "memorySize = %d: out of host memory", words);
+        return PMD_ERROR;
+    }
+    memset(memory, 0, (size_t)words * sizeof(uint32_t));
+    inst->chip.memory = memory;
+    inst->chip.memorySize = (uint32_t)words;
+    inst->memorySize = words;
+    pmd_chip_reset(&inst->chip);   /* buffers must fit the new memory: back to reset values */
+    return PMD_OK;
+}
+
+PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t value, int apply)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
+    PmdAxis *ax;
+    if (!v || !settable(inst, fn, v))
+        return PMD_ERROR;
+    switch (v->family) {
+    case VAR_memorySize:
+        if (value < 1 || (uint32_t)value > PMD_MAX_MEMORY_WORDS)
+            return out_of_range(inst, fn, v, value, "1 .. 2^26 words");
+        break;
+    case VAR_host_word:
+        if (value < -32768 || value > 65535)
+            return out_of_range(inst, fn, v, value, "a 16-bit word, -32768 .. 65535");
+        break;
+    case VAR_host_wordCount:
+    case VAR_memory_count:
+        if (value < 0 || value > PMD_BATCH_WORDS)
+            return out_of_range(inst, fn, v, value, "0 .. 64");
+        break;
+    case VAR_memory_address:
+        if (value < 0)
+            return out_of_range(inst, fn, v, value, ">= 0");
+        break;
+    default:
+        break;
+    }
+    if (!apply)
+        return PMD_OK;
+    ax = &inst->chip.s.axis[v->index];
+    switch (v->family) {
+    case VAR_memorySize: return set_memory_size(inst, value);
+    case VAR_axis_actualPosition: ax->actualPositionInput = value; break;
+    case VAR_host_word: inst->hostWord[v->index] = value; break;
+    case VAR_host_wordCount: inst->hostWordCount = value; break;
+    case VAR_host_strobe: inst->hostStrobe = value; break;
+    case VAR_memory_address: inst->memoryAddress = value; break;
+    case VAR_memory_count: inst->memoryCount = value; break;
+    case VAR_memory_strobe: inst->memoryStrobe = value; break;
+    default: inst->memoryData[v->index] = value; break;   /* VAR_memory_data */
+    }
+    return PMD_OK;
+}
+
+PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
+    PmdAxis *ax;
+    if (!v || !settable(inst, fn, v))
+        return PMD_ERROR;
+    if (!apply)
+        return PMD_OK;
+    ax = &inst->chip.s.axis[v->index];
+    value = value != 0;
+    switch (v->family) {
+    case VAR_loopback: inst->chip.s.loopback = (uint8_t)value; break;
+    case VAR_axis_positiveLimit: ax->positiveLimitInput = (uint8_t)value; break;
+    case VAR_axis_negativeLimit: ax->negativeLimitInput = (uint8_t)value; break;
+    default: ax->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
+    }
+    return PMD_OK;
+}

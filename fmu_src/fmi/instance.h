@@ -1,0 +1,86 @@
+/* One FMU instance: the chip, its memory, the host and dual-port memory
+ * ports, the parameters and the time grid. Independent of the FMI version;
+ * fmi2.c maps the FMI 2.0 API onto it. */
+#ifndef PMD_INSTANCE_H
+#define PMD_INSTANCE_H
+
+#include <stddef.h>
+
+#include "chip.h"
+#include "variables.h"
+
+#define PMD_MAX_MEMORY_WORDS (1u << 26)   /* 256 MiB of external memory at most */
+
+typedef enum { PMD_OK, PMD_WARNING, PMD_DISCARD, PMD_ERROR, PMD_FATAL } PmdStatus;
+
+/* The FMI states, as bits so that a function can name the states it is legal in. */
+typedef enum {
+    PMD_INSTANTIATED = 1 << 0,
+    PMD_INITIALIZATION_MODE = 1 << 1,
+    PMD_STEP_MODE = 1 << 2,
+    PMD_TERMINATED = 1 << 3
+} PmdState;
+
+typedef void (*PmdInstanceLogger)(void *environment, const char *instanceName, PmdStatus status,
+                                  const char *category, const char *message);
+
+typedef struct {
+    PmdChip chip;
+    PmdState state;
+    char *instanceName;
+    PmdInstanceLogger logger;
+    void *environment;
+    int loggingOn;
+    unsigned categories;        /* bit per PmdLogCategory enabled by SetDebugLogging */
+
+    /* parameters */
+    double cycleTime;
+    int32_t memorySize;
+
+    /* time: cycle k runs at k * cycleTime; nextCycle is the next k to run */
+    double time;
+    int64_t nextCycle;
+
+    /* host port */
+    int32_t hostWord[PMD_BATCH_WORDS];
+    int32_t hostWordCount, hostStrobe, hostAck;
+    int32_t hostReply[PMD_BATCH_WORDS];
+    int32_t hostReplyCount, hostError;
+
+    /* dual-port memory port */
+    int32_t memoryAddress, memoryCount, memoryStrobe, memoryStrobeSeen;
+    int32_t memoryData[PMD_BATCH_WORDS];
+} PmdInstance;
+
+extern const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT];
+
+PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment);
+void pmd_instance_free(PmdInstance *inst);
+void pmd_instance_reset(PmdInstance *inst);
+void pmd_set_debug_logging(PmdInstance *inst, int loggingOn, size_t nCategories, const char *const categories[]);
+PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime);
+PmdStatus pmd_exit_initialization(PmdInstance *inst);
+PmdStatus pmd_do_step(PmdInstance *inst, double t, double h);
+
+/* Variable access, one value at a time. fn names the FMI function in messages.
+ * A set with apply = 0 only checks (so that an array call is all or nothing). */
+PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value);
+PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value);
+PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value);
+PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply);
+PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t value, int apply);
+PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply);
+PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const char *type);
+
+/* Checks the dual-port write a changed memory.strobe asks for; call after a set call. */
+PmdStatus pmd_check_memory_port(PmdInstance *inst, const char *fn);
+/* Executes pending host and memory port writes (host batch first; CONTRACT 2.1). */
+void pmd_commit_ports(PmdInstance *inst);
+
+void pmd_instance_log(const PmdInstance *inst, PmdStatus status, PmdLogCategory category, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+#endif
