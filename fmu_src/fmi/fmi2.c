@@ -20,8 +20,13 @@ static void log_to_environment(void *environment, const char *instanceName, PmdS
                                const char *message)
 {
     const Component *comp = (const Component *)environment;
-    comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category,
-                           message);
+    /* the logger's message is a printf format: pass a '%' through "%s" */
+    if (strchr(message, '%'))
+        comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category,
+                               "%s", message);
+    else
+        comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category,
+                               message);
 }
 
 static const char *state_name(PmdState state)

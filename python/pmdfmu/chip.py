@@ -1,0 +1,282 @@
+"""The chip, as host code sees it: the FMU loaded through FMPy, C-Motion calls
+on axis handles, and cycle-exact runs recorded into numpy arrays."""
+from __future__ import annotations
+
+import os
+import shutil
+from ctypes import byref
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+
+from . import tables
+from .tables import Command, Field
+
+PACKAGE = Path(__file__).resolve().parent
+REPO = PACKAGE.parent.parent
+BATCH_WORDS = 64
+STATUS_NAMES = ["OK", "Warning", "Discard", "Error", "Fatal"]
+
+
+def tables_dir() -> Path:
+    """The interface tables: installed with the package, or the source tree's."""
+    installed = PACKAGE / "tables"
+    return installed if installed.is_dir() else REPO / "modelDescription"
+
+
+def default_fmu(fmi_version: int = 2) -> Path:
+    """The built FMU: $PMDFMU_FMU_DIR, the installed package's, or the source tree's build/."""
+    name = f"PMDMotionProcessor-fmi{fmi_version}.fmu"
+    candidates = [Path(os.environ["PMDFMU_FMU_DIR"]) / name] if "PMDFMU_FMU_DIR" in os.environ else []
+    candidates += [PACKAGE / "fmus" / name, REPO / "build" / name]
+    for path in candidates:
+        if path.is_file():
+            return path
+    raise FileNotFoundError(f"{name} not found in {', '.join(map(str, candidates))}: build it first "
+                            "(pip install . or cmake -S . -B build && cmake --build build)")
+
+
+COMMANDS: Dict[str, Command] = {c.name: c for c in tables.read_commands(tables_dir() / "commands.csv")}
+ERROR_NAMES: Dict[int, str] = {v: n for g, n, v in tables.read_constants(tables_dir() / "constants.csv")
+                               if g == "Error"}
+
+
+class PMDError(Exception):
+    """A command the chip refused, with its host I/O error code (pmd-reference 2.4)."""
+
+    def __init__(self, code: int, command: str = ""):
+        self.code = code
+        self.command = command
+        super().__init__(f"{command}: host I/O error 0x{code:02X} ({ERROR_NAMES.get(code, 'unknown')})")
+
+
+@dataclass
+class LogMessage:
+    status: str
+    category: str
+    message: str
+
+
+def encode(command: Command, values: Sequence[int]) -> List[int]:
+    """The data words of a command, as C-Motion packs them."""
+    if len(values) != len(command.args):
+        names = ", ".join(f.name for f in command.args)
+        raise TypeError(f"{command.name}({names}) takes {len(command.args)} arguments, {len(values)} given")
+    words = [0] * command.arg_words
+    for f, v in zip(command.args, values):
+        v = int(v)
+        if f.kind == "bits":
+            if not 0 <= v < (1 << f.width):
+                raise ValueError(f"{command.name}: {f.name} = {v} does not fit {f.width} bits")
+            words[f.word] |= v << f.shift
+        else:
+            if not -(1 << (f.width - 1)) <= v < (1 << f.width):
+                raise ValueError(f"{command.name}: {f.name} = {v} does not fit {f.width} bits")
+            v &= (1 << f.width) - 1
+            if f.width == 32:
+                words[f.word], words[f.word + 1] = v >> 16, v & 0xFFFF
+            else:
+                words[f.word] = v
+    return words
+
+
+def decode(fields: Tuple[Field, ...], words: Sequence[int]) -> List[int]:
+    out = []
+    for f in fields:
+        if f.kind == "bits":
+            out.append((words[f.word] >> f.shift) & ((1 << f.width) - 1))
+            continue
+        v = (words[f.word] << 16) | words[f.word + 1] if f.width == 32 else words[f.word]
+        if f.signed and v >> (f.width - 1):
+            v -= 1 << f.width
+        out.append(v)
+    return out
+
+
+class Axis:
+    """An axis handle: C-Motion's PMDAxisHandle. Its methods are the C-Motion
+    calls without the PMD prefix and the handle: ax.SetBufferStart(2, 0x200)."""
+
+    def __init__(self, chip: "Chip", number: int):
+        if not 0 <= number < 4:
+            raise ValueError(f"axis {number}: the chip has axes 0..3 (PMDAxis1..PMDAxis4)")
+        self.chip = chip
+        self.number = number
+
+    def __getattr__(self, name: str):
+        command = COMMANDS.get(name)
+        if command is None:
+            raise AttributeError(f"{name} is not a command of this chip (see pmdfmu info)")
+
+        def call(*args):
+            return self.chip.command(self.number, command, args)
+        call.__name__ = name
+        call.__doc__ = command.summary
+        return call
+
+    def __dir__(self):
+        return sorted(COMMANDS)
+
+    def __repr__(self):
+        return f"<PMDAxis{self.number + 1}>"
+
+
+class Chip:
+    """A motion processor in an FMU instance: Chip(fmi_version=2, fmu=None, **parameters).
+
+    parameters are the FMU's (cycleTime, memorySize, loopback). log_categories
+    enables FMU logging (True for all, or a list such as ["warnings", "events"]);
+    messages collect in chip.messages, errors always."""
+
+    def __init__(self, fmi_version: int = 2, fmu: Union[str, Path, None] = None, *,
+                 log_categories: Union[bool, Iterable[str]] = False, **parameters):
+        if fmi_version != 2:
+            raise NotImplementedError("FMI 3.0 is not built yet: use fmi_version=2")
+        self.path = Path(fmu) if fmu else default_fmu(fmi_version)
+        self.model_description = read_model_description(str(self.path))
+        self.variables = {v.name: v for v in self.model_description.modelVariables}
+        self.messages: List[LogMessage] = []
+        self._unzipdir = extract(str(self.path))
+        self._fmu = FMU2Slave(guid=self.model_description.guid, unzipDirectory=self._unzipdir,
+                              modelIdentifier=self.model_description.coSimulation.modelIdentifier,
+                              instanceName="pmd")
+        self._callbacks = fmi2CallbackFunctions()
+        self._callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
+        try:   # FMPy's proxy formats the message's printf arguments
+            from fmpy.logging import addLoggerProxy
+            addLoggerProxy(byref(self._callbacks))
+        except ImportError:
+            pass
+        self._fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
+        if log_categories and log_categories is not True:
+            self._fmu.setDebugLogging(True, list(log_categories))
+        self._fmu.setupExperiment(startTime=0.0)
+        for name, value in parameters.items():
+            self.set(name, value)
+        self._fmu.enterInitializationMode()
+        self._fmu.exitInitializationMode()
+        self.cycle_time = self.get("cycleTime")
+        self.cycles = 0               # chip cycles run since instantiation (the time grid index)
+        self._strobe = 0
+        self._memory_strobe = 0
+        self._vr = {name: v.valueReference for name, v in self.variables.items()}
+        self._reply_vrs = [self._vr["host.error"], self._vr["host.replyCount"]] + \
+                          [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]
+
+    # ---- life cycle ----
+
+    def close(self) -> None:
+        if self._fmu is not None:
+            self._fmu.terminate()
+            self._fmu.freeInstance()
+            self._fmu = None
+            shutil.rmtree(self._unzipdir, ignore_errors=True)
+
+    def __enter__(self) -> "Chip":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def _log(self, env, instance_name, status, category, message):
+        self.messages.append(LogMessage(STATUS_NAMES[status] if 0 <= status < 5 else str(status),
+                                        category.decode(), message.decode(errors="replace")))
+
+    # ---- variables ----
+
+    def set(self, name: str, value) -> None:
+        """Sets an FMU input or parameter by name."""
+        v = self.variables[name]
+        setter = {"Real": self._fmu.setReal, "Integer": self._fmu.setInteger, "Boolean": self._fmu.setBoolean}
+        setter[v.type]([v.valueReference], [value])
+
+    def get(self, name: str):
+        """Reads an FMU variable by name."""
+        v = self.variables[name]
+        getter = {"Real": self._fmu.getReal, "Integer": self._fmu.getInteger, "Boolean": self._fmu.getBoolean}
+        return getter[v.type]([v.valueReference])[0]
+
+    @property
+    def time(self) -> float:
+        """Simulation time of the next cycle."""
+        return self.cycles * self.cycle_time
+
+    # ---- host port ----
+
+    def axis(self, n: int) -> Axis:
+        """Axis handle n = 0..3 (C-Motion's PMDAxis1..PMDAxis4)."""
+        return Axis(self, n)
+
+    def batch(self, words: Sequence[int]) -> Tuple[int, List[int]]:
+        """Sends raw host words (whole commands) as one batch; returns
+        (host.error, reply words). It executes now, before the next cycle."""
+        if len(words) > BATCH_WORDS:
+            raise ValueError(f"a batch holds at most {BATCH_WORDS} words, not {len(words)}")
+        self._strobe = (self._strobe + 1) & 0x7FFFFFFF
+        vrs = [self._vr[f"host.word[{i + 1}]"] for i in range(len(words))]
+        self._fmu.setInteger(vrs + [self._vr["host.wordCount"], self._vr["host.strobe"]],
+                             list(words) + [len(words), self._strobe])
+        values = self._fmu.getInteger(self._reply_vrs)
+        return values[0], values[2:2 + values[1]]
+
+    def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
+        """Executes one C-Motion call; raises PMDError if the chip refuses it.
+        Returns None, the reply value, or a tuple of reply values."""
+        if isinstance(command, str):
+            command = COMMANDS[command]
+        instruction = command.opcode | ((0 if command.scope == "chip" else axis) << 8)
+        error, reply = self.batch([instruction] + encode(command, args))
+        if error:
+            raise PMDError(error, command.name)
+        values = decode(command.reply, reply)
+        return None if not values else values[0] if len(values) == 1 else tuple(values)
+
+    # ---- dual-port memory ----
+
+    def write_memory(self, address: int, words: Sequence[int]) -> None:
+        """Writes 32-bit words straight into external memory (the seed's dual-port
+        upload, bypassing the processor), 64 words per strobe."""
+        vr_data = [self._vr[f"memory.data[{i + 1}]"] for i in range(BATCH_WORDS)]
+        ctrl = [self._vr["memory.address"], self._vr["memory.count"], self._vr["memory.strobe"]]
+        words = [int(w) for w in words]
+        for start in range(0, len(words), BATCH_WORDS):
+            chunk = [w - (1 << 32) if w >= (1 << 31) else w for w in words[start:start + BATCH_WORDS]]
+            self._memory_strobe = (self._memory_strobe + 1) & 0x7FFFFFFF
+            self._fmu.setInteger(vr_data[:len(chunk)] + ctrl,
+                                 chunk + [address + start, len(chunk), self._memory_strobe])
+            self._fmu.getInteger([self._vr["host.ack"]])     # executes the write now
+
+    # ---- time ----
+
+    def run(self, cycles: int, record: Sequence[str] = ()) -> np.ndarray:
+        """Advances the chip by `cycles` cycles. With record, returns a structured
+        array: row i holds the outputs as the i-th cycle left them, in a `cycle`
+        column (chip time) and one field per requested FMU variable."""
+        if cycles < 0:
+            raise ValueError("cycles must be >= 0")
+        if not record:
+            if cycles:
+                self._fmu.doStep(self.time, cycles * self.cycle_time)
+                self.cycles += cycles
+            return np.zeros(0, dtype=[("cycle", np.int64)])
+        kinds = {"Real": np.float64, "Integer": np.int64, "Boolean": np.bool_}
+        names = list(record)
+        types = [self.variables[n].type for n in names]
+        dtype = [("cycle", np.int64)] + [(n, kinds[t]) for n, t in zip(names, types)]
+        out = np.zeros(cycles, dtype=dtype)
+        groups = [(t, [n for n, tt in zip(names, types) if tt == t]) for t in kinds]
+        getters = {"Real": self._fmu.getReal, "Integer": self._fmu.getInteger, "Boolean": self._fmu.getBoolean}
+        groups = [(getters[t], ns, [self._vr[n] for n in ns]) for t, ns in groups if ns]
+        time_vr = [self._vr["chipTime"]]
+        for i in range(cycles):
+            self._fmu.doStep(self.time, self.cycle_time)
+            self.cycles += 1
+            out["cycle"][i] = self._fmu.getInteger(time_vr)[0]
+            for get, ns, vrs in groups:
+                for n, value in zip(ns, get(vrs)):
+                    out[n][i] = value
+        return out
