@@ -1,0 +1,178 @@
+"""External profiles from segment tables, following seed 000: buffer set-up
+(1.1), loading (1.3), the initial move and the synchronized start (1.4), and
+the run until every axis's profile segment number drops to 0 (1.6)."""
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+from typing import Dict, Iterable, List, Sequence, Tuple
+
+import numpy as np
+
+from .chip import Chip
+
+FUNCTIONS = ("position", "velocity", "acceleration", "jerk", "time")
+Row = Tuple[int, int, int, int, int]
+PROFILE_SEGMENT = 0xE000
+IN_MOTION = 0x0400
+EXTERNAL_PROFILE = 4
+TRAPEZOIDAL = 0
+
+
+def read_segment_table(path: Path) -> Dict[int, List[Row]]:
+    """Reads a CSV segment table: columns axis (1..4), position, velocity,
+    acceleration, jerk, time, raw chip units (32.0, 16.16, 16.16, 0.32, cycles),
+    decimal or 0x-hex; lines starting with # are comments."""
+    tables: Dict[int, List[Row]] = {}
+    with open(path, newline="") as f:
+        lines = [line for line in f if line.strip() and not line.lstrip().startswith("#")]
+    for n, row in enumerate(csv.DictReader(lines), start=2):
+        try:
+            axis = int(row["axis"], 0)
+            values = tuple(int(row[name], 0) for name in FUNCTIONS)
+        except (KeyError, ValueError, TypeError) as e:
+            raise ValueError(f"{path}: row {n}: {e}") from None
+        if not 1 <= axis <= 4:
+            raise ValueError(f"{path}: row {n}: axis {axis} is not 1..4")
+        tables.setdefault(axis - 1, []).append(values)
+    return tables
+
+
+def write_segment_table(path: Path, tables: Dict[int, Sequence[Row]]) -> None:
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(("axis",) + FUNCTIONS)
+        for axis, rows in sorted(tables.items()):
+            for r in rows:
+                w.writerow((axis + 1,) + tuple(r))
+
+
+def load_external_profile(chip: Chip, tables: Dict[int, Sequence[Row]], memory_start: int = 0x200,
+                          upload: str = "memory") -> Dict[int, List[int]]:
+    """Gives each axis five buffers (IDs from 2 up, consecutive, not overlapping)
+    of the table's length, assigns them to position..time and fills them:
+    upload="memory" through the dual-port memory port, "command" with WriteBuffer.
+    Returns the buffer IDs of each axis."""
+    ids: Dict[int, List[int]] = {}
+    buffer_id, address = 2, memory_start
+    for axis, rows in sorted(tables.items()):
+        ax = chip.axis(axis)
+        length = len(rows)
+        ids[axis] = []
+        for variable in range(5):
+            ax.SetBufferStart(buffer_id, address)
+            ax.SetBufferLength(buffer_id, length)
+            ax.SetBufferFunction(variable, buffer_id)
+            column = [r[variable] for r in rows]
+            if upload == "memory":
+                chip.write_memory(address, [v & 0xFFFFFFFF for v in column])
+            else:
+                for v in column:
+                    ax.WriteBuffer(buffer_id, v)
+            ids[axis].append(buffer_id)
+            buffer_id += 1
+            address += length
+    return ids
+
+
+def move_to(chip: Chip, positions: Dict[int, int], velocity: int, acceleration: int,
+            max_cycles: int = 10_000_000, step: int = 256) -> int:
+    """Trapezoidal moves of the given axes to their positions (seed 000, 1.4);
+    runs until all are at rest. Returns the cycles it took."""
+    for axis, position in positions.items():
+        ax = chip.axis(axis)
+        ax.SetProfileMode(TRAPEZOIDAL)
+        ax.SetVelocity(velocity)
+        ax.SetAcceleration(acceleration)
+        ax.SetPosition(position)
+        ax.Update()
+    start = chip.cycles
+    while any(chip.axis(a).GetActivityStatus() & IN_MOTION for a in positions):
+        if chip.cycles - start > max_cycles:
+            raise RuntimeError(f"initial move not complete after {max_cycles} cycles")
+        chip.run(step)
+    return chip.cycles - start
+
+
+def start_external_profile(chip: Chip, axes: Iterable[int]) -> None:
+    """SetProfileMode(PMDExternalProfile) on every axis, then one MultiUpdate:
+    a synchronized start (seed 000, 1.4)."""
+    mask = 0
+    for axis in axes:
+        chip.axis(axis).SetProfileMode(EXTERNAL_PROFILE)
+        mask |= 1 << axis
+    chip.axis(0).MultiUpdate(mask)
+
+
+def record_outputs(axes: Iterable[int]) -> List[str]:
+    names = []
+    for axis in axes:
+        n = axis + 1
+        names += [f"axis{n}.commandedPosition", f"axis{n}.commandedVelocity", f"axis{n}.commandedAcceleration",
+                  f"axis{n}.position", f"axis{n}.velocity", f"axis{n}.acceleration", f"axis{n}.activityStatus"]
+    return names
+
+
+def run_until_halted(chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_000,
+                     chunk: int = 1000) -> np.ndarray:
+    """Runs and records every cycle until every axis's profile segment number
+    is 0 (seed 000, 1.6), or max_cycles."""
+    names = record_outputs(axes)
+    parts = []
+    total = 0
+    while total < max_cycles:
+        part = chip.run(min(chunk, max_cycles - total), record=names)
+        parts.append(part)
+        total += len(part)
+        last = part[-1]
+        if all(not (last[f"axis{a + 1}.activityStatus"] & PROFILE_SEGMENT) for a in axes):
+            break
+    out = np.concatenate(parts)
+    done = np.ones(len(out), dtype=bool)
+    for a in axes:
+        done &= (out[f"axis{a + 1}.activityStatus"] & PROFILE_SEGMENT) == 0
+    end = int(np.argmax(done)) + 1 if done.any() else len(out)
+    return out[:end]
+
+
+def run_segment_table(chip: Chip, tables: Dict[int, Sequence[Row]], velocity: int = 0x40000,
+                      acceleration: int = 0x1000, upload: str = "memory",
+                      max_cycles: int = 1_000_000) -> np.ndarray:
+    """The whole of seed 000 for a table: load, move each axis to its first
+    position, start all axes together, run to completion. Returns the recorded
+    cycles of the external profile."""
+    axes = sorted(tables)
+    load_external_profile(chip, tables, upload=upload)
+    move_to(chip, {a: tables[a][0][0] for a in axes}, velocity, acceleration)
+    start_external_profile(chip, axes)
+    return run_until_halted(chip, axes, max_cycles=max_cycles)
+
+
+def write_csv(path: Path, recorded: np.ndarray) -> None:
+    names = recorded.dtype.names
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(names)
+        for row in recorded:
+            w.writerow([repr(float(row[n])) if recorded.dtype[n].kind == "f" else int(row[n]) for n in names])
+
+
+def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "External profile") -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    axes = sorted({int(n[4]) for n in recorded.dtype.names if n.startswith("axis")})
+    t = recorded["cycle"] * cycle_time
+    fig, panels = plt.subplots(3, 1, sharex=True, figsize=(9, 8))
+    for n in axes:
+        for panel, quantity, unit in zip(panels, ("position", "velocity", "acceleration"),
+                                         ("counts", "counts/s", "counts/s²")):
+            panel.plot(t, recorded[f"axis{n}.{quantity}"], label=f"axis {n}")
+            panel.set_ylabel(f"{quantity} [{unit}]")
+    panels[0].set_title(title)
+    panels[0].legend()
+    panels[-1].set_xlabel("time [s]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)

@@ -1,0 +1,9 @@
+import pytest
+
+import pmdfmu
+
+
+@pytest.fixture
+def chip():
+    with pmdfmu.Chip() as c:
+        yield c
