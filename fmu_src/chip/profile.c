@@ -267,6 +267,8 @@ void pmd_profile_cycle(PmdChip *chip, int n)
         trapezoidal_cycle(chip, n);
         break;
     default:
+        /* at rest: the braking of the last moving cycle is over */
+        chip->s.axis[n].trajectory.acceleration = 0;
         break;
     }
 }
