@@ -141,7 +141,7 @@ class Chip:
         self.variables = {v.name: v for v in self.model_description.modelVariables}
         self.messages: List[LogMessage] = []
         self._unzipdir = extract(str(self.path))
-        self._fmu = FMU2Slave(guid=self.model_description.guid, unzipDirectory=self._unzipdir,
+        self.fmu = FMU2Slave(guid=self.model_description.guid, unzipDirectory=self._unzipdir,
                               modelIdentifier=self.model_description.coSimulation.modelIdentifier,
                               instanceName="pmd")
         self._callbacks = fmi2CallbackFunctions()
@@ -151,29 +151,28 @@ class Chip:
             addLoggerProxy(byref(self._callbacks))
         except ImportError:
             pass
-        self._fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
+        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
         if log_categories and log_categories is not True:
-            self._fmu.setDebugLogging(True, list(log_categories))
-        self._fmu.setupExperiment(startTime=0.0)
+            self.fmu.setDebugLogging(True, list(log_categories))
+        self.fmu.setupExperiment(startTime=0.0)
         for name, value in parameters.items():
             self.set(name, value)
-        self._fmu.enterInitializationMode()
-        self._fmu.exitInitializationMode()
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
         self.cycle_time = self.get("cycleTime")
         self.cycles = 0               # chip cycles run since instantiation (the time grid index)
-        self._strobe = 0
-        self._memory_strobe = 0
+        self._strobe = self.get("host.strobe")
         self._vr = {name: v.valueReference for name, v in self.variables.items()}
-        self._reply_vrs = [self._vr["host.error"], self._vr["host.replyCount"]] + \
+        self._reply_vrs = [self._vr["host.ack"], self._vr["host.error"], self._vr["host.replyCount"]] + \
                           [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]
 
     # ---- life cycle ----
 
     def close(self) -> None:
-        if self._fmu is not None:
-            self._fmu.terminate()
-            self._fmu.freeInstance()
-            self._fmu = None
+        if self.fmu is not None:
+            self.fmu.terminate()
+            self.fmu.freeInstance()
+            self.fmu = None
             shutil.rmtree(self._unzipdir, ignore_errors=True)
 
     def __enter__(self) -> "Chip":
@@ -191,13 +190,13 @@ class Chip:
     def set(self, name: str, value) -> None:
         """Sets an FMU input or parameter by name."""
         v = self.variables[name]
-        setter = {"Real": self._fmu.setReal, "Integer": self._fmu.setInteger, "Boolean": self._fmu.setBoolean}
+        setter = {"Real": self.fmu.setReal, "Integer": self.fmu.setInteger, "Boolean": self.fmu.setBoolean}
         setter[v.type]([v.valueReference], [value])
 
     def get(self, name: str):
         """Reads an FMU variable by name."""
         v = self.variables[name]
-        getter = {"Real": self._fmu.getReal, "Integer": self._fmu.getInteger, "Boolean": self._fmu.getBoolean}
+        getter = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger, "Boolean": self.fmu.getBoolean}
         return getter[v.type]([v.valueReference])[0]
 
     @property
@@ -218,10 +217,12 @@ class Chip:
             raise ValueError(f"a batch holds at most {BATCH_WORDS} words, not {len(words)}")
         self._strobe = (self._strobe + 1) & 0x7FFFFFFF
         vrs = [self._vr[f"host.word[{i + 1}]"] for i in range(len(words))]
-        self._fmu.setInteger(vrs + [self._vr["host.wordCount"], self._vr["host.strobe"]],
-                             list(words) + [len(words), self._strobe])
-        values = self._fmu.getInteger(self._reply_vrs)
-        return values[0], values[2:2 + values[1]]
+        self.fmu.setInteger(vrs + [self._vr["host.wordCount"], self._vr["host.strobe"]],
+                            list(words) + [len(words), self._strobe])
+        ack, error, count, *reply = self.fmu.getInteger(self._reply_vrs)
+        if ack != self._strobe:
+            raise RuntimeError(f"host.ack is {ack}, not {self._strobe}: host.strobe was set outside this Chip")
+        return error, reply[:count]
 
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
         """Executes one C-Motion call; raises PMDError if the chip refuses it.
@@ -243,12 +244,12 @@ class Chip:
         vr_data = [self._vr[f"memory.data[{i + 1}]"] for i in range(BATCH_WORDS)]
         ctrl = [self._vr["memory.address"], self._vr["memory.count"], self._vr["memory.strobe"]]
         words = [int(w) for w in words]
+        strobe = self.get("memory.strobe")
         for start in range(0, len(words), BATCH_WORDS):
             chunk = [w - (1 << 32) if w >= (1 << 31) else w for w in words[start:start + BATCH_WORDS]]
-            self._memory_strobe = (self._memory_strobe + 1) & 0x7FFFFFFF
-            self._fmu.setInteger(vr_data[:len(chunk)] + ctrl,
-                                 chunk + [address + start, len(chunk), self._memory_strobe])
-            self._fmu.getInteger([self._vr["host.ack"]])     # executes the write now
+            strobe = (strobe + 1) & 0x7FFFFFFF
+            self.fmu.setInteger(vr_data[:len(chunk)] + ctrl, chunk + [address + start, len(chunk), strobe])
+            self.fmu.getInteger([self._vr["host.ack"]])     # executes the write now
 
     # ---- time ----
 
@@ -260,7 +261,7 @@ class Chip:
             raise ValueError("cycles must be >= 0")
         if not record:
             if cycles:
-                self._fmu.doStep(self.time, cycles * self.cycle_time)
+                self.fmu.doStep(self.time, cycles * self.cycle_time)
                 self.cycles += cycles
             return np.zeros(0, dtype=[("cycle", np.int64)])
         kinds = {"Real": np.float64, "Integer": np.int64, "Boolean": np.bool_}
@@ -269,13 +270,13 @@ class Chip:
         dtype = [("cycle", np.int64)] + [(n, kinds[t]) for n, t in zip(names, types)]
         out = np.zeros(cycles, dtype=dtype)
         groups = [(t, [n for n, tt in zip(names, types) if tt == t]) for t in kinds]
-        getters = {"Real": self._fmu.getReal, "Integer": self._fmu.getInteger, "Boolean": self._fmu.getBoolean}
+        getters = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger, "Boolean": self.fmu.getBoolean}
         groups = [(getters[t], ns, [self._vr[n] for n in ns]) for t, ns in groups if ns]
         time_vr = [self._vr["chipTime"]]
         for i in range(cycles):
-            self._fmu.doStep(self.time, self.cycle_time)
+            self.fmu.doStep(self.time, self.cycle_time)
             self.cycles += 1
-            out["cycle"][i] = self._fmu.getInteger(time_vr)[0]
+            out["cycle"][i] = self.fmu.getInteger(time_vr)[0]
             for get, ns, vrs in groups:
                 for n, value in zip(ns, get(vrs)):
                     out[n][i] = value
