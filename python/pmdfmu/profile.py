@@ -158,21 +158,31 @@ def write_csv(path: Path, recorded: np.ndarray) -> None:
 
 
 def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "External profile") -> None:
+    """Position, velocity and acceleration of each recorded axis over time,
+    and the path of the first two axes in the plane."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     axes = sorted({int(n[4]) for n in recorded.dtype.names if n.startswith("axis")})
     t = recorded["cycle"] * cycle_time
-    fig, panels = plt.subplots(3, 1, sharex=True, figsize=(9, 8))
-    for n in axes:
-        for panel, quantity, unit in zip(panels, ("position", "velocity", "acceleration"),
-                                         ("counts", "counts/s", "counts/s²")):
+    fig, grid = plt.subplots(2, 2, figsize=(12, 8))
+    for panel, quantity, unit in zip(grid.flat, ("position", "velocity", "acceleration"),
+                                     ("counts", "counts/s", "counts/s²")):
+        for n in axes:
             panel.plot(t, recorded[f"axis{n}.{quantity}"], label=f"axis {n}")
-            panel.set_ylabel(f"{quantity} [{unit}]")
-    panels[0].set_title(title)
-    panels[0].legend()
-    panels[-1].set_xlabel("time [s]")
+        panel.set_ylabel(f"{quantity} [{unit}]")
+        panel.set_xlabel("time [s]")
+        panel.legend()
+    xy = grid.flat[3]
+    if len(axes) >= 2:
+        xy.plot(recorded[f"axis{axes[0]}.position"], recorded[f"axis{axes[1]}.position"])
+        xy.set_xlabel(f"axis {axes[0]} [counts]")
+        xy.set_ylabel(f"axis {axes[1]} [counts]")
+        xy.set_aspect("equal", adjustable="datalim")
+    else:
+        xy.axis("off")
+    fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)

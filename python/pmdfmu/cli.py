@@ -1,0 +1,131 @@
+"""The pmdfmu command: a thin layer over the library.
+
+  pmdfmu build      configure and build the FMU with CMake (into build/)
+  pmdfmu demo       run the bundled 2-axis external profile; write CSV and PNG
+  pmdfmu run TABLE  run a segment table; write CSV and PNG
+  pmdfmu validate   check the FMU with fmpy.validation
+  pmdfmu info       the FMU's variables and the chip's commands
+"""
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+from pathlib import Path
+from typing import List, Optional
+
+from . import profile
+from .chip import COMMANDS, REPO, Chip, default_fmu
+
+
+def _run_table(tables, fmu: Optional[str], cycle_time: float, upload: str, max_cycles: int,
+               csv_path: Optional[Path], plot_path: Optional[Path], title: str) -> None:
+    with Chip(fmu=fmu, cycleTime=cycle_time) as chip:
+        rec = profile.run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles)
+    if csv_path:
+        profile.write_csv(csv_path, rec)
+        print(f"wrote {csv_path} ({len(rec)} cycles)")
+    if plot_path:
+        profile.plot(plot_path, rec, cycle_time, title=title)
+        print(f"wrote {plot_path}")
+    for axis in sorted(tables):
+        n = axis + 1
+        print(f"axis {n}: ended at position {int(rec[f'axis{n}.commandedPosition'][-1])} "
+              f"after {len(rec)} cycles")
+
+
+def cmd_build(args) -> int:
+    source = Path(args.source)
+    build = Path(args.build_dir)
+    subprocess.run(["cmake", "-S", str(source), "-B", str(build), f"-DPython3_EXECUTABLE={sys.executable}"],
+                   check=True)
+    subprocess.run(["cmake", "--build", str(build)], check=True)
+    print(f"built {build / 'PMDMotionProcessor-fmi2.fmu'}")
+    return 0
+
+
+def cmd_demo(args) -> int:
+    from .demo import circle_table
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    tables = circle_table()
+    profile.write_segment_table(out / "demo_table.csv", tables)
+    print(f"wrote {out / 'demo_table.csv'}")
+    _run_table(tables, args.fmu, args.cycle_time, "memory", 1_000_000, out / "demo.csv", out / "demo.png",
+               "pmdfmu demo: 2-axis external profile (circle)")
+    return 0
+
+
+def cmd_run(args) -> int:
+    tables = profile.read_segment_table(Path(args.table))
+    _run_table(tables, args.fmu, args.cycle_time, args.upload, args.max_cycles,
+               Path(args.csv) if args.csv else None, Path(args.plot) if args.plot else None,
+               f"pmdfmu run {args.table}")
+    return 0
+
+
+def cmd_validate(args) -> int:
+    from fmpy.validation import validate_fmu
+    path = args.fmu or str(default_fmu())
+    problems = validate_fmu(path)
+    for p in problems:
+        print(p)
+    print(f"{path}: {'valid' if not problems else f'{len(problems)} problems'}")
+    return 1 if problems else 0
+
+
+def cmd_info(args) -> int:
+    from fmpy import read_model_description
+    path = args.fmu or str(default_fmu())
+    md = read_model_description(path)
+    print(f"{path}\n  FMI {md.fmiVersion}, modelIdentifier {md.coSimulation.modelIdentifier}, guid {md.guid}\n")
+    print("Variables:")
+    for v in md.modelVariables:
+        start = f" = {v.start}" if v.start is not None else ""
+        print(f"  {v.valueReference:5d} {v.name:32s} {v.causality:9s} {v.type:8s}{start}")
+    print("\nCommands (opcode, name, arguments -> reply):")
+    for c in sorted(COMMANDS.values(), key=lambda c: c.opcode):
+        args_ = ", ".join(f.name for f in c.args)
+        reply = ", ".join(f.name for f in c.reply)
+        print(f"  0x{c.opcode:02X} {c.name}({args_}){' -> ' + reply if reply else ''}")
+    return 0
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    parser = argparse.ArgumentParser(prog="pmdfmu", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("build", help="build the FMU with CMake")
+    p.add_argument("--source", default=str(REPO))
+    p.add_argument("--build-dir", default=str(REPO / "build"))
+    p.set_defaults(func=cmd_build)
+
+    for name, func, help_ in (("demo", cmd_demo, "run the bundled 2-axis demo"),
+                              ("run", cmd_run, "run a segment table")):
+        p = sub.add_parser(name, help=help_)
+        p.add_argument("--fmu", help="FMU to use (default: the built one)")
+        p.add_argument("--cycle-time", type=float, default=1e-4, help="chip cycle time in s (default 1e-4)")
+        p.set_defaults(func=func)
+        if name == "demo":
+            p.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
+        else:
+            p.add_argument("table", help="CSV: axis,position,velocity,acceleration,jerk,time (raw units)")
+            p.add_argument("--csv", help="write the recorded outputs here")
+            p.add_argument("--plot", help="write a PNG plot here")
+            p.add_argument("--upload", choices=("memory", "command"), default="memory",
+                           help="fill the buffers through the dual-port memory or with WriteBuffer")
+            p.add_argument("--max-cycles", type=int, default=1_000_000)
+
+    for name, func, help_ in (("validate", cmd_validate, "validate the FMU"),
+                              ("info", cmd_info, "list variables and commands")):
+        p = sub.add_parser(name, help=help_)
+        p.add_argument("fmu", nargs="?")
+        p.set_defaults(func=func)
+
+    args = parser.parse_args(argv)
+    return args.func(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,163 @@
+"""The FMU as a co-simulation tool sees it (CONTRACT 2)."""
+import re
+import xml.etree.ElementTree as ET
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy import read_model_description
+from fmpy.validation import validate_fmu
+
+import pmdfmu
+from pmdfmu import tables
+
+FMU = pmdfmu.default_fmu()
+TABLES = pmdfmu.tables_dir()
+
+
+def test_fmpy_validation_reports_nothing():
+    assert validate_fmu(str(FMU)) == []
+
+
+def test_the_fmu_holds_binary_description_sources_and_tables():
+    names = zipfile.ZipFile(FMU).namelist()
+    assert "modelDescription.xml" in names
+    assert "binaries/linux64/PMDMotionProcessor.so" in names
+    for f in ("sources/fmi2.c", "sources/profile.c", "sources/variables.c", "sources/fmi2Functions.h",
+              "resources/commands.csv"):
+        assert f in names
+
+
+def test_model_description_and_c_value_references_agree_with_the_table():
+    table = {v.name: v for v in tables.read_variables(TABLES / "variables.csv")}
+    md = read_model_description(str(FMU))
+    xml = {v.name: v for v in md.modelVariables}
+    assert set(xml) == set(table)
+    for name, v in table.items():
+        x = xml[name]
+        assert (x.valueReference, x.type, x.causality, x.variability) == (v.vr, v.type, v.causality, v.variability)
+    source = zipfile.ZipFile(FMU).read("sources/variables.c").decode()
+    c_rows = re.findall(r'\{(\d+), VAR_\w+, \d+, PMD_(\w+), PMD_(\w+), "([^"]+)"\}', source)
+    assert {name: (int(vr), t.capitalize(), c.lower()) for vr, t, c, name in c_rows} == \
+        {n: (v.vr, v.type, v.causality) for n, v in table.items()}
+    guid = re.search(r'PMD_INSTANTIATION_TOKEN "([^"]+)"',
+                     zipfile.ZipFile(FMU).read("sources/variables.h").decode()).group(1)
+    assert guid == md.guid
+
+
+def test_the_command_table_drives_the_dispatcher():
+    source = zipfile.ZipFile(FMU).read("sources/commands.c").decode()
+    for c in tables.read_commands(TABLES / "commands.csv"):
+        assert f'{{0x{c.opcode:02X}, "{c.name}", {int(c.scope == "chip")}, {c.arg_words}, {c.reply_words},' in source
+
+
+def test_contract_variable_names():
+    md = read_model_description(str(FMU))
+    names = {v.name for v in md.modelVariables}
+    for n in range(1, 5):
+        for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "position", "velocity",
+                  "acceleration", "activityStatus", "eventStatus", "actualPosition", "positiveLimit",
+                  "negativeLimit", "home"):
+            assert f"axis{n}.{q}" in names
+    for i in range(1, 65):
+        assert {f"host.word[{i}]", f"host.reply[{i}]", f"memory.data[{i}]"} <= names
+    assert {"host.wordCount", "host.strobe", "host.ack", "host.replyCount", "host.error", "host.interrupt",
+            "memory.address", "memory.count", "memory.strobe", "chipTime", "cycleTime", "memorySize",
+            "loopback"} <= names
+
+
+def test_outputs_after_initialization_are_the_reset_values(chip):
+    assert chip.get("chipTime") == 0
+    for n in range(1, 5):
+        assert chip.get(f"axis{n}.commandedPosition") == 0
+        assert chip.get(f"axis{n}.velocity") == 0.0
+        assert chip.get(f"axis{n}.eventStatus") == 0
+        assert chip.get(f"axis{n}.activityStatus") == 0x0104      # motor on, tracking; trapezoidal, at rest
+    assert (chip.get("host.error"), chip.get("host.replyCount"), chip.get("host.interrupt")) == (0, 0, False)
+
+
+@pytest.mark.parametrize("cycle_time,h,steps", [(1e-3, 2.5e-4, 40), (1e-3, 2.5e-3, 8), (0.1, 0.1, 10),
+                                                (1e-4, 3.3e-4, 30)])
+def test_do_step_runs_exactly_the_cycles_in_t_to_t_plus_h(cycle_time, h, steps):
+    with pmdfmu.Chip(cycleTime=cycle_time) as chip:
+        ax = chip.axis(0)
+        ax.SetVelocity(0x10000)
+        ax.SetAcceleration(0x10000)
+        ax.SetPosition(10 ** 6)
+        ax.Update()
+        t = 0.0
+        for _ in range(steps):
+            chip.fmu.doStep(t, h)
+            t += h                                  # accumulated like a master would
+            cycles = int(np.ceil(round(t / cycle_time, 9)))
+            assert chip.get("chipTime") == cycles - 1
+            assert chip.get("axis1.commandedVelocity") == min(cycles, 1) * 0x10000
+
+
+def test_real_outputs_are_in_counts_per_second(chip):
+    ax = chip.axis(0)
+    ax.SetVelocity(0x28000)                         # 2.5 counts/cycle
+    ax.SetAcceleration(0x8000)                      # 0.5 counts/cycle^2
+    ax.SetPosition(10 ** 6)
+    ax.Update()
+    chip.run(3)
+    assert chip.get("axis1.velocity") == pytest.approx(1.5 / 1e-4)
+    assert chip.get("axis1.acceleration") == pytest.approx(0.5 / 1e-8)
+    assert chip.get("axis1.position") == 0.5 + 1.0 + 1.5
+
+
+def test_commands_before_run_take_effect_at_its_first_cycle(chip):
+    ax = chip.axis(1)
+    ax.SetVelocity(0x10000)
+    ax.SetAcceleration(0x10000)
+    ax.SetPosition(100)
+    ax.Update()
+    rec = chip.run(3, record=["axis2.commandedPosition"])
+    assert list(rec["cycle"]) == [0, 1, 2]
+    assert list(rec["axis2.commandedPosition"]) == [1, 2, 3]
+
+
+def profile(chip, axis, rows):
+    ax = chip.axis(axis)
+    base = 0x200 + axis * 0x400
+    for v in range(5):
+        ax.SetBufferStart(2 + 5 * axis + v, base + v * len(rows))
+        ax.SetBufferLength(2 + 5 * axis + v, len(rows))
+        ax.SetBufferFunction(v, 2 + 5 * axis + v)
+        chip.write_memory(base + v * len(rows), [r[v] & 0xFFFFFFFF for r in rows])
+    ax.SetProfileMode(pmdfmu.PMDExternalProfile)
+    ax.Update()
+
+
+def test_two_instances_in_one_process_run_as_each_does_alone():
+    a_rows = [(0, 0x10000, 0x100, 0x1000, 50), (7, -0x20000, 0, 0, 30), (0, 0, 0, 0, 0)]
+    b_rows = [(-90, 0x5000, -0x300, -0x4000, 20), (40, 0x1000, 0, 0x100000, 60), (1, 0, 0, 0, 0)]
+    names = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration", "axis1.position"]
+    alone = []
+    for rows in (a_rows, b_rows):
+        with pmdfmu.Chip() as chip:
+            profile(chip, 0, rows)
+            alone.append(chip.run(120, record=names))
+    with pmdfmu.Chip() as a, pmdfmu.Chip() as b:
+        profile(a, 0, a_rows)
+        profile(b, 0, b_rows)
+        parts_a, parts_b = [], []
+        for _ in range(12):
+            parts_a.append(a.run(10, record=names))
+            parts_b.append(b.run(10, record=names))
+    assert np.array_equal(np.concatenate(parts_a), alone[0])
+    assert np.array_equal(np.concatenate(parts_b), alone[1])
+
+
+def test_logging_categories_are_honoured():
+    with pmdfmu.Chip(log_categories=["buffers"]) as chip:
+        chip.axis(0).SetBufferStart(2, 0x200)
+        chip.axis(0).SetPosition(5)
+        assert {m.category for m in chip.messages} == {"buffers"}
+    with pmdfmu.Chip(log_categories=True) as chip:
+        chip.axis(0).SetPosition(5)
+        assert any(m.category == "commands" and "SetPosition" in m.message for m in chip.messages)
+    with pmdfmu.Chip() as chip:
+        chip.axis(0).SetPosition(5)
+        assert chip.messages == []
