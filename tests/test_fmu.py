@@ -161,3 +161,31 @@ def test_logging_categories_are_honoured():
     with pmdfmu.Chip() as chip:
         chip.axis(0).SetPosition(5)
         assert chip.messages == []
+
+
+def test_only_fmi_functions_are_exported(tmp_path):
+    import shutil
+    import subprocess
+    if not shutil.which("nm"):
+        pytest.skip("nm not installed")
+    zipfile.ZipFile(FMU).extract("binaries/linux64/PMDMotionProcessor.so", tmp_path)
+    out = subprocess.run(["nm", "-D", "--defined-only", str(tmp_path / "binaries/linux64/PMDMotionProcessor.so")],
+                         capture_output=True, text=True, check=True).stdout
+    symbols = {line.split()[-1] for line in out.splitlines() if line.strip()}
+    assert symbols and all(s.startswith("fmi2") for s in symbols)
+    assert len(symbols) == 34                                   # every FMI 2.0 Co-Simulation function
+
+
+def test_fmpy_simulate_fmu_drives_a_move_through_the_host_port():
+    """A scripted run with FMPy's own master: one host batch at t = 0."""
+    from fmpy import simulate_fmu
+    ops = {n: pmdfmu.COMMANDS[n].opcode for n in ("SetPosition", "SetVelocity", "SetAcceleration", "Update")}
+    words = [ops["SetPosition"], 0, 1000, ops["SetVelocity"], 2, 0, ops["SetAcceleration"], 0, 0x4000, ops["Update"]]
+    names = [f"host.word[{i + 1}]" for i in range(len(words))] + ["host.wordCount", "host.strobe"]
+    signals = np.array([tuple([t] + words + [len(words), 1]) for t in (0.0, 0.1)],
+                       dtype=[("time", np.float64)] + [(n, np.int32) for n in names])
+    result = simulate_fmu(str(FMU), stop_time=0.1, step_size=1e-3, output_interval=1e-3, input=signals,
+                          output=["axis1.commandedPosition", "axis1.activityStatus", "host.ack"])
+    assert result["host.ack"][-1] == 1
+    assert result["axis1.commandedPosition"][-1] == 1000
+    assert not result["axis1.activityStatus"][-1] & 0x0400

@@ -16,17 +16,22 @@ typedef struct {
 
 static const fmi2Status status_of[] = {fmi2OK, fmi2Warning, fmi2Discard, fmi2Error, fmi2Fatal};
 
+/* The logger's message is a printf format: a '%' goes out as "%%", and no
+ * variadic arguments are passed (a logger written in another language often
+ * cannot read them). */
 static void log_to_environment(void *environment, const char *instanceName, PmdStatus status, const char *category,
                                const char *message)
 {
     const Component *comp = (const Component *)environment;
-    /* the logger's message is a printf format: pass a '%' through "%s" */
-    if (strchr(message, '%'))
-        comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category,
-                               "%s", message);
-    else
-        comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category,
-                               message);
+    char escaped[2048];
+    size_t i = 0;
+    for (; *message && i + 2 < sizeof escaped; message++) {
+        if (*message == '%')
+            escaped[i++] = '%';
+        escaped[i++] = *message;
+    }
+    escaped[i] = '\0';
+    comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category, escaped);
 }
 
 static const char *state_name(PmdState state)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import os
 import shutil
-from ctypes import byref
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
@@ -145,12 +144,10 @@ class Chip:
                               modelIdentifier=self.model_description.coSimulation.modelIdentifier,
                               instanceName="pmd")
         self._callbacks = fmi2CallbackFunctions()
+        # Not FMPy's logger proxy: it keeps one process-wide pointer to the last
+        # logger, which would dangle once this Chip is gone. The FMU passes no
+        # printf arguments; it escapes '%' as "%%" (see _log).
         self._callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
-        try:   # FMPy's proxy formats the message's printf arguments
-            from fmpy.logging import addLoggerProxy
-            addLoggerProxy(byref(self._callbacks))
-        except ImportError:
-            pass
         self.fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
         if log_categories and log_categories is not True:
             self.fmu.setDebugLogging(True, list(log_categories))
@@ -161,7 +158,6 @@ class Chip:
         self.fmu.exitInitializationMode()
         self.cycle_time = self.get("cycleTime")
         self.cycles = 0               # chip cycles run since instantiation (the time grid index)
-        self._strobe = self.get("host.strobe")
         self._vr = {name: v.valueReference for name, v in self.variables.items()}
         self._reply_vrs = [self._vr["host.ack"], self._vr["host.error"], self._vr["host.replyCount"]] + \
                           [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]
@@ -183,7 +179,7 @@ class Chip:
 
     def _log(self, env, instance_name, status, category, message):
         self.messages.append(LogMessage(STATUS_NAMES[status] if 0 <= status < 5 else str(status),
-                                        category.decode(), message.decode(errors="replace")))
+                                        category.decode(), message.decode(errors="replace").replace("%%", "%")))
 
     # ---- variables ----
 
@@ -215,13 +211,13 @@ class Chip:
         (host.error, reply words). It executes now, before the next cycle."""
         if len(words) > BATCH_WORDS:
             raise ValueError(f"a batch holds at most {BATCH_WORDS} words, not {len(words)}")
-        self._strobe = (self._strobe + 1) & 0x7FFFFFFF
+        # a new strobe value, whoever set the last one
+        strobe = (self.fmu.getInteger([self._vr["host.strobe"]])[0] + 1) & 0x7FFFFFFF
         vrs = [self._vr[f"host.word[{i + 1}]"] for i in range(len(words))]
         self.fmu.setInteger(vrs + [self._vr["host.wordCount"], self._vr["host.strobe"]],
-                            list(words) + [len(words), self._strobe])
+                            list(words) + [len(words), strobe])
         ack, error, count, *reply = self.fmu.getInteger(self._reply_vrs)
-        if ack != self._strobe:
-            raise RuntimeError(f"host.ack is {ack}, not {self._strobe}: host.strobe was set outside this Chip")
+        assert ack == strobe, "the FMU did not execute the batch"
         return error, reply[:count]
 
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
