@@ -73,33 +73,23 @@ int cmd_GetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *rep
     return 0;
 }
 
-int cmd_SetPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)reply;
-    AXIS(axis)->buffered.position = (int32_t)arg[0];
-    return 0;
-}
-
-int cmd_GetPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->buffered.position;
-    return 0;
-}
-
-int cmd_SetVelocity(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)reply;
-    AXIS(axis)->buffered.velocity = (int32_t)arg[0];   /* the sign is checked by Update, per profile mode */
-    return 0;
-}
-
-int cmd_GetVelocity(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->buffered.velocity;
-    return 0;
-}
+/* A buffered register: Set writes the buffered set, Get reads it back
+ * (reference 4.1). check returns 0 or the error code that refuses a value. */
+#define PROFILE_REGISTER(name, field, type, check)                                          \
+    int cmd_Set##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
+    {                                                                                       \
+        int err = check(chip, axis, "Set" #name, arg[0]);                                   \
+        (void)reply;                                                                        \
+        if (!err)                                                                           \
+            AXIS(axis)->buffered.field = (type)arg[0];                                      \
+        return err;                                                                         \
+    }                                                                                       \
+    int cmd_Get##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
+    {                                                                                       \
+        (void)arg;                                                                          \
+        reply[0] = AXIS(axis)->buffered.field;                                              \
+        return 0;                                                                           \
+    }
 
 /* Acceleration, deceleration and jerk are unsigned, 0 .. 2^31-1 (reference 4.7). */
 static int unsigned_31(const PmdChip *chip, int axis, const char *name, int64_t value)
@@ -112,53 +102,18 @@ static int unsigned_31(const PmdChip *chip, int axis, const char *name, int64_t 
     return 0;
 }
 
-int cmd_SetAcceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+/* Position and velocity take any 32-bit value here; Update checks the velocity's sign per profile mode. */
+static int any_value(const PmdChip *chip, int axis, const char *name, int64_t value)
 {
-    int err = unsigned_31(chip, axis, "SetAcceleration", arg[0]);
-    (void)reply;
-    if (!err)
-        AXIS(axis)->buffered.acceleration = (uint32_t)arg[0];
-    return err;
-}
-
-int cmd_GetAcceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->buffered.acceleration;
+    (void)chip; (void)axis; (void)name; (void)value;
     return 0;
 }
 
-int cmd_SetDeceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    int err = unsigned_31(chip, axis, "SetDeceleration", arg[0]);
-    (void)reply;
-    if (!err)
-        AXIS(axis)->buffered.deceleration = (uint32_t)arg[0];
-    return err;
-}
-
-int cmd_GetDeceleration(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->buffered.deceleration;
-    return 0;
-}
-
-int cmd_SetJerk(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    int err = unsigned_31(chip, axis, "SetJerk", arg[0]);
-    (void)reply;
-    if (!err)
-        AXIS(axis)->buffered.jerk = (uint32_t)arg[0];
-    return err;
-}
-
-int cmd_GetJerk(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->buffered.jerk;
-    return 0;
-}
+PROFILE_REGISTER(Position, position, int32_t, any_value)
+PROFILE_REGISTER(Velocity, velocity, int32_t, any_value)
+PROFILE_REGISTER(Acceleration, acceleration, uint32_t, unsigned_31)
+PROFILE_REGISTER(Deceleration, deceleration, uint32_t, unsigned_31)
+PROFILE_REGISTER(Jerk, jerk, uint32_t, unsigned_31)
 
 int cmd_SetStopMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
