@@ -71,7 +71,7 @@ def test_smooth_stop_and_motor_off_actions(chip):
 def test_status_breakpoints_use_select_and_sense_masks(chip):
     ax = chip.axis(0)
     ax.SetInterruptMask(PMDEventBreakpoint1Mask)
-    ax.SetBreakpointValue(PMDBreakpoint1, (0x0008 << 16) | 0x0008)             # home signal high
+    ax.SetBreakpointValue(PMDBreakpoint1, (0x0008 << 16) | 0x0000)   # home status bit 0: active (active low)
     ax.SetBreakpoint(PMDBreakpoint1, 0, PMDBreakpointNoAction, PMDBreakpointSignalStatus)
     chip.run(10)
     assert not chip.get("host.interrupt")

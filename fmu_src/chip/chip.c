@@ -28,16 +28,21 @@ void pmd_chip_init(PmdChip *chip, uint32_t *memory, uint32_t memorySize)
 void pmd_chip_reset(PmdChip *chip)
 {
     uint8_t loopback = chip->s.loopback;
+    uint16_t sampleTime = chip->s.sampleTime;
     PmdAxis inputs[PMD_AXES];
     int n, f;
 
     memcpy(inputs, chip->s.axis, sizeof inputs);
     memset(&chip->s, 0, sizeof chip->s);
     chip->s.loopback = loopback;
+    chip->s.sampleTime = sampleTime;      /* the cycle grid is the FMU's: Reset keeps it */
     chip->s.hostIOError = PMD_ERR_ChipsetReset;   /* until read (reference 2.4) */
+    chip->s.trace.period = 1;
     for (n = 0; n < PMD_AXES; n++) {
         PmdAxis *ax = &chip->s.axis[n];
         ax->motorOn = 1;
+        ax->limitSwitchMode = PMDLimitEnabled;       /* [L] reference 4.2: limits guard from reset */
+        ax->positionErrorLimit = 0xFFFF;
         for (f = 0; f < PMD_FUNCTIONS; f++)
             ax->bufferOfFunction[f] = PMDBufferFunctionNone;
         /* the plant's inputs are wires, not registers: a reset does not change them */
@@ -57,35 +62,68 @@ void pmd_set_event(PmdChip *chip, int n, uint16_t mask)
     ax->eventStatus |= mask;
 }
 
+static uint32_t abs32(int32_t x)
+{
+    return x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
+}
+
+int32_t pmd_position_error(const PmdAxis *ax)
+{
+    return pmd_int32((uint32_t)ax->actualPosition - (uint32_t)ax->trajectory.position);
+}
+
+/* GetActualVelocity: whole counts per cycle in 16.16 (the low word is 0). */
+int32_t pmd_actual_velocity(const PmdAxis *ax)
+{
+    return pmd_int32(((uint32_t)ax->actualPosition - (uint32_t)ax->previousActualPosition) << 16);
+}
+
 uint16_t pmd_activity_status(const PmdChip *chip, int n)
 {
     const PmdAxis *ax = &chip->s.axis[n];
     uint16_t s = (uint16_t)((ax->active.profileMode & 7u) << 3);
     if (ax->atMaximumVelocity)
         s |= PMDActivityAtMaximumVelocityMask;
-    if (ax->actualPosition == ax->trajectory.position)     /* |position error| <= tracking window (0) */
+    if (abs32(pmd_position_error(ax)) <= ax->trackingWindow)
         s |= PMDActivityTrackingMask;
+    if (ax->motion == PMD_MOTION_IDLE && ax->settleCount > ax->settleTime)
+        s |= PMDActivityAxisSettledMask;
     if (ax->motorOn)
         s |= PMDActivityMotorOnMask;
+    if (ax->captured)
+        s |= PMDActivityPositionCaptureMask;
     if (ax->motion != PMD_MOTION_IDLE)
         s |= PMDActivityInMotionMask;
+    if (ax->inPositiveLimit)
+        s |= PMDActivityInPositiveLimitMask;
+    if (ax->inNegativeLimit)
+        s |= PMDActivityInNegativeLimitMask;
     /* Seed 000, 1.6: the profile segment number is 1 while an external profile runs, 0 once halted. */
     if (ax->motion == PMD_MOTION_EXTERNAL)
         s |= 1u << 13;
     return s;
 }
 
+/* Switches are wired active low, as on PMD boards: an active switch (input
+ * true) reads 0 in the signal status, an idle one 1, and a sense bit of 1
+ * inverts that (reference 2.3). The encoder A, B and index lines read 1. */
 uint16_t pmd_signal_status(const PmdChip *chip, int n)
 {
     const PmdAxis *ax = &chip->s.axis[n];
-    uint16_t s = 0;
-    if (ax->homeInput)
-        s |= PMDSignalEncoderHomeMask;
-    if (ax->positiveLimitInput)
-        s |= PMDSignalPositiveLimitMask;
-    if (ax->negativeLimitInput)
-        s |= PMDSignalNegativeLimitMask;
-    return s;
+    uint16_t level = PMDSignalEncoderAMask | PMDSignalEncoderBMask | PMDSignalEncoderIndexMask;
+    if (!ax->homeInput)
+        level |= PMDSignalEncoderHomeMask;
+    if (!ax->positiveLimitInput)
+        level |= PMDSignalPositiveLimitMask;
+    if (!ax->negativeLimitInput)
+        level |= PMDSignalNegativeLimitMask;
+    return (uint16_t)((level ^ ax->signalSense) & 0x07FF);
+}
+
+/* A signal is active when its status bit reads 0. */
+static int signal_active(const PmdChip *chip, int n, uint16_t mask)
+{
+    return !(pmd_signal_status(chip, n) & mask);
 }
 
 int pmd_host_interrupt(const PmdChip *chip)
@@ -164,16 +202,103 @@ static void check_breakpoints(PmdChip *chip, int n)
     }
 }
 
+/* Actual position: the commanded position (loopback, motor on), held (loopback,
+ * motor off), or the encoder input plus the SetActualPosition offset. */
+static void sample_actual(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    ax->previousActualPosition = ax->actualPosition;
+    if (!chip->s.loopback)
+        ax->actualPosition = pmd_int32((uint32_t)ax->actualPositionInput + (uint32_t)ax->actualOffset);
+    else if (ax->motorOn)
+        ax->actualPosition = ax->trajectory.position;
+}
+
+/* Entering a limit sets its event bit and stops the axis; the activity bit
+ * follows the switch (reference 4.5). Ignored with the limit-switch mode off. */
+static void check_limits(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    int positive = ax->limitSwitchMode && signal_active(chip, n, PMDSignalPositiveLimitMask);
+    int negative = ax->limitSwitchMode && signal_active(chip, n, PMDSignalNegativeLimitMask);
+    if ((positive && !ax->inPositiveLimit) || (negative && !ax->inNegativeLimit)) {
+        pmd_set_event(chip, n, positive && !ax->inPositiveLimit ? PMDEventInPositiveLimitMask
+                                                                : PMDEventInNegativeLimitMask);
+        pmd_log(chip, PMD_LOG_EVENTS, "axis %d: %s limit entered: axis stopped", n + 1,
+                positive && !ax->inPositiveLimit ? "positive" : "negative");
+        pmd_abrupt_stop(chip, n);
+    }
+    ax->inPositiveLimit = (uint8_t)positive;
+    ax->inNegativeLimit = (uint8_t)negative;
+}
+
+/* Position error beyond its limit: motion-error event; with auto-stop the axis
+ * stops and its motor turns off; an external profile always stops (seed 000, 1.5). */
+static void check_position_error(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    uint32_t error = abs32(pmd_position_error(ax));
+    if (error > ax->positionErrorLimit && !(ax->eventStatus & PMDEventMotionErrorMask)) {
+        pmd_set_event(chip, n, PMDEventMotionErrorMask);
+        pmd_log(chip, PMD_LOG_EVENTS, "axis %d: motion error: position error %u beyond %u", n + 1,
+                (unsigned)error, (unsigned)ax->positionErrorLimit);
+        if (ax->autoStopMode) {
+            pmd_abrupt_stop(chip, n);
+            ax->motorOn = 0;
+        } else if (ax->motion == PMD_MOTION_EXTERNAL) {
+            pmd_abrupt_stop(chip, n);
+        }
+    }
+    /* settled: at rest and inside the settle window for more than the settle time */
+    if (ax->motion == PMD_MOTION_IDLE && error <= ax->settleWindow) {
+        if (ax->settleCount < 0xFFFF)
+            ax->settleCount++;
+    } else {
+        ax->settleCount = 0;
+    }
+    if (ax->motionCompletePending && ax->settleCount > ax->settleTime) {
+        ax->motionCompletePending = 0;
+        pmd_set_event(chip, n, PMDEventMotionCompleteMask);
+    }
+}
+
+/* The home input captures the actual position when it becomes active, if the
+ * capture source is home and the last capture has been read. */
+static void check_capture(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    int home = signal_active(chip, n, PMDSignalEncoderHomeMask);
+    if (home && !ax->homeWasActive && ax->captureSource == PMDCaptureSourceHome && !ax->captured) {
+        ax->captured = 1;
+        ax->captureValue = ax->actualPosition;
+        pmd_set_event(chip, n, PMDEventCaptureReceivedMask);
+    }
+    ax->homeWasActive = (uint8_t)home;
+}
+
 void pmd_chip_cycle(PmdChip *chip)
 {
     int n;
     chip->s.time = chip->s.nextTime++;
+    /* geared axes last: they follow their master's position of this cycle */
     for (n = 0; n < PMD_AXES; n++) {
-        PmdAxis *ax = &chip->s.axis[n];
         pmd_profile_cycle(chip, n);
-        ax->actualPosition = chip->s.loopback ? ax->trajectory.position : ax->actualPositionInput;
+        if (chip->s.axis[n].motion != PMD_MOTION_GEAR)
+            sample_actual(chip, n);
+    }
+    for (n = 0; n < PMD_AXES; n++) {
+        if (chip->s.axis[n].motion == PMD_MOTION_GEAR) {
+            pmd_gear_cycle(chip, n);
+            sample_actual(chip, n);
+        }
+    }
+    for (n = 0; n < PMD_AXES; n++) {
+        check_limits(chip, n);
+        check_position_error(chip, n);
+        check_capture(chip, n);
     }
     /* breakpoints last: a source axis may be any axis, and all have moved */
     for (n = 0; n < PMD_AXES; n++)
         check_breakpoints(chip, n);
+    pmd_trace_cycle(chip);
 }

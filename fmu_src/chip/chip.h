@@ -28,10 +28,15 @@ uint16_t pmd_activity_status(const PmdChip *chip, int axis);
 uint16_t pmd_signal_status(const PmdChip *chip, int axis);
 int pmd_host_interrupt(const PmdChip *chip);
 int32_t pmd_commanded_velocity(const PmdTrajectory *t);
+int32_t pmd_position_error(const PmdAxis *ax);
+int32_t pmd_actual_velocity(const PmdAxis *ax);
 int32_t pmd_commanded_acceleration(const PmdTrajectory *t);
 
 /* Engine entry points used by the command handlers and the cycle. */
 void pmd_profile_cycle(PmdChip *chip, int axis);
+void pmd_gear_cycle(PmdChip *chip, int axis);
+void pmd_trace_cycle(PmdChip *chip);
+int pmd_trace_busy(const PmdChip *chip, const char *command);
 int pmd_update(PmdChip *chip, int axis);
 void pmd_abrupt_stop(PmdChip *chip, int axis);
 void pmd_set_event(PmdChip *chip, int axis, uint16_t mask);

@@ -50,8 +50,10 @@ typedef struct {
     uint32_t acceleration;   /* 16.16 */
     uint32_t deceleration;   /* 16.16, 0 = use acceleration */
     uint32_t jerk;           /* 0.32 */
+    int32_t gearRatio;       /* 16.16 slave counts per master count */
     uint16_t profileMode;
     uint16_t stopMode;
+    uint8_t clearPositionError;   /* ClearPositionError: applied by the next Update */
 } PmdProfileRegisters;
 
 typedef struct {
@@ -66,7 +68,9 @@ typedef enum {
     PMD_MOTION_IDLE = 0,           /* at rest, no profile executing */
     PMD_MOTION_TRAPEZOIDAL,        /* point-to-point move toward the active destination */
     PMD_MOTION_SMOOTH_STOP,        /* braking at the deceleration rate to rest */
-    PMD_MOTION_EXTERNAL            /* reading segments from the buffers (seed 000) */
+    PMD_MOTION_EXTERNAL,           /* reading segments from the buffers (seed 000) */
+    PMD_MOTION_VELOCITY,           /* velocity contouring toward the active velocity */
+    PMD_MOTION_GEAR                /* following the gear master */
 } PmdMotion;
 
 typedef struct {
@@ -81,8 +85,26 @@ typedef struct {
     uint16_t eventStatus;
     uint16_t interruptMask;
     PmdBreakpoint breakpoint[2];
+
+    /* gear (not buffered) */
+    uint16_t gearMasterAxis, gearMasterSource;
+    int32_t gearMasterLast;       /* the master's position one cycle ago */
+
+    /* actual position, errors and windows (reference 4.5) */
     int32_t actualPosition;
-    /* inputs from the plant */
+    int32_t previousActualPosition;
+    int32_t actualOffset;         /* without loopback: actual = input + offset (SetActualPosition) */
+    uint32_t positionErrorLimit;
+    uint16_t settleTime, settleWindow, trackingWindow, settleCount;
+    uint8_t autoStopMode, motionCompleteMode, motionCompletePending;
+    uint8_t limitSwitchMode, inPositiveLimit, inNegativeLimit;
+
+    /* signals and capture */
+    uint16_t signalSense;
+    uint8_t captureSource, homeWasActive, captured;
+    int32_t captureValue;
+
+    /* inputs from the plant; a switch input is true while the switch is active */
     int32_t actualPositionInput;
     uint8_t positiveLimitInput, negativeLimitInput, homeInput;
 } PmdAxis;
@@ -96,9 +118,25 @@ typedef struct {
     uint8_t streamed;        /* written through WriteBuffer or SetBufferWriteIndex since set up */
 } PmdBuffer;
 
+/* The trace facility: samples into buffer 0 (reference 4.4). */
+#define PMD_TRACE_SLOTS 4
+typedef struct {
+    uint16_t mode;           /* 0 one-time, 1 rolling */
+    uint16_t period;         /* cycles between samples */
+    uint16_t variable[PMD_TRACE_SLOTS];   /* bits 0-3 axis, 8-15 variable ID */
+    uint16_t start, stop;    /* armed conditions; 0 once met */
+    uint8_t active, wrapped;
+    uint16_t countdown;      /* cycles to the next sample */
+    uint32_t count;          /* values stored since the trace began */
+} PmdTrace;
+
 typedef struct {
     PmdAxis axis[PMD_AXES];
     PmdBuffer buffer[PMD_BUFFERS];
+    PmdTrace trace;
+    uint8_t updatedAxes;     /* axes updated since the last cycle's trace check (trace condition 1) */
+    uint16_t sampleTime;     /* SetSampleTime, microseconds */
+    uint8_t sampleTimeChanged;
     uint32_t time;           /* GetTime: chip time of the last executed cycle */
     uint32_t nextTime;       /* chip time of the next cycle */
     uint16_t hostIOError;    /* first error since last read; 1 after reset */

@@ -57,9 +57,9 @@ int cmd_GetHostIOError(PmdChip *chip, int axis, const int64_t *arg, int64_t *rep
 int cmd_SetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     (void)reply;
-    if (arg[0] != PMDTrapezoidalProfile && arg[0] != PMDExternalProfile) {
-        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetProfileMode(%d): only trapezoidal (0) and external (4) "
-                "are implemented", axis + 1, (int)arg[0]);
+    if (arg[0] > PMDExternalProfile || arg[0] == PMDSCurveProfile) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetProfileMode(%d): not 0 (trapezoidal), 1 (velocity contouring), "
+                "3 (electronic gear) or 4 (external); S-curve (2) is not implemented yet", axis + 1, (int)arg[0]);
         return PMD_ERR_InvalidParameter;
     }
     AXIS(axis)->buffered.profileMode = (uint16_t)arg[0];
@@ -114,6 +114,7 @@ PROFILE_REGISTER(Velocity, velocity, int32_t, any_value)
 PROFILE_REGISTER(Acceleration, acceleration, uint32_t, unsigned_31)
 PROFILE_REGISTER(Deceleration, deceleration, uint32_t, unsigned_31)
 PROFILE_REGISTER(Jerk, jerk, uint32_t, unsigned_31)
+PROFILE_REGISTER(GearRatio, gearRatio, int32_t, any_value)
 
 int cmd_SetStopMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
@@ -309,6 +310,8 @@ static int set_block(PmdChip *chip, const char *name, int64_t id, int64_t start,
     PmdBuffer *b = buffer(chip, name, id);
     if (!b)
         return PMD_ERR_InvalidParameter;
+    if (id == 0 && pmd_trace_busy(chip, name))
+        return PMD_ERR_TraceRunning;
     if (start < 0 || length < 0 || length > 0x3FFFFFFF || start + length > chip->memorySize) {
         pmd_log(chip, PMD_LOG_ERRORS, "%s: buffer %d at 0x%llX length 0x%llX leaves the %u-word memory",
                 name, (int)id, (long long)start, (long long)length, (unsigned)chip->memorySize);
@@ -361,6 +364,8 @@ static int set_index(PmdChip *chip, const char *name, int64_t id, int64_t index,
     PmdBuffer *b = buffer(chip, name, id);
     if (!b)
         return PMD_ERR_InvalidParameter;
+    if (id == 0 && write && pmd_trace_busy(chip, name))
+        return PMD_ERR_TraceRunning;
     if (index >= b->length) {
         pmd_log(chip, PMD_LOG_ERRORS, "%s: index %lld is not below buffer %d's length %u", name, (long long)index,
                 (int)id, (unsigned)b->length);
@@ -406,6 +411,8 @@ int cmd_WriteBuffer(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
         return PMD_ERR_InvalidParameter;
     if ((err = nonempty(chip, "WriteBuffer", arg[0], b)) != 0)
         return err;
+    if (arg[0] == 0 && pmd_trace_busy(chip, "WriteBuffer"))
+        return PMD_ERR_TraceRunning;
     if (b->streamed && b->unread == b->length)
         pmd_log(chip, PMD_LOG_WARNINGS, "WriteBuffer: buffer %d write index %u overtakes its read index: "
                 "overwriting unread data, as the chip does", (int)arg[0], (unsigned)b->writeIndex);
@@ -466,4 +473,166 @@ int cmd_GetBufferFunction(PmdChip *chip, int axis, const int64_t *arg, int64_t *
     if (!err)
         reply[0] = AXIS(axis)->bufferOfFunction[arg[0]];
     return err;
+}
+
+/* ---- axis registers that are not double-buffered (reference 4.1) ---- */
+
+/* Set writes the register at once if value <= max; Get reads it. */
+#define AXIS_REGISTER(name, field, type, max)                                               \
+    int cmd_Set##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
+    {                                                                                       \
+        (void)reply;                                                                        \
+        if (arg[0] > (int64_t)(max)) {                                                      \
+            pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Set" #name "(%lld): above %lld", axis + 1, \
+                    (long long)arg[0], (long long)(max));                                   \
+            return PMD_ERR_InvalidParameter;                                                \
+        }                                                                                   \
+        AXIS(axis)->field = (type)arg[0];                                                   \
+        return 0;                                                                           \
+    }                                                                                       \
+    int cmd_Get##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
+    {                                                                                       \
+        (void)arg;                                                                          \
+        reply[0] = AXIS(axis)->field;                                                       \
+        return 0;                                                                           \
+    }
+
+AXIS_REGISTER(PositionErrorLimit, positionErrorLimit, uint32_t, INT32_MAX)
+AXIS_REGISTER(AutoStopMode, autoStopMode, uint8_t, PMDAutoStopEnabled)
+AXIS_REGISTER(LimitSwitchMode, limitSwitchMode, uint8_t, PMDLimitEnabled)
+AXIS_REGISTER(MotionCompleteMode, motionCompleteMode, uint8_t, PMDMotionCompleteActualPosition)
+AXIS_REGISTER(SettleTime, settleTime, uint16_t, 0xFFFF)
+AXIS_REGISTER(SettleWindow, settleWindow, uint16_t, 0xFFFF)
+AXIS_REGISTER(TrackingWindow, trackingWindow, uint16_t, 0xFFFF)
+AXIS_REGISTER(SignalSense, signalSense, uint16_t, 0x1FFF)
+AXIS_REGISTER(CaptureSource, captureSource, uint8_t, PMDCaptureSourceHome)
+AXIS_REGISTER(MotorMode, motorOn, uint8_t, PMDMotorOn)
+
+int cmd_SetGearMaster(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    if (arg[0] >= PMD_AXES || arg[1] > PMDPositionSourceCommanded) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetGearMaster: master axis %d (0..3) or source %d (0..1) out of "
+                "range", axis + 1, (int)arg[0], (int)arg[1]);
+        return PMD_ERR_InvalidParameter;
+    }
+    AXIS(axis)->gearMasterAxis = (uint16_t)arg[0];
+    AXIS(axis)->gearMasterSource = (uint16_t)arg[1];
+    return 0;
+}
+
+int cmd_GetGearMaster(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->gearMasterAxis;
+    reply[1] = AXIS(axis)->gearMasterSource;
+    return 0;
+}
+
+int cmd_ClearPositionError(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg; (void)reply;
+    AXIS(axis)->buffered.clearPositionError = 1;
+    return 0;
+}
+
+/* Moves the actual position by delta, and the commanded position and active
+ * destination with it, so that nothing moves (reference 1.2); gear slaves of
+ * this axis see no jump either. */
+static void shift_actual(PmdChip *chip, int axis, int32_t delta)
+{
+    PmdAxis *ax = AXIS(axis);
+    int n;
+    ax->trajectory.position = pmd_int32((uint32_t)ax->trajectory.position + (uint32_t)delta);
+    ax->active.position = pmd_int32((uint32_t)ax->active.position + (uint32_t)delta);
+    if (!chip->s.loopback)
+        ax->actualOffset = pmd_int32((uint32_t)ax->actualOffset + (uint32_t)delta);
+    ax->actualPosition = pmd_int32((uint32_t)ax->actualPosition + (uint32_t)delta);
+    ax->previousActualPosition = pmd_int32((uint32_t)ax->previousActualPosition + (uint32_t)delta);
+    for (n = 0; n < PMD_AXES; n++)
+        if (AXIS(n)->gearMasterAxis == axis)
+            AXIS(n)->gearMasterLast = pmd_int32((uint32_t)AXIS(n)->gearMasterLast + (uint32_t)delta);
+}
+
+int cmd_SetActualPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    shift_actual(chip, axis, pmd_int32((uint32_t)arg[0] - (uint32_t)AXIS(axis)->actualPosition));
+    return 0;
+}
+
+int cmd_AdjustActualPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)reply;
+    shift_actual(chip, axis, (int32_t)arg[0]);
+    return 0;
+}
+
+int cmd_GetActualVelocity(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = pmd_actual_velocity(AXIS(axis));
+    return 0;
+}
+
+int cmd_GetPositionError(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = pmd_position_error(AXIS(axis));
+    return 0;
+}
+
+int cmd_GetSignalStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = pmd_signal_status(chip, axis);
+    return 0;
+}
+
+/* Reading the captured value re-arms the capture (reference 2.1, bit 9). */
+int cmd_GetCaptureValue(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)arg;
+    reply[0] = AXIS(axis)->captureValue;
+    AXIS(axis)->captured = 0;
+    return 0;
+}
+
+/* The interrupt line is high while any axis has a masked event bit set;
+ * ClearInterrupt cannot lower it before the host resets those bits. */
+int cmd_ClearInterrupt(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)chip; (void)axis; (void)arg; (void)reply;
+    return 0;
+}
+
+int cmd_GetInterruptAxis(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int n;
+    (void)axis; (void)arg;
+    reply[0] = 0;
+    for (n = 0; n < PMD_AXES; n++)
+        if (AXIS(n)->eventStatus & AXIS(n)->interruptMask)
+            reply[0] |= 1 << n;
+    return 0;
+}
+
+/* The cycle time, in microseconds; the FMU restarts its cycle grid at once (CONTRACT 2.2). */
+int cmd_SetSampleTime(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)reply;
+    if (arg[0] == 0) {
+        pmd_log(chip, PMD_LOG_ERRORS, "SetSampleTime(0): the cycle time is 1..65535 microseconds");
+        return PMD_ERR_InvalidParameter;
+    }
+    chip->s.sampleTime = (uint16_t)arg[0];
+    chip->s.sampleTimeChanged = 1;
+    return 0;
+}
+
+int cmd_GetSampleTime(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    reply[0] = chip->s.sampleTime;
+    return 0;
 }

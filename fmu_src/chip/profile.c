@@ -49,11 +49,21 @@ int32_t pmd_commanded_acceleration(const PmdTrajectory *t)
 
 /* ---- external profile (seed 000) ----------------------------------------- */
 
+/* Motion complete (reference 4.5): at once in mode 0 (commanded); in mode 1
+ * (actual) once the axis has settled, which the cycle checks. */
+static void motion_complete(PmdChip *chip, int n)
+{
+    if (chip->s.axis[n].motionCompleteMode == PMDMotionCompleteActualPosition)
+        chip->s.axis[n].motionCompletePending = 1;
+    else
+        pmd_set_event(chip, n, PMDEventMotionCompleteMask);
+}
+
 static void halt(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
     if (ax->motion != PMD_MOTION_IDLE)
-        pmd_set_event(chip, n, PMDEventMotionCompleteMask);
+        motion_complete(chip, n);
     ax->motion = PMD_MOTION_IDLE;
     ax->segmentTime = 0;
     ax->atMaximumVelocity = 0;
@@ -175,7 +185,7 @@ static void external_cycle(PmdChip *chip, int n)
     /* Seed 000, 1.6: in external mode the motion-complete bit is set whenever
      * the axis comes to rest, which may happen many times in one profile. */
     if (before != 0 && t->velocity == 0)
-        pmd_set_event(chip, n, PMDEventMotionCompleteMask);
+        motion_complete(chip, n);
 }
 
 /* ---- trapezoidal point-to-point ------------------------------------------ */
@@ -192,6 +202,16 @@ static int64_t run_out(int64_t x, int64_t d)
         return INT64_MAX;
     q = x / d;
     return (q + 1) * x - d * (q * (q + 1) / 2);
+}
+
+/* Sets this cycle's velocity v2 (16.16 units) after v: position, velocity and
+ * acceleration follow exactly. */
+static void step_velocity(PmdTrajectory *t, int64_t v, int64_t v2)
+{
+    move_by(t, v2 * PMD_U_PER_1616);
+    t->velocity = v2 * PMD_U_PER_1616;
+    t->acceleration = (v2 - v) * PMD_U_PER_1616;
+    t->jerk = 0;
 }
 
 static int64_t min64(int64_t a, int64_t b) { return a < b ? a : b; }
@@ -243,10 +263,7 @@ static void trapezoidal_cycle(PmdChip *chip, int n)
             w2 = lo;
         }
     }
-    move_by(t, s * w2 * PMD_U_PER_1616);
-    t->velocity = s * w2 * PMD_U_PER_1616;
-    t->acceleration = (s * w2 - v) * PMD_U_PER_1616;
-    t->jerk = 0;
+    step_velocity(t, v, s * w2);
     ax->atMaximumVelocity = w2 == vmax && vmax > 0;
     if (p + s * w2 == dest)
         t->fraction = 0;                          /* landed: drop any sub-16.16 remainder */
@@ -256,6 +273,57 @@ static void trapezoidal_cycle(PmdChip *chip, int n)
     }
 }
 
+/* ---- velocity contouring ---------------------------------------------------- */
+
+/* Ramps toward the active (signed) velocity: speeding up at the acceleration,
+ * slowing down - also on the way through zero to the other direction - at the
+ * deceleration (reference 5); holds it indefinitely. A smooth stop ramps to 0. */
+static void velocity_cycle(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    PmdTrajectory *t = &ax->trajectory;
+    int64_t acc = ax->active.acceleration;
+    int64_t dec = ax->active.deceleration ? ax->active.deceleration : acc;
+    int64_t target = ax->motion == PMD_MOTION_SMOOTH_STOP ? 0 : ax->active.velocity;
+    int64_t v = floor_div(t->velocity, PMD_U_PER_1616), v2;
+
+    if (v == target) {
+        v2 = v;
+    } else if (v != 0 && (target == 0 || (target > 0) != (v > 0) || (target > 0 ? target < v : target > v))) {
+        int64_t floor_ = (target != 0 && (target > 0) == (v > 0)) ? target : 0;   /* slow down to here */
+        v2 = v > 0 ? max64(v - dec, floor_) : min64(v + dec, floor_);
+    } else {
+        v2 = target > v ? min64(v + acc, target) : max64(v - acc, target);
+    }
+    step_velocity(t, v, v2);
+    ax->atMaximumVelocity = v2 == target && v2 != 0;
+    if (v2 == 0 && target == 0)
+        halt(chip, n);
+}
+
+/* ---- electronic gear ---------------------------------------------------------- */
+
+/* The slave's commanded position follows the master's actual or commanded
+ * position times the 16.16 ratio (reference 5): each cycle it moves by the
+ * master's change times the ratio, exactly. */
+void pmd_gear_cycle(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    const PmdAxis *master = &chip->s.axis[ax->gearMasterAxis];
+    int32_t position = ax->gearMasterSource == PMDPositionSourceCommanded ? master->trajectory.position
+                                                                          : master->actualPosition;
+    int64_t delta = wrap32((int64_t)position - ax->gearMasterLast);
+    int64_t d16 = delta * ax->active.gearRatio;            /* 16.16 slave counts, |d16| < 2^62 */
+    int64_t carry = floor_div(d16, 65536);
+    int64_t v = floor_div(ax->trajectory.velocity, PMD_U_PER_1616);
+    ax->gearMasterLast = position;
+    ax->trajectory.position = wrap32((int64_t)ax->trajectory.position + carry);
+    move_by(&ax->trajectory, (d16 - carry * 65536) * PMD_U_PER_1616);
+    ax->trajectory.velocity = wadd(0, (int64_t)((uint64_t)d16 * (uint64_t)PMD_U_PER_1616));
+    ax->trajectory.acceleration = wadd(ax->trajectory.velocity, -v * PMD_U_PER_1616);
+    ax->trajectory.jerk = 0;
+}
+
 void pmd_profile_cycle(PmdChip *chip, int n)
 {
     switch (chip->s.axis[n].motion) {
@@ -263,9 +331,19 @@ void pmd_profile_cycle(PmdChip *chip, int n)
         external_cycle(chip, n);
         break;
     case PMD_MOTION_TRAPEZOIDAL:
-    case PMD_MOTION_SMOOTH_STOP:
         trapezoidal_cycle(chip, n);
         break;
+    case PMD_MOTION_SMOOTH_STOP:
+        if (chip->s.axis[n].active.profileMode == PMDVelocityContouringProfile)
+            velocity_cycle(chip, n);
+        else
+            trapezoidal_cycle(chip, n);
+        break;
+    case PMD_MOTION_VELOCITY:
+        velocity_cycle(chip, n);
+        break;
+    case PMD_MOTION_GEAR:
+        break;                 /* after the other axes: pmd_gear_cycle */
     default:
         /* at rest: the braking of the last moving cycle is over */
         chip->s.axis[n].trajectory.acceleration = 0;
@@ -275,6 +353,64 @@ void pmd_profile_cycle(PmdChip *chip, int n)
 
 /* ---- Update ---------------------------------------------------------------- */
 
+/* The direction a move would start in: +1, -1, or 0 when it has none (no
+ * motion, or an external or geared profile, whose direction the host owns). */
+static int move_direction(const PmdAxis *ax, const PmdProfileRegisters *b)
+{
+    switch (b->profileMode) {
+    case PMDTrapezoidalProfile:
+    case PMDSCurveProfile:
+        return b->position > ax->trajectory.position ? 1 : b->position < ax->trajectory.position ? -1 : 0;
+    case PMDVelocityContouringProfile:
+        return b->velocity > 0 ? 1 : b->velocity < 0 ? -1 : 0;
+    default:
+        return 0;
+    }
+}
+
+/* The checks an Update makes before it changes anything. */
+static int update_refused(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    const PmdProfileRegisters *b = &ax->buffered;
+    int direction;
+
+    if (b->stopMode != PMDNoStopMode)
+        return 0;
+    if (b->velocity < 0 && b->profileMode != PMDVelocityContouringProfile && b->profileMode != PMDExternalProfile &&
+        b->profileMode != PMDElectronicGearProfile) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: negative velocity %d in profile mode %d", n + 1,
+                b->velocity, b->profileMode);
+        return PMD_ERR_InvalidNegativeValue;
+    }
+    if (ax->motion == PMD_MOTION_TRAPEZOIDAL && b->profileMode == PMDTrapezoidalProfile &&
+        (b->acceleration != ax->active.acceleration || b->deceleration != ax->active.deceleration)) {
+        /* Seed 001: the acceleration may change only at rest; the update is
+         * ignored except for the position. */
+        ax->active.position = b->position;
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: acceleration changed during a trapezoidal move: only the "
+                "destination was applied", n + 1);
+        return PMD_ERR_InvalidParameterChange;
+    }
+    if (ax->limitSwitchMode && (direction = move_direction(ax, b)) != 0) {
+        if (ax->eventStatus & (PMDEventInPositiveLimitMask | PMDEventInNegativeLimitMask)) {
+            pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: a limit event is pending (ResetEventStatus first)", n + 1);
+            return PMD_ERR_LimitEventPending;
+        }
+        if ((direction > 0 && ax->inPositiveLimit) || (direction < 0 && ax->inNegativeLimit)) {
+            pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: move further into the %s limit", n + 1,
+                    direction > 0 ? "positive" : "negative");
+            return PMD_ERR_InvalidMoveIntoLimit;
+        }
+    }
+    if (b->profileMode == PMDExternalProfile && ax->motion != PMD_MOTION_EXTERNAL && !external_buffers_ok(chip, ax)) {
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: external profile needs a position buffer, and every "
+                "assigned buffer of the same non-zero length", n + 1);
+        return PMD_ERR_InvalidParameter;
+    }
+    return 0;
+}
+
 /* Copies the buffered registers to the active set and starts or stops the
  * profile they describe. A refused Update changes nothing. */
 int pmd_update(PmdChip *chip, int n)
@@ -282,35 +418,52 @@ int pmd_update(PmdChip *chip, int n)
     PmdAxis *ax = &chip->s.axis[n];
     const PmdProfileRegisters *b = &ax->buffered;
     uint16_t stop = b->stopMode;
+    int err = update_refused(chip, n);
 
-    if (stop == PMDNoStopMode && b->profileMode == PMDTrapezoidalProfile && b->velocity < 0) {
-        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: negative velocity %d in trapezoidal mode", n + 1, b->velocity);
-        return PMD_ERR_InvalidNegativeValue;
-    }
-    if (stop == PMDNoStopMode && b->profileMode == PMDExternalProfile && ax->motion != PMD_MOTION_EXTERNAL &&
-        !external_buffers_ok(chip, ax)) {
-        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: external profile needs a position buffer, and every "
-                "assigned buffer of the same non-zero length", n + 1);
-        return PMD_ERR_InvalidParameter;
+    if (err)
+        return err;
+    chip->s.updatedAxes |= (uint8_t)(1u << n);
+    if (b->clearPositionError) {
+        /* reference 4.1: the commanded position becomes the actual position */
+        ax->trajectory.position = ax->actualPosition;
+        ax->trajectory.fraction = 0;
     }
     ax->active = *b;
     ax->active.stopMode = PMDNoStopMode;
+    ax->active.clearPositionError = 0;
     ax->buffered.stopMode = PMDNoStopMode;      /* reference 4.1: the stop mode resets itself */
+    ax->buffered.clearPositionError = 0;
 
-    if (stop == PMDAbruptStopMode) {
-        pmd_abrupt_stop(chip, n);
+    if (stop == PMDAbruptStopMode || (stop == PMDSmoothStopMode && ax->motion == PMD_MOTION_GEAR)) {
+        pmd_abrupt_stop(chip, n);               /* gear: a smooth stop acts as an abrupt one */
     } else if (stop == PMDSmoothStopMode) {
         /* Seed 000, 1.5: a smooth stop changes nothing in external mode. */
-        if (ax->motion == PMD_MOTION_TRAPEZOIDAL)
+        if (ax->motion == PMD_MOTION_TRAPEZOIDAL || ax->motion == PMD_MOTION_VELOCITY)
             ax->motion = PMD_MOTION_SMOOTH_STOP;
-    } else if (b->profileMode == PMDExternalProfile) {
-        if (ax->motion != PMD_MOTION_EXTERNAL) {
-            ax->motion = PMD_MOTION_EXTERNAL;
-            ax->segmentTime = 0;                 /* the first cycle reads a segment */
-            ax->underrunWarned = 0;
-        }
     } else {
-        ax->motion = PMD_MOTION_TRAPEZOIDAL;
+        switch (b->profileMode) {
+        case PMDExternalProfile:
+            if (ax->motion != PMD_MOTION_EXTERNAL) {
+                ax->motion = PMD_MOTION_EXTERNAL;
+                ax->segmentTime = 0;             /* the first cycle reads a segment */
+                ax->underrunWarned = 0;
+            }
+            break;
+        case PMDVelocityContouringProfile:
+            ax->motion = PMD_MOTION_VELOCITY;
+            break;
+        case PMDElectronicGearProfile:
+            if (ax->motion != PMD_MOTION_GEAR) {
+                const PmdAxis *master = &chip->s.axis[ax->gearMasterAxis];
+                ax->gearMasterLast = ax->gearMasterSource == PMDPositionSourceCommanded
+                                         ? master->trajectory.position : master->actualPosition;
+                ax->motion = PMD_MOTION_GEAR;
+            }
+            break;
+        default:
+            ax->motion = PMD_MOTION_TRAPEZOIDAL;
+            break;
+        }
     }
     return 0;
 }

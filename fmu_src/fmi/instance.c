@@ -50,6 +50,9 @@ static void set_defaults(PmdInstance *inst)
     inst->cycleTime = DEFAULT_CYCLE_TIME;
     inst->time = 0;
     inst->nextCycle = 0;
+    inst->activeCycleTime = DEFAULT_CYCLE_TIME;
+    inst->anchorTime = 0;
+    inst->anchorCycle = 0;
     memset(inst->hostWord, 0, sizeof inst->hostWord);
     memset(inst->hostReply, 0, sizeof inst->hostReply);
     memset(inst->memoryData, 0, sizeof inst->memoryData);
@@ -126,8 +129,19 @@ void pmd_set_debug_logging(PmdInstance *inst, int loggingOn, size_t nCategories,
  * below; within the tolerance a grid point counts as "at t". */
 static int64_t cycles_before(const PmdInstance *inst, double t)
 {
-    double x = t / inst->cycleTime;
-    return (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
+    double x = (t - inst->anchorTime) / inst->activeCycleTime;
+    return inst->anchorCycle + (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
+}
+
+/* SetSampleTime: the grid restarts at the current time with the new cycle time. */
+static void follow_sample_time(PmdInstance *inst)
+{
+    if (!inst->chip.s.sampleTimeChanged)
+        return;
+    inst->chip.s.sampleTimeChanged = 0;
+    inst->anchorTime = inst->time;
+    inst->anchorCycle = inst->nextCycle;
+    inst->activeCycleTime = inst->chip.s.sampleTime * 1e-6;
 }
 
 PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime)
@@ -139,6 +153,12 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime)
 
 PmdStatus pmd_exit_initialization(PmdInstance *inst)
 {
+    double us = floor(inst->cycleTime * 1e6 + 0.5);
+    inst->activeCycleTime = inst->cycleTime;
+    inst->anchorTime = 0;
+    inst->anchorCycle = 0;
+    /* GetSampleTime reads the cycle time in whole microseconds (16 bits) */
+    inst->chip.s.sampleTime = (uint16_t)(us < 1 ? 1 : us > 65535 ? 65535 : us);
     inst->nextCycle = cycles_before(inst, inst->time);
     inst->state = PMD_STEP_MODE;
     return PMD_OK;
@@ -155,15 +175,15 @@ PmdStatus pmd_do_step(PmdInstance *inst, double t, double h)
                          "size must be finite and > 0", t, h);
         return PMD_ERROR;
     }
-    if (fabs(t - inst->time) > 1e-6 * inst->cycleTime + 8 * DBL_EPSILON * fabs(inst->time)) {
+    if (fabs(t - inst->time) > 1e-6 * inst->activeCycleTime + 8 * DBL_EPSILON * fabs(inst->time)) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: communication point %.17g is not the current "
                          "time %.17g", t, inst->time);
         return PMD_ERROR;
     }
-    x = (t + h) / inst->cycleTime;
+    x = (t + h - inst->anchorTime) / inst->activeCycleTime;
     if (!(x < MAX_CYCLES_PER_STEP)) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: step to %g s is beyond 2^53 cycles of %g s",
-                         t + h, inst->cycleTime);
+                         t + h, inst->activeCycleTime);
         return PMD_ERROR;
     }
     pmd_commit_ports(inst);
@@ -206,6 +226,7 @@ void pmd_commit_ports(PmdInstance *inst)
             inst->hostReply[i] = i < count ? reply[i] : 0;
         inst->hostReplyCount = count;
         inst->hostAck = inst->hostStrobe;
+        follow_sample_time(inst);
     }
     if (inst->memoryStrobe != inst->memoryStrobeSeen) {
         uint32_t data[PMD_BATCH_WORDS];
@@ -284,10 +305,10 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
         *value = (double)t->position + (double)t->fraction / (double)PMD_U_PER_COUNT;
         break;
     case VAR_axis_velocity:
-        *value = (double)t->velocity / (double)PMD_U_PER_COUNT / inst->cycleTime;
+        *value = (double)t->velocity / (double)PMD_U_PER_COUNT / inst->activeCycleTime;
         break;
     default:   /* VAR_axis_acceleration */
-        *value = (double)t->acceleration / (double)PMD_U_PER_COUNT / (inst->cycleTime * inst->cycleTime);
+        *value = (double)t->acceleration / (double)PMD_U_PER_COUNT / (inst->activeCycleTime * inst->activeCycleTime);
         break;
     }
     return PMD_OK;

@@ -37,9 +37,12 @@ typedef struct {
     double cycleTime;
     int32_t memorySize;
 
-    /* time: cycle k runs at k * cycleTime; nextCycle is the next k to run */
+    /* time: cycle k runs at anchorTime + (k - anchorCycle) * activeCycleTime;
+     * nextCycle is the next k to run. SetSampleTime moves the anchor (CONTRACT 2.2). */
     double time;
     int64_t nextCycle;
+    double activeCycleTime, anchorTime;
+    int64_t anchorCycle;
 
     /* host port */
     int32_t hostWord[PMD_BATCH_WORDS];

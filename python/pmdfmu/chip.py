@@ -44,6 +44,22 @@ ERROR_NAMES: Dict[int, str] = {v: n for g, n, v in tables.read_constants(tables_
                                if g == "Error"}
 
 
+SET_SAMPLE_TIME = COMMANDS["SetSampleTime"].opcode
+
+
+def opcodes(words: Sequence[int]) -> List[int]:
+    """The opcodes of a batch of whole commands, found by the table's word counts."""
+    found, i = [], 0
+    by_opcode = {c.opcode: c for c in COMMANDS.values()}
+    while i < len(words):
+        op = words[i] & 0xFF
+        found.append(op)
+        if op not in by_opcode:
+            break
+        i += 1 + by_opcode[op].arg_words
+    return found
+
+
 class PMDError(Exception):
     """A command the chip refused, with its host I/O error code (pmd-reference 2.4)."""
 
@@ -158,6 +174,7 @@ class Chip:
         self.fmu.exitInitializationMode()
         self.cycle_time = self.get("cycleTime")
         self.cycles = 0               # chip cycles run since instantiation (the time grid index)
+        self._anchor = (0.0, 0)       # (time, cycle) where the grid last restarted (SetSampleTime)
         self._vr = {name: v.valueReference for name, v in self.variables.items()}
         self._reply_vrs = [self._vr["host.ack"], self._vr["host.error"], self._vr["host.replyCount"]] + \
                           [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]
@@ -198,7 +215,8 @@ class Chip:
     @property
     def time(self) -> float:
         """Simulation time of the next cycle."""
-        return self.cycles * self.cycle_time
+        anchor_time, anchor_cycle = self._anchor
+        return anchor_time + (self.cycles - anchor_cycle) * self.cycle_time
 
     # ---- host port ----
 
@@ -218,7 +236,16 @@ class Chip:
                             list(words) + [len(words), strobe])
         ack, error, count, *reply = self.fmu.getInteger(self._reply_vrs)
         assert ack == strobe, "the FMU did not execute the batch"
+        if SET_SAMPLE_TIME in opcodes(words):
+            self._follow_sample_time()
         return error, reply[:count]
+
+    def _follow_sample_time(self) -> None:
+        """SetSampleTime restarted the chip's cycle grid at the current time."""
+        micros = decode(COMMANDS["GetSampleTime"].reply, self.batch([COMMANDS["GetSampleTime"].opcode])[1])[0]
+        if micros * 1e-6 != self.cycle_time:
+            self._anchor = (self.time, self.cycles)
+            self.cycle_time = micros * 1e-6
 
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
         """Executes one C-Motion call; raises PMDError if the chip refuses it.

@@ -1,0 +1,272 @@
+/* The trace facility (reference 4.4): up to four variables, sampled every
+ * `period` cycles at the end of the cycle into buffer 0, one 32-bit word per
+ * slot, in slot order. One-time mode stops when the buffer is full; rolling
+ * mode wraps and sets the data-wrap bit. */
+#include "chip.h"
+#include "commands.h"
+
+#define TRACE (&chip->s.trace)
+
+int pmd_trace_busy(const PmdChip *chip, const char *command)
+{
+    if (!chip->s.trace.active)
+        return 0;
+    pmd_log(chip, PMD_LOG_ERRORS, "%s: not allowed while a trace is running", command);
+    return PMD_ERR_TraceRunning;
+}
+
+/* Trajectory-side variable IDs (reference 2.6); 7 (motor command), 10 and 11
+ * (integral, derivative: not on the MC2400) read 0 here: there is no servo. */
+static int32_t trace_value(const PmdChip *chip, uint16_t slot)
+{
+    int n = slot & 0xF;
+    const PmdAxis *ax = &chip->s.axis[n];
+    switch (slot >> 8) {
+    case 1: return pmd_position_error(ax);
+    case 2: return ax->trajectory.position;
+    case 3: return pmd_commanded_velocity(&ax->trajectory);
+    case 4: return pmd_commanded_acceleration(&ax->trajectory);
+    case 5: return ax->actualPosition;
+    case 6: return pmd_actual_velocity(ax);
+    case 8: return pmd_int32(chip->s.time);
+    case 9: return ax->captureValue;
+    case 12: return ax->eventStatus;
+    case 13: return pmd_activity_status(chip, n);
+    case 14: return pmd_signal_status(chip, n);
+    default: return 0;
+    }
+}
+
+/* Start and stop words: bits 0-3 axis, 4-7 condition, 8-11 status bit, 12-15 state. */
+static int condition_met(const PmdChip *chip, uint16_t word)
+{
+    int n = word & 0xF, bit = (word >> 8) & 0xF, state = (word >> 12) & 0xF;
+    uint16_t status;
+    switch ((word >> 4) & 0xF) {
+    case PMDTraceConditionUpdate: return (chip->s.updatedAxes >> n) & 1;
+    case PMDTraceConditionEventStatus: status = chip->s.axis[n].eventStatus; break;
+    case PMDTraceConditionActivityStatus: status = pmd_activity_status(chip, n); break;
+    case PMDTraceConditionSignalStatus: status = pmd_signal_status(chip, n); break;
+    default: return 0;
+    }
+    return ((status >> bit) & 1) == state;
+}
+
+static int slots_in_use(const PmdTrace *tr)
+{
+    int k = 0;
+    while (k < PMD_TRACE_SLOTS && (tr->variable[k] >> 8) != 0)     /* variable 0 ends the list */
+        k++;
+    return k;
+}
+
+static void start(PmdChip *chip)
+{
+    TRACE->active = 1;
+    TRACE->wrapped = 0;
+    TRACE->count = 0;
+    TRACE->countdown = 0;
+    TRACE->start = 0;
+    pmd_log(chip, PMD_LOG_EVENTS, "trace started (chip time %u)", (unsigned)chip->s.time);
+}
+
+static void stop(PmdChip *chip, const char *why)
+{
+    TRACE->active = 0;
+    pmd_log(chip, PMD_LOG_EVENTS, "trace stopped: %s (%u values)", why, (unsigned)TRACE->count);
+}
+
+static void sample(PmdChip *chip)
+{
+    PmdBuffer *b = &chip->s.buffer[0];
+    int k, slots = slots_in_use(TRACE);
+    for (k = 0; k < slots; k++) {
+        chip->memory[b->start + b->writeIndex] = (uint32_t)trace_value(chip, TRACE->variable[k]);
+        if (++b->writeIndex == b->length) {
+            b->writeIndex = 0;
+            if (TRACE->mode == PMDTraceRollingBuffer)
+                TRACE->wrapped = 1;
+        }
+        if (TRACE->count < b->length)
+            TRACE->count++;                     /* a rolling trace reports at most a full buffer */
+    }
+    if (TRACE->mode == PMDTraceOneTime && TRACE->count + (uint32_t)slots > b->length)
+        stop(chip, "buffer full");
+}
+
+void pmd_trace_cycle(PmdChip *chip)
+{
+    if (!TRACE->active && TRACE->start && condition_met(chip, TRACE->start))
+        start(chip);
+    if (TRACE->active) {
+        if (TRACE->countdown == 0) {
+            TRACE->countdown = (uint16_t)(TRACE->period - 1);
+            sample(chip);
+        } else {
+            TRACE->countdown--;
+        }
+    }
+    if (TRACE->active && TRACE->stop && condition_met(chip, TRACE->stop)) {
+        TRACE->stop = 0;
+        stop(chip, "stop condition");
+    }
+    chip->s.updatedAxes = 0;
+}
+
+/* ---- commands ---------------------------------------------------------------- */
+
+int cmd_SetTraceMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = pmd_trace_busy(chip, "SetTraceMode");
+    (void)axis; (void)reply;
+    if (err)
+        return err;
+    if (arg[0] > PMDTraceRollingBuffer) {
+        pmd_log(chip, PMD_LOG_ERRORS, "SetTraceMode(%d): not 0 (one-time) or 1 (rolling)", (int)arg[0]);
+        return PMD_ERR_InvalidParameter;
+    }
+    TRACE->mode = (uint16_t)arg[0];
+    return 0;
+}
+
+int cmd_GetTraceMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    reply[0] = TRACE->mode;
+    return 0;
+}
+
+int cmd_SetTracePeriod(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = pmd_trace_busy(chip, "SetTracePeriod");
+    (void)axis; (void)reply;
+    if (err)
+        return err;
+    if (arg[0] == 0) {
+        pmd_log(chip, PMD_LOG_ERRORS, "SetTracePeriod(0): the period is 1..65535 cycles");
+        return PMD_ERR_InvalidParameter;
+    }
+    TRACE->period = (uint16_t)arg[0];
+    return 0;
+}
+
+int cmd_GetTracePeriod(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    reply[0] = TRACE->period;
+    return 0;
+}
+
+int cmd_SetTraceVariable(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    int err = pmd_trace_busy(chip, "SetTraceVariable");
+    (void)axis; (void)reply;
+    if (err)
+        return err;
+    if (arg[0] >= PMD_TRACE_SLOTS || arg[1] >= PMD_AXES || arg[2] > PMDTraceSignalStatus) {
+        pmd_log(chip, PMD_LOG_ERRORS, "SetTraceVariable: slot %d (0..3), axis %d (0..3) or variable %d (0..14) "
+                "out of range", (int)arg[0], (int)arg[1], (int)arg[2]);
+        return PMD_ERR_InvalidParameter;
+    }
+    TRACE->variable[arg[0]] = (uint16_t)(arg[1] | (arg[2] << 8));
+    return 0;
+}
+
+int cmd_GetTraceVariable(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis;
+    if (arg[0] >= PMD_TRACE_SLOTS) {
+        pmd_log(chip, PMD_LOG_ERRORS, "GetTraceVariable: slot %d is not 0..3", (int)arg[0]);
+        return PMD_ERR_InvalidParameter;
+    }
+    reply[0] = TRACE->variable[arg[0]] & 0xF;
+    reply[1] = TRACE->variable[arg[0]] >> 8;
+    return 0;
+}
+
+static int condition_word(const PmdChip *chip, const char *name, const int64_t *arg, uint16_t *word)
+{
+    if (arg[0] >= PMD_AXES || arg[1] > PMDTraceConditionSignalStatus || arg[3] > PMDTraceTriggerStateHigh) {
+        pmd_log(chip, PMD_LOG_ERRORS, "%s: axis %d (0..3), condition %d (0..4) or state %d (0..1) out of range",
+                name, (int)arg[0], (int)arg[1], (int)arg[3]);
+        return PMD_ERR_InvalidParameter;
+    }
+    *word = (uint16_t)(arg[0] | (arg[1] << 4) | (arg[2] << 8) | (arg[3] << 12));
+    return 0;
+}
+
+/* Condition 0 (immediate) starts now; any other arms the start register. */
+int cmd_SetTraceStart(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    uint16_t word;
+    int err = pmd_trace_busy(chip, "SetTraceStart");
+    (void)axis; (void)reply;
+    if (!err)
+        err = condition_word(chip, "SetTraceStart", arg, &word);
+    if (err)
+        return err;
+    if (chip->s.buffer[0].length == 0) {
+        pmd_log(chip, PMD_LOG_ERRORS, "SetTraceStart: trace buffer 0 has length 0");
+        return PMD_ERR_TraceBufferZero;
+    }
+    if (arg[1] == PMDTraceConditionImmediate)
+        start(chip);
+    else
+        TRACE->start = word;
+    return 0;
+}
+
+int cmd_SetTraceStop(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    uint16_t word;
+    int err = condition_word(chip, "SetTraceStop", arg, &word);
+    (void)axis; (void)reply;
+    if (err)
+        return err;
+    if (arg[1] == PMDTraceConditionImmediate) {
+        TRACE->stop = 0;
+        if (TRACE->active)
+            stop(chip, "SetTraceStop");
+        TRACE->start = 0;
+    } else {
+        TRACE->stop = word;
+    }
+    return 0;
+}
+
+static void condition_fields(uint16_t word, int64_t *reply)
+{
+    reply[0] = word & 0xF;
+    reply[1] = (word >> 4) & 0xF;
+    reply[2] = (word >> 8) & 0xF;
+    reply[3] = (word >> 12) & 0xF;
+}
+
+int cmd_GetTraceStart(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    condition_fields(TRACE->start, reply);
+    return 0;
+}
+
+int cmd_GetTraceStop(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    condition_fields(TRACE->stop, reply);
+    return 0;
+}
+
+int cmd_GetTraceStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    reply[0] = (TRACE->mode ? PMDTraceStatusMode : 0) | (TRACE->active ? PMDTraceStatusActivity : 0) |
+               (TRACE->wrapped ? PMDTraceStatusDataWrap : 0);
+    return 0;
+}
+
+int cmd_GetTraceCount(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
+{
+    (void)axis; (void)arg;
+    reply[0] = TRACE->count;
+    return 0;
+}
