@@ -1,0 +1,101 @@
+"""Trace in buffer 0 (pmd-reference 4.4, 2.6) and SetSampleTime (CONTRACT 2.2)."""
+import pytest
+
+import pmdfmu
+from pmdfmu import (PMDError, PMDTraceActivityStatus, PMDTraceCommandedPosition, PMDTraceCommandedVelocity,
+                    PMDTraceConditionActivityStatus, PMDTraceConditionImmediate, PMDTraceConditionUpdate,
+                    PMDTraceOneTime, PMDTraceRollingBuffer, PMDTraceTime)
+
+
+def setup_trace(ax, length, mode=PMDTraceOneTime, period=1):
+    ax.SetBufferStart(0, 0x100)
+    ax.SetBufferLength(0, length)
+    ax.SetTraceMode(mode)
+    ax.SetTracePeriod(period)
+    ax.SetTraceVariable(0, 0, PMDTraceTime)
+    ax.SetTraceVariable(1, 1, PMDTraceCommandedPosition)
+    ax.SetTraceVariable(2, 1, PMDTraceCommandedVelocity)
+
+
+def read_samples(ax, count, slots=3):
+    values = [pmdfmu.signed(ax.ReadBuffer(0)) for _ in range(count)]
+    return [tuple(values[i:i + slots]) for i in range(0, count, slots)]
+
+
+def start_axis2(ax):
+    ax.SetPosition(1_000_000)
+    ax.SetVelocity(0x30000)
+    ax.SetAcceleration(0x10000)
+    ax.Update()
+
+
+def test_one_time_trace_on_the_next_update_samples_every_period_until_full(chip):
+    ax, ax2 = chip.axis(0), chip.axis(1)
+    setup_trace(ax, 30, period=4)
+    ax.SetTraceStart(1, PMDTraceConditionUpdate, 0, 0)
+    assert ax.GetTraceStart() == (1, PMDTraceConditionUpdate, 0, 0)
+    chip.run(10)
+    assert ax.GetTraceStatus() == 0 and ax.GetTraceCount() == 0
+    start_axis2(ax2)                                # chip time 10 is the first cycle after the update
+    rec = chip.run(60, record=["axis2.commandedPosition", "axis2.commandedVelocity"])
+    assert ax.GetTraceCount() == 30 and ax.GetTraceStatus() == 0          # full: stopped by itself
+    assert ax.GetTraceStart() == (0, 0, 0, 0)
+    expected = [(int(r["cycle"]), int(r["axis2.commandedPosition"]), int(r["axis2.commandedVelocity"]))
+                for r in rec[::4][:10]]
+    assert read_samples(ax, 30) == expected
+
+
+def test_rolling_trace_wraps_and_stops_on_an_activity_bit(chip):
+    ax, ax2 = chip.axis(0), chip.axis(1)
+    setup_trace(ax, 9, mode=PMDTraceRollingBuffer)
+    ax.SetTraceVariable(3, 1, PMDTraceActivityStatus)
+    ax.SetTraceVariable(3, 0, 0)                     # variable 0 ends the list: three slots
+    ax.SetTraceStop(1, PMDTraceConditionActivityStatus, 1, 1)   # axis 2 at maximum velocity
+    ax.SetTraceStart(0, PMDTraceConditionImmediate, 0, 0)
+    assert ax.GetTraceStatus() == 0b011
+    start_axis2(ax2)
+    with pytest.raises(PMDError) as e:
+        ax.SetBufferLength(0, 3)                     # changing buffer 0 while tracing
+    assert e.value.code == 0x05
+    with pytest.raises(PMDError):
+        ax.SetTracePeriod(2)
+    chip.run(10)
+    assert ax.GetTraceStatus() == 0b101              # rolling, stopped, wrapped
+    assert ax.GetTraceCount() == 9
+    assert ax.GetTraceStop() == (0, 0, 0, 0)
+    # axis 2 reached 3 counts/cycle in cycle 2; the last three samples are cycles 0..2, wrapped in place
+    assert sorted(read_samples(ax, 9)) == [(0, 1, 0x10000), (1, 3, 0x20000), (2, 6, 0x30000)]
+
+
+def test_trace_errors(chip):
+    ax = chip.axis(0)
+    with pytest.raises(PMDError) as e:
+        ax.SetTraceStart(0, PMDTraceConditionImmediate, 0, 0)
+    assert e.value.code == 0x08                      # zero-length buffer 0
+    for call, args in (("SetTracePeriod", (0,)), ("SetTraceMode", (2,)), ("SetTraceVariable", (4, 0, 2)),
+                       ("SetTraceVariable", (0, 0, 15)), ("SetTraceStart", (0, 5, 0, 0))):
+        with pytest.raises(PMDError) as e:
+            getattr(ax, call)(*args)
+        assert e.value.code == 0x04, call
+
+
+def test_set_sample_time_restarts_the_grid_with_the_new_cycle_time():
+    with pmdfmu.Chip(cycleTime=1e-3) as chip:
+        ax = chip.axis(0)
+        assert ax.GetSampleTime() == 1000
+        chip.run(10)                                 # cycles 0..9 at 0 .. 9 ms; now t = 10 ms
+        ax.SetSampleTime(250)
+        assert ax.GetSampleTime() == 250 and chip.cycle_time == 250e-6
+        chip.run(4)                                  # one doStep of 1 ms: 4 cycles of 250 us
+        assert ax.GetTime() == 13
+        assert chip.time == pytest.approx(0.011)
+        rec = chip.run(4, record=["chipTime"])
+        assert list(rec["cycle"]) == [14, 15, 16, 17]
+        ax.SetVelocity(0x10000)
+        ax.SetAcceleration(0x10000)
+        ax.SetPosition(100)
+        ax.Update()
+        chip.run(2)
+        assert chip.get("axis1.velocity") == pytest.approx(2 / 250e-6)   # counts/s with the new cycle
+        with pytest.raises(PMDError):
+            ax.SetSampleTime(0)
