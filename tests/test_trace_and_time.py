@@ -96,6 +96,6 @@ def test_set_sample_time_restarts_the_grid_with_the_new_cycle_time():
         ax.SetPosition(100)
         ax.Update()
         chip.run(2)
-        assert chip.get("axis1.velocity") == pytest.approx(2 / 250e-6)   # counts/s with the new cycle
+        assert chip.get("axis1.velocity") == pytest.approx(1 / 250e-6)   # 1 count/cycle, in counts/s of the new cycle
         with pytest.raises(PMDError):
             ax.SetSampleTime(0)
