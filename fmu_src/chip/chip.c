@@ -101,6 +101,8 @@ uint16_t pmd_activity_status(const PmdChip *chip, int n)
     /* Seed 000, 1.6: the profile segment number is 1 while an external profile runs, 0 once halted. */
     if (ax->motion == PMD_MOTION_EXTERNAL)
         s |= 1u << 13;
+    else if (ax->motion == PMD_MOTION_SCURVE)
+        s |= (uint16_t)(ax->scurvePhase << 13);    /* reference 5: the S-curve phase 1..7 */
     return s;
 }
 

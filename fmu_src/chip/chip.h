@@ -39,6 +39,10 @@ void pmd_trace_cycle(PmdChip *chip);
 int pmd_trace_busy(const PmdChip *chip, const char *command);
 int pmd_update(PmdChip *chip, int axis);
 void pmd_abrupt_stop(PmdChip *chip, int axis);
+void pmd_halt(PmdChip *chip, int axis);
+int pmd_scurve_plan(const PmdChip *chip, int axis, const PmdProfileRegisters *r, PmdSCurve *plan);
+void pmd_scurve_cycle(PmdChip *chip, int axis);
+void pmd_scurve_smooth_stop(PmdAxis *ax);
 void pmd_set_event(PmdChip *chip, int axis, uint16_t mask);
 
 /* Logging: pmd_log formats only when the category is enabled. */

@@ -70,16 +70,31 @@ typedef enum {
     PMD_MOTION_SMOOTH_STOP,        /* braking at the deceleration rate to rest */
     PMD_MOTION_EXTERNAL,           /* reading segments from the buffers (seed 000) */
     PMD_MOTION_VELOCITY,           /* velocity contouring toward the active velocity */
+    PMD_MOTION_SCURVE,             /* S-curve point-to-point (scurve.c) */
     PMD_MOTION_GEAR                /* following the gear master */
 } PmdMotion;
 
+/* An S-curve move: the unit-jerk curve with whole-cycle phases I..VII of
+ * lengths t1, t2, t1, t4, t1, t2, t1, scaled to the distance (scurve.c). */
+typedef struct {
+    int64_t t1, t2, t4;
+    int64_t step;            /* cycles executed */
+    int64_t p6, v2, a;       /* the unit curve after `step` cycles: 6 P, 2 V, A */
+    int64_t p6Total;         /* p6 at the end: 6 t1 (t1 + t2) (2 t1 + t2 + t4) */
+    int64_t distance;        /* destination - start, counts */
+    int32_t start;
+    uint8_t stopping;        /* smooth stop: the cruise was cut short */
+} PmdSCurve;
+
 typedef struct {
     PmdProfileRegisters buffered, active;
+    PmdSCurve scurve;
     PmdTrajectory trajectory;
     uint8_t motion;              /* PmdMotion */
     uint8_t atMaximumVelocity;
     uint8_t motorOn;
     uint8_t underrunWarned;      /* a read-past-write warning was logged and not yet cleared by a refill */
+    uint8_t scurvePhase;         /* S-curve phase 1..7 shown as the profile segment while moving */
     uint32_t segmentTime;        /* external profile: cycles left in the segment (seed 000 pseudo code) */
     int16_t bufferOfFunction[PMD_FUNCTIONS];   /* SetBufferFunction: buffer ID or -1 */
     uint16_t eventStatus;

@@ -57,9 +57,9 @@ int cmd_GetHostIOError(PmdChip *chip, int axis, const int64_t *arg, int64_t *rep
 int cmd_SetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     (void)reply;
-    if (arg[0] > PMDExternalProfile || arg[0] == PMDSCurveProfile) {
+    if (arg[0] > PMDExternalProfile) {
         pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetProfileMode(%d): not 0 (trapezoidal), 1 (velocity contouring), "
-                "3 (electronic gear) or 4 (external); S-curve (2) is not implemented yet", axis + 1, (int)arg[0]);
+                "2 (S-curve), 3 (electronic gear) or 4 (external)", axis + 1, (int)arg[0]);
         return PMD_ERR_InvalidParameter;
     }
     AXIS(axis)->buffered.profileMode = (uint16_t)arg[0];

@@ -59,7 +59,7 @@ static void motion_complete(PmdChip *chip, int n)
         pmd_set_event(chip, n, PMDEventMotionCompleteMask);
 }
 
-static void halt(PmdChip *chip, int n)
+void pmd_halt(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
     if (ax->motion != PMD_MOTION_IDLE)
@@ -76,7 +76,7 @@ void pmd_abrupt_stop(PmdChip *chip, int n)
     t->velocity = 0;
     t->acceleration = 0;
     t->jerk = 0;
-    halt(chip, n);
+    pmd_halt(chip, n);
 }
 
 /* The buffers an external profile may start on: a position buffer, and every
@@ -269,7 +269,7 @@ static void trapezoidal_cycle(PmdChip *chip, int n)
         t->fraction = 0;                          /* landed: drop any sub-16.16 remainder */
     if (w2 == 0 && (ax->motion == PMD_MOTION_SMOOTH_STOP || p == dest)) {
         pmd_log(chip, PMD_LOG_EVENTS, "axis %d: motion complete at %d", n + 1, t->position);
-        halt(chip, n);
+        pmd_halt(chip, n);
     }
 }
 
@@ -298,7 +298,7 @@ static void velocity_cycle(PmdChip *chip, int n)
     step_velocity(t, v, v2);
     ax->atMaximumVelocity = v2 == target && v2 != 0;
     if (v2 == 0 && target == 0)
-        halt(chip, n);
+        pmd_halt(chip, n);
 }
 
 /* ---- electronic gear ---------------------------------------------------------- */
@@ -341,6 +341,9 @@ void pmd_profile_cycle(PmdChip *chip, int n)
         break;
     case PMD_MOTION_VELOCITY:
         velocity_cycle(chip, n);
+        break;
+    case PMD_MOTION_SCURVE:
+        pmd_scurve_cycle(chip, n);
         break;
     case PMD_MOTION_GEAR:
         break;                 /* after the other axes: pmd_gear_cycle */
@@ -392,6 +395,14 @@ static int update_refused(PmdChip *chip, int n)
                 "destination was applied", n + 1);
         return PMD_ERR_InvalidParameterChange;
     }
+    if (ax->motion == PMD_MOTION_SCURVE &&
+        (b->profileMode != ax->active.profileMode || b->position != ax->active.position ||
+         b->velocity != ax->active.velocity || b->acceleration != ax->active.acceleration ||
+         b->jerk != ax->active.jerk || b->clearPositionError)) {
+        /* reference 5: no parameter changes while an S-curve moves */
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: S-curve parameters changed during the move", n + 1);
+        return PMD_ERR_InvalidParameterChange;
+    }
     if (ax->limitSwitchMode && (direction = move_direction(ax, b)) != 0) {
         if (ax->eventStatus & (PMDEventInPositiveLimitMask | PMDEventInNegativeLimitMask)) {
             pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Update: a limit event is pending (ResetEventStatus first)", n + 1);
@@ -418,8 +429,11 @@ int pmd_update(PmdChip *chip, int n)
     PmdAxis *ax = &chip->s.axis[n];
     const PmdProfileRegisters *b = &ax->buffered;
     uint16_t stop = b->stopMode;
+    PmdSCurve plan;
     int err = update_refused(chip, n);
 
+    if (!err && stop == PMDNoStopMode && b->profileMode == PMDSCurveProfile && ax->motion != PMD_MOTION_SCURVE)
+        err = pmd_scurve_plan(chip, n, b, &plan);
     if (err)
         return err;
     chip->s.updatedAxes |= (uint8_t)(1u << n);
@@ -440,6 +454,8 @@ int pmd_update(PmdChip *chip, int n)
         /* Seed 000, 1.5: a smooth stop changes nothing in external mode. */
         if (ax->motion == PMD_MOTION_TRAPEZOIDAL || ax->motion == PMD_MOTION_VELOCITY)
             ax->motion = PMD_MOTION_SMOOTH_STOP;
+        else if (ax->motion == PMD_MOTION_SCURVE)
+            pmd_scurve_smooth_stop(ax);
     } else {
         switch (b->profileMode) {
         case PMDExternalProfile:
@@ -451,6 +467,12 @@ int pmd_update(PmdChip *chip, int n)
             break;
         case PMDVelocityContouringProfile:
             ax->motion = PMD_MOTION_VELOCITY;
+            break;
+        case PMDSCurveProfile:
+            if (ax->motion != PMD_MOTION_SCURVE) {
+                ax->scurve = plan;
+                ax->motion = PMD_MOTION_SCURVE;
+            }
             break;
         case PMDElectronicGearProfile:
             if (ax->motion != PMD_MOTION_GEAR) {
