@@ -68,3 +68,11 @@ def test_a_bad_table_names_file_and_row(tmp_path):
     bad.write_text("axis,position,velocity,acceleration,jerk,time\n1,0,0,0,0,5\n7,0,0,0,0,0\n")
     with pytest.raises(ValueError, match="row 3: axis 7"):
         main(["run", str(bad)])
+
+
+def test_homing_sequence_finds_the_switch_and_returns_to_it():
+    out = run_example("homing.py")
+    # the switch trips at the first cycle at or past 12345 (12348) and reaches the chip
+    # one cycle later, 8 counts on: that position becomes the origin
+    assert "home switch captured at 12356 counts" in out
+    assert "back at 0 (the new origin), switch active: True" in out
