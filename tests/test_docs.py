@@ -1,0 +1,30 @@
+"""docs/commands.md lists every opcode with its status, and the FMU agrees."""
+from pathlib import Path
+
+import pytest
+
+from pmdfmu import COMMANDS
+from pmdfmu.docs import commands_markdown, out_of_scope
+
+DOC = Path(__file__).resolve().parent.parent / "docs" / "commands.md"
+
+
+def test_commands_md_is_current():
+    assert DOC.read_text() == commands_markdown(), "run: python -m pmdfmu.docs"
+
+
+def test_the_tables_do_not_overlap():
+    implemented = {c.opcode for c in COMMANDS.values()}
+    assert not implemented & {op for op, _, _ in out_of_scope()}
+
+
+@pytest.mark.parametrize("opcode,name", [(op, name) for op, name, _ in out_of_scope()])
+def test_out_of_scope_opcodes_answer_invalid_instruction(chip, opcode, name):
+    assert chip.batch([opcode])[0] == 0x02, name
+
+
+def test_every_opcode_is_either_implemented_or_invalid(chip):
+    implemented = {c.opcode for c in COMMANDS.values()}
+    for opcode in range(256):
+        if opcode not in implemented:
+            assert chip.batch([opcode])[0] == 0x02, hex(opcode)
