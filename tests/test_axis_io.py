@@ -190,3 +190,27 @@ def test_home_capture_latches_until_read(chip):
     chip.run(1)
     assert ax.GetCaptureValue() == 41       # the first edge (seen in cycle 41, at 41 counts), held until read
     assert not ax.GetActivityStatus() & PMDActivityPositionCaptureMask
+
+
+def test_an_external_profile_stops_on_a_motion_error_even_without_auto_stop():
+    with pmdfmu.Chip(loopback=False) as chip:
+        ax = chip.axis(0)
+        ax.SetBufferStart(2, 0x200)
+        ax.SetBufferLength(2, 1)
+        ax.SetBufferStart(3, 0x300)
+        ax.SetBufferLength(3, 1)
+        ax.SetBufferStart(4, 0x400)
+        ax.SetBufferLength(4, 1)
+        ax.SetBufferFunction(0, 2)
+        ax.SetBufferFunction(1, 3)
+        ax.SetBufferFunction(4, 4)
+        chip.write_memory(0x300, [0x20000])        # 2 counts/cycle for 1000 cycles; the plant stays at 0
+        chip.write_memory(0x400, [1000])
+        ax.SetPositionErrorLimit(50)
+        ax.SetProfileMode(PMDExternalProfile)
+        ax.Update()
+        chip.run(40)
+        assert ax.GetEventStatus() & PMDEventMotionErrorMask
+        assert ax.GetActivityStatus() & 0xE000 == 0
+        assert ax.GetCommandedPosition() == 52                 # stopped in the cycle the error passed 50
+        assert ax.GetActivityStatus() & 0x0100             # no auto-stop: the motor stays on

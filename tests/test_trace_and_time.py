@@ -99,3 +99,20 @@ def test_set_sample_time_restarts_the_grid_with_the_new_cycle_time():
         assert chip.get("axis1.velocity") == pytest.approx(1 / 250e-6)   # 1 count/cycle, in counts/s of the new cycle
         with pytest.raises(PMDError):
             ax.SetSampleTime(0)
+
+
+def test_trace_starts_on_a_signal_bit_and_stops_on_an_event_bit(chip):
+    ax = chip.axis(0)
+    setup_trace(ax, 60)
+    ax.SetTraceStart(2, pmdfmu.PMDTraceConditionSignalStatus, 3, 0)     # axis 3 home active (reads 0)
+    ax.SetTraceStop(2, pmdfmu.PMDTraceConditionEventStatus, 2, 1)       # axis 3 breakpoint 1 event
+    chip.axis(2).SetBreakpointValue(pmdfmu.PMDBreakpoint1, 20)
+    chip.axis(2).SetBreakpoint(pmdfmu.PMDBreakpoint1, 2, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointTime)
+    chip.run(5)
+    assert ax.GetTraceStatus() == 0
+    chip.set("axis3.home", True)
+    chip.run(5)                                      # chip times 5..9: sampled from 5 on
+    assert ax.GetTraceStatus() == 0b010
+    chip.run(20)                                     # the breakpoint fires at chip time 20
+    assert ax.GetTraceStatus() == 0 and ax.GetTraceCount() == 3 * 16
+    assert [s[0] for s in read_samples(ax, 48)] == list(range(5, 21))
