@@ -96,8 +96,9 @@ def test_unused_bits_of_a_packed_word_are_refused(chip):
     ("SetBufferFunction", (0, 1), 0x04),                      # 0 and 1 belong to the trace
     ("SetBufferFunction", (0, 32), 0x04),
     ("GetBufferFunction", (-1,), 0x04),
-    ("SetAcceleration", (0x80000000,), 0x04),
-    ("SetJerk", (0xFFFFFFFF,), 0x04),
+    ("SetAcceleration", (0x80000000,), 0x0B),                 # negative in every mode
+    ("SetDeceleration", (-1,), 0x0B),
+    ("SetJerk", (0xFFFFFFFF,), 0x0B),
     ("SetStopMode", (3,), 0x04),
     ("SetProfileMode", (7,), 0x04),
     ("SetBreakpointValue", (2, 0), 0x04),

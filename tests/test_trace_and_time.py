@@ -116,3 +116,34 @@ def test_trace_starts_on_a_signal_bit_and_stops_on_an_event_bit(chip):
     chip.run(20)                                     # the breakpoint fires at chip time 20
     assert ax.GetTraceStatus() == 0 and ax.GetTraceCount() == 3 * 16
     assert [s[0] for s in read_samples(ax, 48)] == list(range(5, 21))
+
+
+def test_every_trajectory_side_trace_variable_samples_what_the_get_commands_read():
+    """Reference 2.6: IDs 1..14 (7, 10, 11 read 0: no servo loop), four per trace, one sample each."""
+    with pmdfmu.Chip(loopback=False) as chip:
+        ax, a2 = chip.axis(0), chip.axis(1)
+        ax.SetBufferStart(0, 0x100)
+        ax.SetBufferLength(0, 64)
+        a2.SetCaptureSource(pmdfmu.PMDCaptureSourceHome)
+        chip.set("axis2.home", True)                    # captured in the first cycle
+        chip.set("axis2.actualPosition", 77)
+        a2.SetProfileMode(pmdfmu.PMDVelocityContouringProfile)
+        a2.SetVelocity(-0x28000)
+        a2.SetAcceleration(0x8000)
+        a2.Update()
+        chip.run(3)
+        ids = list(range(1, 15))
+        for first in range(0, len(ids), 4):
+            group = ids[first:first + 4]
+            for slot in range(4):
+                ax.SetTraceVariable(slot, 1, group[slot] if slot < len(group) else 0)
+            ax.SetTraceStart(0, PMDTraceConditionImmediate, 0, 0)
+            chip.run(1)                                 # one sample, at the end of this cycle
+            ax.SetTraceStop(0, PMDTraceConditionImmediate, 0, 0)
+            sampled = [pmdfmu.signed(ax.ReadBuffer(0)) for _ in group]
+            reads = {1: a2.GetPositionError, 2: a2.GetCommandedPosition, 3: a2.GetCommandedVelocity,
+                     4: a2.GetCommandedAcceleration, 5: a2.GetActualPosition, 6: a2.GetActualVelocity,
+                     7: lambda: 0, 8: a2.GetTime, 10: lambda: 0, 11: lambda: 0, 12: a2.GetEventStatus,
+                     13: a2.GetActivityStatus, 14: a2.GetSignalStatus,
+                     9: lambda: 77}               # the capture value (not read: reading re-arms it)
+            assert sampled == [reads[v]() for v in group], group

@@ -91,13 +91,14 @@ int cmd_GetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *rep
         return 0;                                                                           \
     }
 
-/* Acceleration, deceleration and jerk are unsigned, 0 .. 2^31-1 (reference 4.7). */
+/* Acceleration, deceleration and jerk are 0 .. 2^31-1 in every profile mode
+ * (reference 4.7): a word with the sign bit set is a negative value (0x0B). */
 static int unsigned_31(const PmdChip *chip, int axis, const char *name, int64_t value)
 {
     if (value > INT32_MAX) {
-        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: %s(0x%08X): out of range 0..0x7FFFFFFF", axis + 1, name,
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: %s(0x%08X): negative; the range is 0..0x7FFFFFFF", axis + 1, name,
                 (unsigned)value);
-        return PMD_ERR_InvalidParameter;
+        return PMD_ERR_InvalidNegativeValue;
     }
     return 0;
 }
