@@ -59,7 +59,7 @@ def fmi2_xml(variables, token: str) -> str:
         '  generationTool="pmdfmu modelDescription/generate.py" variableNamingConvention="structured"',
         '  numberOfEventIndicators="0">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
-        ' canNotUseMemoryManagementFunctions="true"/>',
+        ' canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true"/>',
         "  <LogCategories>",
         *(f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES),
         "  </LogCategories>",

@@ -7,6 +7,7 @@
 
 #include "fmi2Functions.h"
 #include "instance.h"
+#include "state.h"
 
 /* The environment's callbacks live beside the instance. */
 typedef struct {
@@ -302,43 +303,105 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
     return unsupported(c, "fmi2GetDirectionalDerivative", "providesDirectionalDerivative is false");
 }
 
-/* ---- FMU state ---- */
+/* ---- FMU state (state.c) ---- */
 
-#define NO_STATE "canGetAndSetFMUstate is false"
+/* An fmi2FMUstate is a snapshot's bytes behind their size. */
+typedef struct {
+    size_t size;
+    unsigned char bytes[];
+} Snapshot;
+
+static Snapshot *snapshot_alloc(Snapshot *reuse, size_t size)
+{
+    Snapshot *s = (Snapshot *)realloc(reuse, sizeof(Snapshot) + size);
+    if (s)
+        s->size = size;
+    return s;
+}
+
+static int state_given(PmdInstance *inst, const char *fn, const void *state)
+{
+    if (!state)
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: the FMU state is NULL", fn);
+    return state != NULL;
+}
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
-    (void)state;
-    return unsupported(c, "fmi2GetFMUstate", NO_STATE);
+    PmdInstance *inst = begin(c, "fmi2GetFMUstate", ANY_STATE);
+    Snapshot *s;
+    if (!inst || !state_given(inst, "fmi2GetFMUstate", state))
+        return fmi2Error;
+    s = snapshot_alloc((Snapshot *)*state, pmd_state_size(inst));
+    if (!s) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2GetFMUstate: out of host memory");
+        return fmi2Error;
+    }
+    pmd_state_write(inst, s->bytes);
+    *state = s;
+    return fmi2OK;
 }
 
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state)
 {
-    (void)state;
-    return unsupported(c, "fmi2SetFMUstate", NO_STATE);
+    PmdInstance *inst = begin(c, "fmi2SetFMUstate", ANY_STATE);
+    const Snapshot *s = (const Snapshot *)state;
+    if (!inst || !state_given(inst, "fmi2SetFMUstate", state) ||
+        pmd_state_check(inst, "fmi2SetFMUstate", s->bytes, s->size) != PMD_OK)
+        return fmi2Error;
+    return status_of[pmd_state_read(inst, "fmi2SetFMUstate", s->bytes)];
 }
 
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
-    (void)state;
-    return unsupported(c, "fmi2FreeFMUstate", NO_STATE);
+    PmdInstance *inst = begin(c, "fmi2FreeFMUstate", ANY_STATE);
+    if (!inst || !state_given(inst, "fmi2FreeFMUstate", state))
+        return fmi2Error;
+    free(*state);
+    *state = NULL;
+    return fmi2OK;
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t *size)
 {
-    (void)state; (void)size;
-    return unsupported(c, "fmi2SerializedFMUstateSize", NO_STATE);
+    PmdInstance *inst = begin(c, "fmi2SerializedFMUstateSize", ANY_STATE);
+    if (!inst || !state_given(inst, "fmi2SerializedFMUstateSize", state) ||
+        !arrays_given(inst, "fmi2SerializedFMUstateSize", 1, size, size))
+        return fmi2Error;
+    *size = ((const Snapshot *)state)->size;
+    return fmi2OK;
 }
 
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte serializedState[], size_t size)
 {
-    (void)state; (void)serializedState; (void)size;
-    return unsupported(c, "fmi2SerializeFMUstate", NO_STATE);
+    PmdInstance *inst = begin(c, "fmi2SerializeFMUstate", ANY_STATE);
+    const Snapshot *s = (const Snapshot *)state;
+    if (!inst || !state_given(inst, "fmi2SerializeFMUstate", state) ||
+        !arrays_given(inst, "fmi2SerializeFMUstate", 1, serializedState, serializedState))
+        return fmi2Error;
+    if (size != s->size) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2SerializeFMUstate: size %zu is not the state's %zu",
+                         size, s->size);
+        return fmi2Error;
+    }
+    memcpy(serializedState, s->bytes, size);
+    return fmi2OK;
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *state)
 {
-    (void)serializedState; (void)size; (void)state;
-    return unsupported(c, "fmi2DeSerializeFMUstate", NO_STATE);
+    PmdInstance *inst = begin(c, "fmi2DeSerializeFMUstate", ANY_STATE);
+    Snapshot *s;
+    if (!inst || !state_given(inst, "fmi2DeSerializeFMUstate", state) ||
+        pmd_state_check(inst, "fmi2DeSerializeFMUstate", (const unsigned char *)serializedState, size) != PMD_OK)
+        return fmi2Error;
+    s = snapshot_alloc(NULL, size);
+    if (!s) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2DeSerializeFMUstate: out of host memory");
+        return fmi2Error;
+    }
+    memcpy(s->bytes, serializedState, size);
+    *state = s;
+    return fmi2OK;
 }

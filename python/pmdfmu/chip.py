@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import struct
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
@@ -217,6 +218,33 @@ class Chip:
         """Simulation time of the next cycle."""
         anchor_time, anchor_cycle = self._anchor
         return anchor_time + (self.cycles - anchor_cycle) * self.cycle_time
+
+    # ---- FMU state ----
+
+    _HARNESS = struct.Struct("<4sqdqd")      # magic, cycles, anchor time, anchor cycle, cycle time
+
+    def get_state(self) -> bytes:
+        """The whole chip as bytes (the FMU's serialized FMU state plus this
+        harness's cycle count): restorable with set_state in any Chip of the same
+        FMU build, in this process or another."""
+        state = self.fmu.getFMUState()
+        try:
+            blob = bytes(self.fmu.serializeFMUState(state))
+        finally:
+            self.fmu.freeFMUState(state)
+        return self._HARNESS.pack(b"PMDH", self.cycles, *self._anchor, self.cycle_time) + blob
+
+    def set_state(self, data: bytes) -> None:
+        """Restores a get_state snapshot; the FMU refuses a corrupted or foreign one."""
+        magic, cycles, anchor_time, anchor_cycle, cycle_time = self._HARNESS.unpack_from(data)
+        if magic != b"PMDH":
+            raise ValueError("not a pmdfmu Chip state")
+        state = self.fmu.deserializeFMUState(data[self._HARNESS.size:])
+        try:
+            self.fmu.setFMUState(state)
+        finally:
+            self.fmu.freeFMUState(state)
+        self.cycles, self._anchor, self.cycle_time = cycles, (anchor_time, anchor_cycle), cycle_time
 
     # ---- host port ----
 

@@ -1,0 +1,131 @@
+/* FMU state: a snapshot of an instance as one self-describing block of bytes.
+ *
+ * The instance is plain data except for its memory block and its logging
+ * hooks, so a snapshot is the instance struct (pointers cleared) followed by
+ * the memory words, behind a header that lets a restore refuse anything that
+ * is not a snapshot of this FMU build: magic, format version, instantiation
+ * token, struct size, memory size, total size and a checksum of the body.
+ * The same bytes serve fmi2/fmi3 Get/SetFMUState and (De)SerializeFMUState,
+ * in this process or another one of the same build and platform. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "state.h"
+
+#define MAGIC "PMDFMUST"
+#define FORMAT_VERSION 1u
+
+typedef struct {
+    char magic[8];
+    uint32_t formatVersion;
+    uint32_t instanceSize;       /* sizeof(PmdInstance): the layout of this build */
+    char token[48];              /* PMD_INSTANTIATION_TOKEN */
+    uint64_t totalSize;
+    uint64_t memoryWords;
+    uint64_t checksum;           /* FNV-1a over everything after the header */
+} Header;
+
+static uint64_t fnv1a(const unsigned char *p, size_t n)
+{
+    uint64_t h = 14695981039346656037u;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 1099511628211u;
+    }
+    return h;
+}
+
+size_t pmd_state_size(const PmdInstance *inst)
+{
+    return sizeof(Header) + sizeof(PmdInstance) + (size_t)inst->memorySize * sizeof(uint32_t);
+}
+
+void pmd_state_write(const PmdInstance *inst, unsigned char *out)
+{
+    Header h;
+    PmdInstance copy;
+    unsigned char *body = out + sizeof h;
+
+    memcpy(&copy, inst, sizeof copy);
+    /* what belongs to this process, not to the state */
+    copy.chip.memory = NULL;
+    copy.chip.logger = NULL;
+    copy.chip.logContext = NULL;
+    copy.instanceName = NULL;
+    copy.logger = NULL;
+    copy.environment = NULL;
+    memcpy(body, &copy, sizeof copy);
+    memcpy(body + sizeof copy, inst->chip.memory, (size_t)inst->memorySize * sizeof(uint32_t));
+
+    memset(&h, 0, sizeof h);
+    memcpy(h.magic, MAGIC, sizeof h.magic);
+    h.formatVersion = FORMAT_VERSION;
+    h.instanceSize = (uint32_t)sizeof(PmdInstance);
+    strncpy(h.token, PMD_INSTANTIATION_TOKEN, sizeof h.token - 1);
+    h.totalSize = pmd_state_size(inst);
+    h.memoryWords = (uint64_t)inst->memorySize;
+    h.checksum = fnv1a(body, (size_t)h.totalSize - sizeof h);
+    memcpy(out, &h, sizeof h);
+}
+
+PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigned char *in, size_t size)
+{
+    Header h;
+    const char *why = NULL;
+    if (!in || size < sizeof h) {
+        why = "it is shorter than a snapshot header";
+    } else {
+        memcpy(&h, in, sizeof h);
+        if (memcmp(h.magic, MAGIC, sizeof h.magic) != 0)
+            why = "it is not a pmdfmu snapshot (bad magic)";
+        else if (h.formatVersion != FORMAT_VERSION)
+            why = "its format version is not this build's";
+        else if (strncmp(h.token, PMD_INSTANTIATION_TOKEN, sizeof h.token) != 0)
+            why = "it comes from another FMU (instantiation token differs)";
+        else if (h.instanceSize != sizeof(PmdInstance))
+            why = "it comes from a build with another state layout";
+        else if (h.memoryWords < 1 || h.memoryWords > PMD_MAX_MEMORY_WORDS ||
+                 h.totalSize != sizeof h + sizeof(PmdInstance) + h.memoryWords * sizeof(uint32_t))
+            why = "its sizes are inconsistent";
+        else if (h.totalSize != size)
+            why = "it is truncated or has trailing bytes";
+        else if (fnv1a(in + sizeof h, size - sizeof h) != h.checksum)
+            why = "it is corrupted (checksum mismatch)";
+    }
+    if (why) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: FMU state of %zu bytes refused: %s", fn, size, why);
+        return PMD_ERROR;
+    }
+    return PMD_OK;
+}
+
+PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char *in)
+{
+    Header h;
+    PmdInstance saved = *inst, copy;
+    uint32_t *memory = inst->chip.memory;
+    memcpy(&h, in, sizeof h);
+    memcpy(&copy, in + sizeof h, sizeof copy);
+    if ((int64_t)h.memoryWords != inst->memorySize) {
+        memory = (uint32_t *)realloc(inst->chip.memory, (size_t)h.memoryWords * sizeof(uint32_t));
+        if (!memory) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory for %llu words", fn,
+                             (unsigned long long)h.memoryWords);
+            return PMD_ERROR;
+        }
+    }
+    memcpy(memory, in + sizeof h + sizeof copy, (size_t)h.memoryWords * sizeof(uint32_t));
+    *inst = copy;
+    /* this process's hooks, and this instance's logging settings, stay */
+    inst->chip.memory = memory;
+    inst->chip.logger = saved.chip.logger;
+    inst->chip.logContext = saved.chip.logContext;
+    inst->chip.logMask = saved.chip.logMask;
+    inst->instanceName = saved.instanceName;
+    inst->logger = saved.logger;
+    inst->environment = saved.environment;
+    inst->loggingOn = saved.loggingOn;
+    inst->categories = saved.categories;
+    return PMD_OK;
+}
