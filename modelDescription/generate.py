@@ -2,11 +2,15 @@
 """Generates, from the tables beside this file, everything that must agree with them:
 
   fmi2/modelDescription.xml   the FMI 2.0 Co-Simulation interface
+  fmi3/modelDescription.xml   the FMI 3.0 Co-Simulation interface (arrays kept whole)
+  variables3.h, variables3.c  the FMI 3 types and array sizes for the C wrapper
   variables.h, variables.c    value references and the variable table for the C wrapper
   commands.h, commands.c      the command table that drives the chip's dispatcher
   pmd_constants.h             the C-Motion constants as C macros
 
-Usage: generate.py OUTDIR
+  fmi3/buildDescription.xml   the FMI 3.0 source-FMU build description
+
+Usage: generate.py OUTDIR [C source file names of the FMUs' sources/ ...]
 """
 import hashlib
 import importlib.util
@@ -22,6 +26,11 @@ sys.modules["tables"] = tables
 _spec.loader.exec_module(tables)
 
 MODEL_IDENTIFIER = "PMDMotionProcessor"
+
+
+def cycle_time(variables) -> str:
+    """The cycleTime parameter's start value: the default step and the FMI 3 fixed internal step."""
+    return next(v.start for v in variables if v.name == "cycleTime")
 LOG_CATEGORIES = [
     ("errors", "Refused commands and bad FMI calls"),
     ("warnings", "Suspicious but legal situations, e.g. a buffer read index overtaking its write index"),
@@ -51,7 +60,7 @@ def index_array(declaration: str, keys, size: int):
     return lines + ["};", ""]
 
 
-def fmi2_xml(variables, token: str) -> str:
+def fmi2_xml(variables, token: str, sources=()) -> str:
     lines = [
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{token}"',
@@ -59,11 +68,15 @@ def fmi2_xml(variables, token: str) -> str:
         '  generationTool="pmdfmu modelDescription/generate.py" variableNamingConvention="structured"',
         '  numberOfEventIndicators="0">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
-        ' canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true"/>',
+        ' canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true">',
+        "    <SourceFiles>",
+        *(f'      <File name="{name}"/>' for name in sources),
+        "    </SourceFiles>",
+        "  </CoSimulation>",
         "  <LogCategories>",
         *(f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES),
         "  </LogCategories>",
-        '  <DefaultExperiment startTime="0" stopTime="0.1" stepSize="0.0001"/>',
+        f'  <DefaultExperiment startTime="0" stopTime="0.1" stepSize="{cycle_time(variables)}"/>',
         "  <ModelVariables>",
     ]
     outputs = []
@@ -84,6 +97,78 @@ def fmi2_xml(variables, token: str) -> str:
     return "\n".join(lines)
 
 
+def build_description(sources) -> str:
+    """FMI 3.0 source FMU: sources/ is flat and holds every header it needs."""
+    return "\n".join([
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        '<fmiBuildDescription fmiVersion="3.0">',
+        f'  <BuildConfiguration modelIdentifier="{MODEL_IDENTIFIER}">',
+        '    <SourceFileSet language="C99">',
+        *(f'      <SourceFile name="{name}"/>' for name in sources),
+        "    </SourceFileSet>",
+        "  </BuildConfiguration>",
+        "</fmiBuildDescription>", ""])
+
+
+def fmi3_xml(variables3, token: str) -> str:
+    """FMI 3.0 Co-Simulation: native types, arrays kept whole, the same names
+    and value references as FMI 2 (an array's is that of its first element)."""
+    lines = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        f'<fmiModelDescription fmiVersion="3.0" modelName="{MODEL_IDENTIFIER}" instantiationToken="{token}"',
+        '  description="PMD Navigator/Pilot-class motion processor: external profile engine, buffer memory, host interface"',
+        '  generationTool="pmdfmu modelDescription/generate.py" variableNamingConvention="structured">',
+        f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
+        f' fixedInternalStepSize="{cycle_time(variables3)}" canGetAndSetFMUState="true" canSerializeFMUState="true"'
+        ' hasEventMode="false" providesIntermediateUpdate="false"/>',
+        "  <LogCategories>",
+        *(f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES),
+        "  </LogCategories>",
+        f'  <DefaultExperiment startTime="0" stopTime="0.1" stepSize="{cycle_time(variables3)}"/>',
+        "  <ModelVariables>",
+    ]
+    for v in variables3:
+        initial = ' initial="exact"' if v.causality == "parameter" else ""
+        start = f' start="{" ".join([v.start] * v.count)}"' if v.start != "" else ""
+        head = (f'    <{v.type} name="{v.name}" valueReference="{v.vr}" causality="{v.causality}"'
+                f' variability="{v.variability}"{initial}{start} description={quoteattr(v.description)}')
+        if v.count > 1:
+            lines += [head + ">", f'      <Dimension start="{v.count}"/>', f"    </{v.type}>"]
+        else:
+            lines.append(head + "/>")
+    outputs = [v.vr for v in variables3 if v.causality == "output"]
+    lines += ["  </ModelVariables>", "  <ModelStructure>"]
+    lines += [f'    <Output valueReference="{vr}"/>' for vr in outputs]
+    lines += [f'    <InitialUnknown valueReference="{vr}"/>' for vr in outputs]
+    lines += ["  </ModelStructure>", "</fmiModelDescription>", ""]
+    return "\n".join(lines)
+
+
+def variables3_c(variables3):
+    """The FMI 3 view for fmi3.c: each variable's type and element count."""
+    vr_max = max(v.vr for v in variables3)
+    c = ["/* Generated by modelDescription/generate.py from variables.csv: do not edit. */",
+         '#include "variables3.h"', "",
+         "const PmdVariable3 pmd_variables3[PMD_VARIABLE3_COUNT] = {",
+         *(f'    {{{v.vr}, {v.count}, PMD3_{v.type.upper()}, "{v.name}"}},' for v in variables3),
+         "};", "",
+         *index_array("const short pmd_variable3_of_vr[PMD_VR3_MAX + 1]", (v.vr for v in variables3), vr_max + 1)]
+    h = ["/* Generated by modelDescription/generate.py from variables.csv: do not edit. */",
+         "#ifndef PMD_VARIABLES3_H", "#define PMD_VARIABLES3_H", "",
+         f"#define PMD_VR3_MAX {vr_max}", f"#define PMD_VARIABLE3_COUNT {len(variables3)}", "",
+         "/* FMI 3 types, in the order of the fmi3 get/set functions that use them. */",
+         "typedef enum { PMD3_FLOAT64, PMD3_INT32, PMD3_UINT32, PMD3_UINT16, PMD3_BOOLEAN } PmdType3;", "",
+         "typedef struct {",
+         "    unsigned vr;             /* also the FMI 2 value reference of element 1 */",
+         "    unsigned short count;    /* elements: element i has FMI 2 value reference vr + i */",
+         "    unsigned char type;      /* PmdType3 */",
+         "    const char *name;",
+         "} PmdVariable3;", "",
+         "extern const PmdVariable3 pmd_variables3[PMD_VARIABLE3_COUNT];",
+         "extern const short pmd_variable3_of_vr[PMD_VR3_MAX + 1];", "", "#endif", ""]
+    return "\n".join(h), "\n".join(c)
+
+
 def variables_c(variables, token: str):
     families = list(dict.fromkeys(v.family for v in variables))
     vr_max = max(v.vr for v in variables)
@@ -95,7 +180,7 @@ def variables_c(variables, token: str):
         f"#define PMD_VR_MAX {vr_max}",
         f"#define PMD_VARIABLE_COUNT {len(variables)}", "",
         "typedef enum { PMD_REAL, PMD_INTEGER, PMD_BOOLEAN, PMD_STRING } PmdType;",
-        "typedef enum { PMD_PARAMETER, PMD_INPUT, PMD_OUTPUT } PmdCausality;", "",
+        "typedef enum { PMD_PARAMETER, PMD_INPUT, PMD_OUTPUT, PMD_INDEPENDENT } PmdCausality;", "",
         "/* One per row of variables.csv; index tells the axis or array element. */",
         "typedef enum {",
         *(f"    VAR_{f}," for f in families),
@@ -115,7 +200,8 @@ def variables_c(variables, token: str):
         "#endif", "",
     ]
     types = {"Real": "PMD_REAL", "Integer": "PMD_INTEGER", "Boolean": "PMD_BOOLEAN", "String": "PMD_STRING"}
-    caus = {"parameter": "PMD_PARAMETER", "input": "PMD_INPUT", "output": "PMD_OUTPUT"}
+    caus = {"parameter": "PMD_PARAMETER", "input": "PMD_INPUT", "output": "PMD_OUTPUT",
+            "independent": "PMD_INDEPENDENT"}
     c = [
         "/* Generated by modelDescription/generate.py from variables.csv: do not edit. */",
         '#include "variables.h"', "",
@@ -171,16 +257,20 @@ def constants_h(constants) -> str:
     return "\n".join(lines)
 
 
-def main(outdir: Path) -> None:
+def main(outdir: Path, sources) -> None:
     variables = tables.read_variables(HERE / "variables.csv")
+    variables3 = tables.read_variables3(HERE / "variables.csv")
     commands = tables.read_commands(HERE / "commands.csv")
     constants = tables.read_constants(HERE / "constants.csv")
     token = instantiation_token()
     files = {
-        "fmi2/modelDescription.xml": fmi2_xml(variables, token),
+        "fmi2/modelDescription.xml": fmi2_xml(variables, token, [n for n in sources if n not in FMI3_ONLY]),
+        "fmi3/modelDescription.xml": fmi3_xml(variables3, token),
+        "fmi3/buildDescription.xml": build_description([n for n in sources if n not in FMI2_ONLY]),
         "pmd_constants.h": constants_h(constants),
     }
     files["variables.h"], files["variables.c"] = variables_c(variables, token)
+    files["variables3.h"], files["variables3.c"] = variables3_c(variables3)
     files["commands.h"], files["commands.c"] = commands_c(commands)
     for name, text in files.items():
         path = outdir / name
@@ -189,7 +279,10 @@ def main(outdir: Path) -> None:
             path.write_text(text)
 
 
+FMI2_ONLY = {"fmi2.c"}
+FMI3_ONLY = {"fmi3.c", "variables3.c"}
+
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
+    if len(sys.argv) < 2:
         sys.exit(__doc__)
-    main(Path(sys.argv[1]))
+    main(Path(sys.argv[1]), [Path(a).name for a in sys.argv[2:]])

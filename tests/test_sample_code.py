@@ -110,7 +110,8 @@ def recorded_names(num_axes):
 
 
 @pytest.mark.parametrize("num_axes", [2, 3])
-def test_seed_sample_code_runs_as_the_chip_would(chip, num_axes):
+def test_seed_sample_code_runs_as_the_chip_would(any_chip, num_axes):
+    chip = any_chip
     hAxis = [chip.axis(n) for n in range(4)]
     data = make_data(num_axes)
     memory_start, buffer_length = seed_setup(hAxis, num_axes)
@@ -172,7 +173,8 @@ def test_seed_sample_code_runs_as_the_chip_would(chip, num_axes):
 
 
 @pytest.mark.parametrize("num_axes", [2, 3])
-def test_seed_abrupt_stop_halts_all_axes_in_one_cycle(chip, num_axes):
+def test_seed_abrupt_stop_halts_all_axes_in_one_cycle(any_chip, num_axes):
+    chip = any_chip
     hAxis = [chip.axis(n) for n in range(4)]
     data = make_data(num_axes)
     seed_setup(hAxis, num_axes)

@@ -8,7 +8,8 @@ WORKED_TABLE = [(11003, 0, 0x10000), (11004, 1, 0x10000), (11005, 2, 0x10000), (
                 (11011, 8, 0x10000), (11012, 9, 0x10000), (11013, 10, 0)]
 
 
-def test_worked_table_comes_out_cycle_by_cycle(chip):
+def test_worked_table_comes_out_cycle_by_cycle(any_chip):
+    chip = any_chip
     ax = chip.axis(pmdfmu.PMDAxis1)
     for buffer_id, function, address in ((2, PMDBufferFunctionPosition, 0x200),
                                          (3, PMDBufferFunctionVelocity, 0x210),

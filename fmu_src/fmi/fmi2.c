@@ -35,43 +35,16 @@ static void log_to_environment(void *environment, const char *instanceName, PmdS
     comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category, escaped);
 }
 
-static const char *state_name(PmdState state)
-{
-    switch (state) {
-    case PMD_INSTANTIATED: return "instantiated";
-    case PMD_INITIALIZATION_MODE: return "initialization mode";
-    case PMD_STEP_MODE: return "step mode";
-    default: return "terminated";
-    }
-}
+#define ANY_STATE PMD_ANY_STATE
+#define GET_STATES PMD_GET_STATES
+#define SET_STATES PMD_SET_STATES
 
-#define ANY_STATE (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
-#define GET_STATES (PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
-#define SET_STATES (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE)
-
-/* Returns the instance if the call is legal in its state, else logs and returns NULL. */
 static PmdInstance *begin(fmi2Component c, const char *fn, unsigned states)
 {
-    PmdInstance *inst;
-    if (!c)
-        return NULL;
-    inst = ((Component *)c)->inst;
-    if (!(inst->state & states)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not allowed in %s", fn, state_name(inst->state));
-        return NULL;
-    }
-    return inst;
+    return c ? pmd_begin(((Component *)c)->inst, fn, states) : NULL;
 }
 
-static int arrays_given(PmdInstance *inst, const char *fn, size_t n, const void *vr, const void *values)
-{
-    if (n > 0 && (!vr || !values)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %zu values but the %s array is NULL", fn, n,
-                         !vr ? "value reference" : "value");
-        return 0;
-    }
-    return 1;
-}
+#define arrays_given pmd_arrays_given
 
 static fmi2Status unsupported(fmi2Component c, const char *fn, const char *why)
 {
@@ -90,21 +63,8 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
                                const fmi2String categories[])
 {
     PmdInstance *inst = begin(c, "fmi2SetDebugLogging", ANY_STATE);
-    size_t i;
-    if (!inst || !arrays_given(inst, "fmi2SetDebugLogging", nCategories, categories, categories))
-        return fmi2Error;
-    for (i = 0; i < nCategories; i++) {
-        int known = 0, k;
-        for (k = 0; k < PMD_LOG_CATEGORY_COUNT; k++)
-            known |= categories[i] && strcmp(categories[i], pmd_log_category_names[k]) == 0;
-        if (!known) {
-            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2SetDebugLogging: unknown log category \"%s\"",
-                             categories[i] ? categories[i] : "(NULL)");
-            return fmi2Error;
-        }
-    }
-    pmd_set_debug_logging(inst, loggingOn, nCategories, categories);
-    return fmi2OK;
+    return inst ? status_of[pmd_set_debug_logging(inst, "fmi2SetDebugLogging", loggingOn, nCategories, categories)]
+                : fmi2Error;
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
@@ -140,7 +100,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         free(comp);
         return NULL;
     }
-    pmd_set_debug_logging(comp->inst, loggingOn, 0, NULL);
+    pmd_set_debug_logging(comp->inst, "fmi2Instantiate", loggingOn, 0, NULL);
     return comp;
 }
 
@@ -260,7 +220,7 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
 {
     PmdInstance *inst = begin(c, "fmi2DoStep", PMD_STEP_MODE);
     (void)noSetFMUStatePriorToCurrentPoint;
-    return inst ? status_of[pmd_do_step(inst, currentCommunicationPoint, communicationStepSize)] : fmi2Error;
+    return inst ? status_of[pmd_do_step(inst, "fmi2DoStep", currentCommunicationPoint, communicationStepSize)] : fmi2Error;
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c)
@@ -305,103 +265,42 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
 
 /* ---- FMU state (state.c) ---- */
 
-/* An fmi2FMUstate is a snapshot's bytes behind their size. */
-typedef struct {
-    size_t size;
-    unsigned char bytes[];
-} Snapshot;
-
-static Snapshot *snapshot_alloc(Snapshot *reuse, size_t size)
-{
-    Snapshot *s = (Snapshot *)realloc(reuse, sizeof(Snapshot) + size);
-    if (s)
-        s->size = size;
-    return s;
-}
-
-static int state_given(PmdInstance *inst, const char *fn, const void *state)
-{
-    if (!state)
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: the FMU state is NULL", fn);
-    return state != NULL;
-}
-
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
     PmdInstance *inst = begin(c, "fmi2GetFMUstate", ANY_STATE);
-    Snapshot *s;
-    if (!inst || !state_given(inst, "fmi2GetFMUstate", state))
-        return fmi2Error;
-    s = snapshot_alloc((Snapshot *)*state, pmd_state_size(inst));
-    if (!s) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2GetFMUstate: out of host memory");
-        return fmi2Error;
-    }
-    pmd_state_write(inst, s->bytes);
-    *state = s;
-    return fmi2OK;
+    return inst ? status_of[pmd_fmu_state_get(inst, "fmi2GetFMUstate", state)] : fmi2Error;
 }
 
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state)
 {
     PmdInstance *inst = begin(c, "fmi2SetFMUstate", ANY_STATE);
-    const Snapshot *s = (const Snapshot *)state;
-    if (!inst || !state_given(inst, "fmi2SetFMUstate", state) ||
-        pmd_state_check(inst, "fmi2SetFMUstate", s->bytes, s->size) != PMD_OK)
-        return fmi2Error;
-    return status_of[pmd_state_read(inst, "fmi2SetFMUstate", s->bytes)];
+    return inst ? status_of[pmd_fmu_state_set(inst, "fmi2SetFMUstate", state)] : fmi2Error;
 }
 
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
     PmdInstance *inst = begin(c, "fmi2FreeFMUstate", ANY_STATE);
-    if (!inst || !state_given(inst, "fmi2FreeFMUstate", state))
-        return fmi2Error;
-    free(*state);
-    *state = NULL;
-    return fmi2OK;
+    return inst ? status_of[pmd_fmu_state_free(inst, "fmi2FreeFMUstate", state)] : fmi2Error;
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t *size)
 {
     PmdInstance *inst = begin(c, "fmi2SerializedFMUstateSize", ANY_STATE);
-    if (!inst || !state_given(inst, "fmi2SerializedFMUstateSize", state) ||
-        !arrays_given(inst, "fmi2SerializedFMUstateSize", 1, size, size))
-        return fmi2Error;
-    *size = ((const Snapshot *)state)->size;
-    return fmi2OK;
+    return inst ? status_of[pmd_fmu_state_size(inst, "fmi2SerializedFMUstateSize", state, size)] : fmi2Error;
 }
 
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte serializedState[], size_t size)
 {
     PmdInstance *inst = begin(c, "fmi2SerializeFMUstate", ANY_STATE);
-    const Snapshot *s = (const Snapshot *)state;
-    if (!inst || !state_given(inst, "fmi2SerializeFMUstate", state) ||
-        !arrays_given(inst, "fmi2SerializeFMUstate", 1, serializedState, serializedState))
-        return fmi2Error;
-    if (size != s->size) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2SerializeFMUstate: size %zu is not the state's %zu",
-                         size, s->size);
-        return fmi2Error;
-    }
-    memcpy(serializedState, s->bytes, size);
-    return fmi2OK;
+    return inst ? status_of[pmd_fmu_state_serialize(inst, "fmi2SerializeFMUstate", state,
+                                                    (unsigned char *)serializedState, size)] : fmi2Error;
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *state)
 {
     PmdInstance *inst = begin(c, "fmi2DeSerializeFMUstate", ANY_STATE);
-    Snapshot *s;
-    if (!inst || !state_given(inst, "fmi2DeSerializeFMUstate", state) ||
-        pmd_state_check(inst, "fmi2DeSerializeFMUstate", (const unsigned char *)serializedState, size) != PMD_OK)
-        return fmi2Error;
-    s = snapshot_alloc(NULL, size);
-    if (!s) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2DeSerializeFMUstate: out of host memory");
-        return fmi2Error;
-    }
-    memcpy(s->bytes, serializedState, size);
-    *state = s;
-    return fmi2OK;
+    return inst ? status_of[pmd_fmu_state_deserialize(inst, "fmi2DeSerializeFMUstate",
+                                                      (const unsigned char *)serializedState, size, state)]
+                : fmi2Error;
 }

@@ -104,10 +104,23 @@ void pmd_instance_reset(PmdInstance *inst)
     set_defaults(inst);
 }
 
-void pmd_set_debug_logging(PmdInstance *inst, int loggingOn, size_t nCategories, const char *const categories[])
+PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
+                                const char *const categories[])
 {
     size_t i;
     int c;
+    if (!pmd_arrays_given(inst, fn, nCategories, categories, categories))
+        return PMD_ERROR;
+    for (i = 0; i < nCategories; i++) {
+        int known = 0;
+        for (c = 0; c < PMD_LOG_CATEGORY_COUNT; c++)
+            known |= categories[i] && strcmp(categories[i], pmd_log_category_names[c]) == 0;
+        if (!known) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: unknown log category \"%s\"", fn,
+                             categories[i] ? categories[i] : "(NULL)");
+            return PMD_ERROR;
+        }
+    }
     inst->loggingOn = loggingOn;
     if (nCategories == 0) {
         inst->categories = loggingOn ? (1u << PMD_LOG_CATEGORY_COUNT) - 1u : 0;
@@ -120,6 +133,37 @@ void pmd_set_debug_logging(PmdInstance *inst, int loggingOn, size_t nCategories,
         }
     }
     update_chip_log_mask(inst);
+    return PMD_OK;
+}
+
+static const char *state_name(PmdState state)
+{
+    switch (state) {
+    case PMD_INSTANTIATED: return "instantiated";
+    case PMD_INITIALIZATION_MODE: return "initialization mode";
+    case PMD_STEP_MODE: return "step mode";
+    default: return "terminated";
+    }
+}
+
+PmdInstance *pmd_begin(PmdInstance *inst, const char *fn, unsigned states)
+{
+    if (!inst)
+        return NULL;
+    if (!(inst->state & states)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not allowed in %s", fn, state_name(inst->state));
+        return NULL;
+    }
+    return inst;
+}
+
+int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const void *a, const void *b)
+{
+    if (n > 0 && (!a || !b)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %zu values but an array is NULL", fn, n);
+        return 0;
+    }
+    return 1;
 }
 
 /* ---- time grid ---------------------------------------------------------------- */
@@ -166,24 +210,24 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst)
 
 #define MAX_CYCLES_PER_STEP ((double)(1LL << 53))
 
-PmdStatus pmd_do_step(PmdInstance *inst, double t, double h)
+PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
 {
     int64_t end;
     double x;
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: communication point %g, step size %g: the step "
-                         "size must be finite and > 0", t, h);
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: communication point %g, step size %g: the step "
+                         "size must be finite and > 0", fn, t, h);
         return PMD_ERROR;
     }
     if (fabs(t - inst->time) > 1e-6 * inst->activeCycleTime + 8 * DBL_EPSILON * fabs(inst->time)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: communication point %.17g is not the current "
-                         "time %.17g", t, inst->time);
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: communication point %.17g is not the current "
+                         "time %.17g", fn, t, inst->time);
         return PMD_ERROR;
     }
     x = (t + h - inst->anchorTime) / inst->activeCycleTime;
     if (!(x < MAX_CYCLES_PER_STEP)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "DoStep: step to %g s is beyond 2^53 cycles of %g s",
-                         t + h, inst->activeCycleTime);
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: step to %g s is beyond 2^53 cycles of %g s",
+                         fn, t + h, inst->activeCycleTime);
         return PMD_ERROR;
     }
     pmd_commit_ports(inst);
@@ -269,11 +313,12 @@ PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const 
 }
 
 /* Parameters are fixed: settable before the end of initialization only;
- * outputs never. */
+ * outputs and time never. */
 static int settable(PmdInstance *inst, const char *fn, const PmdVariable *v)
 {
-    if (v->causality == PMD_OUTPUT) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s is an output and cannot be set", fn, v->name);
+    if (v->causality == PMD_OUTPUT || v->causality == PMD_INDEPENDENT) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s is an %s and cannot be set", fn, v->name,
+                         v->causality == PMD_OUTPUT ? "output" : "independent variable");
         return 0;
     }
     if (v->causality == PMD_PARAMETER && !(inst->state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE))) {
@@ -295,8 +340,8 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
     const PmdTrajectory *t;
     if (!v)
         return PMD_ERROR;
-    if (v->family == VAR_cycleTime) {
-        *value = inst->cycleTime;
+    if (v->family == VAR_cycleTime || v->family == VAR_time) {
+        *value = v->family == VAR_time ? inst->time : inst->cycleTime;
         return PMD_OK;
     }
     t = &axis_of(inst, v)->trajectory;

@@ -60,10 +60,21 @@ extern const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT];
 PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment);
 void pmd_instance_free(PmdInstance *inst);
 void pmd_instance_reset(PmdInstance *inst);
-void pmd_set_debug_logging(PmdInstance *inst, int loggingOn, size_t nCategories, const char *const categories[]);
+/* nCategories = 0: all categories; an unknown category is an error and changes nothing. */
+PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
+                                const char *const categories[]);
 PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime);
 PmdStatus pmd_exit_initialization(PmdInstance *inst);
-PmdStatus pmd_do_step(PmdInstance *inst, double t, double h);
+PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);
+
+/* Returns inst if a call to fn is legal in its state (a mask of PmdState), else logs and returns NULL. */
+PmdInstance *pmd_begin(PmdInstance *inst, const char *fn, unsigned states);
+/* Checks that arrays holding n values are not NULL; logs and returns 0 if one is. */
+int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const void *a, const void *b);
+
+#define PMD_ANY_STATE (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
+#define PMD_GET_STATES (PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
+#define PMD_SET_STATES (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE)
 
 /* Variable access, one value at a time. fn names the FMI function in messages.
  * A set with apply = 0 only checks (so that an array call is all or nothing). */

@@ -129,3 +129,89 @@ PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char 
     inst->categories = saved.categories;
     return PMD_OK;
 }
+
+/* ---- FMU state objects, as both FMI versions hand them out ---- */
+
+/* An FMU state object is a snapshot's bytes behind their size. */
+typedef struct {
+    size_t size;
+    unsigned char bytes[];
+} Snapshot;
+
+static Snapshot *snapshot_alloc(const PmdInstance *inst, const char *fn, Snapshot *reuse, size_t size)
+{
+    Snapshot *s = (Snapshot *)realloc(reuse, sizeof(Snapshot) + size);
+    if (s)
+        s->size = size;
+    else
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory for %zu bytes", fn, size);
+    return s;
+}
+
+static int state_given(const PmdInstance *inst, const char *fn, const void *state)
+{
+    if (!state)
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: the FMU state is NULL", fn);
+    return state != NULL;
+}
+
+PmdStatus pmd_fmu_state_get(PmdInstance *inst, const char *fn, void **state)
+{
+    Snapshot *s;
+    if (!state_given(inst, fn, state) || !(s = snapshot_alloc(inst, fn, (Snapshot *)*state, pmd_state_size(inst))))
+        return PMD_ERROR;
+    pmd_state_write(inst, s->bytes);
+    *state = s;
+    return PMD_OK;
+}
+
+PmdStatus pmd_fmu_state_set(PmdInstance *inst, const char *fn, const void *state)
+{
+    const Snapshot *s = (const Snapshot *)state;
+    if (!state_given(inst, fn, state) || pmd_state_check(inst, fn, s->bytes, s->size) != PMD_OK)
+        return PMD_ERROR;
+    return pmd_state_read(inst, fn, s->bytes);
+}
+
+PmdStatus pmd_fmu_state_free(PmdInstance *inst, const char *fn, void **state)
+{
+    if (!state_given(inst, fn, state))
+        return PMD_ERROR;
+    free(*state);
+    *state = NULL;
+    return PMD_OK;
+}
+
+PmdStatus pmd_fmu_state_size(PmdInstance *inst, const char *fn, const void *state, size_t *size)
+{
+    if (!state_given(inst, fn, state) || !pmd_arrays_given(inst, fn, 1, size, size))
+        return PMD_ERROR;
+    *size = ((const Snapshot *)state)->size;
+    return PMD_OK;
+}
+
+PmdStatus pmd_fmu_state_serialize(PmdInstance *inst, const char *fn, const void *state, unsigned char *bytes,
+                                  size_t size)
+{
+    const Snapshot *s = (const Snapshot *)state;
+    if (!state_given(inst, fn, state) || !pmd_arrays_given(inst, fn, 1, bytes, bytes))
+        return PMD_ERROR;
+    if (size != s->size) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: size %zu is not the state's %zu", fn, size, s->size);
+        return PMD_ERROR;
+    }
+    memcpy(bytes, s->bytes, size);
+    return PMD_OK;
+}
+
+PmdStatus pmd_fmu_state_deserialize(PmdInstance *inst, const char *fn, const unsigned char *bytes, size_t size,
+                                    void **state)
+{
+    Snapshot *s;
+    if (!state_given(inst, fn, state) || pmd_state_check(inst, fn, bytes, size) != PMD_OK ||
+        !(s = snapshot_alloc(inst, fn, NULL, size)))
+        return PMD_ERROR;
+    memcpy(s->bytes, bytes, size);
+    *state = s;
+    return PMD_OK;
+}

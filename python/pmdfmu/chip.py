@@ -12,6 +12,7 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+from fmpy.fmi3 import FMU3Slave
 
 from . import tables
 from .tables import Command, Field
@@ -150,35 +151,49 @@ class Chip:
 
     def __init__(self, fmi_version: int = 2, fmu: Union[str, Path, None] = None, *,
                  log_categories: Union[bool, Iterable[str]] = False, **parameters):
-        if fmi_version != 2:
-            raise NotImplementedError("FMI 3.0 is not built yet: use fmi_version=2")
+        if fmi_version not in (2, 3):
+            raise ValueError(f"fmi_version is 2 or 3, not {fmi_version}")
+        self.fmi_version = fmi_version
         self.path = Path(fmu) if fmu else default_fmu(fmi_version)
         self.model_description = read_model_description(str(self.path))
         self.variables = {v.name: v for v in self.model_description.modelVariables}
         self.messages: List[LogMessage] = []
         self._unzipdir = extract(str(self.path))
-        self.fmu = FMU2Slave(guid=self.model_description.guid, unzipDirectory=self._unzipdir,
-                              modelIdentifier=self.model_description.coSimulation.modelIdentifier,
-                              instanceName="pmd")
-        self._callbacks = fmi2CallbackFunctions()
-        # Not FMPy's logger proxy: it keeps one process-wide pointer to the last
-        # logger, which would dangle once this Chip is gone. The FMU passes no
-        # printf arguments; it escapes '%' as "%%" (see _log).
-        self._callbacks.logger = fmi2CallbackLoggerTYPE(self._log)
-        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
+        kwargs = dict(guid=self.model_description.guid, unzipDirectory=self._unzipdir,
+                      modelIdentifier=self.model_description.coSimulation.modelIdentifier, instanceName="pmd")
+        if fmi_version == 2:
+            self.fmu = FMU2Slave(**kwargs)
+            self._callbacks = fmi2CallbackFunctions()
+            # Not FMPy's logger proxy: it keeps one process-wide pointer to the last
+            # logger, which would dangle once this Chip is gone. The FMU passes no
+            # printf arguments; it escapes '%' as "%%" (see _log).
+            self._callbacks.logger = fmi2CallbackLoggerTYPE(
+                lambda env, name, status, category, message:
+                self._record(status, category, message.decode(errors="replace").replace("%%", "%")))
+            self.fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
+            self.fmu.setupExperiment(startTime=0.0)
+        else:
+            self.fmu = FMU3Slave(**kwargs)
+            self.fmu.instantiate(loggingOn=bool(log_categories),
+                                 logMessage=lambda env, status, category, message:
+                                 self._record(status, category, message.decode(errors="replace")))
         if log_categories and log_categories is not True:
             self.fmu.setDebugLogging(True, list(log_categories))
-        self.fmu.setupExperiment(startTime=0.0)
+        types = ({"Real": "Real", "Integer": "Integer", "Boolean": "Boolean"} if fmi_version == 2 else
+                 {t: t for t in ("Float64", "Int32", "UInt32", "UInt16", "Boolean")})
+        self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
+        self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
         for name, value in parameters.items():
             self.set(name, value)
-        self.fmu.enterInitializationMode()
+        if fmi_version == 2:
+            self.fmu.enterInitializationMode()
+        else:
+            self.fmu.enterInitializationMode(startTime=0.0)
         self.fmu.exitInitializationMode()
         self.cycle_time = self.get("cycleTime")
         self.cycles = 0               # chip cycles run since instantiation (the time grid index)
         self._anchor = (0.0, 0)       # (time, cycle) where the grid last restarted (SetSampleTime)
         self._vr = {name: v.valueReference for name, v in self.variables.items()}
-        self._reply_vrs = [self._vr["host.ack"], self._vr["host.error"], self._vr["host.replyCount"]] + \
-                          [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]
 
     # ---- life cycle ----
 
@@ -195,23 +210,28 @@ class Chip:
     def __exit__(self, *exc) -> None:
         self.close()
 
-    def _log(self, env, instance_name, status, category, message):
+    def _record(self, status: int, category: bytes, message: str) -> None:
         self.messages.append(LogMessage(STATUS_NAMES[status] if 0 <= status < 5 else str(status),
-                                        category.decode(), message.decode(errors="replace").replace("%%", "%")))
+                                        category.decode(), message))
 
     # ---- variables ----
 
-    def set(self, name: str, value) -> None:
-        """Sets an FMU input or parameter by name."""
+    def _size(self, name: str) -> int:
+        """Elements of a variable: FMI 3 keeps the ports' arrays whole."""
         v = self.variables[name]
-        setter = {"Real": self.fmu.setReal, "Integer": self.fmu.setInteger, "Boolean": self.fmu.setBoolean}
-        setter[v.type]([v.valueReference], [value])
+        return int(v.dimensions[0].start) if getattr(v, "dimensions", None) else 1
+
+    def set(self, name: str, value) -> None:
+        """Sets an FMU input or parameter by name (an FMI 3 array takes a list)."""
+        v = self.variables[name]
+        self._setters[v.type]([v.valueReference], list(value) if self._size(name) > 1 else [value])
 
     def get(self, name: str):
-        """Reads an FMU variable by name."""
+        """Reads an FMU variable by name (an FMI 3 array reads as a list)."""
         v = self.variables[name]
-        getter = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger, "Boolean": self.fmu.getBoolean}
-        return getter[v.type]([v.valueReference])[0]
+        if self._size(name) > 1:
+            return list(self._getters[v.type]([v.valueReference], nValues=self._size(name)))
+        return self._getters[v.type]([v.valueReference])[0]
 
     @property
     def time(self) -> float:
@@ -258,11 +278,20 @@ class Chip:
         if len(words) > BATCH_WORDS:
             raise ValueError(f"a batch holds at most {BATCH_WORDS} words, not {len(words)}")
         # a new strobe value, whoever set the last one
-        strobe = (self.fmu.getInteger([self._vr["host.strobe"]])[0] + 1) & 0x7FFFFFFF
-        vrs = [self._vr[f"host.word[{i + 1}]"] for i in range(len(words))]
-        self.fmu.setInteger(vrs + [self._vr["host.wordCount"], self._vr["host.strobe"]],
-                            list(words) + [len(words), strobe])
-        ack, error, count, *reply = self.fmu.getInteger(self._reply_vrs)
+        strobe = (self.get("host.strobe") + 1) & 0x7FFFFFFF
+        if self.fmi_version == 2:
+            vrs = [self._vr[f"host.word[{i + 1}]"] for i in range(len(words))]
+            self.fmu.setInteger(vrs + [self._vr["host.wordCount"], self._vr["host.strobe"]],
+                                list(words) + [len(words), strobe])
+            ack, error, count, *reply = self.fmu.getInteger(
+                [self._vr["host.ack"], self._vr["host.error"], self._vr["host.replyCount"]] +
+                [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)])
+        else:
+            self.set("host.word", [w & 0xFFFF for w in words] + [0] * (BATCH_WORDS - len(words)))
+            self.fmu.setInt32([self._vr["host.wordCount"], self._vr["host.strobe"]], [len(words), strobe])
+            ack, count = self.fmu.getInt32([self._vr["host.ack"], self._vr["host.replyCount"]])
+            error = self.get("host.error")
+            reply = self.get("host.reply")
         assert ack == strobe, "the FMU did not execute the batch"
         if SET_SAMPLE_TIME in opcodes(words):
             self._follow_sample_time()
@@ -292,15 +321,21 @@ class Chip:
     def write_memory(self, address: int, words: Sequence[int]) -> None:
         """Writes 32-bit words straight into external memory (the seed's dual-port
         upload, bypassing the processor), 64 words per strobe."""
-        vr_data = [self._vr[f"memory.data[{i + 1}]"] for i in range(BATCH_WORDS)]
-        ctrl = [self._vr["memory.address"], self._vr["memory.count"], self._vr["memory.strobe"]]
-        words = [int(w) for w in words]
+        words = [int(w) & 0xFFFFFFFF for w in words]
         strobe = self.get("memory.strobe")
         for start in range(0, len(words), BATCH_WORDS):
-            chunk = [w - (1 << 32) if w >= (1 << 31) else w for w in words[start:start + BATCH_WORDS]]
+            chunk = words[start:start + BATCH_WORDS]
             strobe = (strobe + 1) & 0x7FFFFFFF
-            self.fmu.setInteger(vr_data[:len(chunk)] + ctrl, chunk + [address + start, len(chunk), strobe])
-            self.fmu.getInteger([self._vr["host.ack"]])     # executes the write now
+            if self.fmi_version == 2:
+                self.fmu.setInteger([self._vr[f"memory.data[{i + 1}]"] for i in range(len(chunk))] +
+                                    [self._vr["memory.address"], self._vr["memory.count"], self._vr["memory.strobe"]],
+                                    [w - (1 << 32) if w >= (1 << 31) else w for w in chunk] +
+                                    [address + start, len(chunk), strobe])
+            else:
+                self.set("memory.data", chunk + [0] * (BATCH_WORDS - len(chunk)))
+                self.set("memory.address", address + start)
+                self.fmu.setInt32([self._vr["memory.count"], self._vr["memory.strobe"]], [len(chunk), strobe])
+            self.get("host.ack")                      # executes the write now
 
     # ---- time ----
 
@@ -315,19 +350,18 @@ class Chip:
                 self.fmu.doStep(self.time, cycles * self.cycle_time)
                 self.cycles += cycles
             return np.zeros(0, dtype=[("cycle", np.int64)])
-        kinds = {"Real": np.float64, "Integer": np.int64, "Boolean": np.bool_}
         names = list(record)
         types = [self.variables[n].type for n in names]
-        dtype = [("cycle", np.int64)] + [(n, kinds[t]) for n, t in zip(names, types)]
+        kind = {"Real": np.float64, "Float64": np.float64, "Boolean": np.bool_}
+        dtype = [("cycle", np.int64)] + [(n, kind.get(t, np.int64)) for n, t in zip(names, types)]
         out = np.zeros(cycles, dtype=dtype)
-        groups = [(t, [n for n, tt in zip(names, types) if tt == t]) for t in kinds]
-        getters = {"Real": self.fmu.getReal, "Integer": self.fmu.getInteger, "Boolean": self.fmu.getBoolean}
-        groups = [(getters[t], ns, [self._vr[n] for n in ns]) for t, ns in groups if ns]
-        time_vr = [self._vr["chipTime"]]
+        groups = [(self._getters[t], [n for n, tt in zip(names, types) if tt == t]) for t in self._getters]
+        groups = [(get, ns, [self._vr[n] for n in ns]) for get, ns in groups if ns]
+        get_time, time_vr = self._getters[self.variables["chipTime"].type], [self._vr["chipTime"]]
         for i in range(cycles):
             self.fmu.doStep(self.time, self.cycle_time)
             self.cycles += 1
-            out["cycle"][i] = self.fmu.getInteger(time_vr)[0]
+            out["cycle"][i] = get_time(time_vr)[0]
             for get, ns, vrs in groups:
                 for n, value in zip(ns, get(vrs)):
                     out[n][i] = value

@@ -22,7 +22,8 @@ class Variable:
     family: str         # the row's name pattern as a C identifier, e.g. "axis_commandedPosition"
     index: int          # axis number 0..3, array element 0..n-1, else 0
     vr: int
-    type: str           # Real, Integer, Boolean
+    type: str           # FMI 2: Real, Integer, Boolean
+    fmi3Type: str       # FMI 3: Float64, Int32, UInt32, UInt16, Boolean
     causality: str      # parameter, input, output
     variability: str
     start: str          # "" for outputs
@@ -41,7 +42,8 @@ def read_variables(path: Path) -> List[Variable]:
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             pattern, vr = row["name"], int(row["vr"])
-            rest = (row["type"], row["causality"], row["variability"], row["start"], row["description"])
+            rest = (row["type"], row["fmi3Type"], row["causality"], row["variability"], row["start"],
+                    row["description"])
             m = re.fullmatch(r"(.*)\[(\d+)\]", pattern)
             if "{axis}" in pattern:
                 for axis in range(AXES):
@@ -55,6 +57,34 @@ def read_variables(path: Path) -> List[Variable]:
     vrs = [v.vr for v in out]
     if len(set(vrs)) != len(vrs):
         raise ValueError(f"{path}: duplicate value references")
+    return out
+
+
+@dataclass(frozen=True)
+class Variable3:
+    """One FMI 3 variable: a row of variables.csv with arrays kept whole
+    (`host.word`, 64 elements, whose value reference is that of host.word[1])."""
+    name: str
+    family: str
+    index: int          # axis number 0..3, else 0
+    vr: int
+    count: int          # array elements, 1 for a scalar
+    type: str           # Float64, Int32, UInt32, UInt16, Boolean
+    causality: str
+    variability: str
+    start: str
+    description: str
+
+
+def read_variables3(path: Path) -> List[Variable3]:
+    out: List[Variable3] = []
+    for v in read_variables(path):
+        m = re.fullmatch(r"(.*)\[(\d+)\]", v.name)
+        if m and m.group(2) != "1":
+            out[-1] = Variable3(**{**out[-1].__dict__, "count": int(m.group(2))})
+            continue
+        out.append(Variable3(m.group(1) if m else v.name, v.family, 0 if m else v.index, v.vr, 1, v.fmi3Type,
+                             v.causality, v.variability, v.start, v.description))
     return out
 
 
