@@ -47,7 +47,7 @@ def test_model_description_and_c_value_references_agree_with_the_table():
 
 
 def test_the_command_table_drives_the_dispatcher():
-    source = zipfile.ZipFile(FMU).read("sources/commands.c").decode()
+    source = zipfile.ZipFile(FMU).read("sources/command_table.c").decode()
     for c in tables.read_commands(TABLES / "commands.csv"):
         assert f'{{0x{c.opcode:02X}, "{c.name}", {int(c.scope == "chip")}, {c.arg_words}, {c.reply_words},' in source
 

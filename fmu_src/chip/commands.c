@@ -5,7 +5,7 @@
 #include <stddef.h>
 
 #include "chip.h"
-#include "commands.h"
+#include "command_table.h"
 
 #define AXIS(n) (&chip->s.axis[n])
 

@@ -5,7 +5,7 @@
 #include <stddef.h>
 
 #include "chip.h"
-#include "commands.h"
+#include "command_table.h"
 
 #define SIGN16(x) ((x) >= 0x8000 ? (int64_t)(x) - 0x10000 : (int64_t)(x))
 #define SIGN32(x) ((x) >= 0x80000000u ? (int64_t)(x) - 0x100000000LL : (int64_t)(x))

@@ -3,7 +3,7 @@
  * slot, in slot order. One-time mode stops when the buffer is full; rolling
  * mode wraps and sets the data-wrap bit. */
 #include "chip.h"
-#include "commands.h"
+#include "command_table.h"
 
 #define TRACE (&chip->s.trace)
 
