@@ -19,6 +19,9 @@ void pmd_chip_cycle(PmdChip *chip);
  * Returns the host I/O error code of the first failing command, or 0. */
 int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *reply, int *replyCount);
 
+/* Packs one value into a command's data words as the host port carries it. */
+void pmd_encode_field(const PmdField *field, int64_t value, uint16_t *words);
+
 /* The dual-port memory path: writes count words at address, bypassing the
  * processor. Returns 0, or -1 (nothing written) if the block leaves the memory. */
 int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data);

@@ -184,6 +184,7 @@ typedef struct {
     unsigned char word;      /* first data word of the value */
     unsigned char shift;     /* PMD_BITS: position and width inside the word */
     unsigned char width;
+    unsigned char fixed;     /* fraction bits of a fixed-point value (16: 16.16, 32: 0.32), else 0 */
 } PmdField;
 
 /* A handler gets the decoded argument values, fills the reply values and

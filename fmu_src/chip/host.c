@@ -22,7 +22,7 @@ static int64_t decode(const PmdField *f, const uint16_t *w)
     }
 }
 
-static void encode(const PmdField *f, int64_t value, uint16_t *w)
+void pmd_encode_field(const PmdField *f, int64_t value, uint16_t *w)
 {
     uint32_t u = (uint32_t)((uint64_t)value & 0xFFFFFFFFu);
     switch (f->kind) {
@@ -126,7 +126,7 @@ int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *re
         for (k = 0; k < c->replyWords; k++)
             reply[*replyCount + k] = 0;
         for (k = 0; k < c->nReply; k++)
-            encode(&c->reply[k], value[k], reply + *replyCount);
+            pmd_encode_field(&c->reply[k], value[k], reply + *replyCount);
         *replyCount += c->replyWords;
     }
     return first;

@@ -132,7 +132,7 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 {
     PmdInstance *inst = begin(c, "fmi2ExitInitializationMode", PMD_INITIALIZATION_MODE);
-    return inst ? status_of[pmd_exit_initialization(inst)] : fmi2Error;
+    return inst ? status_of[pmd_exit_initialization(inst, "fmi2ExitInitializationMode")] : fmi2Error;
 }
 
 fmi2Status fmi2Terminate(fmi2Component c)
@@ -200,17 +200,27 @@ SET_FUNCTION(fmi2SetBoolean, fmi2Boolean, pmd_set_boolean)
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[])
 {
     PmdInstance *inst = begin(c, "fmi2GetString", GET_STATES);
+    size_t i;
     if (!inst || !arrays_given(inst, "fmi2GetString", nvr, vr, value))
         return fmi2Error;
-    return nvr == 0 ? fmi2OK : status_of[pmd_no_variable(inst, "fmi2GetString", vr[0], "String")];
+    for (i = 0; i < nvr; i++)
+        if (pmd_get_string(inst, "fmi2GetString", vr[i], &value[i]) != PMD_OK)
+            return fmi2Error;
+    return fmi2OK;
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[])
 {
     PmdInstance *inst = begin(c, "fmi2SetString", SET_STATES);
+    size_t i;
+    int apply;
     if (!inst || !arrays_given(inst, "fmi2SetString", nvr, vr, value))
         return fmi2Error;
-    return nvr == 0 ? fmi2OK : status_of[pmd_no_variable(inst, "fmi2SetString", vr[0], "String")];
+    for (apply = 0; apply <= 1; apply++)
+        for (i = 0; i < nvr; i++)
+            if (pmd_set_string(inst, "fmi2SetString", vr[i], value[i], apply) != PMD_OK)
+                return fmi2Error;
+    return fmi2OK;
 }
 
 /* ---- co-simulation ---- */

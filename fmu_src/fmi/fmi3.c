@@ -18,7 +18,7 @@ typedef struct {
 } Component;
 
 static const fmi3Status status_of[] = {fmi3OK, fmi3Warning, fmi3Discard, fmi3Error, fmi3Fatal};
-static const char *const type_names[] = {"Float64", "Int32", "UInt32", "UInt16", "Boolean"};
+static const char *const type_names[] = {"Float64", "Int32", "UInt32", "UInt16", "Boolean", "String"};
 
 static void log_to_environment(void *environment, const char *instanceName, PmdStatus status, const char *category,
                                const char *message)
@@ -144,7 +144,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c)
 {
     PmdInstance *inst = begin(c, "fmi3ExitInitializationMode", PMD_INITIALIZATION_MODE);
-    return inst ? status_of[pmd_exit_initialization(inst)] : fmi3Error;
+    return inst ? status_of[pmd_exit_initialization(inst, "fmi3ExitInitializationMode")] : fmi3Error;
 }
 
 fmi3Status fmi3Terminate(fmi3Instance c)
@@ -334,7 +334,36 @@ NO_SUCH_TYPE(fmi3UInt8, UInt8)
 NO_SUCH_TYPE(fmi3Int16, Int16)
 NO_SUCH_TYPE(fmi3Int64, Int64)
 NO_SUCH_TYPE(fmi3UInt64, UInt64)
-NO_SUCH_TYPE(fmi3String, String)
+
+fmi3Status fmi3GetString(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, fmi3String values[],
+                         size_t nValues)
+{
+    PmdInstance *inst = begin(c, "fmi3GetString", PMD_GET_STATES);
+    size_t i;
+    if (!inst || !pmd_arrays_given(inst, "fmi3GetString", nvr, vrs, values) ||
+        !count_matches(inst, "fmi3GetString", "String", vrs, nvr, nValues))
+        return fmi3Error;
+    for (i = 0; i < nvr; i++)
+        if (pmd_get_string(inst, "fmi3GetString", vrs[i], &values[i]) != PMD_OK)
+            return fmi3Error;
+    return fmi3OK;
+}
+
+fmi3Status fmi3SetString(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, const fmi3String values[],
+                         size_t nValues)
+{
+    PmdInstance *inst = begin(c, "fmi3SetString", PMD_SET_STATES);
+    size_t i;
+    int apply;
+    if (!inst || !pmd_arrays_given(inst, "fmi3SetString", nvr, vrs, values) ||
+        !count_matches(inst, "fmi3SetString", "String", vrs, nvr, nValues))
+        return fmi3Error;
+    for (apply = 0; apply <= 1; apply++)
+        for (i = 0; i < nvr; i++)
+            if (pmd_set_string(inst, "fmi3SetString", vrs[i], values[i], apply) != PMD_OK)
+                return fmi3Error;
+    return fmi3OK;
+}
 
 fmi3Status fmi3GetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, size_t valueSizes[],
                          fmi3Binary values[], size_t nValues)

@@ -60,6 +60,10 @@ static void set_defaults(PmdInstance *inst)
     inst->memoryAddress = inst->memoryCount = inst->memoryStrobe = inst->memoryStrobeSeen = 0;
     memset(&inst->chip.s, 0, sizeof inst->chip.s);
     inst->chip.s.loopback = 1;
+    free(inst->scriptPath);
+    inst->scriptPath = NULL;
+    pmd_script_free(&inst->script);
+    inst->scriptNext = 0;
     memset(inst->chip.memory, 0, (size_t)inst->memorySize * sizeof(uint32_t));
     pmd_chip_init(&inst->chip, inst->chip.memory, (uint32_t)inst->memorySize);
 }
@@ -91,6 +95,8 @@ void pmd_instance_free(PmdInstance *inst)
         return;
     free(inst->chip.memory);
     free(inst->instanceName);
+    free(inst->scriptPath);
+    pmd_script_free(&inst->script);
     free(inst);
 }
 
@@ -177,15 +183,34 @@ static int64_t cycles_before(const PmdInstance *inst, double t)
     return inst->anchorCycle + (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
 }
 
-/* SetSampleTime: the grid restarts at the current time with the new cycle time. */
-static void follow_sample_time(PmdInstance *inst)
+/* SetSampleTime: the grid restarts with the new cycle time at `at`, the time
+ * of the next cycle. Returns whether it did. */
+static int follow_sample_time(PmdInstance *inst, double at)
 {
     if (!inst->chip.s.sampleTimeChanged)
-        return;
+        return 0;
     inst->chip.s.sampleTimeChanged = 0;
-    inst->anchorTime = inst->time;
+    inst->anchorTime = at;
     inst->anchorCycle = inst->nextCycle;
     inst->activeCycleTime = inst->chip.s.sampleTime * 1e-6;
+    return 1;
+}
+
+/* Runs the script steps due before the next cycle. */
+static void run_script(PmdInstance *inst)
+{
+    while (inst->scriptNext < inst->script.count && inst->script.steps[inst->scriptNext].cycle <= inst->nextCycle) {
+        const PmdScriptStep *step = &inst->script.steps[inst->scriptNext++];
+        if (step->nWords) {
+            uint16_t reply[PMD_BATCH_WORDS];
+            int count, err = pmd_host_batch(&inst->chip, step->words, step->nWords, reply, &count);
+            if (err)
+                pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s:%d: the chip refused the command: host "
+                                 "I/O error 0x%02X", inst->scriptPath, step->line, err);
+        } else {
+            pmd_memory_write(&inst->chip, step->address, step->count, inst->script.pool + step->first);
+        }
+    }
 }
 
 PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime)
@@ -195,8 +220,17 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime)
     return PMD_OK;
 }
 
-PmdStatus pmd_exit_initialization(PmdInstance *inst)
+PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 {
+    if (inst->scriptPath && *inst->scriptPath) {
+        char error[1024];
+        pmd_script_free(&inst->script);
+        if (pmd_script_load(inst->scriptPath, (uint32_t)inst->memorySize, &inst->script, error, sizeof error)) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: script refused: %s", fn, error);
+            return PMD_ERROR;
+        }
+        inst->scriptNext = 0;
+    }
     double us = floor(inst->cycleTime * 1e6 + 0.5);
     inst->activeCycleTime = inst->cycleTime;
     inst->anchorTime = 0;
@@ -232,7 +266,14 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
     }
     pmd_commit_ports(inst);
     end = cycles_before(inst, t + h);
+    /* script steps due at a cycle run just before it, inside the step that runs it */
     while (inst->nextCycle < end) {
+        run_script(inst);
+        if (follow_sample_time(inst, inst->anchorTime + (double)(inst->nextCycle - inst->anchorCycle) *
+                                                          inst->activeCycleTime)) {
+            end = cycles_before(inst, t + h);
+            continue;
+        }
         pmd_chip_cycle(&inst->chip);
         inst->nextCycle++;
     }
@@ -270,7 +311,7 @@ void pmd_commit_ports(PmdInstance *inst)
             inst->hostReply[i] = i < count ? reply[i] : 0;
         inst->hostReplyCount = count;
         inst->hostAck = inst->hostStrobe;
-        follow_sample_time(inst);
+        follow_sample_time(inst, inst->time);
     }
     if (inst->memoryStrobe != inst->memoryStrobeSeen) {
         uint32_t data[PMD_BATCH_WORDS];
@@ -503,5 +544,37 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
     case VAR_axis_negativeLimit: ax->negativeLimitInput = (uint8_t)value; break;
     default: ax->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
     }
+    return PMD_OK;
+}
+
+PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_STRING);
+    if (!v)
+        return PMD_ERROR;
+    *value = inst->scriptPath ? inst->scriptPath : "";     /* the only String: script */
+    return PMD_OK;
+}
+
+PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_STRING);
+    char *copy;
+    if (!v || !settable(inst, fn, v))
+        return PMD_ERROR;
+    if (!value) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s: the value is NULL", fn, v->name);
+        return PMD_ERROR;
+    }
+    if (!apply)
+        return PMD_OK;
+    copy = (char *)malloc(strlen(value) + 1);
+    if (!copy) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory", fn);
+        return PMD_ERROR;
+    }
+    strcpy(copy, value);
+    free(inst->scriptPath);
+    inst->scriptPath = copy;
     return PMD_OK;
 }

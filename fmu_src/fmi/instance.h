@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "chip.h"
+#include "script.h"
 #include "variables.h"
 
 #define PMD_MAX_MEMORY_WORDS (1u << 26)   /* 256 MiB of external memory at most */
@@ -53,6 +54,11 @@ typedef struct {
     /* dual-port memory port */
     int32_t memoryAddress, memoryCount, memoryStrobe, memoryStrobeSeen;
     int32_t memoryData[PMD_BATCH_WORDS];
+
+    /* the script parameter, compiled at the end of initialization */
+    char *scriptPath;
+    PmdScript script;
+    size_t scriptNext;               /* the next step to run */
 } PmdInstance;
 
 extern const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT];
@@ -64,7 +70,7 @@ void pmd_instance_reset(PmdInstance *inst);
 PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
                                 const char *const categories[]);
 PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime);
-PmdStatus pmd_exit_initialization(PmdInstance *inst);
+PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn);
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);
 
 /* Returns inst if a call to fn is legal in its state (a mask of PmdState), else logs and returns NULL. */
@@ -84,6 +90,8 @@ PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *v
 PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply);
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t value, int apply);
 PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply);
+PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value);
+PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply);
 PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const char *type);
 
 /* Checks the dual-port write a changed memory.strobe asks for; call after a set call. */

@@ -2,7 +2,8 @@
  *
  * The instance is plain data except for its memory block and its logging
  * hooks, so a snapshot is the instance struct (pointers cleared) followed by
- * the memory words, behind a header that lets a restore refuse anything that
+ * the memory words (the compiled script stays the instance's: a snapshot
+ * holds how far the script ran), behind a header that lets a restore refuse anything that
  * is not a snapshot of this FMU build: magic, format version, instantiation
  * token, struct size, memory size, total size and a checksum of the body.
  * The same bytes serve fmi2/fmi3 Get/SetFMUState and (De)SerializeFMUState,
@@ -55,6 +56,8 @@ void pmd_state_write(const PmdInstance *inst, unsigned char *out)
     copy.instanceName = NULL;
     copy.logger = NULL;
     copy.environment = NULL;
+    copy.scriptPath = NULL;
+    memset(&copy.script, 0, sizeof copy.script);
     memcpy(body, &copy, sizeof copy);
     memcpy(body + sizeof copy, inst->chip.memory, (size_t)inst->memorySize * sizeof(uint32_t));
 
@@ -127,6 +130,9 @@ PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char 
     inst->environment = saved.environment;
     inst->loggingOn = saved.loggingOn;
     inst->categories = saved.categories;
+    /* the script is this instance's parameter; the snapshot keeps only how far it ran */
+    inst->scriptPath = saved.scriptPath;
+    inst->script = saved.script;
     return PMD_OK;
 }
 

@@ -71,6 +71,10 @@ class PMDError(Exception):
         super().__init__(f"{command}: host I/O error 0x{code:02X} ({ERROR_NAMES.get(code, 'unknown')})")
 
 
+class FMUError(RuntimeError):
+    """The FMU refused a call; the message is what it logged (e.g. a script's file:line: reason)."""
+
+
 @dataclass
 class LogMessage:
     status: str
@@ -145,7 +149,7 @@ class Axis:
 class Chip:
     """A motion processor in an FMU instance: Chip(fmi_version=2, fmu=None, **parameters).
 
-    parameters are the FMU's (cycleTime, memorySize, loopback). log_categories
+    parameters are the FMU's (cycleTime, memorySize, loopback, script). log_categories
     enables FMU logging (True for all, or a list such as ["warnings", "events"]);
     messages collect in chip.messages, errors always."""
 
@@ -179,17 +183,27 @@ class Chip:
                                  self._record(status, category, message.decode(errors="replace")))
         if log_categories and log_categories is not True:
             self.fmu.setDebugLogging(True, list(log_categories))
-        types = ({"Real": "Real", "Integer": "Integer", "Boolean": "Boolean"} if fmi_version == 2 else
-                 {t: t for t in ("Float64", "Int32", "UInt32", "UInt16", "Boolean")})
+        types = (("Real", "Integer", "Boolean", "String") if fmi_version == 2 else
+                 ("Float64", "Int32", "UInt32", "UInt16", "Boolean", "String"))
         self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
         self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
+        self._getters.pop("String")           # run() records numbers; get() reads the script path below
         for name, value in parameters.items():
+            if name == "script":              # a path: relative to where the user is, not the FMU
+                value = str(Path(value).resolve()) if value else ""
             self.set(name, value)
-        if fmi_version == 2:
-            self.fmu.enterInitializationMode()
-        else:
-            self.fmu.enterInitializationMode(startTime=0.0)
-        self.fmu.exitInitializationMode()
+        try:
+            if fmi_version == 2:
+                self.fmu.enterInitializationMode()
+            else:
+                self.fmu.enterInitializationMode(startTime=0.0)
+            self.fmu.exitInitializationMode()
+        except Exception:
+            errors = [m.message for m in self.messages if m.status == "Error"]
+            self.fmu.freeInstance()
+            shutil.rmtree(self._unzipdir, ignore_errors=True)
+            self.fmu = None
+            raise FMUError("\n".join(errors) or "initialization failed") from None
         self.cycle_time = self.get("cycleTime")
         self.cycles = 0               # chip cycles run since instantiation (the time grid index)
         self._anchor = (0.0, 0)       # (time, cycle) where the grid last restarted (SetSampleTime)
@@ -229,6 +243,9 @@ class Chip:
     def get(self, name: str):
         """Reads an FMU variable by name (an FMI 3 array reads as a list)."""
         v = self.variables[name]
+        if v.type == "String":
+            value = self.fmu.getString([v.valueReference])[0]
+            return value.decode() if isinstance(value, bytes) else value
         if self._size(name) > 1:
             return list(self._getters[v.type]([v.valueReference], nValues=self._size(name)))
         return self._getters[v.type]([v.valueReference])[0]

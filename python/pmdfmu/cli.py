@@ -2,13 +2,14 @@
 
   pmdfmu build      configure and build the FMU with CMake (into build/)
   pmdfmu demo       run the bundled 2-axis external profile; write CSV and PNG
-  pmdfmu run TABLE  run a segment table; write CSV and PNG
+  pmdfmu run FILE   run a script or a segment table; write CSV and PNG
   pmdfmu validate   check the FMU with fmpy.validation
   pmdfmu info       the FMU's variables and the chip's commands
 """
 from __future__ import annotations
 
 import argparse
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -57,10 +58,26 @@ def cmd_demo(args) -> int:
 
 
 def cmd_run(args) -> int:
-    tables = profile.read_segment_table(Path(args.table))
-    _run_table(tables, args.fmu, args.cycle_time, args.upload, args.max_cycles,
-               Path(args.csv) if args.csv else None, Path(args.plot) if args.plot else None,
-               f"pmdfmu run {args.table}")
+    """A .csv file is a segment table; anything else is a script (README, "Scripts")."""
+    path = Path(args.file)
+    csv_path, plot_path = (Path(args.csv) if args.csv else None), (Path(args.plot) if args.plot else None)
+    if path.suffix.lower() == ".csv":
+        _run_table(profile.read_segment_table(path), args.fmu, args.cycle_time, args.upload, args.max_cycles,
+                   csv_path, plot_path, f"pmdfmu run {args.file}")
+        return 0
+    axes = sorted({int(n) - 1 for n in re.findall(r"Axis([1-4])", path.read_text())}) or [0]
+    with Chip(fmi_version=args.fmi_version, fmu=args.fmu, cycleTime=args.cycle_time, script=path,
+              log_categories=["warnings"]) as chip:
+        rec = profile.run_script(chip, path, axes, max_cycles=args.max_cycles)
+        for m in chip.messages:
+            print(f"{m.status}: {m.message}", file=sys.stderr)
+        cycle_time = chip.cycle_time
+    if csv_path:
+        profile.write_csv(csv_path, rec)
+        print(f"wrote {csv_path} ({len(rec)} cycles)")
+    if plot_path:
+        profile.plot(plot_path, rec, cycle_time, title=f"pmdfmu run {args.file}")
+        print(f"wrote {plot_path}")
     return 0
 
 
@@ -110,7 +127,9 @@ def main(argv: Optional[List[str]] = None) -> int:
         if name == "demo":
             p.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
         else:
-            p.add_argument("table", help="CSV: axis,position,velocity,acceleration,jerk,time (raw units)")
+            p.add_argument("file", help="a script, or a CSV segment table (axis,position,velocity,acceleration,"
+                                        "jerk,time in raw units)")
+            p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
             p.add_argument("--csv", help="write the recorded outputs here")
             p.add_argument("--plot", help="write a PNG plot here")
             p.add_argument("--upload", choices=("memory", "command"), default="memory",

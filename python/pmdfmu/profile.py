@@ -4,6 +4,7 @@ the run until every axis's profile segment number drops to 0 (1.6)."""
 from __future__ import annotations
 
 import csv
+import re
 from pathlib import Path
 from typing import Dict, Iterable, List, Sequence, Tuple
 
@@ -133,6 +134,23 @@ def run_until_halted(chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_00
         done &= (out[f"axis{a + 1}.activityStatus"] & PROFILE_SEGMENT) == 0
     end = int(np.argmax(done)) + 1 if done.any() else len(out)
     return out[:end]
+
+
+def run_script(chip: Chip, script: Path, axes: Sequence[int], max_cycles: int = 1_000_000,
+               chunk: int = 1000) -> np.ndarray:
+    """Records a script's run (the chip was made with script=...): until its last
+    time has passed and every axis is at rest, or max_cycles."""
+    last = max([int(t, 0) for t in re.findall(r"^\s*@\s*(\w+)", Path(script).read_text(), re.MULTILINE)] or [0])
+    names = record_outputs(axes)
+    parts, total = [], 0
+    while total < max_cycles:
+        part = chip.run(min(chunk, max_cycles - total), record=names)
+        parts.append(part)
+        total += len(part)
+        if part["cycle"][-1] >= last and all(not (part[-1][f"axis{a + 1}.activityStatus"] & IN_MOTION)
+                                             for a in axes):
+            break
+    return np.concatenate(parts)
 
 
 def run_segment_table(chip: Chip, tables: Dict[int, Sequence[Row]], velocity: int = 0x40000,

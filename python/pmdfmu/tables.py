@@ -93,12 +93,14 @@ class Field:
     """One argument or reply value of a command, as C-Motion passes it.
 
     kind is u16/i16 (one word), u32/i32 (two words, high word first) or bits
-    (width bits at shift inside one word)."""
+    (width bits at shift inside one word); fixed is the fixed-point format of a
+    32-bit value ("16.16" or "0.32"), which scripts may write as a decimal."""
     name: str
     kind: str
     word: int
     shift: int = 0
     width: int = 16
+    fixed: str = ""
 
     @property
     def signed(self) -> bool:
@@ -107,7 +109,8 @@ class Field:
 
 def parse_fields(spec: str) -> Tuple[Tuple[Field, ...], int]:
     """Parses an args/reply cell: space-separated words, each `name:u16|i16|u32|i32`
-    or a packed word `name@shift:width|name@shift:width...`. Returns (fields, word count)."""
+    (a 32-bit one may add `:16.16` or `:0.32`) or a packed word
+    `name@shift:width|name@shift:width...`. Returns (fields, word count)."""
     fields: List[Field] = []
     word = 0
     for token in spec.split():
@@ -125,10 +128,11 @@ def parse_fields(spec: str) -> Tuple[Tuple[Field, ...], int]:
                 fields.append(Field(m.group(1), "bits", word, shift, width))
             word += 1
         else:
-            name, kind = token.split(":")
-            if kind not in ("u16", "i16", "u32", "i32"):
+            name, kind, *fixed = token.split(":")
+            if kind not in ("u16", "i16", "u32", "i32") or fixed not in ([], ["16.16"], ["0.32"]) or \
+                    (fixed and not kind.endswith("32")):
                 raise ValueError(f"bad field type {token!r}")
-            fields.append(Field(name, kind, word, 0, 32 if kind.endswith("32") else 16))
+            fields.append(Field(name, kind, word, 0, 32 if kind.endswith("32") else 16, "".join(fixed)))
             word += 2 if kind.endswith("32") else 1
     return tuple(fields), word
 

@@ -1,0 +1,486 @@
+/* Command scripts (README, "Scripts"): C-Motion calls grouped by the chip
+ * cycle at which they run, compiled at initialization into host-command
+ * words and memory blocks.
+ *
+ *     # comment (also //)
+ *     @ 0                                      the calls below run before cycle 0
+ *     SetBufferStart(Axis1, 2, 0x200);         axis first, then C-Motion's arguments
+ *     PMDSetVelocity(PMDAxis1, 2.5);           decimals for 16.16 and 0.32 values
+ *     SetProfileMode(Axis1, PMDExternalProfile);
+ *     LoadSegmentTable(Axis1, "table.csv", 0x200, 2);
+ *
+ * LoadSegmentTable reads a CSV segment table (relative paths from the
+ * script's folder) into buffers firstBuffer.. at address, one per column,
+ * and assigns them to the columns' trajectory variables. */
+#include <ctype.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "chip.h"
+#include "command_table.h"
+#include "script.h"
+#include "wide.h"
+
+#define MAX_LINE 4096
+#define MAX_ARGS 8
+
+typedef struct {
+    const char *file;
+    int line;
+    char *error;
+    size_t errorSize;
+} Where;
+
+static int fail(const Where *w, const char *format, ...)
+{
+    char reason[512];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(reason, sizeof reason, format, args);
+    va_end(args);
+    snprintf(w->error, w->errorSize, "%s:%d: %s", w->file, w->line, reason);
+    return -1;
+}
+
+/* ---- growing arrays ---- */
+
+static PmdScriptStep *new_step(PmdScript *s, int64_t cycle, int line)
+{
+    PmdScriptStep *step;
+    if (s->count == s->capacity) {
+        size_t capacity = s->capacity ? 2 * s->capacity : 64;
+        PmdScriptStep *grown = (PmdScriptStep *)realloc(s->steps, capacity * sizeof *grown);
+        if (!grown)
+            return NULL;
+        s->steps = grown;
+        s->capacity = capacity;
+    }
+    step = &s->steps[s->count++];
+    memset(step, 0, sizeof *step);
+    step->cycle = cycle;
+    step->line = line;
+    return step;
+}
+
+static int pool_push(PmdScript *s, uint32_t word)
+{
+    if (s->poolCount == s->poolCapacity) {
+        size_t capacity = s->poolCapacity ? 2 * s->poolCapacity : 1024;
+        uint32_t *grown = (uint32_t *)realloc(s->pool, capacity * sizeof *grown);
+        if (!grown)
+            return -1;
+        s->pool = grown;
+        s->poolCapacity = capacity;
+    }
+    s->pool[s->poolCount++] = word;
+    return 0;
+}
+
+/* ---- values ---- */
+
+static char *trim(char *t)
+{
+    char *end;
+    while (isspace((unsigned char)*t))
+        t++;
+    end = t + strlen(t);
+    while (end > t && isspace((unsigned char)end[-1]))
+        *--end = '\0';
+    return t;
+}
+
+/* A number: decimal or 0x-hex integer, or a decimal fraction d.ddd taken
+ * exactly and rounded (halves away from zero) to `fixed` fraction bits. */
+static int parse_number(const Where *w, const char *text, int fixed, int64_t *value)
+{
+    const char *p = text;
+    int negative = 0, digits = 0, scale = 0, seen_point = 0;
+    uint64_t mantissa = 0, ten = 1, rem, q;
+
+    if (*p == '-' || *p == '+')
+        negative = *p++ == '-';
+    if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) {
+        char *end;
+        unsigned long long v;
+        errno = 0;
+        v = strtoull(p + 2, &end, 16);
+        if (end == p + 2 || *end || errno || v > 0xFFFFFFFFull)
+            return fail(w, "'%s' is not a 32-bit hexadecimal number", text);
+        *value = negative ? -(int64_t)v : (int64_t)v;
+        return 0;
+    }
+    for (; *p; p++) {
+        if (*p == '.' && !seen_point) {
+            seen_point = 1;
+        } else if (isdigit((unsigned char)*p) && digits < 18) {
+            mantissa = mantissa * 10 + (uint64_t)(*p - '0');
+            digits++;
+            scale += seen_point;
+        } else {
+            return fail(w, "'%s' is not a number (at most 18 digits)", text);
+        }
+    }
+    if (digits == 0)
+        return fail(w, "'%s' is not a number", text);
+    if (seen_point && !fixed)
+        return fail(w, "'%s': a decimal fraction is allowed only for 16.16 and 0.32 values", text);
+    while (scale-- > 0)
+        ten *= 10;
+    if (fixed) {                                   /* mantissa * 2^fixed / 10^scale, rounded */
+        q = pmd_muldiv(mantissa, (uint64_t)1 << fixed, ten, &rem);
+        if (rem * 2 >= ten)
+            q++;
+        if (q > (negative ? 0x80000000ull : 0x7FFFFFFFull))    /* a signed 32-bit word */
+            return fail(w, "'%s' does not fit a %s value", text, fixed == 16 ? "16.16" : "0.32");
+        mantissa = q;
+    }
+    *value = negative ? -(int64_t)mantissa : (int64_t)mantissa;
+    return 0;
+}
+
+/* A value: a C-Motion constant name, or a number. */
+static int parse_value(const Where *w, const char *text, int fixed, int64_t *value)
+{
+    int i;
+    if (isalpha((unsigned char)*text) || *text == '_') {
+        for (i = 0; i < PMD_CONSTANT_COUNT; i++) {
+            if (strcmp(pmd_constants[i].name, text) == 0) {
+                *value = pmd_constants[i].value;
+                return 0;
+            }
+        }
+        return fail(w, "'%s' is not a C-Motion constant", text);
+    }
+    return parse_number(w, text, fixed, value);
+}
+
+static int parse_axis(const Where *w, const char *text, int *axis)
+{
+    const char *t = strncmp(text, "PMD", 3) == 0 ? text + 3 : text;
+    if (strncmp(t, "Axis", 4) == 0 && t[4] >= '1' && t[4] <= '4' && t[5] == '\0') {
+        *axis = t[4] - '1';
+        return 0;
+    }
+    return fail(w, "'%s' is not an axis (Axis1..Axis4 or PMDAxis1..PMDAxis4)", text);
+}
+
+/* Range of a field as the host port carries it: unsigned words may also be
+ * written as their two's-complement negative, signed ones as their raw word. */
+static int check_range(const Where *w, const char *command, const PmdField *f, int64_t v)
+{
+    int64_t lo, hi;
+    switch (f->kind) {
+    case PMD_BITS: lo = 0; hi = (1 << f->width) - 1; break;
+    case PMD_U16: case PMD_I16: lo = -32768; hi = 65535; break;
+    default: lo = -(int64_t)0x80000000; hi = 0xFFFFFFFF; break;
+    }
+    if (v < lo || v > hi)
+        return fail(w, "%s: %lld does not fit the argument", command, (long long)v);
+    return 0;
+}
+
+/* ---- commands ---- */
+
+static int add_command(PmdScript *s, const Where *w, int64_t cycle, const PmdCommand *c, int axis,
+                       const int64_t *values)
+{
+    PmdScriptStep *step = new_step(s, cycle, w->line);
+    int k;
+    if (!step)
+        return fail(w, "out of memory");
+    step->words[0] = (uint16_t)(c->opcode | (c->chipWide ? 0 : axis << 8));
+    for (k = 0; k < c->nArgs; k++)
+        pmd_encode_field(&c->args[k], values[k], step->words + 1);
+    step->nWords = (uint16_t)(1 + c->argWords);
+    return 0;
+}
+
+static const PmdCommand *find_command(const char *name)
+{
+    int i;
+    if (strncmp(name, "PMD", 3) == 0)
+        name += 3;
+    for (i = 0; i < PMD_COMMAND_COUNT; i++)
+        if (strcmp(pmd_commands[i].name, name) == 0)
+            return &pmd_commands[i];
+    return NULL;
+}
+
+/* Splits "Name(a, b, c);" into name and trimmed arguments (quotes kept). */
+static int split_call(const Where *w, char *text, char **name, char **args, int *nArgs)
+{
+    char *open = strchr(text, '('), *close = strrchr(text, ')'), *p, *rest;
+    int quoted = 0;
+    if (!open || !close || close < open)
+        return fail(w, "expected Command(Axis, arguments...), got '%s'", text);
+    rest = trim(close + 1);
+    if (*rest && strcmp(rest, ";") != 0)
+        return fail(w, "unexpected '%s' after the call", rest);
+    *open = *close = '\0';
+    *name = trim(text);
+    *nArgs = 0;
+    for (p = open + 1;;) {
+        char *start = p;
+        while (*p && (quoted || *p != ',')) {
+            if (*p == '"')
+                quoted = !quoted;
+            p++;
+        }
+        if (*nArgs == MAX_ARGS)
+            return fail(w, "too many arguments");
+        args[(*nArgs)++] = start;
+        if (!*p)
+            break;
+        *p++ = '\0';
+    }
+    for (quoted = 0; quoted < *nArgs; quoted++)
+        args[quoted] = trim(args[quoted]);
+    if (*nArgs == 1 && !*args[0])
+        *nArgs = 0;
+    return 0;
+}
+
+/* ---- segment tables ---- */
+
+static const char *const columns[PMD_FUNCTIONS] = {"position", "velocity", "acceleration", "jerk", "time"};
+
+static int split_csv(char *line, char **cells, int max)
+{
+    int n = 0;
+    char *p = line;
+    for (;;) {
+        char *comma = strchr(p, ',');
+        if (n < max)
+            cells[n] = trim(p);
+        n++;
+        if (!comma)
+            return n;
+        *comma = '\0';
+        p = comma + 1;
+    }
+}
+
+/* Reads the table; emits, at `cycle`, buffer set-up commands and one memory
+ * block per column. Units: "# units: raw" (default: the chip's words) or
+ * "# units: counts/cycle" (decimals for velocity, acceleration and jerk). */
+static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, const char *path, int64_t address,
+                      int64_t firstBuffer, uint32_t memoryWords)
+{
+    static const int fixedOfColumn[PMD_FUNCTIONS] = {0, 16, 16, 32, 0};
+    char line[MAX_LINE], *cells[16];
+    int columnOf[PMD_FUNCTIONS], present = 0, engineering = 0, header = 0, f, k;
+    size_t rows = 0, base = s->poolCount;
+    Where w = {path, 0, at->error, at->errorSize};
+    FILE *file = fopen(path, "rb");
+
+    if (!file)
+        return fail(at, "cannot open segment table %s: %s", path, strerror(errno));
+    for (f = 0; f < PMD_FUNCTIONS; f++)
+        columnOf[f] = -1;
+    /* pass 1 reads the header and counts rows; pass 2 stores the columns one after another */
+    while (fgets(line, sizeof line, file)) {
+        char *t = trim(line);
+        w.line++;
+        if (*t == '#') {
+            char *units = strstr(t, "units:");
+            if (units) {
+                units = trim(units + 6);
+                if (strcmp(units, "counts/cycle") == 0)
+                    engineering = 1;
+                else if (strcmp(units, "raw") != 0)
+                    return fclose(file), fail(&w, "units '%s': say raw or counts/cycle", units);
+            }
+            continue;
+        }
+        if (!*t)
+            continue;
+        if (!header) {
+            int n = split_csv(t, cells, 16);
+            for (k = 0; k < n && k < 16; k++) {
+                for (f = 0; f < PMD_FUNCTIONS && strcmp(cells[k], columns[f]) != 0; f++)
+                    ;
+                if (f == PMD_FUNCTIONS)
+                    return fclose(file), fail(&w, "unknown column '%s' (position, velocity, acceleration, jerk, "
+                                                  "time)", cells[k]);
+                columnOf[f] = k;
+            }
+            if (columnOf[0] < 0)
+                return fclose(file), fail(&w, "a segment table needs a position column");
+            header = n;
+            continue;
+        }
+        rows++;
+    }
+    if (!header || rows == 0)
+        return fclose(file), fail(&w, "no header or no rows");
+    for (f = 0; f < PMD_FUNCTIONS; f++)
+        present += columnOf[f] >= 0;
+    if (address < 0 || address + (int64_t)(present * rows) > (int64_t)memoryWords)
+        return fclose(file), fail(at, "%zu rows x %d columns at 0x%llX leave the %u-word memory", rows, present,
+                                  (long long)address, (unsigned)memoryWords);
+    if (firstBuffer < PMD_FIRST_PROFILE_BUFFER || firstBuffer + present > PMD_BUFFERS)
+        return fclose(file), fail(at, "buffers %lld.. do not fit IDs 2..31", (long long)firstBuffer);
+    for (f = 0; f < PMD_FUNCTIONS; f++) {
+        if (columnOf[f] < 0)
+            continue;
+        int seenHeader = 0;
+        rewind(file);
+        w.line = 0;
+        while (fgets(line, sizeof line, file)) {
+            char *t = trim(line);
+            int64_t v;
+            w.line++;
+            if (*t == '#' || !*t)
+                continue;
+            if (!seenHeader) {
+                seenHeader = 1;
+                continue;
+            }
+            if (split_csv(t, cells, 16) <= columnOf[f])
+                return fclose(file), fail(&w, "missing %s value", columns[f]);
+            if (parse_number(&w, cells[columnOf[f]], engineering ? fixedOfColumn[f] : 0, &v))
+                return fclose(file), -1;
+            if (f == PMDBufferFunctionTime ? (v < 0 || v > 0xFFFFFFFF)
+                                           : (v < -(int64_t)0x80000000 || v > 0xFFFFFFFF))
+                return fclose(file), fail(&w, "%s %s does not fit 32 bits", columns[f], cells[columnOf[f]]);
+            if (pool_push(s, (uint32_t)(v & 0xFFFFFFFF)))
+                return fclose(file), fail(at, "out of memory");
+        }
+    }
+    fclose(file);
+    /* buffers firstBuffer.. at address.., one per present column, then the data */
+    for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
+        int64_t id = firstBuffer + k, start = address + (int64_t)(k * rows);
+        int64_t a[3];
+        PmdScriptStep *block;
+        if (columnOf[f] < 0)
+            continue;
+        a[0] = id; a[1] = start;
+        if (add_command(s, at, cycle, find_command("SetBufferStart"), axis, a))
+            return -1;
+        a[1] = (int64_t)rows;
+        if (add_command(s, at, cycle, find_command("SetBufferLength"), axis, a))
+            return -1;
+        a[0] = f; a[1] = id;
+        if (add_command(s, at, cycle, find_command("SetBufferFunction"), axis, a))
+            return -1;
+        if (!(block = new_step(s, cycle, at->line)))
+            return fail(at, "out of memory");
+        block->address = (uint32_t)start;
+        block->count = (uint32_t)rows;
+        block->first = base + (size_t)k * rows;
+        k++;
+    }
+    return 0;
+}
+
+/* A path relative to the script's folder. */
+static void resolve(const char *script, const char *path, char *out, size_t size)
+{
+    const char *slash = strrchr(script, '/');
+    if (path[0] == '/' || !slash)
+        snprintf(out, size, "%s", path);
+    else
+        snprintf(out, size, "%.*s/%s", (int)(slash - script), script, path);
+}
+
+/* ---- the script ---- */
+
+static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle, uint32_t memoryWords)
+{
+    char *name = NULL, *args[MAX_ARGS] = {NULL};
+    int nArgs = 0, axis = 0, k;
+    int64_t values[MAX_ARGS];
+    const PmdCommand *c;
+
+    if (*text == '@') {
+        int64_t next;
+        if (parse_number(w, trim(text + 1), 0, &next))
+            return -1;
+        if (next < 0)
+            return fail(w, "a time is a chip cycle >= 0");
+        if (next < *cycle)
+            return fail(w, "time %lld comes before %lld: times must not go back", (long long)next,
+                        (long long)*cycle);
+        *cycle = next;
+        return 0;
+    }
+    if (split_call(w, text, &name, args, &nArgs))
+        return -1;
+    if (nArgs == 0)
+        return fail(w, "%s: the first argument is the axis", name);
+    if (parse_axis(w, args[0], &axis))
+        return -1;
+    if (strcmp(name, "LoadSegmentTable") == 0) {
+        char path[1024];
+        size_t len = strlen(args[1 < nArgs ? 1 : 0]);
+        int64_t address, first;
+        if (nArgs != 4 || args[1][0] != '"' || len < 2 || args[1][len - 1] != '"')
+            return fail(w, "LoadSegmentTable(Axis, \"file.csv\", address, firstBuffer)");
+        args[1][len - 1] = '\0';
+        resolve(w->file, args[1] + 1, path, sizeof path);
+        if (parse_value(w, args[2], 0, &address) || parse_value(w, args[3], 0, &first))
+            return -1;
+        return load_table(s, w, *cycle, axis, path, address, first, memoryWords);
+    }
+    if (!(c = find_command(name)))
+        return fail(w, "'%s' is not a command of this chip (see docs/commands.md)", name);
+    if (nArgs - 1 != c->nArgs)
+        return fail(w, "%s takes the axis and %d arguments, not %d", c->name, c->nArgs, nArgs - 1);
+    for (k = 0; k < c->nArgs; k++)
+        if (parse_value(w, args[k + 1], c->args[k].fixed, &values[k]) ||
+            check_range(w, c->name, &c->args[k], values[k]))
+            return -1;
+    return add_command(s, w, *cycle, c, axis, values);
+}
+
+int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, char *error, size_t errorSize)
+{
+    char line[MAX_LINE];
+    int64_t cycle = 0;
+    Where w = {path, 0, error, errorSize};
+    FILE *file = fopen(path, "rb");
+
+    memset(script, 0, sizeof *script);
+    error[0] = '\0';
+    if (!file) {
+        snprintf(error, errorSize, "%s: cannot open the script: %s", path, strerror(errno));
+        return -1;
+    }
+    while (fgets(line, sizeof line, file)) {
+        char *text, *comment;
+        int quoted = 0;
+        w.line++;
+        if (!strchr(line, '\n') && !feof(file)) {
+            fclose(file);
+            pmd_script_free(script);
+            return fail(&w, "line longer than %d characters", MAX_LINE - 2);
+        }
+        for (comment = line; *comment; comment++) {      /* '#' or '//' outside quotes */
+            if (*comment == '"')
+                quoted = !quoted;
+            if (!quoted && (*comment == '#' || (comment[0] == '/' && comment[1] == '/'))) {
+                *comment = '\0';
+                break;
+            }
+        }
+        text = trim(line);
+        if (*text && compile_line(script, &w, text, &cycle, memoryWords)) {
+            fclose(file);
+            pmd_script_free(script);
+            return -1;
+        }
+    }
+    fclose(file);
+    return 0;
+}
+
+void pmd_script_free(PmdScript *script)
+{
+    free(script->steps);
+    free(script->pool);
+    memset(script, 0, sizeof *script);
+}

@@ -1,0 +1,33 @@
+/* Command scripts: the FMU used stand-alone, without a host model (script.c). */
+#ifndef PMD_SCRIPT_H
+#define PMD_SCRIPT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define PMD_SCRIPT_WORDS 8           /* the longest command: instruction + 4 data words */
+
+/* One thing a script does at a chip cycle: a host command, or a block of
+ * words written straight into memory (a segment table's column). */
+typedef struct {
+    int64_t cycle;                   /* it runs before this cycle (grid index) */
+    int line;                        /* script line, for messages */
+    uint16_t nWords;                 /* host command words, or 0 for a memory block */
+    uint16_t words[PMD_SCRIPT_WORDS];
+    uint32_t address, count;         /* memory block: count words of the pool at `first` */
+    size_t first;
+} PmdScriptStep;
+
+typedef struct {
+    PmdScriptStep *steps;
+    size_t count, capacity;
+    uint32_t *pool;                  /* table words */
+    size_t poolCount, poolCapacity;
+} PmdScript;
+
+/* Compiles the script at path for a memory of memoryWords words. Returns 0,
+ * or -1 with "file:line: reason" in error (and nothing allocated). */
+int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, char *error, size_t errorSize);
+void pmd_script_free(PmdScript *script);
+
+#endif
