@@ -82,13 +82,16 @@ def cmd_run(args) -> int:
 
 
 def cmd_validate(args) -> int:
+    """fmpy.validation on the given FMU, or on both built ones."""
     from fmpy.validation import validate_fmu
-    path = args.fmu or str(default_fmu())
-    problems = validate_fmu(path)
-    for p in problems:
-        print(p)
-    print(f"{path}: {'valid' if not problems else f'{len(problems)} problems'}")
-    return 1 if problems else 0
+    failed = 0
+    for path in [args.fmu] if args.fmu else [str(default_fmu(2)), str(default_fmu(3))]:
+        problems = validate_fmu(path)
+        for p in problems:
+            print(p)
+        print(f"{path}: {'valid' if not problems else f'{len(problems)} problems'}")
+        failed += bool(problems)
+    return 1 if failed else 0
 
 
 def cmd_info(args) -> int:
