@@ -14,6 +14,11 @@ void pmd_chip_reset(PmdChip *chip);
  * the breakpoints and the interrupt line. */
 void pmd_chip_cycle(PmdChip *chip);
 
+/* Runs up to max cycles at once where that is exactly what running them one by
+ * one would do (fastforward.c); returns how many it ran (0 if it cannot). Call
+ * it after an ordinary cycle, with inputs unchanged. */
+int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max);
+
 /* Executes a batch of host words (whole commands as C-Motion sends them).
  * Get replies are appended to reply (at most PMD_BATCH_WORDS words).
  * Returns the host I/O error code of the first failing command, or 0. */

@@ -196,6 +196,15 @@ static int follow_sample_time(PmdInstance *inst, double at)
     return 1;
 }
 
+/* How many cycles fast-forward may take: up to the end of the step and the next script step. */
+static int64_t cycles_to_skip(const PmdInstance *inst, int64_t end)
+{
+    int64_t n = end - inst->nextCycle;
+    if (inst->scriptNext < inst->script.count && inst->script.steps[inst->scriptNext].cycle - inst->nextCycle < n)
+        n = inst->script.steps[inst->scriptNext].cycle - inst->nextCycle;
+    return n;
+}
+
 /* Runs the script steps due before the next cycle. */
 static void run_script(PmdInstance *inst)
 {
@@ -276,6 +285,7 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
         }
         pmd_chip_cycle(&inst->chip);
         inst->nextCycle++;
+        inst->nextCycle += pmd_chip_fast_forward(&inst->chip, cycles_to_skip(inst, end));
     }
     inst->time = t + h;
     return PMD_OK;

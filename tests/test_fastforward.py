@@ -1,0 +1,80 @@
+"""Coarse doSteps fast-forward through external-profile segments in closed form;
+the result is bit-identical to stepping cycle by cycle (issue 5)."""
+import random
+
+import numpy as np
+
+import pmdfmu
+from reference import wrap32
+
+OUT = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
+                                                      "commandedAcceleration", "activityStatus", "eventStatus")]
+REAL = [f"axis{n}.{q}" for n in range(1, 5) for q in ("position", "velocity", "acceleration")]
+
+
+def load(chip, rng, rows_per_axis=12, long=(50, 4000)):
+    for axis in range(3):                                  # axis 4 stays idle
+        ax = chip.axis(axis)
+        rows = []
+        for _ in range(rows_per_axis):
+            v = rng.choice([0, rng.randrange(-0x30000, 0x30000)])
+            a = rng.choice([0, rng.randrange(-0x400, 0x400)])
+            j = rng.choice([0, rng.randrange(-0x100000, 0x100000)])
+            if rng.random() < 0.3:                         # velocity exactly 0 after 100 cycles: an event
+                m = rng.choice([1, -1]) * rng.randrange(1, 0x100)
+                v, a, j = 200 * m, -2 * m, 0
+            rows.append((rng.randrange(-5000, 5000), v, a, j, rng.randrange(*long)))
+        rows.append((rng.randrange(-10, 10), 0, 0, 0, 0))
+        base = 0x200 + axis * 0x100
+        for k in range(5):
+            ax.SetBufferStart(2 + 5 * axis + k, base + k * len(rows))
+            ax.SetBufferLength(2 + 5 * axis + k, len(rows))
+            ax.SetBufferFunction(k, 2 + 5 * axis + k)
+            chip.write_memory(base + k * len(rows), [r[k] & 0xFFFFFFFF for r in rows])
+        ax.SetProfileMode(pmdfmu.PMDExternalProfile)
+    chip.axis(0).MultiUpdate(0b0111)
+
+
+def snapshot(chip):
+    return [chip.get(n) for n in OUT + REAL + ["chipTime"]]
+
+
+def test_coarse_steps_equal_cycle_by_cycle_at_every_step_boundary():
+    """Segments with jerk, velocities coming to rest inside segments (motion-complete
+    events), an idle axis; uneven doSteps against one doStep per cycle."""
+    for seed in range(3):
+        rng = random.Random(seed)
+        with pmdfmu.Chip() as fine, pmdfmu.Chip() as coarse:
+            load(fine, random.Random(seed))
+            load(coarse, random.Random(seed))
+            total = 0
+            for _ in range(12):
+                n = rng.randrange(1, 4000)
+                rec = fine.run(n, record=OUT)
+                coarse.run(n)                               # one doStep: fast-forwards
+                total += n
+                assert snapshot(coarse)[:len(OUT)] == [int(rec[name][-1]) for name in OUT]
+                assert snapshot(coarse) == snapshot(fine)
+                for chip in (fine, coarse):                 # events are sticky: judge each chunk alone
+                    for axis in range(4):
+                        chip.axis(axis).ResetEventStatus(0)
+
+
+def test_a_billion_cycles_of_a_100_segment_table_take_one_coarse_step_and_stay_exact():
+    segments = [(0, 0x10000, 0, 0, 10_000_000) for _ in range(100)] + [(7, 0, 0, 0, 0)]
+    segments[50] = (segments[50][0], 0x8000, -2, 1, 10_000_000)
+    with pmdfmu.Chip() as chip:
+        ax = chip.axis(0)
+        for k in range(5):
+            ax.SetBufferStart(2 + k, 0x200 + k * 128)
+            ax.SetBufferLength(2 + k, len(segments))
+            ax.SetBufferFunction(k, 2 + k)
+            chip.write_memory(0x200 + k * 128, [s[k] & 0xFFFFFFFF for s in segments])
+        ax.SetProfileMode(pmdfmu.PMDExternalProfile)
+        ax.Update()
+        chip.run(10 ** 9 - 1)
+        # segment 99 (velocity 1 count/cycle from position 0) has run 9_999_999 of its cycles
+        assert ax.GetCommandedPosition() == wrap32(9_999_999 - 1)
+        assert ax.GetTime() == 10 ** 9 - 2
+        chip.run(2)
+        assert ax.GetCommandedPosition() == 7 and ax.GetActivityStatus() & 0xE000 == 0
