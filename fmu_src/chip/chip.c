@@ -122,12 +122,6 @@ uint16_t pmd_signal_status(const PmdChip *chip, int n)
     return (uint16_t)((level ^ ax->signalSense) & 0x07FF);
 }
 
-/* A signal is active when its status bit reads 0. */
-static int signal_active(const PmdChip *chip, int n, uint16_t mask)
-{
-    return !(pmd_signal_status(chip, n) & mask);
-}
-
 int pmd_host_interrupt(const PmdChip *chip)
 {
     int n;
@@ -218,11 +212,11 @@ static void sample_actual(PmdChip *chip, int n)
 
 /* Entering a limit sets its event bit and stops the axis; the activity bit
  * follows the switch (reference 4.5). Ignored with the limit-switch mode off. */
-static void check_limits(PmdChip *chip, int n)
+static void check_limits(PmdChip *chip, int n, uint16_t signals)
 {
     PmdAxis *ax = &chip->s.axis[n];
-    int positive = ax->limitSwitchMode && signal_active(chip, n, PMDSignalPositiveLimitMask);
-    int negative = ax->limitSwitchMode && signal_active(chip, n, PMDSignalNegativeLimitMask);
+    int positive = ax->limitSwitchMode && !(signals & PMDSignalPositiveLimitMask);   /* active reads 0 */
+    int negative = ax->limitSwitchMode && !(signals & PMDSignalNegativeLimitMask);
     if ((positive && !ax->inPositiveLimit) || (negative && !ax->inNegativeLimit)) {
         pmd_set_event(chip, n, positive && !ax->inPositiveLimit ? PMDEventInPositiveLimitMask
                                                                 : PMDEventInNegativeLimitMask);
@@ -266,10 +260,10 @@ static void check_position_error(PmdChip *chip, int n)
 
 /* The home input captures the actual position when it becomes active, if the
  * capture source is home and the last capture has been read. */
-static void check_capture(PmdChip *chip, int n)
+static void check_capture(PmdChip *chip, int n, uint16_t signals)
 {
     PmdAxis *ax = &chip->s.axis[n];
-    int home = signal_active(chip, n, PMDSignalEncoderHomeMask);
+    int home = !(signals & PMDSignalEncoderHomeMask);
     if (home && !ax->homeWasActive && ax->captureSource == PMDCaptureSourceHome && !ax->captured) {
         ax->captured = 1;
         ax->captureValue = ax->actualPosition;
@@ -295,12 +289,23 @@ void pmd_chip_cycle(PmdChip *chip)
         }
     }
     for (n = 0; n < PMD_AXES; n++) {
-        check_limits(chip, n);
-        check_position_error(chip, n);
-        check_capture(chip, n);
+        PmdAxis *ax = &chip->s.axis[n];
+        /* with every switch idle (and no sense inversion) no limit or capture can happen */
+        if (ax->positiveLimitInput | ax->negativeLimitInput | ax->homeInput | ax->inPositiveLimit |
+            ax->inNegativeLimit | ax->homeWasActive | (ax->signalSense != 0)) {
+            uint16_t signals = pmd_signal_status(chip, n);
+            check_limits(chip, n, signals);
+            check_capture(chip, n, signals);
+        }
+        /* the ideal servo keeps the error at 0: a moving axis only resets its settle count */
+        if (chip->s.loopback && ax->motorOn && ax->motion != PMD_MOTION_IDLE && !ax->motionCompletePending)
+            ax->settleCount = 0;
+        else
+            check_position_error(chip, n);
     }
     /* breakpoints last: a source axis may be any axis, and all have moved */
     for (n = 0; n < PMD_AXES; n++)
-        check_breakpoints(chip, n);
+        if (chip->s.axis[n].breakpoint[0].trigger | chip->s.axis[n].breakpoint[1].trigger)
+            check_breakpoints(chip, n);
     pmd_trace_cycle(chip);
 }

@@ -35,10 +35,10 @@ int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint
 uint16_t pmd_activity_status(const PmdChip *chip, int axis);
 uint16_t pmd_signal_status(const PmdChip *chip, int axis);
 int pmd_host_interrupt(const PmdChip *chip);
-int32_t pmd_commanded_velocity(const PmdTrajectory *t);
+#define pmd_commanded_velocity(t) pmd_register_1616((t)->velocity)
+#define pmd_commanded_acceleration(t) pmd_register_1616((t)->acceleration)
 int32_t pmd_position_error(const PmdAxis *ax);
 int32_t pmd_actual_velocity(const PmdAxis *ax);
-int32_t pmd_commanded_acceleration(const PmdTrajectory *t);
 
 /* Engine entry points used by the command handlers and the cycle. */
 void pmd_profile_cycle(PmdChip *chip, int axis);

@@ -34,6 +34,25 @@ static inline int32_t pmd_int32(uint32_t u)
 #define PMD_U_PER_COUNT (6LL << 32)
 #define PMD_U_PER_1616 (6LL << 16)
 
+/* Division rounding toward minus infinity (the registers truncate that way). */
+static inline int64_t pmd_floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
+}
+
+/* A 64-bit value in a 32-bit register: two's-complement wrap. */
+static inline int32_t pmd_wrap32(int64_t x)
+{
+    return pmd_int32((uint32_t)((uint64_t)x & 0xFFFFFFFFu));
+}
+
+/* GetCommandedVelocity / GetCommandedAcceleration: U per cycle to 16.16, floored. */
+static inline int32_t pmd_register_1616(int64_t u)
+{
+    return pmd_wrap32(pmd_floor_div(u, PMD_U_PER_1616));
+}
+
 typedef struct {
     int32_t position;      /* whole counts; wraps like the 32-bit register */
     int64_t fraction;      /* 0 <= fraction < PMD_U_PER_COUNT */
@@ -95,6 +114,7 @@ typedef struct {
     uint8_t motorOn;
     uint8_t underrunWarned;      /* a read-past-write warning was logged and not yet cleared by a refill */
     uint8_t scurvePhase;         /* S-curve phase 1..7 shown as the profile segment while moving */
+    uint32_t buffersChecked;     /* the buffer epoch at which this axis's buffers were last found fit to run */
     uint32_t segmentTime;        /* external profile: cycles left in the segment (seed 000 pseudo code) */
     int16_t bufferOfFunction[PMD_FUNCTIONS];   /* SetBufferFunction: buffer ID or -1 */
     uint16_t eventStatus;
@@ -150,6 +170,7 @@ typedef struct {
     PmdBuffer buffer[PMD_BUFFERS];
     PmdTrace trace;
     uint8_t updatedAxes;     /* axes updated since the last cycle's trace check (trace condition 1) */
+    uint32_t bufferEpoch;    /* counts buffer set-ups and assignments: a running profile rechecks its buffers */
     uint16_t sampleTime;     /* SetSampleTime, microseconds */
     uint8_t sampleTimeChanged;
     uint32_t time;           /* GetTime: chip time of the last executed cycle */

@@ -320,6 +320,7 @@ static int set_block(PmdChip *chip, const char *name, int64_t id, int64_t start,
     }
     b->start = (uint32_t)start;
     b->length = (uint32_t)length;
+    chip->s.bufferEpoch++;
     b->readIndex = b->writeIndex = b->unread = 0;
     b->streamed = 0;
     pmd_log(chip, PMD_LOG_BUFFERS, "buffer %d: start 0x%X length %u", (int)id, (unsigned)b->start,
@@ -464,6 +465,7 @@ int cmd_SetBufferFunction(PmdChip *chip, int axis, const int64_t *arg, int64_t *
         return PMD_ERR_InvalidParameter;
     }
     AXIS(axis)->bufferOfFunction[arg[0]] = (int16_t)arg[1];
+    chip->s.bufferEpoch++;
     pmd_log(chip, PMD_LOG_BUFFERS, "axis %d: buffer %d feeds function %d", axis + 1, (int)arg[1], (int)arg[0]);
     return 0;
 }

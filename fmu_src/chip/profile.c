@@ -4,18 +4,8 @@
 
 /* ---- exact arithmetic ---------------------------------------------------- */
 
-static int64_t floor_div(int64_t a, int64_t b)
-{
-    int64_t q = a / b;
-    return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
-}
-
-/* Two's-complement wrap of a 64-bit value into a 32-bit register, without
- * relying on implementation-defined conversions. */
-static int32_t wrap32(int64_t x)
-{
-    return pmd_int32((uint32_t)((uint64_t)x & 0xFFFFFFFFu));
-}
+#define floor_div pmd_floor_div
+#define wrap32 pmd_wrap32
 
 /* Wrapping add: a host can integrate a segment past any register range; the
  * chip's registers wrap, and so do we, without undefined behaviour. */
@@ -35,16 +25,6 @@ static void move_by(PmdTrajectory *t, int64_t dp)
         carry++;
     }
     t->position = wrap32((int64_t)t->position + carry);
-}
-
-int32_t pmd_commanded_velocity(const PmdTrajectory *t)
-{
-    return wrap32(floor_div(t->velocity, PMD_U_PER_1616));
-}
-
-int32_t pmd_commanded_acceleration(const PmdTrajectory *t)
-{
-    return wrap32(floor_div(t->acceleration, PMD_U_PER_1616));
 }
 
 /* ---- external profile (seed 000) ----------------------------------------- */
@@ -107,10 +87,14 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
     uint32_t offset;
     int f;
 
-    if (!external_buffers_ok(chip, ax)) {
-        pmd_log(chip, PMD_LOG_WARNINGS, "axis %d: external profile buffers changed while running "
-                "(position buffer missing or lengths differ): profile halted", n + 1);
-        return 0;
+    /* buffers checked again only after a set-up or assignment changed (the epoch moved) */
+    if (ax->buffersChecked != chip->s.bufferEpoch + 1) {
+        if (!external_buffers_ok(chip, ax)) {
+            pmd_log(chip, PMD_LOG_WARNINGS, "axis %d: external profile buffers changed while running "
+                    "(position buffer missing or lengths differ): profile halted", n + 1);
+            return 0;
+        }
+        ax->buffersChecked = chip->s.bufferEpoch + 1;
     }
     pos = &chip->s.buffer[ax->bufferOfFunction[PMDBufferFunctionPosition]];
     offset = pos->readIndex;
@@ -123,11 +107,11 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
     } else {
         ax->underrunWarned = 0;
     }
+    /* every value is read before any index moves: buffers may share an ID */
     for (f = 0; f < PMD_FUNCTIONS; f++) {
         int id = ax->bufferOfFunction[f];
-        value[f] = f == PMDBufferFunctionTime ? 1 : 0;
-        if (id >= 0)
-            value[f] = (int32_t)chip->memory[chip->s.buffer[id].start + offset];
+        value[f] = id >= 0 ? (int32_t)chip->memory[chip->s.buffer[id].start + offset]
+                           : (f == PMDBufferFunctionTime ? 1 : 0);
     }
     for (f = 0; f < PMD_FUNCTIONS; f++) {
         int id = ax->bufferOfFunction[f];
@@ -138,8 +122,9 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
                 b->unread--;
         }
     }
-    pmd_log(chip, PMD_LOG_SEGMENTS, "axis %d: segment at index %u: position %d velocity %d acceleration %d "
-            "jerk %d time %u", n + 1, (unsigned)offset, value[0], value[1], value[2], value[3], (unsigned)value[4]);
+    if (PMD_LOGGING(chip, PMD_LOG_SEGMENTS))
+        pmd_log(chip, PMD_LOG_SEGMENTS, "axis %d: segment at index %u: position %d velocity %d acceleration %d "
+                "jerk %d time %u", n + 1, (unsigned)offset, value[0], value[1], value[2], value[3], (unsigned)value[4]);
     return 1;
 }
 
