@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+"""The performance suite (issue 5): every figure next to a baseline measured
+in the same run, as a table. Benchmarks, not tests: nothing here asserts a time.
+
+    python bench/run.py          (./dev bench)
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+import pmdfmu
+from pmdfmu.chip import REPO
+
+BUILD = REPO / "build"
+FMI_HEADERS = Path(__import__("fmpy").__file__).parent / "c-code"
+rows = []
+
+
+def report(name: str, figure: str, baseline: str, ratio: float, target: str, met: bool) -> None:
+    rows.append((name, figure, baseline, f"{ratio:.2f}", target, "yes" if met else "NO"))
+
+
+def best_of(n, f):
+    return min(f() for _ in range(n))
+
+
+def timed(f):
+    start = time.perf_counter()
+    f()
+    return time.perf_counter() - start
+
+
+def generated_dir() -> Path:
+    gen = BUILD / "generated"
+    if not (gen / "command_table.c").exists():
+        subprocess.run([sys.executable, str(REPO / "modelDescription" / "generate.py"), str(gen)], check=True)
+    return gen
+
+
+# 1. the engine against a plain C loop of the same recurrence
+def engine(tmp: Path) -> None:
+    gen = generated_dir()
+    exe = tmp / "engine"
+    chip = sorted(str(p) for p in (REPO / "fmu_src" / "chip").glob("*.c"))
+    subprocess.run(["cc", "-O2", "-std=c99", "-D_POSIX_C_SOURCE=199309L", f"-I{REPO / 'fmu_src' / 'chip'}",
+                    f"-I{gen}", str(REPO / "bench" / "engine.c"), *chip, str(gen / "command_table.c"), "-lm",
+                    "-o", str(exe)], check=True)
+    plain, core = map(float, subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout.split())
+    report("1 engine, 4 axes x 5 buffers, every cycle stored", f"{core:.1f} ns/axis-cycle",
+           f"plain C loop {plain:.1f} ns", core / plain, "<= 1.5x", core / plain <= 1.5)
+
+
+def load_table(chip, segments):
+    ax = chip.axis(0)
+    for k in range(5):
+        ax.SetBufferStart(2 + k, 0x200 + k * 128)
+        ax.SetBufferLength(2 + k, len(segments))
+        ax.SetBufferFunction(k, 2 + k)
+        chip.write_memory(0x200 + k * 128, [s[k] & 0xFFFFFFFF for s in segments])
+    ax.SetProfileMode(pmdfmu.PMDExternalProfile)
+    ax.Update()
+
+
+# 2. a 100-segment table across 10^9 cycles in one doStep, against cycle by cycle
+def coarse() -> None:
+    segments = [(1000 * i, 0x10000, 0x10, 0x100, 10_000_000) for i in range(100)] + [(0, 0, 0, 0, 0)]
+
+    def run(cycles, block_fast_forward):
+        with pmdfmu.Chip() as chip:
+            load_table(chip, segments)
+            if block_fast_forward:          # an armed breakpoint needs every cycle
+                chip.axis(1).SetBreakpointValue(0, 2 ** 31 - 1)
+                chip.axis(1).SetBreakpoint(0, 1, 0, pmdfmu.PMDBreakpointTime)
+            return timed(lambda: chip.run(cycles))
+
+    fast = best_of(3, lambda: run(10 ** 9, False))
+    slow_per_cycle = run(2_000_000, True) / 2_000_000
+    report("2 coarse doStep, 100 segments x 10^7 cycles", f"{1e3 * fast:.2f} ms",
+           f"cycle by cycle {slow_per_cycle * 1e9:.0f} s (extrapolated)", slow_per_cycle * 1e9 / fast,
+           "< 10 ms", fast < 0.010)
+
+
+def trivial_fmu(tmp: Path) -> Path:
+    """The same modelDescription.xml over a do-nothing binary."""
+    d = tmp / "trivial"
+    (d / "binaries" / "linux64").mkdir(parents=True)
+    subprocess.run(["cc", "-O2", "-shared", "-fPIC", "-std=c99", f"-I{FMI_HEADERS}", str(REPO / "bench" / "trivial.c"),
+                    "-o", str(d / "binaries" / "linux64" / "PMDMotionProcessor.so")], check=True)
+    with zipfile.ZipFile(pmdfmu.default_fmu(2)) as z:
+        (d / "modelDescription.xml").write_bytes(z.read("modelDescription.xml"))
+    fmu = tmp / "trivial.fmu"
+    shutil.make_archive(str(fmu.with_suffix("")), "zip", d)
+    fmu.with_suffix(".zip").rename(fmu)
+    return fmu
+
+
+# 3. per-step overhead through FMPy: set the host inputs, doStep one cycle, get 12 outputs
+def per_step(tmp: Path) -> None:
+    steps = 20_000
+
+    def loop(path):
+        with pmdfmu.Chip(fmu=path) as chip:
+            vr = chip.variables
+            inputs = [vr[n].valueReference for n in ("host.wordCount", "host.strobe", "memory.strobe")]
+            outputs = [vr[f"axis{n}.{q}"].valueReference for n in range(1, 5)
+                       for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
+            fmu, dt, done = chip.fmu, chip.cycle_time, [0]
+
+            def run():
+                for k in range(done[0], done[0] + steps):
+                    fmu.setInteger(inputs, [0, 0, 0])
+                    fmu.doStep(k * dt, dt)
+                    fmu.getInteger(outputs)
+                done[0] += steps
+            return best_of(3, lambda: timed(run)) / steps
+
+    ours, baseline = loop(pmdfmu.default_fmu(2)), loop(trivial_fmu(tmp))
+    report("3 per step through FMPy (set, doStep, get 12)", f"{ours * 1e6:.1f} us",
+           f"trivial FMU {baseline * 1e6:.1f} us", ours / baseline, "<= 1.2x", ours / baseline <= 1.2)
+
+
+# 4. recording every cycle of 4 axes x 3 outputs
+def recording() -> None:
+    names = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
+                                                            "commandedAcceleration")]
+    cycles = 20_000
+    with pmdfmu.Chip() as chip:
+        load_table(chip, [(0, 0x10000, 0, 0, 100)] * 10 + [(0, 0, 0, 0, 0)])
+        rate = 4 * cycles / best_of(2, lambda: timed(lambda: chip.run(cycles, record=names)))
+    from fmpy import simulate_fmu
+    sim_cycles = 5_000
+    t = timed(lambda: simulate_fmu(str(pmdfmu.default_fmu(2)), stop_time=sim_cycles * 1e-4, step_size=1e-4,
+                                   output_interval=1e-4, output=names))
+    baseline = 4 * sim_cycles / t
+    report("4 recording 4 axes x 3 outputs per cycle", f"{rate / 1e6:.2f} M axis-cycles/s",
+           f"simulate_fmu {baseline / 1e6:.2f} M/s", rate / baseline, ">= 20 M/s and >= 200x",
+           rate >= 20e6 and rate / baseline >= 200)
+
+
+# 5. loading a 100 000-segment table
+def upload(tmp: Path) -> None:
+    n = 100_000
+    segments = [(i, 0x10000, 0, 0, 1) for i in range(n)]
+
+    def by_memory_port():
+        with pmdfmu.Chip(memorySize=600_000) as chip:
+            start = time.perf_counter()
+            for k in range(5):
+                chip.write_memory(k * n, [s[k] for s in segments])
+            return time.perf_counter() - start
+
+    def by_script():
+        table, script = tmp / "big.csv", tmp / "big.script"
+        start = time.perf_counter()
+        with open(table, "w") as f:
+            f.write("position,velocity,acceleration,jerk,time\n")
+            f.writelines(f"{p},{v},{a},{j},{t}\n" for p, v, a, j, t in segments)
+        script.write_text('@0\nLoadSegmentTable(Axis1, "big.csv", 0, 2)\n')
+        with pmdfmu.Chip(memorySize=600_000, script=script) as chip:
+            chip.run(1)
+        return time.perf_counter() - start
+
+    port, script = n / by_memory_port(), n / by_script()
+    best = max(port, script)
+    report("5 upload 100 000 segments", f"{best / 1e6:.2f} M segments/s (script)" if script > port
+           else f"{best / 1e6:.2f} M segments/s (memory port)", f"memory port {port / 1e6:.2f} M/s",
+           best / port, ">= 1 M/s", best >= 1e6)
+
+
+# 6. memory per instance
+def memory(tmp: Path) -> None:
+    gen = generated_dir()
+    src = tmp / "size.c"
+    src.write_text('#include <stdio.h>\n#include "instance.h"\nint main(void) { printf("%zu\\n", sizeof(PmdInstance)); '
+                   'return 0; }\n')
+    exe = tmp / "size"
+    subprocess.run(["cc", "-std=c99", f"-I{REPO / 'fmu_src' / 'chip'}", f"-I{REPO / 'fmu_src' / 'fmi'}", f"-I{gen}",
+                    str(src), "-o", str(exe)], check=True)
+    size = int(subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout)
+    words = 0x4000
+    report("6 instance memory (memorySize 0x4000)", f"{(size + 4 * words) / 1024:.0f} KiB",
+           f"memorySize x 4 = {4 * words / 1024:.0f} KiB", (size + 4 * words) / (4 * words),
+           "<= memorySize x 4 + 64 KiB", size <= 64 * 1024)
+
+
+def main() -> int:
+    with tempfile.TemporaryDirectory() as d:
+        tmp = Path(d)
+        for bench in (engine, coarse, per_step, recording, upload, memory):
+            try:
+                bench(tmp) if bench.__code__.co_argcount else bench()
+            except Exception as e:            # one failing benchmark does not hide the others
+                rows.append((bench.__name__, f"failed: {e}", "", "", "", "NO"))
+    widths = [max(len(str(r[i])) for r in rows + [HEAD]) for i in range(6)]
+    for r in [HEAD] + rows:
+        print("  ".join(str(c).ljust(w) for c, w in zip(r, widths)))
+    return 0
+
+
+HEAD = ("benchmark", "figure", "baseline (same run)", "ratio", "target", "met")
+
+if __name__ == "__main__":
+    sys.exit(main())
