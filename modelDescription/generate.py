@@ -80,6 +80,7 @@ def fmi2_xml(variables, token: str, sources=()) -> str:
         "  <ModelVariables>",
     ]
     outputs = []
+    variables = [v for v in variables if v.type != "Binary"]     # FMI 2 has no Binary type
     for i, v in enumerate(variables, start=1):
         initial = ' initial="exact"' if v.causality == "parameter" else ""
         lines.append(f'    <ScalarVariable name="{v.name}" valueReference="{v.vr}" causality="{v.causality}"'
@@ -159,7 +160,8 @@ def variables3_c(variables3):
          "#ifndef PMD_VARIABLES3_H", "#define PMD_VARIABLES3_H", "",
          f"#define PMD_VR3_MAX {vr_max}", f"#define PMD_VARIABLE3_COUNT {len(variables3)}", "",
          "/* FMI 3 types, in the order of the fmi3 get/set functions that use them. */",
-         "typedef enum { PMD3_FLOAT64, PMD3_INT32, PMD3_UINT32, PMD3_UINT16, PMD3_BOOLEAN, PMD3_STRING } PmdType3;",
+         "typedef enum { PMD3_FLOAT64, PMD3_INT32, PMD3_UINT32, PMD3_UINT16, PMD3_BOOLEAN, PMD3_STRING, PMD3_BINARY }"
+         " PmdType3;",
          "",
          "typedef struct {",
          "    unsigned vr;             /* also the FMI 2 value reference of element 1 */",
@@ -182,7 +184,7 @@ def variables_c(variables, token: str):
         f'#define PMD_INSTANTIATION_TOKEN "{token}"',
         f"#define PMD_VR_MAX {vr_max}",
         f"#define PMD_VARIABLE_COUNT {len(variables)}", "",
-        "typedef enum { PMD_REAL, PMD_INTEGER, PMD_BOOLEAN, PMD_STRING } PmdType;",
+        "typedef enum { PMD_REAL, PMD_INTEGER, PMD_BOOLEAN, PMD_STRING, PMD_BINARY } PmdType;",
         "typedef enum { PMD_PARAMETER, PMD_INPUT, PMD_OUTPUT, PMD_INDEPENDENT } PmdCausality;", "",
         "/* One per row of variables.csv; index tells the axis or array element. */",
         "typedef enum {",
@@ -202,7 +204,8 @@ def variables_c(variables, token: str):
         "extern const short pmd_variable_of_vr[PMD_VR_MAX + 1];", "",
         "#endif", "",
     ]
-    types = {"Real": "PMD_REAL", "Integer": "PMD_INTEGER", "Boolean": "PMD_BOOLEAN", "String": "PMD_STRING"}
+    types = {"Real": "PMD_REAL", "Integer": "PMD_INTEGER", "Boolean": "PMD_BOOLEAN", "String": "PMD_STRING",
+             "Binary": "PMD_BINARY"}
     caus = {"parameter": "PMD_PARAMETER", "input": "PMD_INPUT", "output": "PMD_OUTPUT",
             "independent": "PMD_INDEPENDENT"}
     c = [

@@ -35,7 +35,8 @@ def test_native_types_arrays_and_the_fixed_internal_step():
     md2 = read_model_description(str(pmdfmu.default_fmu(2)))
     names2 = {x.name: x.valueReference for x in md2.modelVariables}
     for name, x in v.items():                       # same names and value references; arrays at element 1
-        assert names2.get(name, names2.get(name + "[1]")) == x.valueReference
+        if x.type != "Binary":                      # record.data exists in FMI 3 only
+            assert names2.get(name, names2.get(name + "[1]")) == x.valueReference
 
 
 def test_the_same_scenario_gives_identical_outputs_through_fmi2_and_fmi3():

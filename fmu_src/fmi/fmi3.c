@@ -18,7 +18,7 @@ typedef struct {
 } Component;
 
 static const fmi3Status status_of[] = {fmi3OK, fmi3Warning, fmi3Discard, fmi3Error, fmi3Fatal};
-static const char *const type_names[] = {"Float64", "Int32", "UInt32", "UInt16", "Boolean", "String"};
+static const char *const type_names[] = {"Float64", "Int32", "UInt32", "UInt16", "Boolean", "String", "Binary"};
 
 static void log_to_environment(void *environment, const char *instanceName, PmdStatus status, const char *category,
                                const char *message)
@@ -368,15 +368,32 @@ fmi3Status fmi3SetString(fmi3Instance c, const fmi3ValueReference vrs[], size_t 
 fmi3Status fmi3GetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, size_t valueSizes[],
                          fmi3Binary values[], size_t nValues)
 {
-    (void)valueSizes; (void)values; (void)nValues;
-    return no_such_type(c, "fmi3GetBinary", "Binary", vrs, nvr, PMD_GET_STATES);
+    PmdInstance *inst = begin(c, "fmi3GetBinary", PMD_GET_STATES);
+    size_t i;
+    if (!inst || !pmd_arrays_given(inst, "fmi3GetBinary", nvr, vrs, values) ||
+        !pmd_arrays_given(inst, "fmi3GetBinary", nvr, valueSizes, valueSizes) ||
+        !count_matches(inst, "fmi3GetBinary", "Binary", vrs, nvr, nValues))
+        return fmi3Error;
+    for (i = 0; i < nvr; i++)
+        if (pmd_get_binary(inst, "fmi3GetBinary", vrs[i], &values[i], &valueSizes[i]) != PMD_OK)
+            return fmi3Error;
+    return fmi3OK;
 }
 
 fmi3Status fmi3SetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, const size_t valueSizes[],
                          const fmi3Binary values[], size_t nValues)
 {
-    (void)valueSizes; (void)values; (void)nValues;
-    return no_such_type(c, "fmi3SetBinary", "Binary", vrs, nvr, PMD_SET_STATES);
+    PmdInstance *inst = begin(c, "fmi3SetBinary", PMD_SET_STATES);
+    (void)valueSizes; (void)values;
+    if (!inst || !pmd_arrays_given(inst, "fmi3SetBinary", nvr, vrs, vrs) ||
+        !count_matches(inst, "fmi3SetBinary", "Binary", vrs, nvr, nValues))
+        return fmi3Error;
+    if (nvr > 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi3SetBinary: %s is an output and cannot be set",
+                         pmd_variables3[pmd_variable3_of_vr[vrs[0]]].name);
+        return fmi3Error;
+    }
+    return fmi3OK;
 }
 
 fmi3Status fmi3GetClock(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, fmi3Clock values[])

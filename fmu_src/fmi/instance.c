@@ -64,6 +64,11 @@ static void set_defaults(PmdInstance *inst)
     inst->scriptPath = NULL;
     pmd_script_free(&inst->script);
     inst->scriptNext = 0;
+    free(inst->record);
+    inst->record = NULL;
+    inst->recordEnabled = 0;
+    inst->recordCapacity = 65536;
+    inst->recordCount = 0;
     memset(inst->chip.memory, 0, (size_t)inst->memorySize * sizeof(uint32_t));
     pmd_chip_init(&inst->chip, inst->chip.memory, (uint32_t)inst->memorySize);
 }
@@ -97,6 +102,7 @@ void pmd_instance_free(PmdInstance *inst)
     free(inst->instanceName);
     free(inst->scriptPath);
     pmd_script_free(&inst->script);
+    free(inst->record);
     free(inst);
 }
 
@@ -196,6 +202,20 @@ static int follow_sample_time(PmdInstance *inst, double at)
     return 1;
 }
 
+/* Appends the registers of the cycle just run to record.data. */
+static void record_cycle(PmdInstance *inst)
+{
+    int32_t *row = inst->record + (size_t)inst->recordCount++ * PMD_RECORD_WORDS;
+    int n;
+    row[0] = pmd_int32(inst->chip.s.time);
+    for (n = 0; n < PMD_AXES; n++) {
+        const PmdTrajectory *t = &inst->chip.s.axis[n].trajectory;
+        row[1 + 3 * n] = t->position;
+        row[2 + 3 * n] = pmd_commanded_velocity(t);
+        row[3 + 3 * n] = pmd_commanded_acceleration(t);
+    }
+}
+
 /* How many cycles fast-forward may take: up to the end of the step and the next script step. */
 static int64_t cycles_to_skip(const PmdInstance *inst, int64_t end)
 {
@@ -240,6 +260,16 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         }
         inst->scriptNext = 0;
     }
+    free(inst->record);
+    inst->record = NULL;
+    if (inst->recordCapacity > 0) {
+        inst->record = (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS * sizeof(int32_t));
+        if (!inst->record) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no host memory for record.capacity %u", fn,
+                             (unsigned)inst->recordCapacity);
+            return PMD_ERROR;
+        }
+    }
     double us = floor(inst->cycleTime * 1e6 + 0.5);
     inst->activeCycleTime = inst->cycleTime;
     inst->anchorTime = 0;
@@ -275,6 +305,12 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
     }
     pmd_commit_ports(inst);
     end = cycles_before(inst, t + h);
+    if (inst->recordEnabled && end - inst->nextCycle > (int64_t)inst->recordCapacity) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: recording a step of %lld cycles, but record.capacity "
+                         "is %u", fn, (long long)(end - inst->nextCycle), (unsigned)inst->recordCapacity);
+        return PMD_ERROR;
+    }
+    inst->recordCount = 0;
     /* script steps due at a cycle run just before it, inside the step that runs it */
     while (inst->nextCycle < end) {
         run_script(inst);
@@ -285,7 +321,10 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
         }
         pmd_chip_cycle(&inst->chip);
         inst->nextCycle++;
-        inst->nextCycle += pmd_chip_fast_forward(&inst->chip, cycles_to_skip(inst, end));
+        if (inst->recordEnabled)
+            record_cycle(inst);                  /* every cycle: no fast-forward */
+        else
+            inst->nextCycle += pmd_chip_fast_forward(&inst->chip, cycles_to_skip(inst, end));
     }
     inst->time = t + h;
     return PMD_OK;
@@ -334,7 +373,7 @@ void pmd_commit_ports(PmdInstance *inst)
 
 /* ---- variables ------------------------------------------------------------- */
 
-static const char *const type_names[] = {"Real", "Integer", "Boolean", "String"};
+static const char *const type_names[] = {"Real", "Integer", "Boolean", "String", "Binary"};
 
 static const PmdVariable *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdType type)
 {
@@ -436,6 +475,7 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     case VAR_memory_address: *value = inst->memoryAddress; break;
     case VAR_memory_count: *value = inst->memoryCount; break;
     case VAR_memory_strobe: *value = inst->memoryStrobe; break;
+    case VAR_record_capacity: *value = (int32_t)inst->recordCapacity; break;
     default: *value = inst->memoryData[v->index]; break;   /* VAR_memory_data */
     }
     return PMD_OK;
@@ -453,6 +493,7 @@ PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *v
     case VAR_axis_positiveLimit: *value = ax->positiveLimitInput; break;
     case VAR_axis_negativeLimit: *value = ax->negativeLimitInput; break;
     case VAR_axis_home: *value = ax->homeInput; break;
+    case VAR_record_enabled: *value = inst->recordEnabled; break;
     default: *value = pmd_host_interrupt(&inst->chip); break;   /* VAR_host_interrupt */
     }
     return PMD_OK;
@@ -518,6 +559,10 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
         if (value < 0)
             return out_of_range(inst, fn, v, value, ">= 0");
         break;
+    case VAR_record_capacity:
+        if (value < 0 || (uint32_t)value > PMD_MAX_RECORD_CYCLES)
+            return out_of_range(inst, fn, v, value, "0 .. 2^24 cycles");
+        break;
     default:
         break;
     }
@@ -533,6 +578,7 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     case VAR_memory_address: inst->memoryAddress = value; break;
     case VAR_memory_count: inst->memoryCount = value; break;
     case VAR_memory_strobe: inst->memoryStrobe = value; break;
+    case VAR_record_capacity: inst->recordCapacity = (uint32_t)value; break;
     default: inst->memoryData[v->index] = value; break;   /* VAR_memory_data */
     }
     return PMD_OK;
@@ -552,6 +598,13 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
     case VAR_loopback: inst->chip.s.loopback = (uint8_t)value; break;
     case VAR_axis_positiveLimit: ax->positiveLimitInput = (uint8_t)value; break;
     case VAR_axis_negativeLimit: ax->negativeLimitInput = (uint8_t)value; break;
+    case VAR_record_enabled:
+        if (value && !inst->record) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: record.capacity is 0", fn);
+            return PMD_ERROR;
+        }
+        inst->recordEnabled = (uint8_t)value;
+        break;
     default: ax->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
     }
     return PMD_OK;
@@ -586,5 +639,16 @@ PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const c
     strcpy(copy, value);
     free(inst->scriptPath);
     inst->scriptPath = copy;
+    return PMD_OK;
+}
+
+PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value, size_t *size)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_BINARY);
+    if (!v)
+        return PMD_ERROR;
+    /* the only Binary: record.data, little-endian int32 words as this platform stores them */
+    *value = (const unsigned char *)inst->record;
+    *size = (size_t)inst->recordCount * PMD_RECORD_WORDS * sizeof(int32_t);
     return PMD_OK;
 }

@@ -59,7 +59,16 @@ typedef struct {
     char *scriptPath;
     PmdScript script;
     size_t scriptNext;               /* the next step to run */
+
+    /* bulk recording (FMI 3 record.data): PMD_RECORD_WORDS int32 per cycle of the last doStep */
+    uint8_t recordEnabled;
+    uint32_t recordCapacity;         /* cycles */
+    int32_t *record;
+    uint32_t recordCount;            /* cycles recorded by the last doStep */
 } PmdInstance;
+
+#define PMD_RECORD_WORDS (1 + 3 * PMD_AXES)
+#define PMD_MAX_RECORD_CYCLES (1u << 24)
 
 extern const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT];
 
@@ -91,6 +100,7 @@ PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double va
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t value, int apply);
 PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply);
 PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value);
+PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value, size_t *size);
 PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply);
 PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const char *type);
 

@@ -58,6 +58,7 @@ void pmd_state_write(const PmdInstance *inst, unsigned char *out)
     copy.environment = NULL;
     copy.scriptPath = NULL;
     memset(&copy.script, 0, sizeof copy.script);
+    copy.record = NULL;
     memcpy(body, &copy, sizeof copy);
     memcpy(body + sizeof copy, inst->chip.memory, (size_t)inst->memorySize * sizeof(uint32_t));
 
@@ -133,6 +134,11 @@ PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char 
     /* the script is this instance's parameter; the snapshot keeps only how far it ran */
     inst->scriptPath = saved.scriptPath;
     inst->script = saved.script;
+    /* so is the recording buffer; the restored state has recorded nothing yet */
+    inst->record = saved.record;
+    inst->recordCapacity = saved.recordCapacity;
+    inst->recordEnabled = (uint8_t)(inst->recordEnabled && inst->record);
+    inst->recordCount = 0;
     return PMD_OK;
 }
 
