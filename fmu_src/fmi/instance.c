@@ -419,10 +419,9 @@ static int settable(PmdInstance *inst, const char *fn, const PmdVariable *v)
     return 1;
 }
 
-static const PmdAxis *axis_of(const PmdInstance *inst, const PmdVariable *v)
-{
-    return &inst->chip.s.axis[v->index];
-}
+/* The axis of a per-axis variable (index 0..3); only per-axis cases use it:
+ * for other variables index is an array element and no axis exists. */
+#define AXIS_OF(v) (&inst->chip.s.axis[(v)->index])
 
 PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value)
 {
@@ -434,7 +433,7 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
         *value = v->family == VAR_time ? inst->time : inst->cycleTime;
         return PMD_OK;
     }
-    t = &axis_of(inst, v)->trajectory;
+    t = &AXIS_OF(v)->trajectory;               /* the Reals left are per axis */
     switch (v->family) {
     case VAR_axis_position:
         *value = (double)t->position + (double)t->fraction / (double)PMD_U_PER_COUNT;
@@ -452,19 +451,17 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
 PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
-    const PmdAxis *ax;
     if (!v)
         return PMD_ERROR;
-    ax = axis_of(inst, v);
     switch (v->family) {
     case VAR_memorySize: *value = inst->memorySize; break;
     case VAR_chipTime: *value = pmd_int32(inst->chip.s.time); break;
-    case VAR_axis_commandedPosition: *value = ax->trajectory.position; break;
-    case VAR_axis_commandedVelocity: *value = pmd_commanded_velocity(&ax->trajectory); break;
-    case VAR_axis_commandedAcceleration: *value = pmd_commanded_acceleration(&ax->trajectory); break;
+    case VAR_axis_commandedPosition: *value = AXIS_OF(v)->trajectory.position; break;
+    case VAR_axis_commandedVelocity: *value = pmd_commanded_velocity(&AXIS_OF(v)->trajectory); break;
+    case VAR_axis_commandedAcceleration: *value = pmd_commanded_acceleration(&AXIS_OF(v)->trajectory); break;
     case VAR_axis_activityStatus: *value = pmd_activity_status(&inst->chip, v->index); break;
-    case VAR_axis_eventStatus: *value = ax->eventStatus; break;
-    case VAR_axis_actualPosition: *value = ax->actualPositionInput; break;
+    case VAR_axis_eventStatus: *value = AXIS_OF(v)->eventStatus; break;
+    case VAR_axis_actualPosition: *value = AXIS_OF(v)->actualPositionInput; break;
     case VAR_host_word: *value = inst->hostWord[v->index]; break;
     case VAR_host_wordCount: *value = inst->hostWordCount; break;
     case VAR_host_strobe: *value = inst->hostStrobe; break;
@@ -484,15 +481,13 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
 PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
-    const PmdAxis *ax;
     if (!v)
         return PMD_ERROR;
-    ax = axis_of(inst, v);
     switch (v->family) {
     case VAR_loopback: *value = inst->chip.s.loopback; break;
-    case VAR_axis_positiveLimit: *value = ax->positiveLimitInput; break;
-    case VAR_axis_negativeLimit: *value = ax->negativeLimitInput; break;
-    case VAR_axis_home: *value = ax->homeInput; break;
+    case VAR_axis_positiveLimit: *value = AXIS_OF(v)->positiveLimitInput; break;
+    case VAR_axis_negativeLimit: *value = AXIS_OF(v)->negativeLimitInput; break;
+    case VAR_axis_home: *value = AXIS_OF(v)->homeInput; break;
     case VAR_record_enabled: *value = inst->recordEnabled; break;
     default: *value = pmd_host_interrupt(&inst->chip); break;   /* VAR_host_interrupt */
     }
@@ -538,7 +533,6 @@ static PmdStatus set_memory_size(PmdInstance *inst, int32_t words)
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
-    PmdAxis *ax;
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
     switch (v->family) {
@@ -568,10 +562,9 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     }
     if (!apply)
         return PMD_OK;
-    ax = &inst->chip.s.axis[v->index];
     switch (v->family) {
     case VAR_memorySize: return set_memory_size(inst, value);
-    case VAR_axis_actualPosition: ax->actualPositionInput = value; break;
+    case VAR_axis_actualPosition: AXIS_OF(v)->actualPositionInput = value; break;
     case VAR_host_word: inst->hostWord[v->index] = value; break;
     case VAR_host_wordCount: inst->hostWordCount = value; break;
     case VAR_host_strobe: inst->hostStrobe = value; break;
@@ -587,17 +580,15 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
 PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
-    PmdAxis *ax;
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
     if (!apply)
         return PMD_OK;
-    ax = &inst->chip.s.axis[v->index];
     value = value != 0;
     switch (v->family) {
     case VAR_loopback: inst->chip.s.loopback = (uint8_t)value; break;
-    case VAR_axis_positiveLimit: ax->positiveLimitInput = (uint8_t)value; break;
-    case VAR_axis_negativeLimit: ax->negativeLimitInput = (uint8_t)value; break;
+    case VAR_axis_positiveLimit: AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;
+    case VAR_axis_negativeLimit: AXIS_OF(v)->negativeLimitInput = (uint8_t)value; break;
     case VAR_record_enabled:
         if (value && !inst->record) {
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: record.capacity is 0", fn);
@@ -605,7 +596,7 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
         }
         inst->recordEnabled = (uint8_t)value;
         break;
-    default: ax->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
+    default: AXIS_OF(v)->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
     }
     return PMD_OK;
 }
