@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 
 import pmdfmu
-from pmdfmu.chip import REPO
 
+REPO = Path(__file__).resolve().parent.parent
 BUILD = REPO / "build"
 FMI_HEADERS = Path(__import__("fmpy").__file__).parent / "c-code"
 rows = []

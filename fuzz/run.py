@@ -11,8 +11,6 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "python"))
-from pmdfmu.chip import REPO  # noqa: E402
 
 TARGETS = ("host", "fmi", "script")
 
@@ -31,7 +29,7 @@ def include_flags(gen: Path):
 
 
 def generated() -> Path:
-    gen = REPO / "build" / "generated"
+    gen = ROOT / "build" / "generated"
     subprocess.run([sys.executable, str(ROOT / "modelDescription" / "generate.py"), str(gen)], check=True)
     return gen
 
