@@ -192,10 +192,41 @@ def memory(tmp: Path) -> None:
            "<= memorySize x 4 + 64 KiB", size <= 64 * 1024)
 
 
+# 7. a sweep on a 2-worker local cluster against the same cases run serially
+def sweep_speedup(tmp: Path) -> None:
+    script = REPO / "examples" / "two_axis.script"
+    cases = [pmdfmu.Case(f"case{k}", script=str(script), parameters=(("cycleTime", 1e-4 * (1 + k % 3)),))
+             for k in range(8)]
+    serial = timed(lambda: pmdfmu.sweep(cases, scheduler="serial"))
+    from dask.distributed import Client, LocalCluster
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        pmdfmu.sweep(cases[:2], scheduler=client)                      # workers warm: FMU loaded
+        parallel = timed(lambda: pmdfmu.sweep(cases, scheduler=client))
+    report("7 sweep, 8 script cases on 2 local workers", f"{parallel:.2f} s", f"serial {serial:.2f} s",
+           serial / parallel, "speed-up (2 cores)", serial / parallel > 1.0)
+
+
+# 8. per-case overhead: cases that do (almost) nothing
+def sweep_overhead(tmp: Path) -> None:
+    script = tmp / "nothing.script"
+    script.write_text("@0\nNoOperation(Axis1)\n")
+    cases = [pmdfmu.Case(f"nothing{k}", script=str(script)) for k in range(40)]
+    pmdfmu.sweep(cases[:1], scheduler="serial")                          # the instance exists
+    serial = timed(lambda: pmdfmu.sweep(cases, scheduler="serial")) / len(cases)
+    from dask.distributed import Client, LocalCluster
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        pmdfmu.sweep(cases[:2], scheduler=client)
+        parallel = timed(lambda: pmdfmu.sweep(cases, scheduler=client)) / len(cases)
+    report("8 per-case overhead (empty cases)", f"{parallel * 1e3:.1f} ms on the cluster",
+           f"serial {serial * 1e3:.1f} ms", parallel / serial, "report", True)
+
+
 def main() -> int:
     with tempfile.TemporaryDirectory() as d:
         tmp = Path(d)
-        for bench in (engine, coarse, per_step, recording, upload, memory):
+        for bench in (engine, coarse, per_step, recording, upload, memory, sweep_speedup, sweep_overhead):
             try:
                 bench(tmp) if bench.__code__.co_argcount else bench()
             except Exception as e:            # one failing benchmark does not hide the others

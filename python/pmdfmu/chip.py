@@ -191,28 +191,43 @@ class Chip:
         self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
         self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
         self._getters.pop("String")           # run() records numbers; get() reads the script path below
+        try:
+            self._initialize(parameters)
+        except FMUError:
+            self.fmu.freeInstance()
+            shutil.rmtree(self._unzipdir, ignore_errors=True)
+            self.fmu = None
+            raise
+        self._vr = {name: v.valueReference for name, v in self.variables.items()}
+
+    # ---- life cycle ----
+
+    def _initialize(self, parameters) -> None:
         for name, value in parameters.items():
             if name == "script":              # a path: relative to where the user is, not the FMU
                 value = str(Path(value).resolve()) if value else ""
             self.set(name, value)
         try:
-            if fmi_version == 2:
+            if self.fmi_version == 2:
                 self.fmu.enterInitializationMode()
             else:
                 self.fmu.enterInitializationMode(startTime=0.0)
             self.fmu.exitInitializationMode()
         except Exception:
             errors = [m.message for m in self.messages if m.status == "Error"]
-            self.fmu.freeInstance()
-            shutil.rmtree(self._unzipdir, ignore_errors=True)
-            self.fmu = None
             raise FMUError("\n".join(errors) or "initialization failed") from None
         self.cycle_time = self.get("cycleTime")
-        self.cycles = 0               # chip cycles run since instantiation (the time grid index)
+        self.cycles = 0               # chip cycles run since initialization (the time grid index)
         self._anchor = (0.0, 0)       # (time, cycle) where the grid last restarted (SetSampleTime)
-        self._vr = {name: v.valueReference for name, v in self.variables.items()}
 
-    # ---- life cycle ----
+    def reinitialize(self, **parameters) -> None:
+        """The same instance as new: fmiReset, then these parameters and a new
+        initialization (a sweep reuses one instance per worker this way)."""
+        self.fmu.reset()
+        self.messages.clear()
+        if self.fmi_version == 2:
+            self.fmu.setupExperiment(startTime=0.0)
+        self._initialize(parameters)
 
     def close(self) -> None:
         if self.fmu is not None:

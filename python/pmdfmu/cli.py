@@ -3,6 +3,7 @@
   pmdfmu build      configure and build the FMU with CMake (into build/)
   pmdfmu demo       run the bundled 2-axis external profile; write CSV and PNG
   pmdfmu run FILE   run a script or a segment table; write CSV and PNG
+  pmdfmu sweep CASES  run a table of cases on Dask; write a summary table and plot
   pmdfmu validate   check the FMU with fmpy.validation
   pmdfmu info       the FMU's variables and the chip's commands
 """
@@ -81,6 +82,18 @@ def cmd_run(args) -> int:
     return 0
 
 
+def cmd_sweep(args) -> int:
+    from .sweep import read_cases, sweep
+    result = sweep(read_cases(args.cases), scheduler=args.scheduler, workers=args.workers)
+    result.write(args.out)
+    failed = [r for r in result.rows if r["status"] != "ok"]
+    print(f"{len(result.rows) - len(failed)} of {len(result.rows)} cases ran; wrote {args.out}/summary.csv, "
+          f"{args.out}/summary.png")
+    for r in failed:
+        print(f"failed: {r['name']}: {r['reason']}")
+    return 0
+
+
 def cmd_validate(args) -> int:
     """fmpy.validation on the given FMU, or on both built ones."""
     from fmpy.validation import validate_fmu
@@ -138,6 +151,13 @@ def main(argv: Optional[List[str]] = None) -> int:
             p.add_argument("--upload", choices=("memory", "command"), default="memory",
                            help="fill the buffers through the dual-port memory or with WriteBuffer")
             p.add_argument("--max-cycles", type=int, default=1_000_000)
+
+    p = sub.add_parser("sweep", help="run a table of cases on Dask")
+    p.add_argument("cases", help="CSV: name, script or table, fmi_version, max_cycles, FMU parameters")
+    p.add_argument("--out", default="sweep-out", help="output folder (default sweep-out)")
+    p.add_argument("--scheduler", help="a Dask scheduler address, or 'serial' (default: a local cluster)")
+    p.add_argument("--workers", type=int, default=2, help="local cluster processes (default 2)")
+    p.set_defaults(func=cmd_sweep)
 
     for name, func, help_ in (("validate", cmd_validate, "validate the FMU"),
                               ("info", cmd_info, "list variables and commands")):

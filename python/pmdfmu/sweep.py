@@ -1,0 +1,194 @@
+"""Parameter and profile studies on Dask (issue 7).
+
+A sweep runs a table of cases - FMU parameters, a script or a segment table,
+an FMI version - and collects each case's recorded outputs and summary figures
+(final position, peak velocity and acceleration per axis, time to finish,
+errors) into one result table, with a summary plot.
+
+    result = pmdfmu.sweep(pmdfmu.read_cases("cases.csv"))           # a local cluster
+    result = pmdfmu.sweep(cases, scheduler="tcp://10.0.0.5:8786")    # any Dask scheduler
+    result = pmdfmu.sweep(cases, scheduler="serial")                 # in this process
+    result.write("out/")            # summary.csv, one CSV per case, summary.png
+
+Each Dask worker keeps one FMU instance per FMU and FMI version and reuses it
+across cases: fmiReset, the case's parameters, a new initialization. A case
+that fails (a bad script, a refused initialization, a run that raises) becomes
+a failed row with its reason; the sweep goes on.
+"""
+from __future__ import annotations
+
+import csv
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import profile
+from .chip import Chip
+
+PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One run: a script or a segment table (CSV), parameters, an FMI version."""
+    name: str
+    script: Optional[str] = None
+    table: Optional[str] = None
+    parameters: Tuple[Tuple[str, object], ...] = ()
+    fmi_version: int = 2
+    max_cycles: int = 1_000_000
+    fmu: Optional[str] = None
+
+
+def read_cases(path: Union[str, Path]) -> List[Case]:
+    """A case table: columns name, script or table (paths relative to the
+    table's folder), optional fmi_version, max_cycles, and any of the FMU
+    parameters cycleTime, memorySize, loopback, record.capacity (blank: default)."""
+    path = Path(path)
+    cases = []
+    with open(path, newline="") as f:
+        for n, row in enumerate(csv.DictReader(f), start=2):
+            def resolve(key):
+                value = (row.get(key) or "").strip()
+                return str((path.parent / value).resolve()) if value else None
+            params = []
+            for name in PARAMETERS:
+                value = (row.get(name) or "").strip()
+                if value:
+                    params.append((name, value.lower() in ("1", "true", "yes") if name == "loopback"
+                                   else float(value) if name == "cycleTime" else int(value, 0)))
+            if not (row.get("name") or "").strip():
+                raise ValueError(f"{path}: row {n}: a case needs a name")
+            cases.append(Case(row["name"].strip(), resolve("script"), resolve("table"), tuple(params),
+                              int(row.get("fmi_version") or 2), int(row.get("max_cycles") or 1_000_000)))
+    return cases
+
+
+# ---- one case, in a worker -----------------------------------------------------
+
+_instances: Dict[Tuple[Optional[str], int], Chip] = {}     # this worker's instances, reused across cases
+
+
+def _instance(case: Case, parameters: dict) -> Chip:
+    key = (case.fmu, case.fmi_version)
+    chip = _instances.get(key)
+    if chip is None:
+        chip = Chip(fmi_version=case.fmi_version, fmu=case.fmu, log_categories=["warnings"], **parameters)
+        _instances[key] = chip
+    else:
+        chip.reinitialize(**parameters)
+    return chip
+
+
+def _summary(case: Case, rec: np.ndarray, axes: Sequence[int], messages) -> dict:
+    row = {"name": case.name, "status": "ok", "reason": "", "cycles": len(rec),
+           "warnings": sum(m.status == "Warning" for m in messages)}
+    for a in range(4):
+        n = a + 1
+        if a in axes and len(rec):
+            row[f"axis{n}.finalPosition"] = int(rec[f"axis{n}.commandedPosition"][-1])
+            row[f"axis{n}.peakVelocity"] = float(np.abs(rec[f"axis{n}.velocity"]).max())
+            row[f"axis{n}.peakAcceleration"] = float(np.abs(rec[f"axis{n}.acceleration"]).max())
+        else:
+            row[f"axis{n}.finalPosition"] = row[f"axis{n}.peakVelocity"] = row[f"axis{n}.peakAcceleration"] = ""
+    return row
+
+
+def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
+    """Runs one case; never raises: a failure is a row with status "failed"."""
+    parameters = dict(case.parameters)
+    try:
+        if bool(case.script) == bool(case.table):
+            raise ValueError("a case names a script or a table")
+        if case.script:
+            parameters["script"] = case.script
+            chip = _instance(case, parameters)
+            text = Path(case.script).read_text()
+            axes = sorted({int(n) - 1 for n in re.findall(r"Axis([1-4])", text)}) or [0]
+            rec = profile.run_script(chip, Path(case.script), axes, max_cycles=case.max_cycles)
+        else:
+            parameters["script"] = ""
+            chip = _instance(case, parameters)
+            tables = profile.read_segment_table(Path(case.table))
+            axes = sorted(tables)
+            rec = profile.run_segment_table(chip, tables, max_cycles=case.max_cycles)
+        return _summary(case, rec, axes, chip.messages), rec
+    except Exception as e:                      # the sweep goes on: the row says why
+        reason = " ".join(str(e).split()) or type(e).__name__
+        row = {"name": case.name, "status": "failed", "reason": reason, "cycles": 0, "warnings": 0}
+        row.update({f"axis{n}.{q}": "" for n in range(1, 5)
+                    for q in ("finalPosition", "peakVelocity", "peakAcceleration")})
+        return row, None
+
+
+# ---- the sweep --------------------------------------------------------------------
+
+@dataclass
+class SweepResult:
+    rows: List[dict]
+    recordings: Dict[str, np.ndarray] = field(default_factory=dict)
+
+    def write(self, out: Union[str, Path]) -> None:
+        """summary.csv, CASE.csv per successful case, summary.png."""
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        with open(out / "summary.csv", "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(self.rows[0]))
+            w.writeheader()
+            w.writerows(self.rows)
+        for name, rec in self.recordings.items():
+            profile.write_csv(out / f"{name}.csv", rec)
+        self.plot(out / "summary.png")
+
+    def plot(self, path: Union[str, Path]) -> None:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        ok = [r for r in self.rows if r["status"] == "ok"]
+        fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 8))
+        for r in ok:
+            rec = self.recordings[r["name"]]
+            first = next(n for n in rec.dtype.names if n.endswith(".position"))    # the case's first axis
+            top.plot(rec["cycle"] - rec["cycle"][0], rec[first], label=f'{r["name"]} ({first.split(".")[0]})')
+        top.set_xlabel("cycles")
+        top.set_ylabel("position [counts]")
+        top.legend(fontsize="small")
+        names = [r["name"] for r in self.rows]
+        peaks = [max((r[f"axis{n}.peakVelocity"] or 0) for n in range(1, 5)) for r in self.rows]
+        colors = ["tab:blue" if r["status"] == "ok" else "tab:red" for r in self.rows]
+        bottom.bar(names, peaks, color=colors)
+        for x, r in enumerate(self.rows):
+            if r["status"] != "ok":
+                bottom.annotate("failed", (x, 0), ha="center", va="bottom", color="tab:red")
+        bottom.set_ylabel("peak velocity [counts/s] (red: failed)")
+        fig.suptitle(f"pmdfmu sweep: {len(ok)} of {len(self.rows)} cases ran")
+        fig.tight_layout()
+        fig.savefig(path, dpi=100)
+        plt.close(fig)
+
+
+def sweep(cases: Sequence[Case], scheduler: Optional[str] = None, workers: int = 2) -> SweepResult:
+    """Runs the cases: scheduler None starts a local cluster of `workers`
+    processes, "serial" runs them in this process, anything else is a Dask
+    scheduler address (or a distributed.Client)."""
+    names = [c.name for c in cases]
+    if len(set(names)) != len(names):
+        raise ValueError("case names must be unique")
+    if scheduler == "serial":
+        results = [run_case(c) for c in cases]
+    else:
+        from dask.distributed import Client, LocalCluster
+        if scheduler is None:
+            with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                              dashboard_address=None) as cluster, Client(cluster) as client:
+                results = client.gather(client.map(run_case, list(cases), pure=False))
+        elif isinstance(scheduler, str):
+            with Client(scheduler) as client:
+                results = client.gather(client.map(run_case, list(cases), pure=False))
+        else:
+            results = scheduler.gather(scheduler.map(run_case, list(cases), pure=False))
+    return SweepResult([row for row, _ in results],
+                       {row["name"]: rec for row, rec in results if rec is not None})
