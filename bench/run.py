@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 import pmdfmu
+from pmdfmu.profile import load_external_profile, start_external_profile
 
 REPO = Path(__file__).resolve().parent.parent
 BUILD = REPO / "build"
@@ -60,14 +61,9 @@ def engine(tmp: Path) -> None:
 
 
 def load_table(chip, segments):
-    ax = chip.axis(0)
-    for k in range(5):
-        ax.SetBufferStart(2 + k, 0x200 + k * 128)
-        ax.SetBufferLength(2 + k, len(segments))
-        ax.SetBufferFunction(k, 2 + k)
-        chip.write_memory(0x200 + k * 128, [s[k] & 0xFFFFFFFF for s in segments])
-    ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-    ax.Update()
+    """Axis 1 runs the table (seed 000's set-up, through the library)."""
+    load_external_profile(chip, {0: segments})
+    start_external_profile(chip, [0])
 
 
 # 2. a 100-segment table across 10^9 cycles in one doStep, against cycle by cycle

@@ -5,6 +5,7 @@ import random
 import numpy as np
 
 import pmdfmu
+from pmdfmu.profile import load_external_profile, start_external_profile
 from reference import wrap32
 
 OUT = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
@@ -13,8 +14,8 @@ REAL = [f"axis{n}.{q}" for n in range(1, 5) for q in ("position", "velocity", "a
 
 
 def load(chip, rng, rows_per_axis=12, long=(50, 4000)):
+    tables = {}
     for axis in range(3):                                  # axis 4 stays idle
-        ax = chip.axis(axis)
         rows = []
         for _ in range(rows_per_axis):
             v = rng.choice([0, rng.randrange(-0x30000, 0x30000)])
@@ -25,14 +26,9 @@ def load(chip, rng, rows_per_axis=12, long=(50, 4000)):
                 v, a, j = 200 * m, -2 * m, 0
             rows.append((rng.randrange(-5000, 5000), v, a, j, rng.randrange(*long)))
         rows.append((rng.randrange(-10, 10), 0, 0, 0, 0))
-        base = 0x200 + axis * 0x100
-        for k in range(5):
-            ax.SetBufferStart(2 + 5 * axis + k, base + k * len(rows))
-            ax.SetBufferLength(2 + 5 * axis + k, len(rows))
-            ax.SetBufferFunction(k, 2 + 5 * axis + k)
-            chip.write_memory(base + k * len(rows), [r[k] & 0xFFFFFFFF for r in rows])
-        ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-    chip.axis(0).MultiUpdate(0b0111)
+        tables[axis] = rows
+    load_external_profile(chip, tables)
+    start_external_profile(chip, tables)
 
 
 def snapshot(chip):
@@ -65,13 +61,8 @@ def test_a_billion_cycles_of_a_100_segment_table_take_one_coarse_step_and_stay_e
     segments[50] = (segments[50][0], 0x8000, -2, 1, 10_000_000)
     with pmdfmu.Chip() as chip:
         ax = chip.axis(0)
-        for k in range(5):
-            ax.SetBufferStart(2 + k, 0x200 + k * 128)
-            ax.SetBufferLength(2 + k, len(segments))
-            ax.SetBufferFunction(k, 2 + k)
-            chip.write_memory(0x200 + k * 128, [s[k] & 0xFFFFFFFF for s in segments])
-        ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-        ax.Update()
+        load_external_profile(chip, {0: segments})
+        start_external_profile(chip, [0])
         chip.run(10 ** 9 - 1)
         # segment 99 (velocity 1 count/cycle from position 0) has run 9_999_999 of its cycles
         assert ax.GetCommandedPosition() == wrap32(9_999_999 - 1)

@@ -11,6 +11,7 @@ from fmpy.validation import validate_fmu
 
 import pmdfmu
 from pmdfmu import tables
+from pmdfmu.profile import load_external_profile
 
 FMU = pmdfmu.default_fmu()
 TABLES = pmdfmu.tables_dir()
@@ -120,15 +121,9 @@ def test_commands_before_run_take_effect_at_its_first_cycle(chip):
 
 
 def profile(chip, axis, rows):
-    ax = chip.axis(axis)
-    base = 0x200 + axis * 0x400
-    for v in range(5):
-        ax.SetBufferStart(2 + 5 * axis + v, base + v * len(rows))
-        ax.SetBufferLength(2 + 5 * axis + v, len(rows))
-        ax.SetBufferFunction(v, 2 + 5 * axis + v)
-        chip.write_memory(base + v * len(rows), [r[v] & 0xFFFFFFFF for r in rows])
-    ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-    ax.Update()
+    load_external_profile(chip, {axis: rows})
+    chip.axis(axis).SetProfileMode(pmdfmu.PMDExternalProfile)
+    chip.axis(axis).Update()
 
 
 def test_two_instances_in_one_process_run_as_each_does_alone():

@@ -9,7 +9,7 @@ from fmpy.build import build_platform_binary
 from fmpy.util import create_zip_archive
 
 import pmdfmu
-from test_worked_example import WORKED_TABLE
+from test_worked_example import WORKED_TABLE, run_worked_example
 
 
 @pytest.mark.skipif(not shutil.which("cmake"), reason="cmake not installed")
@@ -24,20 +24,8 @@ def test_the_binary_rebuilt_from_sources_runs_the_worked_example(tmp_path, versi
     rebuilt = tmp_path / f"rebuilt-fmi{version}.fmu"
     create_zip_archive(rebuilt, unzipped)
     with pmdfmu.Chip(fmi_version=version, fmu=rebuilt) as chip:
-        ax = chip.axis(0)
-        for buffer_id, function, address in ((2, 0, 0x200), (3, 1, 0x210), (4, 4, 0x220)):
-            ax.SetBufferStart(buffer_id, address)
-            ax.SetBufferLength(buffer_id, 2)
-            ax.SetBufferFunction(function, buffer_id)
-        for position, velocity, time in ((0, 0x10000, 10), (10, 0, 15)):
-            ax.WriteBuffer(2, position)
-            ax.WriteBuffer(3, velocity)
-            ax.WriteBuffer(4, time)
-        chip.run(11003)
-        ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-        ax.Update()
-        rows = chip.run(11, record=["axis1.commandedPosition", "axis1.commandedVelocity"])
-        assert [tuple(int(x) for x in r) for r in rows] == WORKED_TABLE
+        rows = run_worked_example(chip)
+        assert [(int(r[0]), int(r[1]), int(r[2])) for r in rows] == WORKED_TABLE
 
 
 @pytest.mark.parametrize("version", [2, 3])

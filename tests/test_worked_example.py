@@ -8,8 +8,8 @@ WORKED_TABLE = [(11003, 0, 0x10000), (11004, 1, 0x10000), (11005, 2, 0x10000), (
                 (11011, 8, 0x10000), (11012, 9, 0x10000), (11013, 10, 0)]
 
 
-def test_worked_table_comes_out_cycle_by_cycle(any_chip):
-    chip = any_chip
+def run_worked_example(chip):
+    """The seed's two rows, started so that the first is read at chip time 11003."""
     ax = chip.axis(pmdfmu.PMDAxis1)
     for buffer_id, function, address in ((2, PMDBufferFunctionPosition, 0x200),
                                          (3, PMDBufferFunctionVelocity, 0x210),
@@ -26,8 +26,12 @@ def test_worked_table_comes_out_cycle_by_cycle(any_chip):
     assert ax.GetTime() == 11002
     ax.SetProfileMode(pmdfmu.PMDExternalProfile)
     ax.Update()
-    rows = chip.run(11, record=["axis1.commandedPosition", "axis1.commandedVelocity",
+    return chip.run(11, record=["axis1.commandedPosition", "axis1.commandedVelocity",
                                 "axis1.commandedAcceleration", "axis1.activityStatus"])
+
+
+def test_worked_table_comes_out_cycle_by_cycle(any_chip):
+    rows = run_worked_example(any_chip)
     got = [(int(r["cycle"]), int(r["axis1.commandedPosition"]), int(r["axis1.commandedVelocity"])) for r in rows]
     assert got == WORKED_TABLE
     assert (rows["axis1.commandedAcceleration"] == 0).all()
