@@ -69,3 +69,29 @@ def test_a_billion_cycles_of_a_100_segment_table_take_one_coarse_step_and_stay_e
         assert ax.GetTime() == 10 ** 9 - 2
         chip.run(2)
         assert ax.GetCommandedPosition() == 7 and ax.GetActivityStatus() & 0xE000 == 0
+
+
+def test_idle_axes_settle_at_the_same_cycle_in_coarse_steps():
+    """The idle path: the settle count grows while fast-forwarding, as it would cycle by cycle."""
+    seen = []
+    for coarse in (False, True):
+        with pmdfmu.Chip() as chip:
+            ax = chip.axis(0)
+            ax.SetSettleTime(500)
+            ax.SetSettleWindow(3)
+            ax.SetMotionCompleteMode(pmdfmu.PMDMotionCompleteActualPosition)
+            ax.SetPosition(100)
+            ax.SetVelocity(0x10000)
+            ax.SetAcceleration(0x10000)
+            ax.Update()
+            if coarse:
+                bits = []
+                for _ in range(20):
+                    chip.run(97)
+                    bits.append((ax.GetActivityStatus() & 0x80, ax.GetEventStatus() & 1))
+            else:
+                rec = chip.run(97 * 20, record=["axis1.activityStatus", "axis1.eventStatus"])
+                bits = [(int(a) & 0x80, int(e) & 1) for a, e in zip(rec["axis1.activityStatus"][96::97],
+                                                                    rec["axis1.eventStatus"][96::97])]
+            seen.append(bits)
+    assert seen[0] == seen[1] and (0x80, 1) in seen[0] and seen[0][0] == (0, 0)
