@@ -41,9 +41,9 @@ def timed(f):
 
 
 def generated_dir() -> Path:
-    gen = BUILD / "generated"
-    if not (gen / "command_table.c").exists():
-        subprocess.run([sys.executable, str(REPO / "modelDescription" / "generate.py"), str(gen)], check=True)
+    """The generated C files, in a folder of the bench's own (never the CMake build's)."""
+    gen = BUILD / "bench" / "generated"
+    subprocess.run([sys.executable, str(REPO / "modelDescription" / "generate.py"), str(gen)], check=True)
     return gen
 
 

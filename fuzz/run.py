@@ -29,7 +29,8 @@ def include_flags(gen: Path):
 
 
 def generated() -> Path:
-    gen = ROOT / "build" / "generated"
+    """The generated C files, in a folder of the fuzzer's own (never the CMake build's)."""
+    gen = ROOT / "build" / "fuzz" / "generated"
     subprocess.run([sys.executable, str(ROOT / "modelDescription" / "generate.py"), str(gen)], check=True)
     return gen
 

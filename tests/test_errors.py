@@ -254,3 +254,12 @@ def test_a_wrong_guid_is_refused():
                     modelIdentifier="PMDMotionProcessor", instanceName="wrong")
     with pytest.raises(Exception):
         fmu.instantiate()
+
+
+@pytest.mark.parametrize("start", [math.nan, math.inf, 1e300])
+def test_a_start_time_off_the_cycle_grid_is_refused(raw, start):
+    """Found by fuzzing: a NaN or huge start time must not reach the cycle index."""
+    raw.setupExperiment(startTime=start)
+    with pytest.raises(FMICallException):
+        raw.enterInitializationMode()
+    assert any("fmi2EnterInitializationMode: time" in m and "2^53 cycles" in m for m in raw.messages)

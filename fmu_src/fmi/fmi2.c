@@ -126,7 +126,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 {
     PmdInstance *inst = begin(c, "fmi2EnterInitializationMode", PMD_INSTANTIATED);
-    return inst ? status_of[pmd_enter_initialization(inst, inst->time)] : fmi2Error;
+    return inst ? status_of[pmd_enter_initialization(inst, "fmi2EnterInitializationMode", inst->time)] : fmi2Error;
 }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)

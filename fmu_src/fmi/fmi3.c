@@ -138,7 +138,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
 {
     PmdInstance *inst = begin(c, "fmi3EnterInitializationMode", PMD_INSTANTIATED);
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    return inst ? status_of[pmd_enter_initialization(inst, startTime)] : fmi3Error;
+    return inst ? status_of[pmd_enter_initialization(inst, "fmi3EnterInitializationMode", startTime)] : fmi3Error;
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c)

@@ -242,8 +242,26 @@ static void run_script(PmdInstance *inst)
     }
 }
 
-PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime)
+#define MAX_CYCLES_PER_STEP ((double)(1LL << 53))
+
+/* A time on the cycle grid: finite and within 2^53 cycles of the anchor (the
+ * cycle index must fit an integer exactly). */
+static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t)
 {
+    double x = (t - inst->anchorTime) / inst->activeCycleTime;
+    if (!(fabs(x) < MAX_CYCLES_PER_STEP)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: time %g is not finite or lies beyond 2^53 cycles of "
+                         "%g s", fn, t, inst->activeCycleTime);
+        return PMD_ERROR;
+    }
+    return PMD_OK;
+}
+
+PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime)
+{
+    inst->activeCycleTime = inst->cycleTime;
+    if (on_the_grid(inst, fn, startTime) != PMD_OK)
+        return PMD_ERROR;
     inst->time = startTime;
     inst->state = PMD_INITIALIZATION_MODE;
     return PMD_OK;
@@ -251,6 +269,11 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime)
 
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 {
+    inst->activeCycleTime = inst->cycleTime;        /* cycleTime may have changed in initialization */
+    inst->anchorTime = 0;
+    inst->anchorCycle = 0;
+    if (on_the_grid(inst, fn, inst->time) != PMD_OK)
+        return PMD_ERROR;
     if (inst->scriptPath && *inst->scriptPath) {
         char error[1024];
         pmd_script_free(&inst->script);
@@ -271,17 +294,12 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         }
     }
     double us = floor(inst->cycleTime * 1e6 + 0.5);
-    inst->activeCycleTime = inst->cycleTime;
-    inst->anchorTime = 0;
-    inst->anchorCycle = 0;
     /* GetSampleTime reads the cycle time in whole microseconds (16 bits) */
     inst->chip.s.sampleTime = (uint16_t)(us < 1 ? 1 : us > 65535 ? 65535 : us);
     inst->nextCycle = cycles_before(inst, inst->time);
     inst->state = PMD_STEP_MODE;
     return PMD_OK;
 }
-
-#define MAX_CYCLES_PER_STEP ((double)(1LL << 53))
 
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
 {

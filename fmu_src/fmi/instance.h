@@ -78,7 +78,7 @@ void pmd_instance_reset(PmdInstance *inst);
 /* nCategories = 0: all categories; an unknown category is an error and changes nothing. */
 PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
                                 const char *const categories[]);
-PmdStatus pmd_enter_initialization(PmdInstance *inst, double startTime);
+PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime);
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn);
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);
 
