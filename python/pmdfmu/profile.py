@@ -186,7 +186,7 @@ def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "Exte
     t = recorded["cycle"] * cycle_time
     fig, grid = plt.subplots(2, 2, figsize=(12, 8))
     for panel, quantity, unit in zip(grid.flat, ("position", "velocity", "acceleration"),
-                                     ("counts", "counts/s", "counts/s²")):
+                                     ("counts", "counts/s", "counts/s^2")):
         for n in axes:
             panel.plot(t, recorded[f"axis{n}.{quantity}"], label=f"axis {n}")
         panel.set_ylabel(f"{quantity} [{unit}]")
