@@ -4,9 +4,6 @@
 
 /* ---- exact arithmetic ---------------------------------------------------- */
 
-#define floor_div pmd_floor_div
-#define wrap32 pmd_wrap32
-
 /* Wrapping add: a host can integrate a segment past any register range; the
  * chip's registers wrap, and so do we, without undefined behaviour. */
 static int64_t wadd(int64_t a, int64_t b)
@@ -18,13 +15,13 @@ static int64_t wadd(int64_t a, int64_t b)
 /* Moves the exact position by dp units U. */
 static void move_by(PmdTrajectory *t, int64_t dp)
 {
-    int64_t carry = floor_div(dp, PMD_U_PER_COUNT);
+    int64_t carry = pmd_floor_div(dp, PMD_U_PER_COUNT);
     t->fraction += dp - carry * PMD_U_PER_COUNT;
     if (t->fraction >= PMD_U_PER_COUNT) {
         t->fraction -= PMD_U_PER_COUNT;
         carry++;
     }
-    t->position = wrap32((int64_t)t->position + carry);
+    t->position = pmd_wrap32((int64_t)t->position + carry);
 }
 
 /* ---- external profile (seed 000) ----------------------------------------- */
@@ -217,7 +214,7 @@ static void trapezoidal_cycle(PmdChip *chip, int n)
     int64_t acc = r->acceleration, dec = r->deceleration ? r->deceleration : r->acceleration;
     int64_t vmax = r->velocity;
     int64_t p = (int64_t)t->position * 65536 + t->fraction / PMD_U_PER_1616;
-    int64_t v = floor_div(t->velocity, PMD_U_PER_1616);
+    int64_t v = pmd_floor_div(t->velocity, PMD_U_PER_1616);
     int64_t dest = (int64_t)r->position * 65536;
     int64_t d = dest - p;
     int64_t s = d > 0 ? 1 : d < 0 ? -1 : (v >= 0 ? 1 : -1);   /* frame in which the destination is ahead */
@@ -270,7 +267,7 @@ static void velocity_cycle(PmdChip *chip, int n)
     int64_t acc = ax->active.acceleration;
     int64_t dec = ax->active.deceleration ? ax->active.deceleration : acc;
     int64_t target = ax->motion == PMD_MOTION_SMOOTH_STOP ? 0 : ax->active.velocity;
-    int64_t v = floor_div(t->velocity, PMD_U_PER_1616), v2;
+    int64_t v = pmd_floor_div(t->velocity, PMD_U_PER_1616), v2;
 
     if (v == target) {
         v2 = v;
@@ -297,12 +294,12 @@ void pmd_gear_cycle(PmdChip *chip, int n)
     const PmdAxis *master = &chip->s.axis[ax->gearMasterAxis];
     int32_t position = ax->gearMasterSource == PMDPositionSourceCommanded ? master->trajectory.position
                                                                           : master->actualPosition;
-    int64_t delta = wrap32((int64_t)position - ax->gearMasterLast);
+    int64_t delta = pmd_wrap32((int64_t)position - ax->gearMasterLast);
     int64_t d16 = delta * ax->active.gearRatio;            /* 16.16 slave counts, |d16| < 2^62 */
-    int64_t carry = floor_div(d16, 65536);
-    int64_t v = floor_div(ax->trajectory.velocity, PMD_U_PER_1616);
+    int64_t carry = pmd_floor_div(d16, 65536);
+    int64_t v = pmd_floor_div(ax->trajectory.velocity, PMD_U_PER_1616);
     ax->gearMasterLast = position;
-    ax->trajectory.position = wrap32((int64_t)ax->trajectory.position + carry);
+    ax->trajectory.position = pmd_wrap32((int64_t)ax->trajectory.position + carry);
     move_by(&ax->trajectory, (d16 - carry * 65536) * PMD_U_PER_1616);
     ax->trajectory.velocity = wadd(0, (int64_t)((uint64_t)d16 * (uint64_t)PMD_U_PER_1616));
     ax->trajectory.acceleration = wadd(ax->trajectory.velocity, -v * PMD_U_PER_1616);
