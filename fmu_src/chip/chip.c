@@ -272,17 +272,44 @@ static void check_capture(PmdChip *chip, int n, uint16_t signals)
     ax->homeWasActive = (uint8_t)home;
 }
 
-void pmd_chip_cycle(PmdChip *chip)
+/* Whether no limit or capture can happen: every switch idle, none latched, no
+ * sense inversion. Only the checks below change the latches. */
+static int switches_idle(const PmdAxis *ax)
+{
+    return !(ax->positiveLimitInput | ax->negativeLimitInput | ax->homeInput | ax->inPositiveLimit |
+             ax->inNegativeLimit | ax->homeWasActive | (ax->signalSense != 0));
+}
+
+/* A run is quiet when no geared axis, armed breakpoint, active or armed trace
+ * and no switch activity can need its per-cycle work. Only commands and the
+ * plant's inputs change that, never a cycle, so a run decides it once. */
+static int run_is_quiet(const PmdChip *chip)
+{
+    int n;
+    if (chip->s.trace.active || chip->s.trace.start)
+        return 0;
+    for (n = 0; n < PMD_AXES; n++) {
+        const PmdAxis *ax = &chip->s.axis[n];
+        if (ax->motion == PMD_MOTION_GEAR || ax->breakpoint[0].trigger || ax->breakpoint[1].trigger ||
+            !switches_idle(ax))
+            return 0;
+    }
+    return 1;
+}
+
+/* One chip cycle. With quiet set (run_is_quiet) the work that cannot happen
+ * is left out: the same cycle with its loop-invariant tests hoisted. */
+static inline void cycle(PmdChip *chip, int quiet)
 {
     int n;
     chip->s.time = chip->s.nextTime++;
     /* geared axes last: they follow their master's position of this cycle */
     for (n = 0; n < PMD_AXES; n++) {
         pmd_profile_cycle(chip, n);
-        if (chip->s.axis[n].motion != PMD_MOTION_GEAR)
+        if (quiet || chip->s.axis[n].motion != PMD_MOTION_GEAR)
             sample_actual(chip, n);
     }
-    for (n = 0; n < PMD_AXES; n++) {
+    for (n = 0; !quiet && n < PMD_AXES; n++) {
         if (chip->s.axis[n].motion == PMD_MOTION_GEAR) {
             pmd_gear_cycle(chip, n);
             sample_actual(chip, n);
@@ -290,9 +317,7 @@ void pmd_chip_cycle(PmdChip *chip)
     }
     for (n = 0; n < PMD_AXES; n++) {
         PmdAxis *ax = &chip->s.axis[n];
-        /* with every switch idle (and no sense inversion) no limit or capture can happen */
-        if (ax->positiveLimitInput | ax->negativeLimitInput | ax->homeInput | ax->inPositiveLimit |
-            ax->inNegativeLimit | ax->homeWasActive | (ax->signalSense != 0)) {
+        if (!quiet && !switches_idle(ax)) {
             uint16_t signals = pmd_signal_status(chip, n);
             check_limits(chip, n, signals);
             check_capture(chip, n, signals);
@@ -303,9 +328,41 @@ void pmd_chip_cycle(PmdChip *chip)
         else
             check_position_error(chip, n);
     }
+    if (quiet) {
+        chip->s.updatedAxes = 0;           /* what pmd_trace_cycle does with no trace armed */
+        return;
+    }
     /* breakpoints last: a source axis may be any axis, and all have moved */
     for (n = 0; n < PMD_AXES; n++)
         if (chip->s.axis[n].breakpoint[0].trigger | chip->s.axis[n].breakpoint[1].trigger)
             check_breakpoints(chip, n);
     pmd_trace_cycle(chip);
+}
+
+void pmd_chip_cycle(PmdChip *chip)
+{
+    pmd_chip_run(chip, 1, NULL);
+}
+
+void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
+{
+    int n;
+    row[0] = pmd_int32(chip->s.time);
+    for (n = 0; n < PMD_AXES; n++) {
+        const PmdTrajectory *t = &chip->s.axis[n].trajectory;
+        row[1 + 3 * n] = t->position;
+        row[2 + 3 * n] = pmd_commanded_velocity(t);
+        row[3 + 3 * n] = pmd_commanded_acceleration(t);
+    }
+}
+
+void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
+{
+    int quiet = run_is_quiet(chip);
+    int64_t k;
+    for (k = 0; k < cycles; k++) {
+        cycle(chip, quiet);
+        if (record)
+            pmd_chip_record(chip, record + k * PMD_RECORD_WORDS);
+    }
 }

@@ -14,6 +14,16 @@ void pmd_chip_reset(PmdChip *chip);
  * the breakpoints and the interrupt line. */
 void pmd_chip_cycle(PmdChip *chip);
 
+/* Runs `cycles` cycles, exactly as pmd_chip_cycle would one by one, deciding
+ * once what cannot happen during the run. With record, row k (PMD_RECORD_WORDS
+ * words, pmd_chip_record) holds the registers as cycle k left them. */
+#define PMD_RECORD_WORDS (1 + 3 * PMD_AXES)
+void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record);
+
+/* One record row: chip time, then each axis's commanded position, velocity
+ * and acceleration registers. */
+void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS]);
+
 /* Runs up to max cycles at once where that is exactly what running them one by
  * one would do (fastforward.c); returns how many it ran (0 if it cannot). Call
  * it after an ordinary cycle, with inputs unchanged. */

@@ -115,6 +115,11 @@ typedef struct {
     uint8_t underrunWarned;      /* a read-past-write warning was logged and not yet cleared by a refill */
     uint8_t scurvePhase;         /* S-curve phase 1..7 shown as the profile segment while moving */
     uint32_t buffersChecked;     /* the buffer epoch at which this axis's buffers were last found fit to run */
+    /* what an external profile reads, derived from the buffer set-up at that epoch (read_segment) */
+    uint32_t segmentStart[PMD_FUNCTIONS];      /* start word of each assigned function's buffer */
+    uint8_t segmentFunctions;                  /* bit per assigned function */
+    uint8_t segmentBufferCount;                /* the distinct buffers read, whose indexes move */
+    uint8_t segmentBuffer[PMD_FUNCTIONS];
     uint32_t segmentTime;        /* external profile: cycles left in the segment (seed 000 pseudo code) */
     int16_t bufferOfFunction[PMD_FUNCTIONS];   /* SetBufferFunction: buffer ID or -1 */
     uint16_t eventStatus;

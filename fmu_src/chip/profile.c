@@ -73,16 +73,37 @@ static int external_buffers_ok(const PmdChip *chip, const PmdAxis *ax)
     return 1;
 }
 
+/* Notes where each function's value lives and which distinct buffers a
+ * segment read moves (buffers may share an ID): read_segment then costs a
+ * load per function. Redone whenever the buffer set-up changes. */
+static void plan_reads(PmdChip *chip, PmdAxis *ax)
+{
+    int f, i;
+    ax->segmentFunctions = 0;
+    ax->segmentBufferCount = 0;
+    for (f = 0; f < PMD_FUNCTIONS; f++) {
+        int id = ax->bufferOfFunction[f];
+        ax->segmentStart[f] = id >= 0 ? chip->s.buffer[id].start : 0;
+        if (id < 0)
+            continue;
+        ax->segmentFunctions |= (uint8_t)(1u << f);
+        for (i = 0; i < ax->segmentBufferCount && ax->segmentBuffer[i] != id; i++)
+            ;
+        if (i == ax->segmentBufferCount)
+            ax->segmentBuffer[ax->segmentBufferCount++] = (uint8_t)id;
+    }
+}
+
 /* Reads one segment: the entry at the position buffer's read index from every
  * assigned buffer ("corresponding entries are located at the same offset");
- * all their read indexes then move past it together, wrapping at the length.
- * Absent velocity, acceleration, jerk read 0; an absent time reads 1. */
+ * all their read indexes then move past it together, wrapping at the (common)
+ * length. Absent velocity, acceleration, jerk read 0; an absent time reads 1. */
 static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
 {
     PmdAxis *ax = &chip->s.axis[n];
     const PmdBuffer *pos;
-    uint32_t offset;
-    int f;
+    uint32_t offset, next;
+    int f, i;
 
     /* buffers checked again only after a set-up or assignment changed (the epoch moved) */
     if (ax->buffersChecked != chip->s.bufferEpoch + 1) {
@@ -91,6 +112,7 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
                     "(position buffer missing or lengths differ): profile halted", n + 1);
             return 0;
         }
+        plan_reads(chip, ax);
         ax->buffersChecked = chip->s.bufferEpoch + 1;
     }
     pos = &chip->s.buffer[ax->bufferOfFunction[PMDBufferFunctionPosition]];
@@ -104,20 +126,16 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
     } else {
         ax->underrunWarned = 0;
     }
-    /* every value is read before any index moves: buffers may share an ID */
-    for (f = 0; f < PMD_FUNCTIONS; f++) {
-        int id = ax->bufferOfFunction[f];
-        value[f] = id >= 0 ? (int32_t)chip->memory[chip->s.buffer[id].start + offset]
-                           : (f == PMDBufferFunctionTime ? 1 : 0);
-    }
-    for (f = 0; f < PMD_FUNCTIONS; f++) {
-        int id = ax->bufferOfFunction[f];
-        if (id >= 0) {
-            PmdBuffer *b = &chip->s.buffer[id];
-            b->readIndex = offset + 1 == b->length ? 0 : offset + 1;
-            if (b->unread > 0)
-                b->unread--;
-        }
+    /* every value is read before any index moves */
+    for (f = 0; f < PMD_FUNCTIONS; f++)
+        value[f] = (ax->segmentFunctions >> f) & 1 ? (int32_t)chip->memory[ax->segmentStart[f] + offset]
+                                                   : (f == PMDBufferFunctionTime ? 1 : 0);
+    next = offset + 1 == pos->length ? 0 : offset + 1;
+    for (i = 0; i < ax->segmentBufferCount; i++) {
+        PmdBuffer *b = &chip->s.buffer[ax->segmentBuffer[i]];
+        b->readIndex = next;
+        if (b->unread > 0)
+            b->unread--;
     }
     if (PMD_LOGGING(chip, PMD_LOG_SEGMENTS))
         pmd_log(chip, PMD_LOG_SEGMENTS, "axis %d: segment at index %u: position %d velocity %d acceleration %d "
@@ -308,10 +326,11 @@ void pmd_gear_cycle(PmdChip *chip, int n)
 
 void pmd_profile_cycle(PmdChip *chip, int n)
 {
-    switch (chip->s.axis[n].motion) {
-    case PMD_MOTION_EXTERNAL:
+    if (chip->s.axis[n].motion == PMD_MOTION_EXTERNAL) {      /* most of a long run's work: tested first */
         external_cycle(chip, n);
-        break;
+        return;
+    }
+    switch (chip->s.axis[n].motion) {
     case PMD_MOTION_TRAPEZOIDAL:
         trapezoidal_cycle(chip, n);
         break;

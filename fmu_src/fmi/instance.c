@@ -202,21 +202,7 @@ static int follow_sample_time(PmdInstance *inst, double at)
     return 1;
 }
 
-/* Appends the registers of the cycle just run to record.data. */
-static void record_cycle(PmdInstance *inst)
-{
-    int32_t *row = inst->record + (size_t)inst->recordCount++ * PMD_RECORD_WORDS;
-    int n;
-    row[0] = pmd_int32(inst->chip.s.time);
-    for (n = 0; n < PMD_AXES; n++) {
-        const PmdTrajectory *t = &inst->chip.s.axis[n].trajectory;
-        row[1 + 3 * n] = t->position;
-        row[2 + 3 * n] = pmd_commanded_velocity(t);
-        row[3 + 3 * n] = pmd_commanded_acceleration(t);
-    }
-}
-
-/* How many cycles fast-forward may take: up to the end of the step and the next script step. */
+/* How many cycles may run without the FMU stepping in: up to the end of the step and the next script step. */
 static int64_t cycles_to_skip(const PmdInstance *inst, int64_t end)
 {
     int64_t n = end - inst->nextCycle;
@@ -337,12 +323,16 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
             end = cycles_before(inst, t + h);
             continue;
         }
-        pmd_chip_cycle(&inst->chip);
-        inst->nextCycle++;
-        if (inst->recordEnabled)
-            record_cycle(inst);                  /* every cycle: no fast-forward */
-        else
+        if (inst->recordEnabled) {               /* every cycle recorded: no fast-forward */
+            int64_t k = cycles_to_skip(inst, end);
+            pmd_chip_run(&inst->chip, k, inst->record + (size_t)inst->recordCount * PMD_RECORD_WORDS);
+            inst->recordCount += (uint32_t)k;
+            inst->nextCycle += k;
+        } else {
+            pmd_chip_cycle(&inst->chip);
+            inst->nextCycle++;
             inst->nextCycle += pmd_chip_fast_forward(&inst->chip, cycles_to_skip(inst, end));
+        }
     }
     inst->time = t + h;
     return PMD_OK;

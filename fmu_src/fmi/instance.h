@@ -67,7 +67,6 @@ typedef struct {
     uint32_t recordCount;            /* cycles recorded by the last doStep */
 } PmdInstance;
 
-#define PMD_RECORD_WORDS (1 + 3 * PMD_AXES)
 #define PMD_MAX_RECORD_CYCLES (1u << 24)
 
 extern const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT];
