@@ -101,7 +101,7 @@ def test_a_refused_chip_command_is_not_executed_and_the_other_instance_goes_on(p
     assert a.axis(0).GetHostIOError() == code
     assert a.axis(0).GetEventStatus() & pmdfmu.PMDEventInstructionErrorMask     # the chip's answer ...
     ra, rb = a.run(400, record=NAMES), b.run(400, record=NAMES)
-    ra["axis1.eventStatus"] &= ~pmdfmu.PMDEventInstructionErrorMask               # ... and all it changed
+    ra["axis1.eventStatus"] &= 0xFFFF & ~pmdfmu.PMDEventInstructionErrorMask      # ... and all it changed (uint16)
     assert np.array_equal(ra, rb)
 
 

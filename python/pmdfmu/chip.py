@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import shutil
 import struct
+from ctypes import POINTER, c_int32, c_size_t, cast
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
@@ -12,7 +13,7 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
-from fmpy.fmi3 import FMU3Slave
+from fmpy.fmi3 import FMU3Slave, fmi3Binary, fmi3ValueReference
 
 from . import tables
 from .tables import Command, Field
@@ -47,6 +48,15 @@ ERROR_NAMES: Dict[int, str] = {v: n for g, n, v in tables.read_constants(tables_
 
 
 SET_SAMPLE_TIME = COMMANDS["SetSampleTime"].opcode
+# run()'s columns have each register's own width (variables.csv's FMI 3 type), in FMI 2 as well;
+# `cycle` is the 32-bit chip time (GetTime)
+DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32": np.int32, "UInt32": np.uint32,
+                                                  "UInt16": np.uint16, "Boolean": np.bool_}[v.fmi3Type])
+                               for v in tables.read_variables(tables_dir() / "variables.csv")
+                               if v.fmi3Type not in ("String", "Binary")}
+CYCLE = ("cycle", np.uint32)
+# FMI 2 reads unsigned registers as signed Integers: these masks give back their bits
+UNSIGNED = {n: (1 << 8 * t.itemsize) - 1 for n, t in DTYPES.items() if t.kind == "u"}
 # record.data's columns after the chip time (FMI 3 bulk recording)
 RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
             for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
@@ -335,9 +345,18 @@ class Chip:
     def _run_recorded(self, cycles: int, names: Sequence[str]) -> np.ndarray:
         """run() through FMI 3's record.data: one doStep and one Binary read per
         chunk of record.capacity cycles instead of FMI calls every cycle."""
-        out = np.zeros(cycles, dtype=[("cycle", np.int64)] + [(n, np.int64) for n in names])
+        # record.data's words go straight into one table of 32-bit words, whose rows are the result's records
+        table = np.empty((cycles, 1 + len(names)), dtype=np.int32)
         capacity = self.get("record.capacity")
-        columns = [1 + RECORDED.index(n) for n in names]
+        # the wanted columns as runs of adjacent ones (table column, record column, width): whole
+        # runs copy as blocks, and all of record.data as one
+        columns, runs = [0] + [1 + RECORDED.index(n) for n in names], []
+        for i, c in enumerate(columns):
+            if runs and runs[-1][1] + runs[-1][2] == c:
+                runs[-1][2] += 1
+            else:
+                runs.append([i, c, 1])
+        vr, size, value = (fmi3ValueReference * 1)(self._vr["record.data"]), (c_size_t * 1)(), (fmi3Binary * 1)()
         self.set("record.enabled", True)
         try:
             done = 0
@@ -345,15 +364,15 @@ class Chip:
                 n = min(capacity, cycles - done)
                 self.fmu.doStep(self.time, n * self.cycle_time)
                 self.cycles += n
-                rows = np.frombuffer(self.fmu.getBinary([self._vr["record.data"]])[0], dtype="<i4")
-                rows = rows.reshape(-1, 1 + len(RECORDED))
-                out["cycle"][done:done + n] = rows[:, 0]
-                for name, column in zip(names, columns):
-                    out[name][done:done + n] = rows[:, column]
+                # fmi3GetBinary lends the FMU's own buffer until the next call: read it in place, once
+                self.fmu.fmi3GetBinary(self.fmu.component, vr, 1, size, value, 1)
+                rows = np.ctypeslib.as_array(cast(value[0], POINTER(c_int32)), (n, 1 + len(RECORDED)))
+                for at, column, width in runs:
+                    table[done:done + n, at:at + width] = rows[:, column:column + width]
                 done += n
         finally:
             self.set("record.enabled", False)
-        return out
+        return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)
 
     def _follow_sample_time(self) -> None:
         """SetSampleTime restarted the chip's cycle grid at the current time."""
@@ -407,22 +426,20 @@ class Chip:
             if cycles:
                 self.fmu.doStep(self.time, cycles * self.cycle_time)
                 self.cycles += cycles
-            return np.zeros(0, dtype=[("cycle", np.int64)])
+            return np.zeros(0, dtype=[CYCLE])
         names = list(record)
         if self.fmi_version == 3 and set(names) <= set(RECORDED):
             return self._run_recorded(cycles, names)
         types = [self.variables[n].type for n in names]
-        kind = {"Real": np.float64, "Float64": np.float64, "Boolean": np.bool_}
-        dtype = [("cycle", np.int64)] + [(n, kind.get(t, np.int64)) for n, t in zip(names, types)]
-        out = np.zeros(cycles, dtype=dtype)
+        out = np.zeros(cycles, dtype=[CYCLE] + [(n, DTYPES[n]) for n in names])
         groups = [(self._getters[t], [n for n, tt in zip(names, types) if tt == t]) for t in self._getters]
         groups = [(get, ns, [self._vr[n] for n in ns]) for get, ns in groups if ns]
         get_time, time_vr = self._getters[self.variables["chipTime"].type], [self._vr["chipTime"]]
         for i in range(cycles):
             self.fmu.doStep(self.time, self.cycle_time)
             self.cycles += 1
-            out["cycle"][i] = get_time(time_vr)[0]
+            out["cycle"][i] = get_time(time_vr)[0] & 0xFFFFFFFF      # FMI 2 Integer: the same 32 bits
             for get, ns, vrs in groups:
                 for n, value in zip(ns, get(vrs)):
-                    out[n][i] = value
+                    out[n][i] = value & UNSIGNED[n] if n in UNSIGNED else value
         return out
