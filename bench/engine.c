@@ -43,7 +43,6 @@ static void make_rows(void)
 
 typedef struct { int32_t pos; int64_t frac, v, a; int32_t j; uint32_t left; int row; } Plain;
 
-static int64_t fdiv(int64_t x, int64_t y) { int64_t q = x / y; return (x % y != 0 && ((x < 0) != (y < 0))) ? q - 1 : q; }
 
 static double run_plain(int32_t *out)
 {
@@ -65,7 +64,7 @@ static double run_plain(int32_t *out)
                 x->left = (uint32_t)rows[a][4][x->row];
                 x->row = (x->row + 1) % ROWS;
             } else {
-                int64_t dp = x->v + x->a / 2 + x->j, carry = fdiv(dp, PMD_U_PER_COUNT);
+                int64_t dp = x->v + x->a / 2 + x->j, carry = pmd_floor_counts(dp);
                 x->frac += dp - carry * PMD_U_PER_COUNT;
                 if (x->frac >= PMD_U_PER_COUNT) { x->frac -= PMD_U_PER_COUNT; carry++; }
                 x->pos = (int32_t)((uint32_t)x->pos + (uint32_t)carry);
@@ -74,8 +73,8 @@ static double run_plain(int32_t *out)
             }
             x->left--;
             out[1 + 3 * a] = x->pos;
-            out[2 + 3 * a] = (int32_t)fdiv(x->v, PMD_U_PER_1616);
-            out[3 + 3 * a] = (int32_t)fdiv(x->a, PMD_U_PER_1616);
+            out[2 + 3 * a] = (int32_t)pmd_floor_1616(x->v);
+            out[3 + 3 * a] = (int32_t)pmd_floor_1616(x->a);
         }
         out += PMD_RECORD_WORDS;
     }

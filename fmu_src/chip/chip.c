@@ -200,7 +200,7 @@ static void check_breakpoints(PmdChip *chip, int n)
 
 /* Actual position: the commanded position (loopback, motor on), held (loopback,
  * motor off), or the encoder input plus the SetActualPosition offset. */
-static void sample_actual(PmdChip *chip, int n)
+static inline void sample_actual(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
     ax->previousActualPosition = ax->actualPosition;
@@ -297,8 +297,19 @@ static int run_is_quiet(const PmdChip *chip)
     return 1;
 }
 
-/* One chip cycle. With quiet set (run_is_quiet) the work that cannot happen
- * is left out: the same cycle with its loop-invariant tests hoisted. */
+/* The servo side of axis n's cycle: position error, settling. */
+static inline void check_servo(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    /* the ideal servo keeps the error at 0: a moving axis only resets its settle count */
+    if (chip->s.loopback && ax->motorOn && ax->motion != PMD_MOTION_IDLE && !ax->motionCompletePending)
+        ax->settleCount = 0;
+    else
+        check_position_error(chip, n);
+}
+
+/* One chip cycle. In a quiet run (run_is_quiet) nothing couples the axes and
+ * the checks that cannot fire are left out: each axis runs its cycle in turn. */
 static inline void cycle(PmdChip *chip, int quiet)
 {
     int n;
@@ -306,31 +317,30 @@ static inline void cycle(PmdChip *chip, int quiet)
     /* geared axes last: they follow their master's position of this cycle */
     for (n = 0; n < PMD_AXES; n++) {
         pmd_profile_cycle(chip, n);
-        if (quiet || chip->s.axis[n].motion != PMD_MOTION_GEAR)
+        if (quiet) {
             sample_actual(chip, n);
+            check_servo(chip, n);
+        } else if (chip->s.axis[n].motion != PMD_MOTION_GEAR) {
+            sample_actual(chip, n);
+        }
     }
-    for (n = 0; !quiet && n < PMD_AXES; n++) {
+    if (quiet) {
+        chip->s.updatedAxes = 0;           /* what pmd_trace_cycle does with no trace armed */
+        return;
+    }
+    for (n = 0; n < PMD_AXES; n++) {
         if (chip->s.axis[n].motion == PMD_MOTION_GEAR) {
             pmd_gear_cycle(chip, n);
             sample_actual(chip, n);
         }
     }
     for (n = 0; n < PMD_AXES; n++) {
-        PmdAxis *ax = &chip->s.axis[n];
-        if (!quiet && !switches_idle(ax)) {
+        if (!switches_idle(&chip->s.axis[n])) {
             uint16_t signals = pmd_signal_status(chip, n);
             check_limits(chip, n, signals);
             check_capture(chip, n, signals);
         }
-        /* the ideal servo keeps the error at 0: a moving axis only resets its settle count */
-        if (chip->s.loopback && ax->motorOn && ax->motion != PMD_MOTION_IDLE && !ax->motionCompletePending)
-            ax->settleCount = 0;
-        else
-            check_position_error(chip, n);
-    }
-    if (quiet) {
-        chip->s.updatedAxes = 0;           /* what pmd_trace_cycle does with no trace armed */
-        return;
+        check_servo(chip, n);
     }
     /* breakpoints last: a source axis may be any axis, and all have moved */
     for (n = 0; n < PMD_AXES; n++)

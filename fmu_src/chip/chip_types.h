@@ -41,6 +41,18 @@ static inline int64_t pmd_floor_div(int64_t a, int64_t b)
     return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
 }
 
+/* floor(a / (3 * 2^k)) for 2 <= k <= 61, exact for every int64 a: both units
+ * above are 3 * 2^k (k = 33, 17). Run every cycle, so without a signed
+ * division: the floored shift (no shift of a negative value) leaves
+ * |y| <= 2^(63-k), and the bias 3 * 2^(63-k) makes the division by 3 unsigned. */
+static inline int64_t pmd_floor_div_3x2k(int64_t a, int k)
+{
+    int64_t y = a >= 0 ? a >> k : ~(~a >> k);                     /* floor(a / 2^k) */
+    return (int64_t)((uint64_t)(y + ((int64_t)3 << (63 - k))) / 3u) - ((int64_t)1 << (63 - k));
+}
+#define pmd_floor_counts(u) pmd_floor_div_3x2k((u), 33)           /* floor(u / PMD_U_PER_COUNT) */
+#define pmd_floor_1616(u) pmd_floor_div_3x2k((u), 17)             /* floor(u / PMD_U_PER_1616) */
+
 /* A 64-bit value in a 32-bit register: two's-complement wrap. */
 static inline int32_t pmd_wrap32(int64_t x)
 {
@@ -50,7 +62,7 @@ static inline int32_t pmd_wrap32(int64_t x)
 /* GetCommandedVelocity / GetCommandedAcceleration: U per cycle to 16.16, floored. */
 static inline int32_t pmd_register_1616(int64_t u)
 {
-    return pmd_wrap32(pmd_floor_div(u, PMD_U_PER_1616));
+    return pmd_wrap32(pmd_floor_1616(u));
 }
 
 typedef struct {

@@ -15,7 +15,7 @@ static int64_t wadd(int64_t a, int64_t b)
 /* Moves the exact position by dp units U. */
 static void move_by(PmdTrajectory *t, int64_t dp)
 {
-    int64_t carry = pmd_floor_div(dp, PMD_U_PER_COUNT);
+    int64_t carry = pmd_floor_counts(dp);
     t->fraction += dp - carry * PMD_U_PER_COUNT;
     if (t->fraction >= PMD_U_PER_COUNT) {
         t->fraction -= PMD_U_PER_COUNT;
@@ -232,7 +232,7 @@ static void trapezoidal_cycle(PmdChip *chip, int n)
     int64_t acc = r->acceleration, dec = r->deceleration ? r->deceleration : r->acceleration;
     int64_t vmax = r->velocity;
     int64_t p = (int64_t)t->position * 65536 + t->fraction / PMD_U_PER_1616;
-    int64_t v = pmd_floor_div(t->velocity, PMD_U_PER_1616);
+    int64_t v = pmd_floor_1616(t->velocity);
     int64_t dest = (int64_t)r->position * 65536;
     int64_t d = dest - p;
     int64_t s = d > 0 ? 1 : d < 0 ? -1 : (v >= 0 ? 1 : -1);   /* frame in which the destination is ahead */
@@ -285,7 +285,7 @@ static void velocity_cycle(PmdChip *chip, int n)
     int64_t acc = ax->active.acceleration;
     int64_t dec = ax->active.deceleration ? ax->active.deceleration : acc;
     int64_t target = ax->motion == PMD_MOTION_SMOOTH_STOP ? 0 : ax->active.velocity;
-    int64_t v = pmd_floor_div(t->velocity, PMD_U_PER_1616), v2;
+    int64_t v = pmd_floor_1616(t->velocity), v2;
 
     if (v == target) {
         v2 = v;
@@ -315,7 +315,7 @@ void pmd_gear_cycle(PmdChip *chip, int n)
     int64_t delta = pmd_wrap32((int64_t)position - ax->gearMasterLast);
     int64_t d16 = delta * ax->active.gearRatio;            /* 16.16 slave counts, |d16| < 2^62 */
     int64_t carry = pmd_floor_div(d16, 65536);
-    int64_t v = pmd_floor_div(ax->trajectory.velocity, PMD_U_PER_1616);
+    int64_t v = pmd_floor_1616(ax->trajectory.velocity);
     ax->gearMasterLast = position;
     ax->trajectory.position = pmd_wrap32((int64_t)ax->trajectory.position + carry);
     move_by(&ax->trajectory, (d16 - carry * 65536) * PMD_U_PER_1616);
