@@ -198,16 +198,22 @@ static void check_breakpoints(PmdChip *chip, int n)
     }
 }
 
-/* Actual position: the commanded position (loopback, motor on), held (loopback,
- * motor off), or the encoder input plus the SetActualPosition offset. */
-static inline void sample_actual(PmdChip *chip, int n)
+/* Actual position: the commanded position (loopback, motor on: the ideal
+ * servo), held (loopback, motor off), or the encoder input plus the
+ * SetActualPosition offset. Returns whether the servo is ideal. The loopback
+ * parameter comes as an argument: fixed for a whole run, it is tested once. */
+static inline int sample_actual(PmdChip *chip, int n, int loopback)
 {
     PmdAxis *ax = &chip->s.axis[n];
     ax->previousActualPosition = ax->actualPosition;
-    if (!chip->s.loopback)
+    if (!loopback) {
         ax->actualPosition = pmd_int32((uint32_t)ax->actualPositionInput + (uint32_t)ax->actualOffset);
-    else if (ax->motorOn)
-        ax->actualPosition = ax->trajectory.position;
+        return 0;
+    }
+    if (!ax->motorOn)
+        return 0;
+    ax->actualPosition = ax->trajectory.position;
+    return 1;
 }
 
 /* Entering a limit sets its event bit and stops the axis; the activity bit
@@ -298,11 +304,11 @@ static int run_is_quiet(const PmdChip *chip)
 }
 
 /* The servo side of axis n's cycle: position error, settling. */
-static inline void check_servo(PmdChip *chip, int n)
+static inline void check_servo(PmdChip *chip, int n, int ideal)
 {
     PmdAxis *ax = &chip->s.axis[n];
     /* the ideal servo keeps the error at 0: a moving axis only resets its settle count */
-    if (chip->s.loopback && ax->motorOn && ax->motion != PMD_MOTION_IDLE && !ax->motionCompletePending)
+    if (ideal && ax->motion != PMD_MOTION_IDLE && !ax->motionCompletePending)
         ax->settleCount = 0;
     else
         check_position_error(chip, n);
@@ -310,18 +316,17 @@ static inline void check_servo(PmdChip *chip, int n)
 
 /* One chip cycle. In a quiet run (run_is_quiet) nothing couples the axes and
  * the checks that cannot fire are left out: each axis runs its cycle in turn. */
-static inline void cycle(PmdChip *chip, int quiet)
+static inline void cycle(PmdChip *chip, int quiet, int loopback)
 {
     int n;
     chip->s.time = chip->s.nextTime++;
     /* geared axes last: they follow their master's position of this cycle */
     for (n = 0; n < PMD_AXES; n++) {
         pmd_profile_cycle(chip, n);
-        if (quiet) {
-            sample_actual(chip, n);
-            check_servo(chip, n);
-        } else if (chip->s.axis[n].motion != PMD_MOTION_GEAR) {
-            sample_actual(chip, n);
+        if (quiet)
+            check_servo(chip, n, sample_actual(chip, n, loopback));
+        else if (chip->s.axis[n].motion != PMD_MOTION_GEAR) {
+            sample_actual(chip, n, loopback);
         }
     }
     if (quiet) {
@@ -331,7 +336,7 @@ static inline void cycle(PmdChip *chip, int quiet)
     for (n = 0; n < PMD_AXES; n++) {
         if (chip->s.axis[n].motion == PMD_MOTION_GEAR) {
             pmd_gear_cycle(chip, n);
-            sample_actual(chip, n);
+            sample_actual(chip, n, loopback);
         }
     }
     for (n = 0; n < PMD_AXES; n++) {
@@ -340,7 +345,7 @@ static inline void cycle(PmdChip *chip, int quiet)
             check_limits(chip, n, signals);
             check_capture(chip, n, signals);
         }
-        check_servo(chip, n);
+        check_servo(chip, n, loopback && chip->s.axis[n].motorOn);
     }
     /* breakpoints last: a source axis may be any axis, and all have moved */
     for (n = 0; n < PMD_AXES; n++)
@@ -368,10 +373,10 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
 
 void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
 {
-    int quiet = run_is_quiet(chip);
+    int quiet = run_is_quiet(chip), loopback = chip->s.loopback;
     int64_t k;
     for (k = 0; k < cycles; k++) {
-        cycle(chip, quiet);
+        cycle(chip, quiet, loopback);
         if (record)
             pmd_chip_record(chip, record + k * PMD_RECORD_WORDS);
     }
