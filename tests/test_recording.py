@@ -41,3 +41,11 @@ def test_a_recording_step_longer_than_the_capacity_is_refused():
     with pmdfmu.Chip(fmi_version=3, **{"record.capacity": 0}) as chip:
         with pytest.raises(FMICallException):
             chip.set("record.enabled", True)
+
+
+@pytest.mark.parametrize("version", (2, 3))
+def test_recording_an_unknown_variable_is_refused_before_any_cycle_runs(version):
+    with pmdfmu.Chip(fmi_version=version) as chip:
+        with pytest.raises(ValueError, match="axis1.signalStatus"):
+            chip.run(10, record=["axis1.commandedPosition", "axis1.signalStatus"])
+        assert chip.cycles == 0 and chip.get("chipTime") == 0

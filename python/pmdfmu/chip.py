@@ -428,6 +428,9 @@ class Chip:
                 self.cycles += cycles
             return np.zeros(0, dtype=[CYCLE])
         names = list(record)
+        for name in names:
+            if name not in DTYPES or name not in self.variables:
+                raise ValueError(f"run: record={name!r} is not a variable of the FMU (pmdfmu info lists them)")
         if self.fmi_version == 3 and set(names) <= set(RECORDED):
             return self._run_recorded(cycles, names)
         types = [self.variables[n].type for n in names]
