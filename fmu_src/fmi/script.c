@@ -65,19 +65,22 @@ static PmdScriptStep *new_step(PmdScript *s, int64_t cycle, int line)
     return step;
 }
 
-static int pool_push(PmdScript *s, uint32_t word)
+/* Makes room for n more words at the end of the pool. */
+static int pool_grow(PmdScript *s, size_t n)
 {
-    if (s->poolCount == s->poolCapacity) {
-        size_t capacity = s->poolCapacity ? 2 * s->poolCapacity : 1024;
-        uint32_t *grown = (uint32_t *)realloc(s->pool, capacity * sizeof *grown);
-        if (!grown)
-            return -1;
-        s->pool = grown;
-        s->poolCapacity = capacity;
-    }
-    s->pool[s->poolCount++] = word;
+    size_t capacity = s->poolCapacity ? s->poolCapacity : 1024;
+    uint32_t *grown;
+    if (s->poolCount + n <= s->poolCapacity)
+        return 0;
+    while (capacity < s->poolCount + n)
+        capacity *= 2;
+    if (!(grown = (uint32_t *)realloc(s->pool, capacity * sizeof *grown)))
+        return -1;
+    s->pool = grown;
+    s->poolCapacity = capacity;
     return 0;
 }
+
 
 /* ---- values ---- */
 
@@ -272,7 +275,7 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
     static const int fixedOfColumn[PMD_FUNCTIONS] = {0, 16, 16, 32, 0};
     char line[MAX_LINE], *cells[16];
     int columnOf[PMD_FUNCTIONS], present = 0, engineering = 0, header = 0, f, k;
-    size_t rows = 0, base = s->poolCount;
+    size_t rows = 0, r, base = s->poolCount;
     Where w = {path, 0, at->error, at->errorSize};
     FILE *file = fopen(path, "rb");
 
@@ -323,33 +326,42 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
                                   (long long)address, (unsigned)memoryWords);
     if (firstBuffer < PMD_FIRST_PROFILE_BUFFER || firstBuffer + present > PMD_BUFFERS)
         return fclose(file), fail(at, "buffers %lld.. do not fit IDs 2..31", (long long)firstBuffer);
-    for (f = 0; f < PMD_FUNCTIONS; f++) {
-        if (columnOf[f] < 0)
+    /* pass 2: every row once, each present column into its own block of the pool */
+    if (pool_grow(s, (size_t)present * rows))
+        return fclose(file), fail(at, "out of memory");
+    rewind(file);
+    w.line = 0;
+    header = 0;
+    r = 0;
+    while (fgets(line, sizeof line, file) && r < rows) {
+        char *t = trim(line);
+        int n;
+        w.line++;
+        if (*t == '#' || !*t)
             continue;
-        int seenHeader = 0;
-        rewind(file);
-        w.line = 0;
-        while (fgets(line, sizeof line, file)) {
-            char *t = trim(line);
+        if (!header) {
+            header = 1;
+            continue;
+        }
+        n = split_csv(t, cells, 16);
+        for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
             int64_t v;
-            w.line++;
-            if (*t == '#' || !*t)
+            if (columnOf[f] < 0)
                 continue;
-            if (!seenHeader) {
-                seenHeader = 1;
-                continue;
-            }
-            if (split_csv(t, cells, 16) <= columnOf[f])
+            if (n <= columnOf[f])
                 return fclose(file), fail(&w, "missing %s value", columns[f]);
             if (parse_number(&w, cells[columnOf[f]], engineering ? fixedOfColumn[f] : 0, &v))
                 return fclose(file), -1;
             if (f == PMDBufferFunctionTime ? (v < 0 || v > 0xFFFFFFFF)
                                            : (v < -(int64_t)0x80000000 || v > 0xFFFFFFFF))
                 return fclose(file), fail(&w, "%s %s does not fit 32 bits", columns[f], cells[columnOf[f]]);
-            if (pool_push(s, (uint32_t)(v & 0xFFFFFFFF)))
-                return fclose(file), fail(at, "out of memory");
+            s->pool[base + (size_t)k++ * rows + r] = (uint32_t)(v & 0xFFFFFFFF);
         }
+        r++;
     }
+    if (r < rows)
+        return fclose(file), fail(&w, "the table changed while being read");
+    s->poolCount = base + (size_t)present * rows;
     fclose(file);
     /* buffers firstBuffer.. at address.., one per present column, then the data */
     for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
