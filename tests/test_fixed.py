@@ -1,5 +1,8 @@
-"""Seed 000, 1.7 and seed 001: the fixed-point examples."""
+"""Seed 000, 1.7 and seed 001: the fixed-point examples; the core's floor division."""
+import shutil
+import subprocess
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 
@@ -41,3 +44,15 @@ def test_out_of_range_raises_instead_of_clamping():
     with pytest.raises(ValueError):
         to_fixed(0.5, "0.32")
     assert to_fixed(-32768, "16.16") == 0x80000000
+
+
+@pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
+def test_the_cycles_floor_division_equals_cs_signed_division_floored(tmp_path):
+    """pmd_floor_counts / pmd_floor_1616 (a shift and an unsigned division by 3) at the
+    int64 extremes, at the multiples near 0 and at ten million random values."""
+    root = Path(__file__).resolve().parent.parent
+    exe = tmp_path / "floor_division"
+    subprocess.run(["cc", "-O1", "-std=c99", f"-I{root / 'fmu_src' / 'chip'}",
+                    str(root / "tests" / "c" / "floor_division.c"), "-o", str(exe)], check=True)
+    out = subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout
+    assert out.startswith("agree ") and int(out.split()[1]) > 10_000_000

@@ -325,9 +325,8 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback)
         pmd_profile_cycle(chip, n);
         if (quiet)
             check_servo(chip, n, sample_actual(chip, n, loopback));
-        else if (chip->s.axis[n].motion != PMD_MOTION_GEAR) {
+        else if (chip->s.axis[n].motion != PMD_MOTION_GEAR)
             sample_actual(chip, n, loopback);
-        }
     }
     if (quiet) {
         chip->s.updatedAxes = 0;           /* what pmd_trace_cycle does with no trace armed */

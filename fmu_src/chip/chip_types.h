@@ -41,7 +41,7 @@ static inline int64_t pmd_floor_div(int64_t a, int64_t b)
     return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
 }
 
-/* floor(a / (3 * 2^k)) for 2 <= k <= 61, exact for every int64 a: both units
+/* floor(a / (3 * 2^k)) for 3 <= k <= 61, exact for every int64 a: both units
  * above are 3 * 2^k (k = 33, 17). Run every cycle, so without a signed
  * division: the floored shift (no shift of a negative value) leaves
  * |y| <= 2^(63-k), and the bias 3 * 2^(63-k) makes the division by 3 unsigned. */
