@@ -49,3 +49,12 @@ def test_recording_an_unknown_variable_is_refused_before_any_cycle_runs(version)
         with pytest.raises(ValueError, match="axis1.signalStatus"):
             chip.run(10, record=["axis1.commandedPosition", "axis1.signalStatus"])
         assert chip.cycles == 0 and chip.get("chipTime") == 0
+
+
+def test_a_script_changing_the_sample_time_during_a_bulk_recording_is_reported(tmp_path):
+    """The step then holds another number of cycles than asked: said, never read past."""
+    script = tmp_path / "slower.script"
+    script.write_text("@10\nSetSampleTime(Axis1, 200)\n")
+    with pmdfmu.Chip(fmi_version=3, script=script) as chip:
+        with pytest.raises(RuntimeError, match="holds 55 cycles, not 100"):
+            chip.run(100, record=RECORDED)

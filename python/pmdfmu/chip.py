@@ -366,6 +366,9 @@ class Chip:
                 self.cycles += n
                 # fmi3GetBinary lends the FMU's own buffer until the next call: read it in place, once
                 self.fmu.fmi3GetBinary(self.fmu.component, vr, 1, size, value, 1)
+                if size[0] != 4 * n * (1 + len(RECORDED)):
+                    raise RuntimeError(f"record.data holds {size[0] // (4 + 4 * len(RECORDED))} cycles, not {n}: "
+                                       "a script changed the sample time during run(record=...)")
                 rows = np.ctypeslib.as_array(cast(value[0], POINTER(c_int32)), (n, 1 + len(RECORDED)))
                 for at, column, width in runs:
                     table[done:done + n, at:at + width] = rows[:, column:column + width]
