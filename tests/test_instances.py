@@ -76,3 +76,20 @@ def test_a_thousand_rounds_under_valgrind_leak_nothing(tmp_path):
     assert "1000 rounds" in out.stdout
     assert "ERROR SUMMARY: 0 errors" in out.stderr
     assert "definitely lost: 0 bytes" in out.stderr or "All heap blocks were freed" in out.stderr
+
+
+@pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
+@pytest.mark.skipif(bool(os.environ.get("PMDFMU_SANITIZED")), reason="the driver's malloc would bypass ASan's")
+def test_an_instance_holds_at_most_memory_plus_64_kib_and_dosteps_allocate_nothing(tmp_path):
+    """bench/memory.c counts the FMU's allocations from outside: 250 doSteps of a running
+    script, 50 of them recording, allocate nothing (CONTRACT; issue 5, target 6)."""
+    exe = tmp_path / "memory"
+    subprocess.run(["cc", "-O1", "-std=c99", f"-I{HEADERS}", str(SOURCE.parent.parent.parent / "bench" / "memory.c"),
+                    "-rdynamic", "-ldl", "-o", str(exe)], check=True)
+    script = SOURCE.parent.parent.parent / "examples" / "two_axis.script"
+    out = subprocess.run([str(exe), str(fmu_binary(tmp_path)), guid(), str(script)], capture_output=True,
+                         text=True, check=True).stdout
+    instance, stepping, record, recorded = map(int, out.split())
+    assert 4 * 0x4000 <= instance <= 4 * 0x4000 + 64 * 1024
+    assert stepping == 0 and recorded == 0
+    assert record >= 65536 * 52                                      # allocated when record.enabled was set

@@ -253,6 +253,25 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double sta
     return PMD_OK;
 }
 
+/* The record.data buffer, allocated when recording is enabled: an instance
+ * that never records does not carry it, and doStep never allocates. */
+static PmdStatus allocate_record(PmdInstance *inst, const char *fn)
+{
+    if (inst->record)
+        return PMD_OK;
+    if (inst->recordCapacity == 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: record.capacity is 0", fn);
+        return PMD_ERROR;
+    }
+    inst->record = (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS * sizeof(int32_t));
+    if (!inst->record) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: no host memory for record.capacity %u",
+                         fn, (unsigned)inst->recordCapacity);
+        return PMD_ERROR;
+    }
+    return PMD_OK;
+}
+
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 {
     inst->activeCycleTime = inst->cycleTime;        /* cycleTime may have changed in initialization */
@@ -269,16 +288,10 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         }
         inst->scriptNext = 0;
     }
-    free(inst->record);
+    free(inst->record);                             /* record.capacity may have changed */
     inst->record = NULL;
-    if (inst->recordCapacity > 0) {
-        inst->record = (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS * sizeof(int32_t));
-        if (!inst->record) {
-            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no host memory for record.capacity %u", fn,
-                             (unsigned)inst->recordCapacity);
-            return PMD_ERROR;
-        }
-    }
+    if (inst->recordEnabled && allocate_record(inst, fn) != PMD_OK)
+        return PMD_ERROR;
     double us = floor(inst->cycleTime * 1e6 + 0.5);
     /* GetSampleTime reads the cycle time in whole microseconds (16 bits) */
     inst->chip.s.sampleTime = (uint16_t)(us < 1 ? 1 : us > 65535 ? 65535 : us);
@@ -598,10 +611,8 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
     case VAR_axis_positiveLimit: AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;
     case VAR_axis_negativeLimit: AXIS_OF(v)->negativeLimitInput = (uint8_t)value; break;
     case VAR_record_enabled:
-        if (value && !inst->record) {
-            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: record.capacity is 0", fn);
+        if (value && allocate_record(inst, fn) != PMD_OK)
             return PMD_ERROR;
-        }
         inst->recordEnabled = (uint8_t)value;
         break;
     default: AXIS_OF(v)->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
