@@ -5,14 +5,14 @@ from __future__ import annotations
 import os
 import shutil
 import struct
-from ctypes import POINTER, c_int32, c_size_t, cast
+from ctypes import POINTER, Array, c_int32, c_size_t, c_uint32, cast
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2ValueReference
 from fmpy.fmi3 import FMU3Slave, fmi3Binary, fmi3ValueReference
 
 from . import tables
@@ -209,6 +209,7 @@ class Chip:
             self.fmu = None
             raise
         self._vr = {name: v.valueReference for name, v in self.variables.items()}
+        self._memory_vrs: Dict[int, Array] = {}     # write_memory (FMI 2): value references per word count
 
     # ---- life cycle ----
 
@@ -401,21 +402,31 @@ class Chip:
     def write_memory(self, address: int, words: Sequence[int]) -> None:
         """Writes 32-bit words straight into external memory (the seed's dual-port
         upload, bypassing the processor), 64 words per strobe."""
-        words = [int(w) & 0xFFFFFFFF for w in words]
+        data = (np.asarray(words, dtype=np.int64) & 0xFFFFFFFF).astype(np.uint32)
         strobe = self.get("memory.strobe")
-        for start in range(0, len(words), BATCH_WORDS):
-            chunk = words[start:start + BATCH_WORDS]
+        for start in range(0, len(data), BATCH_WORDS):
             strobe = (strobe + 1) & 0x7FFFFFFF
-            if self.fmi_version == 2:
-                self.fmu.setInteger([self._vr[f"memory.data[{i + 1}]"] for i in range(len(chunk))] +
-                                    [self._vr["memory.address"], self._vr["memory.count"], self._vr["memory.strobe"]],
-                                    [w - (1 << 32) if w >= (1 << 31) else w for w in chunk] +
-                                    [address + start, len(chunk), strobe])
-            else:
-                self.set("memory.data", chunk + [0] * (BATCH_WORDS - len(chunk)))
-                self.set("memory.address", address + start)
-                self.fmu.setInt32([self._vr["memory.count"], self._vr["memory.strobe"]], [len(chunk), strobe])
+            self._memory_strobe(address + start, data[start:start + BATCH_WORDS], strobe)
             self.get("host.ack")                      # executes the write now
+
+    def _memory_strobe(self, address: int, chunk: np.ndarray, strobe: int) -> None:
+        """Sets memory.data, .address, .count and .strobe for one write, each value
+        array passed to the FMI function as it lies in memory."""
+        n, vr = len(chunk), self._vr
+        if self.fmi_version == 2:                    # all Integer: one call, the data words first
+            if n not in self._memory_vrs:
+                self._memory_vrs[n] = (fmi2ValueReference * (n + 3))(
+                    *[vr[f"memory.data[{i + 1}]"] for i in range(n)], vr["memory.address"], vr["memory.count"],
+                    vr["memory.strobe"])
+            values = np.concatenate([chunk.view(np.int32), np.array([address, n, strobe], dtype=np.int32)])
+            self.fmu.fmi2SetInteger(self.fmu.component, self._memory_vrs[n], n + 3,
+                                    values.ctypes.data_as(POINTER(c_int32)))
+        else:                                        # memory.data[64] and memory.address are UInt32
+            words = np.zeros(BATCH_WORDS + 1, dtype=np.uint32)
+            words[:n], words[BATCH_WORDS] = chunk, address
+            vrs = (fmi3ValueReference * 2)(vr["memory.data"], vr["memory.address"])
+            self.fmu.fmi3SetUInt32(self.fmu.component, vrs, 2, words.ctypes.data_as(POINTER(c_uint32)), BATCH_WORDS + 1)
+            self.fmu.setInt32([vr["memory.count"], vr["memory.strobe"]], [n, strobe])
 
     # ---- time ----
 
