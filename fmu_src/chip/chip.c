@@ -201,7 +201,7 @@ static void check_breakpoints(PmdChip *chip, int n)
 /* Actual position: the commanded position (loopback, motor on: the ideal
  * servo), held (loopback, motor off), or the encoder input plus the
  * SetActualPosition offset. Returns whether the servo is ideal. The loopback
- * parameter comes as an argument: fixed for a whole run, it is tested once. */
+ * parameter is fixed for a whole run: pmd_chip_run reads it once and passes it. */
 static inline int sample_actual(PmdChip *chip, int n, int loopback)
 {
     PmdAxis *ax = &chip->s.axis[n];
