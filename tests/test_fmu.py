@@ -79,7 +79,7 @@ def test_outputs_after_initialization_are_the_reset_values(chip):
     assert (chip.get("host.error"), chip.get("host.replyCount"), chip.get("host.interrupt")) == (0, 0, False)
 
 
-@pytest.mark.parametrize("cycle_time,h,steps", [(1e-3, 2.5e-4, 40), (1e-3, 2.5e-3, 8), (0.1, 0.1, 10),
+@pytest.mark.parametrize("cycle_time,h,steps", [(1e-3, 2.5e-4, 40), (1e-3, 2.5e-3, 8), (0.065, 0.065, 10),
                                                 (1e-4, 3.3e-4, 30)])
 def test_do_step_runs_exactly_the_cycles_in_t_to_t_plus_h(cycle_time, h, steps):
     with pmdfmu.Chip(cycleTime=cycle_time) as chip:

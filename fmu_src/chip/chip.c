@@ -1,6 +1,7 @@
 /* Chip life cycle, the per-cycle sequence, status registers and breakpoints. */
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "chip.h"
@@ -131,11 +132,24 @@ int pmd_host_interrupt(const PmdChip *chip)
     return 0;
 }
 
+int pmd_memory_store(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data)
+{
+    if (address > chip->memorySize || count > chip->memorySize - address) {
+        pmd_log(chip, PMD_LOG_ERRORS, "internal error: %u words at 0x%X leave the %u-word memory: not written",
+                (unsigned)count, (unsigned)address, (unsigned)chip->memorySize);
+#ifdef PMD_CHECK_INVARIANTS
+        abort();
+#endif
+        return -1;
+    }
+    memcpy(chip->memory + address, data, count * sizeof *data);
+    return 0;
+}
+
 int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data)
 {
-    if (address > chip->memorySize || count > chip->memorySize - address)
+    if (pmd_memory_store(chip, address, count, data))
         return -1;
-    memcpy(chip->memory + address, data, count * sizeof *data);
     pmd_log(chip, PMD_LOG_BUFFERS, "dual-port memory: %u words written at 0x%X", (unsigned)count, (unsigned)address);
     return 0;
 }

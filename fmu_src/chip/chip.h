@@ -37,8 +37,14 @@ int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *re
 /* Packs one value into a command's data words as the host port carries it. */
 void pmd_encode_field(const PmdField *field, int64_t value, uint16_t *words);
 
-/* The dual-port memory path: writes count words at address, bypassing the
- * processor. Returns 0, or -1 (nothing written) if the block leaves the memory. */
+/* The chip's one way of writing its external memory (WriteBuffer, trace
+ * samples, the dual-port path): count words at address. Returns 0, or -1
+ * (nothing written, an error logged) if the block leaves the memory. Every
+ * caller checks its bounds first, so -1 is a bug: with PMD_CHECK_INVARIANTS
+ * (sanitizer and fuzz builds) it aborts, so that fuzzing finds it. */
+int pmd_memory_store(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data);
+
+/* The dual-port memory path: pmd_memory_store, bypassing the processor, logged. */
 int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data);
 
 /* Register views. */

@@ -407,6 +407,7 @@ static int nonempty(const PmdChip *chip, const char *name, int64_t id, const Pmd
 int cmd_WriteBuffer(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     PmdBuffer *b = buffer(chip, "WriteBuffer", arg[0]);
+    uint32_t value;
     int err;
     (void)axis; (void)reply;
     if (!b)
@@ -418,7 +419,8 @@ int cmd_WriteBuffer(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
     if (b->streamed && b->unread == b->length)
         pmd_log(chip, PMD_LOG_WARNINGS, "WriteBuffer: buffer %d write index %u overtakes its read index: "
                 "overwriting unread data, as the chip does", (int)arg[0], (unsigned)b->writeIndex);
-    chip->memory[b->start + b->writeIndex] = (uint32_t)arg[1];
+    value = (uint32_t)arg[1];
+    pmd_memory_store(chip, b->start + b->writeIndex, 1, &value);
     b->writeIndex = b->writeIndex + 1 == b->length ? 0 : b->writeIndex + 1;
     if (b->unread < b->length)
         b->unread++;

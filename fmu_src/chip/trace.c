@@ -81,7 +81,8 @@ static void sample(PmdChip *chip)
     PmdBuffer *b = &chip->s.buffer[0];
     int k, slots = slots_in_use(TRACE);
     for (k = 0; k < slots; k++) {
-        chip->memory[b->start + b->writeIndex] = (uint32_t)trace_value(chip, TRACE->variable[k]);
+        uint32_t value = (uint32_t)trace_value(chip, TRACE->variable[k]);
+        pmd_memory_store(chip, b->start + b->writeIndex, 1, &value);
         if (++b->writeIndex == b->length) {
             b->writeIndex = 0;
             if (TRACE->mode == PMDTraceRollingBuffer)
@@ -96,8 +97,17 @@ static void sample(PmdChip *chip)
 
 void pmd_trace_cycle(PmdChip *chip)
 {
-    if (!TRACE->active && TRACE->start && condition_met(chip, TRACE->start))
-        start(chip);
+    if (!TRACE->active && TRACE->start && condition_met(chip, TRACE->start)) {
+        /* Buffer 0 may have changed since SetTraceStart armed the trace (only a
+         * running trace locks it): a trace starts only into a buffer it can fill. */
+        if (chip->s.buffer[0].length == 0) {
+            TRACE->start = 0;
+            pmd_log(chip, PMD_LOG_WARNINGS, "trace start condition met, but trace buffer 0 now has length 0: "
+                    "trace not started");
+        } else {
+            start(chip);
+        }
+    }
     if (TRACE->active) {
         if (TRACE->countdown == 0) {
             TRACE->countdown = (uint16_t)(TRACE->period - 1);

@@ -156,14 +156,18 @@ fmi2Status fmi2Reset(fmi2Component c)
 /* ---- variables ---- */
 
 /* Gets see pending port writes executed first: a host reads its replies at the
- * time it wrote the batch (CONTRACT 2.2). */
-#define GET_FUNCTION(fn, T, get)                                                                  \
+ * time it wrote the batch (CONTRACT 2.2). A get refused for a value reference
+ * executes nothing. */
+#define GET_FUNCTION(fn, T, get, type)                                                            \
     fmi2Status fn(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, T value[])        \
     {                                                                                            \
         PmdInstance *inst = begin(c, #fn, GET_STATES);                                           \
         size_t i;                                                                                \
         if (!inst || !arrays_given(inst, #fn, nvr, vr, value))                                   \
             return fmi2Error;                                                                    \
+        for (i = 0; i < nvr; i++)                                                                \
+            if (!pmd_variable_given(inst, #fn, vr[i], type))                                     \
+                return fmi2Error;                                                                \
         if (inst->state != PMD_TERMINATED)                                                       \
             pmd_commit_ports(inst);                                                              \
         for (i = 0; i < nvr; i++)                                                                \
@@ -172,11 +176,12 @@ fmi2Status fmi2Reset(fmi2Component c)
         return fmi2OK;                                                                           \
     }
 
-GET_FUNCTION(fmi2GetReal, fmi2Real, pmd_get_real)
-GET_FUNCTION(fmi2GetInteger, fmi2Integer, pmd_get_integer)
-GET_FUNCTION(fmi2GetBoolean, fmi2Boolean, pmd_get_boolean)
+GET_FUNCTION(fmi2GetReal, fmi2Real, pmd_get_real, PMD_REAL)
+GET_FUNCTION(fmi2GetInteger, fmi2Integer, pmd_get_integer, PMD_INTEGER)
+GET_FUNCTION(fmi2GetBoolean, fmi2Boolean, pmd_get_boolean, PMD_BOOLEAN)
 
-/* Sets are all or nothing: every value is checked before any is applied. */
+/* Sets are all or nothing: every value is checked, then what they ask for
+ * together, before any is applied (instance.h). */
 #define SET_FUNCTION(fn, T, set)                                                                  \
     fmi2Status fn(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const T value[])  \
     {                                                                                            \
@@ -184,13 +189,15 @@ GET_FUNCTION(fmi2GetBoolean, fmi2Boolean, pmd_get_boolean)
         size_t i;                                                                                \
         if (!inst || !arrays_given(inst, #fn, nvr, vr, value))                                   \
             return fmi2Error;                                                                    \
+        pmd_set_begin(inst);                                                                     \
         for (i = 0; i < nvr; i++)                                                                \
             if (set(inst, #fn, vr[i], value[i], 0) != PMD_OK)                                    \
                 return fmi2Error;                                                                \
+        if (pmd_set_check(inst, #fn) != PMD_OK)                                                  \
+            return fmi2Error;                                                                    \
         for (i = 0; i < nvr; i++)                                                                \
-            if (set(inst, #fn, vr[i], value[i], 1) != PMD_OK)                                    \
-                return fmi2Error;                                                                \
-        return status_of[pmd_check_memory_port(inst, #fn)];                                      \
+            set(inst, #fn, vr[i], value[i], 1);                                                  \
+        return fmi2OK;                                                                           \
     }
 
 SET_FUNCTION(fmi2SetReal, fmi2Real, pmd_set_real)
@@ -216,6 +223,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
     int apply;
     if (!inst || !arrays_given(inst, "fmi2SetString", nvr, vr, value))
         return fmi2Error;
+    pmd_set_begin(inst);
     for (apply = 0; apply <= 1; apply++)
         for (i = 0; i < nvr; i++)
             if (pmd_set_string(inst, "fmi2SetString", vr[i], value[i], apply) != PMD_OK)

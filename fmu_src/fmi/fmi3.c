@@ -238,7 +238,7 @@ static PmdStatus set_element(PmdInstance *inst, const char *fn, PmdType3 type, u
     case PMD3_FLOAT64: return pmd_set_real(inst, fn, vr, ((const fmi3Float64 *)values)[k], apply);
     case PMD3_BOOLEAN: return pmd_set_boolean(inst, fn, vr, ((const fmi3Boolean *)values)[k], apply);
     case PMD3_INT32: return pmd_set_integer(inst, fn, vr, ((const fmi3Int32 *)values)[k], apply);
-    case PMD3_UINT32: return pmd_set_integer(inst, fn, vr, pmd_int32(((const fmi3UInt32 *)values)[k]), apply);
+    case PMD3_UINT32: return pmd_set_integer(inst, fn, vr, ((const fmi3UInt32 *)values)[k], apply);
     default: return pmd_set_integer(inst, fn, vr, ((const fmi3UInt16 *)values)[k], apply);
     }
 }
@@ -275,7 +275,10 @@ static fmi3Status set_values(fmi3Instance c, const char *fn, PmdType3 type, cons
     if (!inst || !pmd_arrays_given(inst, fn, nvr, vrs, values) ||
         !count_matches(inst, fn, type_names[type], vrs, nvr, nValues))
         return fmi3Error;
+    pmd_set_begin(inst);
     for (apply = 0; apply <= 1; apply++) {
+        if (apply && pmd_set_check(inst, fn) != PMD_OK)
+            return fmi3Error;
         for (i = 0, k = 0; i < nvr; i++) {
             const PmdVariable3 *v = &pmd_variables3[pmd_variable3_of_vr[vrs[i]]];
             for (e = 0; e < v->count; e++)
@@ -283,7 +286,7 @@ static fmi3Status set_values(fmi3Instance c, const char *fn, PmdType3 type, cons
                     return fmi3Error;
         }
     }
-    return status_of[pmd_check_memory_port(inst, fn)];
+    return fmi3OK;
 }
 
 #define GETSET(T, Type, type3)                                                                              \

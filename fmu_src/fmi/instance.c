@@ -103,6 +103,7 @@ void pmd_instance_free(PmdInstance *inst)
     free(inst->scriptPath);
     pmd_script_free(&inst->script);
     free(inst->record);
+    free(inst->staged.memory);
     free(inst);
 }
 
@@ -229,6 +230,9 @@ static void run_script(PmdInstance *inst)
 }
 
 #define MAX_CYCLES_PER_STEP ((double)(1LL << 53))
+#define MAX_CYCLE_INDEX ((double)(1LL << 62))
+/* SetSampleTime's finest grid: 1 microsecond (the register counts microseconds) */
+#define FINEST_CYCLE_TIME 1e-6
 
 /* A time on the cycle grid: finite and within 2^53 cycles of the anchor (the
  * cycle index must fit an integer exactly). */
@@ -245,9 +249,14 @@ static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t)
 
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime)
 {
-    inst->activeCycleTime = inst->cycleTime;
-    if (on_the_grid(inst, fn, startTime) != PMD_OK)
-        return PMD_ERROR;
+    double active = inst->activeCycleTime;
+    PmdStatus status;
+    inst->activeCycleTime = inst->cycleTime;        /* the grid the start time must lie on */
+    status = on_the_grid(inst, fn, startTime);
+    if (status != PMD_OK) {
+        inst->activeCycleTime = active;
+        return status;
+    }
     inst->time = startTime;
     inst->state = PMD_INITIALIZATION_MODE;
     return PMD_OK;
@@ -292,9 +301,8 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
     inst->record = NULL;
     if (inst->recordEnabled && allocate_record(inst, fn) != PMD_OK)
         return PMD_ERROR;
-    double us = floor(inst->cycleTime * 1e6 + 0.5);
-    /* GetSampleTime reads the cycle time in whole microseconds (16 bits) */
-    inst->chip.s.sampleTime = (uint16_t)(us < 1 ? 1 : us > 65535 ? 65535 : us);
+    /* GetSampleTime reads the cycle time, a whole number of microseconds (pmd_set_real checked it) */
+    inst->chip.s.sampleTime = (uint16_t)floor(inst->cycleTime * 1e6 + 0.5);
     inst->nextCycle = cycles_before(inst, inst->time);
     inst->state = PMD_STEP_MODE;
     return PMD_OK;
@@ -302,7 +310,7 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
 {
-    int64_t end;
+    int64_t end, recorded = 0, ran = 0;
     double x;
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: communication point %g, step size %g: the step "
@@ -314,19 +322,25 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
                          "time %.17g", fn, t, inst->time);
         return PMD_ERROR;
     }
-    x = (t + h - inst->anchorTime) / inst->activeCycleTime;
-    if (!(x < MAX_CYCLES_PER_STEP)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: step to %g s is beyond 2^53 cycles of %g s",
-                         fn, t + h, inst->activeCycleTime);
+    /* A pending batch or a script step may restart the grid inside the step, at
+     * any cycle time down to 1 us: the step's end must be a valid cycle index on
+     * the finest grid the step can run on, from the current anchor (a later
+     * anchor lies between it and the end), so no grid change can overflow it. */
+    x = (t + h - inst->anchorTime) /
+        (inst->activeCycleTime < FINEST_CYCLE_TIME ? inst->activeCycleTime : FINEST_CYCLE_TIME);
+    if (!(x < MAX_CYCLES_PER_STEP && (double)inst->anchorCycle + x < MAX_CYCLE_INDEX)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: step to %g s lies beyond 2^53 cycles of 1 us (the "
+                         "finest cycle time SetSampleTime can choose) from %g s: not run", fn, t + h, inst->anchorTime);
         return PMD_ERROR;
     }
-    pmd_commit_ports(inst);
     end = cycles_before(inst, t + h);
     if (inst->recordEnabled && end - inst->nextCycle > (int64_t)inst->recordCapacity) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: recording a step of %lld cycles, but record.capacity "
-                         "is %u", fn, (long long)(end - inst->nextCycle), (unsigned)inst->recordCapacity);
+                         "is %u: not run", fn, (long long)(end - inst->nextCycle), (unsigned)inst->recordCapacity);
         return PMD_ERROR;
     }
+    pmd_commit_ports(inst);
+    end = cycles_before(inst, t + h);               /* the batch may have restarted the grid */
     inst->recordCount = 0;
     /* script steps due at a cycle run just before it, inside the step that runs it */
     while (inst->nextCycle < end) {
@@ -337,9 +351,13 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
             continue;
         }
         if (inst->recordEnabled) {               /* every cycle recorded: no fast-forward */
-            int64_t k = cycles_to_skip(inst, end);
-            pmd_chip_run(&inst->chip, k, inst->record + (size_t)inst->recordCount * PMD_RECORD_WORDS);
-            inst->recordCount += (uint32_t)k;
+            /* rows past record.capacity are not recorded: the grid may have restarted finer inside the step */
+            int64_t k = cycles_to_skip(inst, end), room = (int64_t)inst->recordCapacity - recorded;
+            int64_t r = k < room ? k : room;
+            pmd_chip_run(&inst->chip, r, inst->record + (size_t)recorded * PMD_RECORD_WORDS);
+            pmd_chip_run(&inst->chip, k - r, NULL);
+            recorded += r;
+            ran += k;
             inst->nextCycle += k;
         } else {
             pmd_chip_cycle(&inst->chip);
@@ -348,21 +366,59 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
         }
     }
     inst->time = t + h;
+    inst->recordCount = (uint32_t)recorded;
+    if (ran > recorded) {
+        pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s: SetSampleTime restarted the cycle grid during a "
+                         "recording step: it ran %lld cycles, record.data holds the first %lld (record.capacity)",
+                         fn, (long long)ran, (long long)recorded);
+        return PMD_WARNING;
+    }
     return PMD_OK;
 }
 
 /* ---- ports ---------------------------------------------------------------- */
 
-PmdStatus pmd_check_memory_port(PmdInstance *inst, const char *fn)
+void pmd_set_begin(PmdInstance *inst)
 {
-    if (inst->memoryStrobe == inst->memoryStrobeSeen)
+    free(inst->staged.memory);                      /* left by a call that was refused after its check */
+    inst->staged.memory = NULL;
+    inst->staged.memorySize = inst->memorySize;
+    inst->staged.memoryAddress = inst->memoryAddress;
+    inst->staged.memoryCount = inst->memoryCount;
+    inst->staged.memoryStrobe = inst->memoryStrobe;
+}
+
+/* What the staged values ask for together: a new memory.strobe a write that
+ * fits the memory (as it will be), a new memorySize room for every buffer the
+ * host has set up and for a pending write. The new memory block is allocated
+ * last, so that nothing can fail once values are applied. */
+PmdStatus pmd_set_check(PmdInstance *inst, const char *fn)
+{
+    uint32_t size = (uint32_t)inst->staged.memorySize;
+    int id;
+    if (inst->staged.memoryStrobe != inst->memoryStrobeSeen &&
+        ((uint32_t)inst->staged.memoryAddress > size ||
+         (uint32_t)inst->staged.memoryCount > size - (uint32_t)inst->staged.memoryAddress)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: memory.strobe %d: writing %u words at address %u "
+                         "leaves the %u-word memory: write refused, nothing set", fn, inst->staged.memoryStrobe,
+                         (unsigned)inst->staged.memoryCount, (unsigned)inst->staged.memoryAddress, (unsigned)size);
+        return PMD_ERROR;
+    }
+    if (size == (uint32_t)inst->memorySize)
         return PMD_OK;
-    if ((uint32_t)inst->memoryAddress > (uint32_t)inst->memorySize ||
-        (uint32_t)inst->memoryCount > (uint32_t)inst->memorySize - (uint32_t)inst->memoryAddress) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: memory.strobe %d: writing %d words at address %d "
-                         "leaves the %d-word memory: write refused", fn, inst->memoryStrobe, inst->memoryCount,
-                         inst->memoryAddress, inst->memorySize);
-        inst->memoryStrobeSeen = inst->memoryStrobe;
+    for (id = 0; id < PMD_BUFFERS; id++) {
+        const PmdBuffer *b = &inst->chip.s.buffer[id];
+        if (b->length > 0 && (b->start > size || b->length > size - b->start)) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: memorySize = %u: buffer %d (start 0x%X, length %u) "
+                             "would leave the memory: not set (set the memory size before the buffers)", fn,
+                             (unsigned)size, id, (unsigned)b->start, (unsigned)b->length);
+            return PMD_ERROR;
+        }
+    }
+    inst->staged.memory = (uint32_t *)calloc(size, sizeof(uint32_t));
+    if (!inst->staged.memory) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: memorySize = %u: out of host memory: not set", fn,
+                         (unsigned)size);
         return PMD_ERROR;
     }
     return PMD_OK;
@@ -395,6 +451,12 @@ void pmd_commit_ports(PmdInstance *inst)
 /* ---- variables ------------------------------------------------------------- */
 
 static const char *const type_names[] = {"Real", "Integer", "Boolean", "String", "Binary"};
+static const PmdVariable *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdType type);
+
+int pmd_variable_given(PmdInstance *inst, const char *fn, unsigned vr, int type)
+{
+    return lookup(inst, fn, vr, (PmdType)type) != NULL;
+}
 
 static const PmdVariable *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdType type)
 {
@@ -526,74 +588,92 @@ static PmdStatus out_of_range(PmdInstance *inst, const char *fn, const PmdVariab
 PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
+    double us;
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
-    /* the only Real that can be set is cycleTime */
-    if (!(isfinite(value) && value > 0))
-        return out_of_range(inst, fn, v, value, "finite and > 0");
+    /* The only Real that can be set is cycleTime. The chip's sample time
+     * register (GetSampleTime) holds whole microseconds, 1..65535: a cycle time
+     * it cannot hold is refused rather than rounded. */
+    us = value * 1e6;
+    if (!(us >= 0.5 && us < 65535.5 && fabs(us - floor(us + 0.5)) <= 1e-9 * us))
+        return out_of_range(inst, fn, v, value, "a whole number of microseconds, 1e-6 .. 0.065535 s");
     if (apply)
         inst->cycleTime = value;
     return PMD_OK;
 }
 
-static PmdStatus set_memory_size(PmdInstance *inst, int32_t words)
+/* A new memory size keeps the words both sizes have and every register
+ * (pmd_set_check made sure the buffers fit and allocated the block). */
+static void set_memory_size(PmdInstance *inst, int32_t words)
 {
-    uint32_t *memory = (uint32_t *)realloc(inst->chip.memory, (size_t)words * sizeof(uint32_t));
-    if (!memory) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "memorySize = %d: out of host memory", words);
-        return PMD_ERROR;
-    }
-    memset(memory, 0, (size_t)words * sizeof(uint32_t));
+    uint32_t *memory = inst->staged.memory;
+    if (!memory)
+        return;                                     /* the same size: nothing to do */
+    memcpy(memory, inst->chip.memory, (size_t)(words < inst->memorySize ? words : inst->memorySize) * sizeof *memory);
+    free(inst->chip.memory);
+    inst->staged.memory = NULL;
     inst->chip.memory = memory;
     inst->chip.memorySize = (uint32_t)words;
     inst->memorySize = words;
-    pmd_chip_reset(&inst->chip);   /* buffers must fit the new memory: back to reset values */
-    return PMD_OK;
 }
 
-PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t value, int apply)
+PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_t value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
     switch (v->family) {
     case VAR_memorySize:
-        if (value < 1 || (uint32_t)value > PMD_MAX_MEMORY_WORDS)
-            return out_of_range(inst, fn, v, value, "1 .. 2^26 words");
+        if (value < 1 || value > PMD_MAX_MEMORY_WORDS)
+            return out_of_range(inst, fn, v, (double)value, "1 .. 2^26 words");
         break;
     case VAR_host_word:
         if (value < -32768 || value > 65535)
-            return out_of_range(inst, fn, v, value, "a 16-bit word, -32768 .. 65535");
+            return out_of_range(inst, fn, v, (double)value, "a 16-bit word, -32768 .. 65535");
         break;
     case VAR_host_wordCount:
     case VAR_memory_count:
         if (value < 0 || value > PMD_BATCH_WORDS)
-            return out_of_range(inst, fn, v, value, "0 .. 64");
+            return out_of_range(inst, fn, v, (double)value, "0 .. 64");
         break;
     case VAR_memory_address:
-        if (value < 0)
-            return out_of_range(inst, fn, v, value, ">= 0");
+        if (value < 0 || value > PMD_MAX_MEMORY_WORDS)
+            return out_of_range(inst, fn, v, (double)value, "0 .. 2^26");
         break;
     case VAR_record_capacity:
-        if (value < 0 || (uint32_t)value > PMD_MAX_RECORD_CYCLES)
-            return out_of_range(inst, fn, v, value, "0 .. 2^24 cycles");
+        if (value < 0 || value > PMD_MAX_RECORD_CYCLES)
+            return out_of_range(inst, fn, v, (double)value, "0 .. 2^24 cycles");
         break;
-    default:
+    case VAR_memory_data:
+        if (value < INT32_MIN || value > UINT32_MAX)      /* FMI 2 Integer or FMI 3 UInt32: the word's 32 bits */
+            return out_of_range(inst, fn, v, (double)value, "a 32-bit word");
+        break;
+    default:                                                /* Int32 variables: FMI already bounds them */
+        if (value < INT32_MIN || value > INT32_MAX)
+            return out_of_range(inst, fn, v, (double)value, "a 32-bit signed integer");
         break;
     }
-    if (!apply)
+    if (!apply) {
+        switch (v->family) {                                /* what pmd_set_check looks at */
+        case VAR_memorySize: inst->staged.memorySize = (int32_t)value; break;
+        case VAR_memory_address: inst->staged.memoryAddress = (int32_t)value; break;
+        case VAR_memory_count: inst->staged.memoryCount = (int32_t)value; break;
+        case VAR_memory_strobe: inst->staged.memoryStrobe = (int32_t)value; break;
+        default: break;
+        }
         return PMD_OK;
+    }
     switch (v->family) {
-    case VAR_memorySize: return set_memory_size(inst, value);
-    case VAR_axis_actualPosition: AXIS_OF(v)->actualPositionInput = value; break;
-    case VAR_host_word: inst->hostWord[v->index] = value; break;
-    case VAR_host_wordCount: inst->hostWordCount = value; break;
-    case VAR_host_strobe: inst->hostStrobe = value; break;
-    case VAR_memory_address: inst->memoryAddress = value; break;
-    case VAR_memory_count: inst->memoryCount = value; break;
-    case VAR_memory_strobe: inst->memoryStrobe = value; break;
+    case VAR_memorySize: set_memory_size(inst, (int32_t)value); break;
+    case VAR_axis_actualPosition: AXIS_OF(v)->actualPositionInput = (int32_t)value; break;
+    case VAR_host_word: inst->hostWord[v->index] = (int32_t)value; break;
+    case VAR_host_wordCount: inst->hostWordCount = (int32_t)value; break;
+    case VAR_host_strobe: inst->hostStrobe = (int32_t)value; break;
+    case VAR_memory_address: inst->memoryAddress = (int32_t)value; break;
+    case VAR_memory_count: inst->memoryCount = (int32_t)value; break;
+    case VAR_memory_strobe: inst->memoryStrobe = (int32_t)value; break;
     case VAR_record_capacity: inst->recordCapacity = (uint32_t)value; break;
-    default: inst->memoryData[v->index] = value; break;   /* VAR_memory_data */
+    default: inst->memoryData[v->index] = pmd_int32((uint32_t)value); break;   /* VAR_memory_data */
     }
     return PMD_OK;
 }
@@ -603,18 +683,14 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
-    if (!apply)
-        return PMD_OK;
     value = value != 0;
+    if (!apply)          /* recording needs its buffer: allocated by the check, so that applying cannot fail */
+        return v->family == VAR_record_enabled && value ? allocate_record(inst, fn) : PMD_OK;
     switch (v->family) {
     case VAR_loopback: inst->chip.s.loopback = (uint8_t)value; break;
     case VAR_axis_positiveLimit: AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;
     case VAR_axis_negativeLimit: AXIS_OF(v)->negativeLimitInput = (uint8_t)value; break;
-    case VAR_record_enabled:
-        if (value && allocate_record(inst, fn) != PMD_OK)
-            return PMD_ERROR;
-        inst->recordEnabled = (uint8_t)value;
-        break;
+    case VAR_record_enabled: inst->recordEnabled = (uint8_t)value; break;
     default: AXIS_OF(v)->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
     }
     return PMD_OK;

@@ -65,6 +65,14 @@ typedef struct {
     uint32_t recordCapacity;         /* cycles */
     int32_t *record;
     uint32_t recordCount;            /* cycles recorded by the last doStep */
+
+    /* A set call checks every value, then what they ask for together (a memory
+     * write that must fit the memory, a memory size that must hold the
+     * buffers), then applies them: a refused call changes nothing. */
+    struct {
+        int32_t memorySize, memoryAddress, memoryCount, memoryStrobe;
+        uint32_t *memory;            /* the new memory block of a memorySize change, allocated by the check */
+    } staged;
 } PmdInstance;
 
 #define PMD_MAX_RECORD_CYCLES (1u << 24)
@@ -91,20 +99,27 @@ int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const vo
 #define PMD_SET_STATES (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE)
 
 /* Variable access, one value at a time. fn names the FMI function in messages.
- * A set with apply = 0 only checks (so that an array call is all or nothing). */
+ *
+ * A set call is all or nothing: pmd_set_begin, then every value's set with
+ * apply = 0 (checks it and stages it), then pmd_set_check (checks what the
+ * staged values ask for together), then every set again with apply = 1.
+ * Integer values come as the FMI type holds them (FMI 3 UInt32 unsigned), so
+ * that a message shows the value the caller sent. */
+void pmd_set_begin(PmdInstance *inst);
+PmdStatus pmd_set_check(PmdInstance *inst, const char *fn);
+/* Whether vr is a variable of this type (logs and returns 0 if not): gets check every value reference first. */
+int pmd_variable_given(PmdInstance *inst, const char *fn, unsigned vr, int type);
 PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value);
 PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value);
 PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value);
 PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply);
-PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t value, int apply);
+PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_t value, int apply);
 PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply);
 PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value);
 PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value, size_t *size);
 PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply);
 PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const char *type);
 
-/* Checks the dual-port write a changed memory.strobe asks for; call after a set call. */
-PmdStatus pmd_check_memory_port(PmdInstance *inst, const char *fn);
 /* Executes pending host and memory port writes (host batch first; CONTRACT 2.1). */
 void pmd_commit_ports(PmdInstance *inst);
 
