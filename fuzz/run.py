@@ -17,7 +17,7 @@ TARGETS = ("host", "fmi", "script")
 
 def sources(target: str, gen: Path):
     chip = sorted(str(p) for p in (ROOT / "fmu_src" / "chip").glob("*.c"))
-    fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "state.c", "script.c")]
+    fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "state.c", "state_fields.c", "script.c")]
     generated = [str(gen / n) for n in ("variables.c", "command_table.c", "pmd_constants.c")]
     extra = [str(ROOT / "fmu_src" / "fmi" / "fmi2.c")] if target == "fmi" else []
     return [str(ROOT / "fuzz" / f"fuzz_{target}.c"), *chip, *fmi, *extra, *generated]

@@ -76,7 +76,7 @@ static int external_buffers_ok(const PmdChip *chip, const PmdAxis *ax)
 /* Notes where each function's value lives and which distinct buffers a
  * segment read moves (buffers may share an ID): read_segment then costs a
  * load per function. Redone whenever the buffer set-up changes. */
-static void plan_reads(PmdChip *chip, PmdAxis *ax)
+static void plan_reads(const PmdChip *chip, PmdAxis *ax)
 {
     int f, i;
     ax->segmentFunctions = 0;
@@ -92,6 +92,23 @@ static void plan_reads(PmdChip *chip, PmdAxis *ax)
         if (i == ax->segmentBufferCount)
             ax->segmentBuffer[ax->segmentBufferCount++] = (uint8_t)id;
     }
+}
+
+/* Whether axis n's segment plan is what its buffers give now: a restored FMU
+ * state that says its plan is current must not read elsewhere (state.c). */
+int pmd_segment_plan_valid(const PmdChip *chip, int n)
+{
+    const PmdAxis *ax = &chip->s.axis[n];
+    PmdAxis plan = *ax;
+    int f;
+    if (!external_buffers_ok(chip, ax))
+        return 0;
+    plan_reads(chip, &plan);
+    for (f = 0; f < PMD_FUNCTIONS; f++)
+        if (plan.segmentStart[f] != ax->segmentStart[f] || (f < plan.segmentBufferCount &&
+                                                             plan.segmentBuffer[f] != ax->segmentBuffer[f]))
+            return 0;
+    return plan.segmentFunctions == ax->segmentFunctions && plan.segmentBufferCount == ax->segmentBufferCount;
 }
 
 /* Reads one segment: the entry at the position buffer's read index from every

@@ -50,6 +50,11 @@ static int64_t p6_total(int64_t t1, int64_t t2, int64_t t4)
     return 6 * t1 * (t1 + t2) * (2 * t1 + t2 + t4);
 }
 
+int64_t pmd_scurve_p6_total(int64_t t1, int64_t t2, int64_t t4)
+{
+    return p6_total(t1, t2, t4);
+}
+
 /* Which limit the plan breaks: 1 jerk, 2 acceleration, 3 velocity, 0 none.
  * D * (peak of the unit curve) / (p6Total / 6) <= limit, compared exactly. */
 static int broken_limit(uint64_t d, const PmdProfileRegisters *r, int64_t t1, int64_t t2, int64_t p6)

@@ -1,30 +1,26 @@
 /* FMU state: a snapshot of an instance as one self-describing block of bytes.
  *
- * The instance is plain data except for its memory block and its logging
- * hooks, so a snapshot is the instance struct (pointers cleared) followed by
- * the memory words (the compiled script stays the instance's: a snapshot
- * holds how far the script ran), behind a header that lets a restore refuse anything that
- * is not a snapshot of this FMU build: magic, format version, instantiation
- * token, struct size, memory size, total size and a checksum of the body.
- * The same bytes serve fmi2/fmi3 Get/SetFMUState and (De)SerializeFMUState,
- * in this process or another one of the same build and platform. */
+ * A snapshot is the instance struct, with the fields state_fields.c declares
+ * as this process's (pointers, hooks, logging) cleared, followed by the memory
+ * words (the compiled script stays the instance's: a snapshot holds how far the
+ * script ran), behind a header that lets a restore refuse anything that is not
+ * a snapshot of this FMU build: magic, format version, instantiation token,
+ * struct size, memory size, total size and a checksum of the body. The
+ * checksum catches accidents, not forgeries: a restore also checks every field
+ * against its declared range and against the fields it depends on, and
+ * refuses the whole snapshot, naming the field. The same bytes serve fmi2/fmi3
+ * Get/SetFMUState and (De)SerializeFMUState, in this process or another one of
+ * the same build and platform. */
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "state.h"
+#include "state_fields.h"
 
-#define MAGIC "PMDFMUST"
-#define FORMAT_VERSION 1u
-
-typedef struct {
-    char magic[8];
-    uint32_t formatVersion;
-    uint32_t instanceSize;       /* sizeof(PmdInstance): the layout of this build */
-    char token[48];              /* PMD_INSTANTIATION_TOKEN */
-    uint64_t totalSize;
-    uint64_t memoryWords;
-    uint64_t checksum;           /* FNV-1a over everything after the header */
-} Header;
+#define MAGIC PMD_STATE_MAGIC
+typedef PmdStateHeader Header;
 
 static uint64_t fnv1a(const unsigned char *p, size_t n)
 {
@@ -42,29 +38,52 @@ size_t pmd_state_size(const PmdInstance *inst)
     return sizeof(Header) + sizeof(PmdInstance) + (size_t)inst->memorySize * sizeof(uint32_t);
 }
 
+/* Copies every field the list declares as this process's from one image to another (or clears it). */
+typedef struct {
+    unsigned char *to;
+    const unsigned char *from;   /* NULL: clear */
+} ProcessCopy;
+
+static int copy_process_field(const PmdStateLeaf *leaf, void *context)
+{
+    const ProcessCopy *c = (const ProcessCopy *)context;
+    if (leaf->kind != PMD_SF_PROCESS)
+        return 0;
+    if (c->from)
+        memcpy(c->to + leaf->offset, c->from + leaf->offset, leaf->size);
+    else
+        memset(c->to + leaf->offset, 0, leaf->size);
+    return 0;
+}
+
+static void copy_process_fields(PmdInstance *to, const PmdInstance *from)
+{
+    ProcessCopy c;
+    c.to = (unsigned char *)to;
+    c.from = (const unsigned char *)from;
+    pmd_state_walk(copy_process_field, &c);
+}
+
 void pmd_state_write(const PmdInstance *inst, unsigned char *out)
 {
     Header h;
-    PmdInstance copy;
     unsigned char *body = out + sizeof h;
+    PmdInstance *copy = (PmdInstance *)malloc(sizeof *copy);    /* large: not on the stack */
 
-    memcpy(&copy, inst, sizeof copy);
-    /* what belongs to this process, not to the state */
-    copy.chip.memory = NULL;
-    copy.chip.logger = NULL;
-    copy.chip.logContext = NULL;
-    copy.instanceName = NULL;
-    copy.logger = NULL;
-    copy.environment = NULL;
-    copy.scriptPath = NULL;
-    memset(&copy.script, 0, sizeof copy.script);
-    copy.record = NULL;
-    memcpy(body, &copy, sizeof copy);
-    memcpy(body + sizeof copy, inst->chip.memory, (size_t)inst->memorySize * sizeof(uint32_t));
+    if (copy) {
+        memcpy(copy, inst, sizeof *copy);
+        copy_process_fields(copy, NULL);
+        memcpy(body, copy, sizeof *copy);
+        free(copy);
+    } else {                     /* no room for a copy: clear the process's fields in place */
+        memcpy(body, inst, sizeof *inst);
+        copy_process_fields((PmdInstance *)(void *)body, NULL);
+    }
+    memcpy(body + sizeof(PmdInstance), inst->chip.memory, (size_t)inst->memorySize * sizeof(uint32_t));
 
     memset(&h, 0, sizeof h);
     memcpy(h.magic, MAGIC, sizeof h.magic);
-    h.formatVersion = FORMAT_VERSION;
+    h.formatVersion = PMD_STATE_VERSION;
     h.instanceSize = (uint32_t)sizeof(PmdInstance);
     strncpy(h.token, PMD_INSTANTIATION_TOKEN, sizeof h.token - 1);
     h.totalSize = pmd_state_size(inst);
@@ -73,19 +92,127 @@ void pmd_state_write(const PmdInstance *inst, unsigned char *out)
     memcpy(out, &h, sizeof h);
 }
 
+/* ---- what a field's value depends on ---- */
+
+#define WHY(...) (snprintf(why, whySize, __VA_ARGS__), -1)
+
+static int check_buffers(const PmdChipState *s, uint32_t memoryWords, char *why, size_t whySize)
+{
+    int i;
+    for (i = 0; i < PMD_BUFFERS; i++) {
+        const PmdBuffer *b = &s->buffer[i];
+        if (b->start > memoryWords || b->length > memoryWords - b->start)
+            return WHY("chip.s.buffer[%d]: start 0x%X + length %u leave the %u-word memory", i, (unsigned)b->start,
+                       (unsigned)b->length, (unsigned)memoryWords);
+        if (b->length == 0 ? (b->readIndex | b->writeIndex | b->unread) != 0
+                           : b->readIndex >= b->length || b->writeIndex >= b->length || b->unread > b->length)
+            return WHY("chip.s.buffer[%d]: readIndex %u, writeIndex %u or unread %u does not fit length %u", i,
+                       (unsigned)b->readIndex, (unsigned)b->writeIndex, (unsigned)b->unread, (unsigned)b->length);
+    }
+    return 0;
+}
+
+/* Trace words: variable slots axis | variable << 8, conditions axis | condition << 4 | bit << 8 | state << 12. */
+static int check_trace(const PmdChipState *s, char *why, size_t whySize)
+{
+    const PmdTrace *t = &s->trace;
+    const uint16_t condition[2] = {t->start, t->stop};
+    int k;
+    for (k = 0; k < PMD_TRACE_SLOTS; k++)
+        if ((t->variable[k] & 0xF) >= PMD_AXES || (t->variable[k] & 0xF0) || (t->variable[k] >> 8) > PMDTraceSignalStatus)
+            return WHY("chip.s.trace.variable[%d] = 0x%04X: not an axis 0..3 and a variable 0..14", k,
+                       (unsigned)t->variable[k]);
+    for (k = 0; k < 2; k++)
+        if (condition[k] && ((condition[k] & 0xF) >= PMD_AXES || ((condition[k] >> 4) & 0xF) > PMDTraceConditionSignalStatus))
+            return WHY("chip.s.trace.%s = 0x%04X: not an axis 0..3 and a condition 0..4", k ? "stop" : "start",
+                       (unsigned)condition[k]);
+    if (t->countdown >= t->period)
+        return WHY("chip.s.trace.countdown = %u is not below the period %u", (unsigned)t->countdown,
+                   (unsigned)t->period);
+    if (t->active && s->buffer[0].length == 0)
+        return WHY("chip.s.trace.active = 1 with trace buffer 0 of length 0");
+    if (t->count > s->buffer[0].length)
+        return WHY("chip.s.trace.count = %u is more than trace buffer 0 holds (%u)", (unsigned)t->count,
+                   (unsigned)s->buffer[0].length);
+    return 0;
+}
+
+/* A moving S-curve: what pmd_scurve_cycle reads must describe the plan's unit curve. */
+static int check_scurve(const PmdSCurve *c, int n, char *why, size_t whySize)
+{
+    int64_t total = 4 * c->t1 + 2 * c->t2 + c->t4;
+    if (c->p6Total != pmd_scurve_p6_total(c->t1, c->t2, c->t4))
+        return WHY("chip.s.axis[%d].scurve.p6Total = %lld is not 6 t1 (t1 + t2) (2 t1 + t2 + t4) below 2^62", n,
+                   (long long)c->p6Total);
+    if (c->step >= total || c->p6 > c->p6Total || c->v2 > 2 * c->t1 * (c->t1 + c->t2) || c->a > c->t1 ||
+        c->a < -c->t1)
+        return WHY("chip.s.axis[%d].scurve: step %lld, p6 %lld, v2 %lld or a %lld is not on the unit curve", n,
+                   (long long)c->step, (long long)c->p6, (long long)c->v2, (long long)c->a);
+    return 0;
+}
+
+static int check_axes(const PmdChip *chip, char *why, size_t whySize)
+{
+    int n, f;
+    for (n = 0; n < PMD_AXES; n++) {
+        const PmdAxis *ax = &chip->s.axis[n];
+        for (f = 0; f < PMD_FUNCTIONS; f++)
+            if (ax->bufferOfFunction[f] >= 0 && ax->bufferOfFunction[f] < PMD_FIRST_PROFILE_BUFFER)
+                return WHY("chip.s.axis[%d].bufferOfFunction[%d] = %d: buffers 0 and 1 belong to the trace", n, f,
+                           ax->bufferOfFunction[f]);
+        if (ax->buffersChecked == chip->s.bufferEpoch + 1 && !pmd_segment_plan_valid(chip, n))
+            return WHY("chip.s.axis[%d].segmentStart/segmentBuffer: not what its buffers give", n);
+        if (ax->active.stopMode != PMDNoStopMode || ax->active.clearPositionError)
+            return WHY("chip.s.axis[%d].active: stopMode %u or clearPositionError %u (Update clears them)", n,
+                       (unsigned)ax->active.stopMode, (unsigned)ax->active.clearPositionError);
+        if (ax->active.velocity < 0 && ax->active.profileMode != PMDVelocityContouringProfile &&
+            ax->active.profileMode != PMDExternalProfile && ax->active.profileMode != PMDElectronicGearProfile)
+            return WHY("chip.s.axis[%d].active.velocity = %d: negative in profile mode %u", n, ax->active.velocity,
+                       (unsigned)ax->active.profileMode);
+        if (ax->motion == PMD_MOTION_SCURVE && check_scurve(&ax->scurve, n, why, whySize))
+            return -1;
+    }
+    return 0;
+}
+
+/* The instance around the chip; live is the instance the snapshot would replace. */
+static int check_instance(const PmdInstance *s, const PmdInstance *live, uint64_t memoryWords, char *why,
+                          size_t whySize)
+{
+    if ((uint64_t)s->memorySize != memoryWords || s->chip.memorySize != (uint32_t)s->memorySize)
+        return WHY("memorySize %d, chip.memorySize %u and the header's %llu words differ", s->memorySize,
+                   (unsigned)s->chip.memorySize, (unsigned long long)memoryWords);
+    if (s->state & (s->state - 1))
+        return WHY("state = %u is not one FMI state", (unsigned)s->state);
+    if (!(s->cycleTime > 0) || !(s->activeCycleTime > 0))
+        return WHY("cycleTime %g and activeCycleTime %g must be > 0", s->cycleTime, s->activeCycleTime);
+    if (!(fabs((s->time - s->anchorTime) / s->activeCycleTime) < (double)(INT64_C(1) << 53)))
+        return WHY("time %g lies beyond 2^53 cycles of anchorTime %g", s->time, s->anchorTime);
+    if (s->memoryStrobe != s->memoryStrobeSeen && s->memoryCount > s->memorySize - s->memoryAddress)
+        return WHY("memoryAddress %d + memoryCount %d of the pending write leave the %d-word memory",
+                   s->memoryAddress, s->memoryCount, s->memorySize);
+    if (s->scriptNext > live->script.count)
+        return WHY("scriptNext = %zu: this instance's script has %zu steps", s->scriptNext, live->script.count);
+    if (check_buffers(&s->chip.s, (uint32_t)memoryWords, why, whySize) || check_trace(&s->chip.s, why, whySize))
+        return -1;
+    return check_axes(&s->chip, why, whySize);
+}
+
 PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigned char *in, size_t size)
 {
     Header h;
+    char token[sizeof h.token] = {0}, field[256] = "";
     const char *why = NULL;
     if (!in || size < sizeof h) {
         why = "it is shorter than a snapshot header";
     } else {
         memcpy(&h, in, sizeof h);
+        strncpy(token, PMD_INSTANTIATION_TOKEN, sizeof token - 1);
         if (memcmp(h.magic, MAGIC, sizeof h.magic) != 0)
             why = "it is not a pmdfmu snapshot (bad magic)";
-        else if (h.formatVersion != FORMAT_VERSION)
+        else if (h.formatVersion != PMD_STATE_VERSION)
             why = "its format version is not this build's";
-        else if (strncmp(h.token, PMD_INSTANTIATION_TOKEN, sizeof h.token) != 0)
+        else if (memcmp(h.token, token, sizeof token) != 0)
             why = "it comes from another FMU (instantiation token differs)";
         else if (h.instanceSize != sizeof(PmdInstance))
             why = "it comes from a build with another state layout";
@@ -97,6 +224,18 @@ PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigne
         else if (fnv1a(in + sizeof h, size - sizeof h) != h.checksum)
             why = "it is corrupted (checksum mismatch)";
     }
+    if (!why) {
+        PmdInstance *copy = (PmdInstance *)malloc(sizeof *copy);
+        if (!copy) {
+            why = "no host memory to check it";
+        } else {
+            memcpy(copy, in + sizeof h, sizeof *copy);
+            if (pmd_state_check_ranges(copy, field, sizeof field) ||
+                check_instance(copy, inst, h.memoryWords, field, sizeof field))
+                why = field;
+            free(copy);
+        }
+    }
     if (why) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: FMU state of %zu bytes refused: %s", fn, size, why);
         return PMD_ERROR;
@@ -107,36 +246,31 @@ PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigne
 PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char *in)
 {
     Header h;
-    PmdInstance saved = *inst, copy;
+    PmdInstance *saved = (PmdInstance *)malloc(sizeof *saved);
     uint32_t *memory = inst->chip.memory;
+    if (!saved) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory", fn);
+        return PMD_ERROR;
+    }
     memcpy(&h, in, sizeof h);
-    memcpy(&copy, in + sizeof h, sizeof copy);
     if ((int64_t)h.memoryWords != inst->memorySize) {
         memory = (uint32_t *)realloc(inst->chip.memory, (size_t)h.memoryWords * sizeof(uint32_t));
         if (!memory) {
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory for %llu words", fn,
                              (unsigned long long)h.memoryWords);
+            free(saved);
             return PMD_ERROR;
         }
+        inst->chip.memory = memory;
     }
-    memcpy(memory, in + sizeof h + sizeof copy, (size_t)h.memoryWords * sizeof(uint32_t));
-    *inst = copy;
-    /* this process's hooks, and this instance's logging settings, stay */
-    inst->chip.memory = memory;
-    inst->chip.logger = saved.chip.logger;
-    inst->chip.logContext = saved.chip.logContext;
-    inst->chip.logMask = saved.chip.logMask;
-    inst->instanceName = saved.instanceName;
-    inst->logger = saved.logger;
-    inst->environment = saved.environment;
-    inst->loggingOn = saved.loggingOn;
-    inst->categories = saved.categories;
-    /* the script is this instance's parameter; the snapshot keeps only how far it ran */
-    inst->scriptPath = saved.scriptPath;
-    inst->script = saved.script;
-    /* so is the recording buffer; the restored state has recorded nothing yet */
-    inst->record = saved.record;
-    inst->recordCapacity = saved.recordCapacity;
+    memcpy(memory, in + sizeof h + sizeof(PmdInstance), (size_t)h.memoryWords * sizeof(uint32_t));
+    *saved = *inst;
+    memcpy(inst, in + sizeof h, sizeof *inst);
+    /* this process's fields (the memory block, hooks, logging, the script and
+     * the recording buffer) stay the instance's */
+    copy_process_fields(inst, saved);
+    free(saved);
+    /* the restored state has recorded nothing yet, and records only if this instance has the buffer */
     inst->recordEnabled = (uint8_t)(inst->recordEnabled && inst->record);
     inst->recordCount = 0;
     return PMD_OK;

@@ -1,0 +1,320 @@
+/* The declared instance state (state_fields.h): one row per field of
+ * PmdInstance and of every struct inside it, with the values the field may
+ * hold. Ranges are those the commands and the engine keep a field in (the
+ * handler's check or the register's width); what depends on other fields
+ * (a buffer inside the memory, a read index below its buffer's length...) is
+ * checked by state.c. tests/test_state_forgery.py checks that every struct
+ * member is listed here (from the compiler's debug information) and that a
+ * value just outside each range is refused, naming the field. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "instance.h"
+#include "state_fields.h"
+
+#define MEMBER(T, m) offsetof(T, m), sizeof(((T *)0)->m), 1
+#define ELEMENTS(T, m) offsetof(T, m), sizeof(((T *)0)->m[0]), (unsigned)(sizeof(((T *)0)->m) / sizeof(((T *)0)->m[0]))
+
+/* ... is the range: lo, hi (often a macro such as ANY_I32) */
+#define UNSIGNED(T, m, ...) {#m, MEMBER(T, m), PMD_SF_UNSIGNED, __VA_ARGS__, NULL}
+#define SIGNED(T, m, ...) {#m, MEMBER(T, m), PMD_SF_SIGNED, __VA_ARGS__, NULL}
+#define UNSIGNEDS(T, m, ...) {#m, ELEMENTS(T, m), PMD_SF_UNSIGNED, __VA_ARGS__, NULL}
+#define SIGNEDS(T, m, ...) {#m, ELEMENTS(T, m), PMD_SF_SIGNED, __VA_ARGS__, NULL}
+#define REAL(T, m) {#m, MEMBER(T, m), PMD_SF_REAL, 0, 0, NULL}
+#define STRUCT(T, m, S) {#m, MEMBER(T, m), PMD_SF_STRUCT, 0, 0, &S}
+#define STRUCTS(T, m, S) {#m, ELEMENTS(T, m), PMD_SF_STRUCT, 0, 0, &S}
+#define PROCESS(T, m) {#m, MEMBER(T, m), PMD_SF_PROCESS, 0, 0, NULL}
+#define DESCRIBE(T, list) {#T, sizeof(T), sizeof list / sizeof list[0], list}
+
+#define BOOL 0, 1
+#define ANY_U8 0, UINT8_MAX
+#define ANY_U16 0, UINT16_MAX
+#define ANY_U32 0, UINT32_MAX
+#define ANY_I32 INT32_MIN, INT32_MAX
+#define ANY_I64 INT64_MIN, INT64_MAX
+#define UNSIGNED_31 0, INT32_MAX                   /* acceleration, deceleration, jerk (commands.c) */
+#define AXIS_NUMBER 0, PMD_AXES - 1
+
+static const PmdStateField profile_registers_fields[] = {
+    SIGNED(PmdProfileRegisters, position, ANY_I32),
+    SIGNED(PmdProfileRegisters, velocity, ANY_I32),
+    UNSIGNED(PmdProfileRegisters, acceleration, UNSIGNED_31),
+    UNSIGNED(PmdProfileRegisters, deceleration, UNSIGNED_31),
+    UNSIGNED(PmdProfileRegisters, jerk, UNSIGNED_31),
+    SIGNED(PmdProfileRegisters, gearRatio, ANY_I32),
+    UNSIGNED(PmdProfileRegisters, profileMode, PMDTrapezoidalProfile, PMDExternalProfile),
+    UNSIGNED(PmdProfileRegisters, stopMode, PMDNoStopMode, PMDSmoothStopMode),
+    UNSIGNED(PmdProfileRegisters, clearPositionError, BOOL),
+};
+static const PmdStateStruct profile_registers = DESCRIBE(PmdProfileRegisters, profile_registers_fields);
+
+/* The S-curve plan (scurve.c) keeps 6 t1 (t1 + t2) (2 t1 + t2 + t4) below
+ * 2^62, so no phase is longer than 2^60 cycles. */
+#define CYCLES_60 0, (INT64_C(1) << 60)
+#define CYCLES_62 0, (INT64_C(1) << 62)
+static const PmdStateField scurve_fields[] = {
+    SIGNED(PmdSCurve, t1, CYCLES_60),
+    SIGNED(PmdSCurve, t2, CYCLES_60),
+    SIGNED(PmdSCurve, t4, CYCLES_60),
+    SIGNED(PmdSCurve, step, CYCLES_62),
+    SIGNED(PmdSCurve, p6, CYCLES_62),
+    SIGNED(PmdSCurve, v2, CYCLES_62),
+    SIGNED(PmdSCurve, a, -(INT64_C(1) << 62), INT64_C(1) << 62),
+    SIGNED(PmdSCurve, p6Total, CYCLES_62),
+    SIGNED(PmdSCurve, distance, -(INT64_C(1) << 32) + 1, (INT64_C(1) << 32) - 1),   /* of two int32 positions */
+    SIGNED(PmdSCurve, start, ANY_I32),
+    UNSIGNED(PmdSCurve, stopping, BOOL),
+};
+static const PmdStateStruct scurve = DESCRIBE(PmdSCurve, scurve_fields);
+
+static const PmdStateField trajectory_fields[] = {
+    SIGNED(PmdTrajectory, position, ANY_I32),
+    SIGNED(PmdTrajectory, fraction, 0, PMD_U_PER_COUNT - 1),
+    SIGNED(PmdTrajectory, velocity, ANY_I64),
+    SIGNED(PmdTrajectory, acceleration, ANY_I64),
+    SIGNED(PmdTrajectory, jerk, ANY_I32),
+};
+static const PmdStateStruct trajectory = DESCRIBE(PmdTrajectory, trajectory_fields);
+
+static const PmdStateField breakpoint_fields[] = {
+    UNSIGNED(PmdBreakpoint, sourceAxis, AXIS_NUMBER),
+    UNSIGNED(PmdBreakpoint, action, PMDBreakpointNoAction, PMDBreakpointActionMotorOff),
+    UNSIGNED(PmdBreakpoint, trigger, PMDBreakpointDisable, PMDBreakpointSignalStatus),
+    SIGNED(PmdBreakpoint, value, ANY_I32),
+};
+static const PmdStateStruct breakpoint = DESCRIBE(PmdBreakpoint, breakpoint_fields);
+
+static const PmdStateField axis_fields[] = {
+    STRUCT(PmdAxis, buffered, profile_registers),
+    STRUCT(PmdAxis, active, profile_registers),
+    STRUCT(PmdAxis, scurve, scurve),
+    STRUCT(PmdAxis, trajectory, trajectory),
+    UNSIGNED(PmdAxis, motion, PMD_MOTION_IDLE, PMD_MOTION_GEAR),
+    UNSIGNED(PmdAxis, atMaximumVelocity, BOOL),
+    UNSIGNED(PmdAxis, motorOn, BOOL),
+    UNSIGNED(PmdAxis, underrunWarned, BOOL),
+    UNSIGNED(PmdAxis, scurvePhase, 0, 7),
+    UNSIGNED(PmdAxis, buffersChecked, ANY_U32),
+    UNSIGNEDS(PmdAxis, segmentStart, 0, PMD_MAX_MEMORY_WORDS),
+    UNSIGNED(PmdAxis, segmentFunctions, 0, (1 << PMD_FUNCTIONS) - 1),
+    UNSIGNED(PmdAxis, segmentBufferCount, 0, PMD_FUNCTIONS),
+    UNSIGNEDS(PmdAxis, segmentBuffer, 0, PMD_BUFFERS - 1),
+    UNSIGNED(PmdAxis, segmentTime, ANY_U32),
+    SIGNEDS(PmdAxis, bufferOfFunction, PMDBufferFunctionNone, PMD_BUFFERS - 1),
+    UNSIGNED(PmdAxis, eventStatus, ANY_U16),
+    UNSIGNED(PmdAxis, interruptMask, ANY_U16),
+    STRUCTS(PmdAxis, breakpoint, breakpoint),
+    UNSIGNED(PmdAxis, gearMasterAxis, AXIS_NUMBER),
+    UNSIGNED(PmdAxis, gearMasterSource, PMDPositionSourceActual, PMDPositionSourceCommanded),
+    SIGNED(PmdAxis, gearMasterLast, ANY_I32),
+    SIGNED(PmdAxis, actualPosition, ANY_I32),
+    SIGNED(PmdAxis, previousActualPosition, ANY_I32),
+    SIGNED(PmdAxis, actualOffset, ANY_I32),
+    UNSIGNED(PmdAxis, positionErrorLimit, 0, INT32_MAX),
+    UNSIGNED(PmdAxis, settleTime, ANY_U16),
+    UNSIGNED(PmdAxis, settleWindow, ANY_U16),
+    UNSIGNED(PmdAxis, trackingWindow, ANY_U16),
+    UNSIGNED(PmdAxis, settleCount, ANY_U16),
+    UNSIGNED(PmdAxis, autoStopMode, PMDAutoStopDisabled, PMDAutoStopEnabled),
+    UNSIGNED(PmdAxis, motionCompleteMode, PMDMotionCompleteCommandedPosition, PMDMotionCompleteActualPosition),
+    UNSIGNED(PmdAxis, motionCompletePending, BOOL),
+    UNSIGNED(PmdAxis, limitSwitchMode, PMDLimitDisabled, PMDLimitEnabled),
+    UNSIGNED(PmdAxis, inPositiveLimit, BOOL),
+    UNSIGNED(PmdAxis, inNegativeLimit, BOOL),
+    UNSIGNED(PmdAxis, signalSense, 0, 0x1FFF),
+    UNSIGNED(PmdAxis, captureSource, PMDCaptureSourceIndex, PMDCaptureSourceHome),
+    UNSIGNED(PmdAxis, homeWasActive, BOOL),
+    UNSIGNED(PmdAxis, captured, BOOL),
+    SIGNED(PmdAxis, captureValue, ANY_I32),
+    SIGNED(PmdAxis, actualPositionInput, ANY_I32),
+    UNSIGNED(PmdAxis, positiveLimitInput, BOOL),
+    UNSIGNED(PmdAxis, negativeLimitInput, BOOL),
+    UNSIGNED(PmdAxis, homeInput, BOOL),
+};
+static const PmdStateStruct axis = DESCRIBE(PmdAxis, axis_fields);
+
+static const PmdStateField buffer_fields[] = {
+    UNSIGNED(PmdBuffer, start, 0, PMD_MAX_MEMORY_WORDS),
+    UNSIGNED(PmdBuffer, length, 0, PMD_MAX_MEMORY_WORDS),
+    UNSIGNED(PmdBuffer, readIndex, 0, PMD_MAX_MEMORY_WORDS - 1),
+    UNSIGNED(PmdBuffer, writeIndex, 0, PMD_MAX_MEMORY_WORDS - 1),
+    UNSIGNED(PmdBuffer, unread, 0, PMD_MAX_MEMORY_WORDS),
+    UNSIGNED(PmdBuffer, streamed, BOOL),
+};
+static const PmdStateStruct buffer = DESCRIBE(PmdBuffer, buffer_fields);
+
+/* Variable slots hold axis | variable << 8, conditions axis | condition << 4 |
+ * bit << 8 | state << 12 (trace.c); state.c checks their parts. */
+static const PmdStateField trace_fields[] = {
+    UNSIGNED(PmdTrace, mode, PMDTraceOneTime, PMDTraceRollingBuffer),
+    UNSIGNED(PmdTrace, period, 1, UINT16_MAX),
+    UNSIGNEDS(PmdTrace, variable, 0, (PMDTraceSignalStatus << 8) | (PMD_AXES - 1)),
+    UNSIGNED(PmdTrace, start, 0, 0x1FFF),
+    UNSIGNED(PmdTrace, stop, 0, 0x1FFF),
+    UNSIGNED(PmdTrace, active, BOOL),
+    UNSIGNED(PmdTrace, wrapped, BOOL),
+    UNSIGNED(PmdTrace, countdown, 0, UINT16_MAX - 1),
+    UNSIGNED(PmdTrace, count, 0, PMD_MAX_MEMORY_WORDS),
+};
+static const PmdStateStruct trace = DESCRIBE(PmdTrace, trace_fields);
+
+static const PmdStateField chip_state_fields[] = {
+    STRUCTS(PmdChipState, axis, axis),
+    STRUCTS(PmdChipState, buffer, buffer),
+    STRUCT(PmdChipState, trace, trace),
+    UNSIGNED(PmdChipState, updatedAxes, 0, (1 << PMD_AXES) - 1),
+    UNSIGNED(PmdChipState, bufferEpoch, ANY_U32),
+    UNSIGNED(PmdChipState, sampleTime, 1, UINT16_MAX),
+    UNSIGNED(PmdChipState, sampleTimeChanged, BOOL),
+    UNSIGNED(PmdChipState, time, ANY_U32),
+    UNSIGNED(PmdChipState, nextTime, ANY_U32),
+    UNSIGNED(PmdChipState, hostIOError, ANY_U8),
+    UNSIGNED(PmdChipState, loopback, BOOL),
+};
+static const PmdStateStruct chip_state = DESCRIBE(PmdChipState, chip_state_fields);
+
+static const PmdStateField chip_fields[] = {
+    STRUCT(PmdChip, s, chip_state),
+    PROCESS(PmdChip, memory),
+    UNSIGNED(PmdChip, memorySize, 1, PMD_MAX_MEMORY_WORDS),
+    PROCESS(PmdChip, logger),
+    PROCESS(PmdChip, logContext),
+    PROCESS(PmdChip, logMask),
+};
+static const PmdStateStruct chip = DESCRIBE(PmdChip, chip_fields);
+
+#define CYCLE_INDEX -(INT64_C(1) << 62), INT64_C(1) << 62
+static const PmdStateField instance_fields[] = {
+    STRUCT(PmdInstance, chip, chip),
+    UNSIGNED(PmdInstance, state, PMD_INSTANTIATED, PMD_TERMINATED),      /* one bit of PmdState: state.c */
+    PROCESS(PmdInstance, instanceName),
+    PROCESS(PmdInstance, logger),
+    PROCESS(PmdInstance, environment),
+    PROCESS(PmdInstance, loggingOn),
+    PROCESS(PmdInstance, categories),
+    REAL(PmdInstance, cycleTime),
+    SIGNED(PmdInstance, memorySize, 1, PMD_MAX_MEMORY_WORDS),
+    REAL(PmdInstance, time),
+    SIGNED(PmdInstance, nextCycle, CYCLE_INDEX),
+    REAL(PmdInstance, activeCycleTime),
+    REAL(PmdInstance, anchorTime),
+    SIGNED(PmdInstance, anchorCycle, CYCLE_INDEX),
+    SIGNEDS(PmdInstance, hostWord, -32768, 65535),
+    SIGNED(PmdInstance, hostWordCount, 0, PMD_BATCH_WORDS),
+    SIGNED(PmdInstance, hostStrobe, ANY_I32),
+    SIGNED(PmdInstance, hostAck, ANY_I32),
+    SIGNEDS(PmdInstance, hostReply, ANY_U16),
+    SIGNED(PmdInstance, hostReplyCount, 0, PMD_BATCH_WORDS),
+    SIGNED(PmdInstance, hostError, ANY_U8),
+    SIGNED(PmdInstance, memoryAddress, 0, PMD_MAX_MEMORY_WORDS),
+    SIGNED(PmdInstance, memoryCount, 0, PMD_BATCH_WORDS),
+    SIGNED(PmdInstance, memoryStrobe, ANY_I32),
+    SIGNED(PmdInstance, memoryStrobeSeen, ANY_I32),
+    SIGNEDS(PmdInstance, memoryData, ANY_I32),
+    PROCESS(PmdInstance, scriptPath),
+    PROCESS(PmdInstance, script),
+    UNSIGNED(PmdInstance, scriptNext, 0, INT64_MAX),                     /* within this instance's script: state.c */
+    UNSIGNED(PmdInstance, recordEnabled, BOOL),
+    PROCESS(PmdInstance, recordCapacity),         /* sizes this process's record buffer: the instance keeps its own */
+    PROCESS(PmdInstance, record),
+    UNSIGNED(PmdInstance, recordCount, 0, PMD_MAX_RECORD_CYCLES),
+    PROCESS(PmdInstance, staged),
+};
+const PmdStateStruct pmd_instance_state = DESCRIBE(PmdInstance, instance_fields);
+
+/* ---- walking the list ---- */
+
+typedef int (*Visit)(const PmdStateLeaf *leaf, void *context);
+
+static int walk(const PmdStateStruct *s, size_t base, const char *prefix, Visit visit, void *context)
+{
+    size_t f;
+    unsigned e;
+    for (f = 0; f < s->nFields; f++) {
+        const PmdStateField *field = &s->fields[f];
+        for (e = 0; e < field->count; e++) {
+            PmdStateLeaf leaf;
+            int result;
+            if (field->count > 1)
+                snprintf(leaf.path, sizeof leaf.path, "%s%s[%u]", prefix, field->name, e);
+            else
+                snprintf(leaf.path, sizeof leaf.path, "%s%s", prefix, field->name);
+            leaf.offset = base + field->offset + e * field->size;
+            if (field->kind == PMD_SF_STRUCT) {
+                char sub[sizeof leaf.path + 1];
+                snprintf(sub, sizeof sub, "%s.", leaf.path);
+                result = walk(field->sub, leaf.offset, sub, visit, context);
+            } else {
+                leaf.size = field->size;
+                leaf.kind = field->kind;
+                leaf.min = field->min;
+                leaf.max = field->max;
+                result = visit(&leaf, context);
+            }
+            if (result)
+                return result;
+        }
+    }
+    return 0;
+}
+
+int pmd_state_walk(int (*visit)(const PmdStateLeaf *leaf, void *context), void *context)
+{
+    return walk(&pmd_instance_state, 0, "", visit, context);
+}
+
+/* ---- range checks ---- */
+
+typedef struct {
+    const unsigned char *image;
+    char *why;
+    size_t whySize;
+} RangeCheck;
+
+static int check_leaf(const PmdStateLeaf *leaf, void *context)
+{
+    const RangeCheck *c = (const RangeCheck *)context;
+    const unsigned char *p = c->image + leaf->offset;
+    uint8_t u8; uint16_t u16; uint32_t u32; uint64_t u64;
+    int64_t value;
+    double real;
+    switch (leaf->kind) {
+    case PMD_SF_PROCESS:
+        return 0;
+    case PMD_SF_REAL:
+        memcpy(&real, p, sizeof real);
+        if (isfinite(real))
+            return 0;
+        snprintf(c->why, c->whySize, "%s = %g is not finite", leaf->path, real);
+        return -1;
+    default:
+        break;
+    }
+    switch (leaf->size) {
+    case 1: memcpy(&u8, p, 1); u64 = u8; value = leaf->kind == PMD_SF_SIGNED ? (int8_t)u8 : (int64_t)u8; break;
+    case 2: memcpy(&u16, p, 2); u64 = u16; value = leaf->kind == PMD_SF_SIGNED ? (int16_t)u16 : (int64_t)u16; break;
+    case 4: memcpy(&u32, p, 4); u64 = u32; value = leaf->kind == PMD_SF_SIGNED ? (int32_t)u32 : (int64_t)u32; break;
+    default: memcpy(&u64, p, 8); value = (int64_t)u64; break;
+    }
+    if (leaf->kind == PMD_SF_UNSIGNED && u64 > (uint64_t)INT64_MAX) {
+        snprintf(c->why, c->whySize, "%s = %llu is not in %lld..%lld", leaf->path, (unsigned long long)u64,
+                 (long long)leaf->min, (long long)leaf->max);
+        return -1;
+    }
+    if (value < leaf->min || value > leaf->max) {
+        snprintf(c->why, c->whySize, "%s = %lld is not in %lld..%lld", leaf->path, (long long)value,
+                 (long long)leaf->min, (long long)leaf->max);
+        return -1;
+    }
+    return 0;
+}
+
+int pmd_state_check_ranges(const void *instance, char *why, size_t whySize)
+{
+    RangeCheck c;
+    c.image = (const unsigned char *)instance;
+    c.why = why;
+    c.whySize = whySize;
+    return pmd_state_walk(check_leaf, &c);
+}

@@ -1,0 +1,37 @@
+/* Prints the declared instance state (fmu_src/fmi/state_fields.c) for
+ * tests/test_state_forgery.py, which forges snapshots from it:
+ *   header SIZE CHECKSUM                         bytes before the instance image, checksum offset
+ *   leaf PATH OFFSET SIZE KIND MIN MAX           one per scalar of the image
+ *   member STRUCT NAME                           one per declared field of each struct */
+#include <stdio.h>
+
+#include <stddef.h>
+
+#include "instance.h"
+#include "state_fields.h"
+
+static int print_leaf(const PmdStateLeaf *leaf, void *context)
+{
+    (void)context;
+    printf("leaf %s %zu %zu %u %lld %lld\n", leaf->path, leaf->offset, leaf->size, (unsigned)leaf->kind,
+           (long long)leaf->min, (long long)leaf->max);
+    return 0;
+}
+
+static void print_members(const PmdStateStruct *s)
+{
+    size_t f;
+    for (f = 0; f < s->nFields; f++) {
+        printf("member %s %s\n", s->name, s->fields[f].name);
+        if (s->fields[f].kind == PMD_SF_STRUCT && (f == 0 || s->fields[f - 1].sub != s->fields[f].sub))
+            print_members(s->fields[f].sub);
+    }
+}
+
+int main(void)
+{
+    printf("header %zu %zu\n", sizeof(PmdStateHeader), offsetof(PmdStateHeader, checksum));
+    pmd_state_walk(print_leaf, NULL);
+    print_members(&pmd_instance_state);
+    return 0;
+}
