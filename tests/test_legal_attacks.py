@@ -1,0 +1,295 @@
+"""Issue 11: short sequences of legal calls that corrupted memory, overflowed or
+changed state they were refused. Each runs through the real FMU in FMI 2 and
+FMI 3; a refused call must leave the FMU state byte for byte as it was."""
+import math
+
+import pytest
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+from fmpy.fmi3 import FMU3Slave
+
+import pmdfmu
+from pmdfmu import PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer
+from pmdfmu.chip import COMMANDS, encode
+
+
+def command(name, *args, axis=0):
+    c = COMMANDS[name]
+    return [c.opcode | ((0 if c.scope == "chip" else axis) << 8)] + encode(c, args)
+
+
+def snapshot(chip) -> bytes:
+    state = chip.fmu.getFMUState()
+    try:
+        return bytes(chip.fmu.serializeFMUState(state))
+    finally:
+        chip.fmu.freeFMUState(state)
+
+
+def errors(chip):
+    return " ".join(m.message for m in chip.messages if m.status == "Error")
+
+
+def refused_changes_nothing(chip, call) -> str:
+    """call() must raise an FMI error and leave the state as it was; returns the error messages."""
+    before = snapshot(chip)
+    chip.messages.clear()
+    with pytest.raises(FMICallException):
+        call()
+    assert snapshot(chip) == before, "a refused call changed the FMU state"
+    return errors(chip)
+
+
+def pend_batch(chip, words):
+    """Writes a host batch and a new strobe without reading anything: it executes at the next get or doStep."""
+    if chip.fmi_version == 2:
+        for i, w in enumerate(words):
+            chip.set(f"host.word[{i + 1}]", w)
+    else:
+        chip.set("host.word", list(words) + [0] * (64 - len(words)))
+    chip.set("host.wordCount", len(words))
+    chip.set("host.strobe", chip.get("host.ack") + 1)
+
+
+def pend_memory_write(chip, address, words, strobe=None):
+    if chip.fmi_version == 2:
+        for i, w in enumerate(words):
+            chip.set(f"memory.data[{i + 1}]", pmdfmu.signed(w))
+    else:
+        chip.set("memory.data", list(words) + [0] * (64 - len(words)))
+    chip.set("memory.address", address)
+    chip.set("memory.count", len(words))
+    chip.set("memory.strobe", chip.get("memory.strobe") + 1 if strobe is None else strobe)
+
+
+def vr(chip, name):
+    return chip.variables[name].valueReference
+
+
+# ---- 1. the trace writes only into buffer 0 as it is when it writes ----
+
+def test_a_trace_armed_on_a_buffer_that_later_shrinks_to_nothing_does_not_start(any_chip):
+    chip, ax = any_chip, any_chip.axis(0)
+    chip.set("memory.address", 0)                 # (FMI 3 reads need a defined port)
+    ax.SetBufferStart(0, 0x3FFF)
+    ax.SetBufferLength(0, 1)
+    ax.SetTraceVariable(0, 0, PMDTraceCommandedPosition)
+    ax.SetTraceMode(PMDTraceRollingBuffer)
+    ax.SetTraceStart(0, PMDTraceConditionUpdate, 0, 0)
+    ax.SetBufferLength(0, 0)                      # accepted: the trace only waits
+    ax.SetBufferStart(0, 0x4000)
+    chip.messages.clear()
+    ax.Update()
+    chip.run(20)
+    assert ax.GetTraceStatus() & pmdfmu.PMDTraceStatusActivity == 0
+    assert ax.GetTraceCount() == 0
+    assert ax.GetTraceStart() == (0, 0, 0, 0), "the start condition is used up"
+
+
+def test_a_trace_armed_on_a_moved_buffer_writes_into_the_new_one(any_chip):
+    chip, ax = any_chip, any_chip.axis(0)
+    ax.SetBufferStart(0, 0x100)
+    ax.SetBufferLength(0, 4)
+    ax.SetTraceVariable(0, 0, pmdfmu.PMDTraceTime)
+    ax.SetTraceStart(0, PMDTraceConditionUpdate, 0, 0)
+    ax.SetBufferLength(0, 2)
+    ax.SetBufferStart(0, 0x3FFE)                  # now the last two words of the memory
+    ax.Update()
+    chip.run(10)
+    assert ax.GetTraceCount() == 2
+    assert ax.GetBufferStart(0) == 0x3FFE and [ax.ReadBuffer(0) for _ in range(2)] == [0, 1]
+
+
+# ---- 2. recording never writes past record.capacity ----
+
+def test_a_script_restarting_the_grid_inside_a_recording_step_records_at_most_the_capacity(tmp_path):
+    script = tmp_path / "fine.pmd"
+    script.write_text("@0\nSetSampleTime(Axis1, 1);\n")
+    with pmdfmu.Chip(fmi_version=3, script=script, log_categories=["warnings"], **{"record.capacity": 100}) as chip:
+        chip.set("record.enabled", True)
+        chip.messages.clear()
+        chip.fmu.doStep(0.0, 100 * 1e-4)          # fmi3Warning: ran the step, recorded what fits
+        assert chip.get("chipTime") == 10_000 - 1
+        assert any(m.status == "Warning" and "record.data holds the first 100" in m.message for m in chip.messages)
+        size = chip.fmu.getBinary([vr(chip, "record.data")])[0]
+        assert len(size) == 100 * 13 * 4
+
+
+def test_a_pending_sample_time_change_in_a_recording_step_records_at_most_the_capacity():
+    with pmdfmu.Chip(fmi_version=3, **{"record.capacity": 10}) as chip:
+        chip.set("record.enabled", True)
+        pend_batch(chip, command("SetSampleTime", 10))
+        chip.fmu.doStep(0.0, 10 * 1e-4)
+        assert chip.get("chipTime") == 99
+        assert len(chip.fmu.getBinary([vr(chip, "record.data")])[0]) == 10 * 13 * 4
+
+
+def test_the_harness_reports_a_recording_cut_short_by_the_script(tmp_path):
+    script = tmp_path / "fine.pmd"
+    script.write_text("@0\nSetSampleTime(Axis1, 1);\n")
+    with pmdfmu.Chip(fmi_version=3, script=script) as chip:
+        with pytest.raises(RuntimeError, match="sample time"):
+            chip.run(1000, record=["axis1.commandedPosition"])
+
+
+# ---- 4. a refused set changes nothing ----
+
+def test_a_refused_memory_address_keeps_the_pending_write(any_chip):
+    chip = any_chip
+    pend_memory_write(chip, 0x100, list(range(1, 65)))
+    message = refused_changes_nothing(chip, lambda: chip.set("memory.address", 0x3FF0))
+    assert "memory.strobe" in message and "leaves" in message
+    assert chip.get("memory.address") == 0x100
+    ax = chip.axis(0)
+    ax.SetBufferStart(2, 0x100)
+    ax.SetBufferLength(2, 64)
+    assert [ax.ReadBuffer(2) for _ in range(64)] == list(range(1, 65)), "the valid write executed"
+
+
+def test_a_refused_memory_strobe_keeps_its_old_value(any_chip):
+    chip = any_chip
+    chip.set("memory.address", 0x3FF0)
+    chip.set("memory.count", 64)
+    old = chip.get("memory.strobe")
+    message = refused_changes_nothing(chip, lambda: chip.set("memory.strobe", old + 1))
+    assert "leaves the 16384-word memory" in message
+    assert chip.get("memory.strobe") == old
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_a_refused_memory_size_in_initialization_keeps_size_memory_and_registers(fmi_version):
+    chip = InitializationChip(fmi_version)
+    try:
+        pend_memory_write(chip, 0x1000, [7] * 8)
+        message = refused_changes_nothing(chip, lambda: chip.set("memorySize", 0x800))
+        assert "memory.strobe" in message
+        assert chip.get("memorySize") == 0x4000
+    finally:
+        chip.free()
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_memory_size_in_initialization_keeps_the_memory_and_the_registers(fmi_version):
+    chip = InitializationChip(fmi_version)
+    try:
+        pend_batch(chip, command("SetBufferStart", 2, 0x10) + command("SetBufferLength", 2, 8) +
+                   command("SetPosition", 1234))
+        chip.get("host.ack")
+        pend_memory_write(chip, 0x10, [5, 6, 7])
+        chip.get("host.ack")
+        before = snapshot(chip)
+        chip.set("memorySize", 0x4000)            # the same size: nothing happens
+        assert snapshot(chip) == before
+        chip.set("memorySize", 0x18)              # smaller, still holding buffer 2
+        chip.set("memorySize", 0x8000)
+        pend_batch(chip, command("GetBufferStart", 2) + command("GetPosition") + command("ReadBuffer", 2) * 3)
+        chip.get("host.ack")
+        assert chip.reply() == [0, 0x10, 0, 1234, 0, 5, 0, 6, 0, 7]
+        message = refused_changes_nothing(chip, lambda: chip.set("memorySize", 0x17))
+        assert "buffer 2" in message
+    finally:
+        chip.free()
+
+
+class InitializationChip:
+    """An instance left in initialization mode (pmdfmu.Chip initializes at once),
+    with Chip's own set and get, beside a Chip of the same unzipped FMU."""
+
+    def __init__(self, fmi_version):
+        self._proto = pmdfmu.Chip(fmi_version=fmi_version)
+        desc = self._proto.model_description
+        self.fmi_version, self.variables, self.messages = fmi_version, self._proto.variables, []
+        kwargs = dict(guid=desc.guid, unzipDirectory=self._proto._unzipdir,
+                      modelIdentifier=desc.coSimulation.modelIdentifier, instanceName="init")
+
+        def record(status, message):
+            self.messages.append(pmdfmu.chip.LogMessage(pmdfmu.chip.STATUS_NAMES[status], "", message.decode()))
+
+        if fmi_version == 2:
+            self.fmu = FMU2Slave(**kwargs)
+            self._callbacks = fmi2CallbackFunctions()
+            self._callbacks.logger = fmi2CallbackLoggerTYPE(lambda env, name, status, cat, msg: record(status, msg))
+            self.fmu.instantiate(callbacks=self._callbacks)
+            self.fmu.setupExperiment(startTime=0.0)
+            self.fmu.enterInitializationMode()
+            types = ("Real", "Integer", "Boolean")
+        else:
+            self.fmu = FMU3Slave(**kwargs)
+            self.fmu.instantiate(logMessage=lambda env, status, cat, msg: record(status, msg))
+            self.fmu.enterInitializationMode(startTime=0.0)
+            types = ("Float64", "Int32", "UInt32", "UInt16", "Boolean")
+        self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
+        self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
+
+    set = pmdfmu.Chip.set
+    get = pmdfmu.Chip.get
+    _size = pmdfmu.Chip._size
+
+    def reply(self):
+        n = self.get("host.replyCount")
+        if self.fmi_version == 2:
+            return [self.get(f"host.reply[{i + 1}]") for i in range(n)]
+        return self.get("host.reply")[:n]
+
+    def free(self):
+        self.fmu.freeInstance()
+        self._proto.close()
+
+
+# ---- 5. a huge step after a sample-time change ----
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_a_step_that_a_pending_sample_time_change_would_make_too_long_is_refused(fmi_version):
+    with pmdfmu.Chip(fmi_version=fmi_version, cycleTime=0.065535) as chip:
+        pend_batch(chip, command("SetSampleTime", 1))
+        message = refused_changes_nothing(chip, lambda: chip.fmu.doStep(0.0, 2.0 ** 52 * 0.065535))
+        assert "2^53 cycles of 1 us" in message
+        chip.fmu.doStep(0.0, 0.001)                # the instance steps on: 1000 cycles of 1 us
+        assert chip.get("chipTime") == 999
+
+
+# ---- 9. no silent rounding or wiping ----
+
+@pytest.mark.parametrize("cycle_time", [1.0, 123.4567e-6, 0.5e-6, 0.0655355, -1e-4, math.nan])
+def test_a_cycle_time_the_sample_time_register_cannot_hold_is_refused(cycle_time):
+    with pytest.raises(FMICallException):
+        pmdfmu.Chip(cycleTime=cycle_time)
+
+
+@pytest.mark.parametrize("cycle_time,micros", [(1e-6, 1), (1e-4, 100), (0.065535, 65535), (123e-6, 123)])
+def test_a_whole_number_of_microseconds_is_the_sample_time(cycle_time, micros):
+    with pmdfmu.Chip(cycleTime=cycle_time) as chip:
+        assert chip.axis(0).GetSampleTime() == micros
+
+
+# ---- 10. smaller ones ----
+
+def test_a_refused_enter_initialization_changes_nothing():
+    chip = pmdfmu.Chip()
+    try:
+        fresh = FMU2Slave(guid=chip.model_description.guid, unzipDirectory=chip._unzipdir,
+                          modelIdentifier=chip.model_description.coSimulation.modelIdentifier, instanceName="x")
+        fresh.instantiate(loggingOn=False)
+        fresh.setReal([vr(chip, "cycleTime")], [1e-3])
+        fresh.setupExperiment(startTime=1e300)     # finite, but no cycle index holds it
+        probe = type("Probe", (), {"fmu": fresh})()
+        before = snapshot(probe)
+        with pytest.raises(FMICallException):
+            fresh.enterInitializationMode()
+        assert snapshot(probe) == before
+        fresh.freeInstance()
+    finally:
+        chip.close()
+
+
+def test_an_fmi2_get_refused_for_an_unknown_value_reference_executes_nothing(chip):
+    pend_batch(chip, command("SetPosition", 99))
+    refused_changes_nothing(chip, lambda: chip.fmu.getInteger([vr(chip, "host.ack"), 999_999]))
+    assert chip.get("host.ack") == chip.get("host.strobe")       # this get executes it
+
+
+def test_fmi3_messages_show_uint32_values_unsigned():
+    with pmdfmu.Chip(fmi_version=3) as chip:
+        message = refused_changes_nothing(chip, lambda: chip.fmu.setUInt32([vr(chip, "memory.address")],
+                                                                           [0x80000000]))
+        assert "2147483648" in message and "-2147483648" not in message
