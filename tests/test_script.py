@@ -1,4 +1,6 @@
 """Stand-alone scripts: the `script` parameter (issue 4; README, "Scripts")."""
+import os
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -105,3 +107,127 @@ def test_pmdfmu_run_a_script_writes_csv_and_plot(tmp_path):
     lines = (tmp_path / "o.csv").read_text().splitlines()
     assert lines[0].startswith("cycle,axis1.commandedPosition") and "axis2.commandedPosition" in lines[0]
     assert len(lines) > 3000 and (tmp_path / "o.png").stat().st_size > 10_000
+
+
+# ---- files that are not a script or a table (issue 11: hangs and silent acceptance) ----
+
+def refusal(version, script, seconds=60):
+    """What the FMU says when it refuses the script; a hang fails the test instead of stalling the suite."""
+    said = []
+
+    def initialize():
+        try:
+            pmdfmu.Chip(fmi_version=version, script=script).close()
+            said.append(None)
+        except FMUError as e:
+            said.append(str(e))
+    thread = threading.Thread(target=initialize, daemon=True)
+    thread.start()
+    thread.join(seconds)
+    assert said, f"no answer in {seconds} s: the FMU hangs"
+    assert said[0] is not None, "the script was accepted"
+    assert "ExitInitializationMode: script refused" in said[0]
+    return said[0]
+
+
+def script_loading(tmp_path, table):
+    script = tmp_path / "s.script"
+    script.write_text(f'LoadSegmentTable(Axis1, "{table}", 0x200, 2)\n')
+    return script
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_table_that_never_ends_or_blocks_is_refused_as_not_a_regular_file(tmp_path, version):
+    fifo = tmp_path / "fifo.csv"
+    os.mkfifo(fifo)
+    for table in ("/dev/zero", fifo):
+        assert f"s.script:1: cannot open segment table {table}: not a regular file" in \
+            refusal(version, script_loading(tmp_path, table))
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_script_that_is_a_fifo_a_device_or_a_folder_is_refused_as_not_a_regular_file(tmp_path, version):
+    fifo = tmp_path / "fifo.script"
+    os.mkfifo(fifo)
+    for script in (fifo, "/dev/zero", tmp_path):
+        assert f"{Path(script).resolve()}: cannot open the script: not a regular file" in refusal(version, script)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_script_or_table_over_1_GiB_is_refused_unread(tmp_path, version):
+    huge = tmp_path / "huge.csv"
+    with open(huge, "wb") as f:                     # sparse: nothing is written
+        f.truncate((1 << 30) + 1)
+    assert f"{huge.resolve()}: cannot open the script: larger than 1 GiB" in refusal(version, huge)
+    assert f"s.script:1: cannot open segment table {huge}: larger than 1 GiB" in \
+        refusal(version, script_loading(tmp_path, huge))
+
+
+@pytest.mark.skipif(not Path("/proc/self/mem").exists(), reason="needs Linux's /proc/self/mem")
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_read_error_is_refused_not_taken_for_the_end_of_the_script(version):
+    # /proc/self/mem is a regular file whose first page cannot be read (EIO)
+    assert "/mem:1: cannot read: Input/output error" in refusal(version, "/proc/self/mem")
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() == 0, reason="root reads any file")
+@pytest.mark.parametrize("version", [2, 3])
+def test_an_unreadable_script_is_refused(tmp_path, version):
+    script = tmp_path / "s.script"
+    script.write_text("@ 0\n")
+    script.chmod(0)
+    assert "s.script: cannot open the script: Permission denied" in refusal(version, script)
+
+
+LONG = "x" * 4096
+HEADER_17 = "position," * 16 + "bogus"
+# the script's line 2 (after a comment), the table t.csv next to it -> what the refusal says
+BAD_FILES = {
+    "script line too long": ("# " + LONG, None, "s.script:2: line longer than 4095 characters"),
+    "NUL in a script": ("SetPosition(Axis1,\0 5)", None, "s.script:2: NUL byte in the line"),
+    "hex with a blank": ("SetPosition(Axis1, 0x 5)", None, "s.script:2: '0x 5' is not a 32-bit hexadecimal number"),
+    "hex with a sign": ("SetPosition(Axis1, 0x+7)", None, "s.script:2: '0x+7' is not a 32-bit hexadecimal number"),
+    "hex past 32 bits": ("@ 0x000100000000", None, "s.script:2: '0x000100000000' is not a 32-bit hexadecimal"),
+    "empty argument": ("SetPosition(Axis1, )", None, "s.script:2: a value is missing"),
+    "quote in a path": ('LoadSegmentTable(Axis1, "t"x".csv", 0x200, 2)', None,
+                        's.script:2: LoadSegmentTable: a quote inside the file name "t"x".csv"'),
+    "path too long": (f'LoadSegmentTable(Axis1, "{"d/" * 600}t.csv", 0x200, 2)', None,
+                      "s.script:2: LoadSegmentTable: the table's path is longer than 1023 characters"),
+    "table comment too long": (None, "# " + LONG + "\nposition\n1\n", "t.csv:1: line longer than 4095 characters"),
+    "NUL in a table": (None, "position\n1\0\n", "t.csv:2: NUL byte in the line"),
+    "17 columns": (None, HEADER_17 + "\n" + "1," * 16 + "1\n", "t.csv:1: 17 columns: a segment table has at most "
+                   "one each of position, velocity, acceleration, jerk, time"),
+    "column twice": (None, "position,time,position\n1,2,3\n", "t.csv:1: column 'position' named twice"),
+    "row too long": (None, "position,time\n1,2\n3,4,5\n", "t.csv:3: expected 2 values (one per column), found 3"),
+    "row too short": (None, "position,time\n1\n", "t.csv:2: expected 2 values (one per column), found 1"),
+    "empty cell": (None, "position,time\n1,\n", "t.csv:2: a value is missing"),
+    "trailing garbage": (None, "position\n5x\n", "t.csv:2: '5x' is not a number"),
+    "hex in a table": (None, "position\n0x 5\n", "t.csv:2: '0x 5' is not a 32-bit hexadecimal number"),
+    "units contradicted": (None, "# units: raw\nposition,velocity\n1,2\n# units: counts/cycle\n",
+                           "t.csv:4: units 'counts/cycle' contradict the units stated before"),
+}
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("case", BAD_FILES)
+def test_a_bad_file_is_refused_with_file_line_and_reason(tmp_path, version, case):
+    line, table, expected = BAD_FILES[case]
+    if table is not None:
+        (tmp_path / "t.csv").write_bytes(table.encode())
+        line = 'LoadSegmentTable(Axis1, "t.csv", 0x200, 2)'
+    script = tmp_path / "s.script"
+    script.write_bytes(("# a comment\n" + line + "\n").encode())
+    assert expected in refusal(version, script)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_lines_of_4095_characters_and_blanks_around_cells_are_accepted(tmp_path, version):
+    (tmp_path / "t.csv").write_text("# units: raw\n#" + "x" * 4094 + "\n position , time \n 7 , 0x10 \n-3,0\n"
+                                    "# units: raw\n")
+    script = tmp_path / "s.script"
+    script.write_text("#" + "y" * 4094 + '\nLoadSegmentTable(Axis1, "t.csv", 0x200, 2)')    # no final newline
+    with pmdfmu.Chip(fmi_version=version, script=script) as chip:
+        chip.run(1)
+        ax = chip.axis(0)
+        assert [ax.GetBufferLength(b) for b in (2, 3)] == [2, 2]
+        assert [ax.ReadBuffer(2), ax.ReadBuffer(2), ax.ReadBuffer(3)] == [7, -3, 16]

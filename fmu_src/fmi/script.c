@@ -12,19 +12,30 @@
  * LoadSegmentTable reads a CSV segment table (relative paths from the
  * script's folder) into buffers firstBuffer.. at address, one per column,
  * and assigns them to the columns' trajectory variables. */
+#if !defined(_WIN32) && !defined(_POSIX_C_SOURCE)
+#define _POSIX_C_SOURCE 200809L      /* open, fstat, fdopen, O_CLOEXEC: the build is strict C99 */
+#endif
 #include <ctype.h>
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#ifndef _WIN32
+#include <fcntl.h>
+#include <unistd.h>
+#endif
 
 #include "chip.h"
 #include "command_table.h"
 #include "script.h"
 #include "wide.h"
 
-#define MAX_LINE 4096
+#define MAX_LINE 4096                /* a line has at most MAX_LINE - 1 characters besides its newline */
+#define MAX_FILE (1L << 30)          /* bytes in a script or table; also keeps line numbers within an int */
+#define TOO_LARGE "larger than 1 GiB, the limit for a script or table"
 #define MAX_ARGS 8
 
 typedef struct {
@@ -82,6 +93,80 @@ static int pool_grow(PmdScript *s, size_t n)
 }
 
 
+/* ---- reading: scripts and tables alike ---- */
+
+/* A script or table being read line by line; w.line is the line last read. */
+typedef struct {
+    FILE *file;
+    Where w;
+    long bytes;
+} Reader;
+
+/* Opens a regular file of at most MAX_FILE bytes, or returns NULL with the
+ * reason in why: a FIFO, a device or a directory would block or never end. */
+static FILE *open_text(const char *path, const char **why)
+{
+    FILE *file;
+#ifdef _WIN32
+    struct _stat st;
+    if (_stat(path, &st) != 0)
+        return *why = strerror(errno), NULL;
+    if ((st.st_mode & _S_IFMT) != _S_IFREG)
+        return *why = "not a regular file", NULL;
+    if (st.st_size > MAX_FILE)
+        return *why = TOO_LARGE, NULL;
+    if (!(file = fopen(path, "rb")))
+        *why = strerror(errno);
+#else
+    struct stat st;
+    /* O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC), flags;
+    if (fd < 0)
+        return *why = strerror(errno), NULL;
+    if (fstat(fd, &st) != 0)
+        *why = strerror(errno);
+    else if (!S_ISREG(st.st_mode))
+        *why = "not a regular file";
+    else if (st.st_size > MAX_FILE)
+        *why = TOO_LARGE;
+    else if ((flags = fcntl(fd, F_GETFL)) < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0 ||
+             !(file = fdopen(fd, "rb")))             /* a regular file is then read as usual */
+        *why = strerror(errno);
+    else
+        return file;
+    close(fd);
+    file = NULL;
+#endif
+    return file;
+}
+
+/* Reads the next line, without its newline, into line[MAX_LINE]: 1, or 0 at
+ * the end, or -1 with "file:line: reason" (a line too long, a NUL byte, a
+ * read error, a file grown past MAX_FILE while being read). */
+static int read_line(Reader *r, char *line)
+{
+    size_t n = 0;
+    int c;
+    r->w.line++;
+    while ((c = getc(r->file)) != EOF && c != '\n') {
+        if (c == '\0')
+            return fail(&r->w, "NUL byte in the line (a script or table is text)");
+        if (n == MAX_LINE - 1)
+            return fail(&r->w, "line longer than %d characters", MAX_LINE - 1);
+        line[n++] = (char)c;
+    }
+    if (ferror(r->file))
+        return fail(&r->w, "cannot read: %s", strerror(errno));
+    if (c == EOF && n == 0) {
+        r->w.line--;
+        return 0;
+    }
+    if ((r->bytes += (long)n + 1) > MAX_FILE)
+        return fail(&r->w, "the file grew " TOO_LARGE);
+    line[n] = '\0';
+    return 1;
+}
+
 /* ---- values ---- */
 
 static char *trim(char *t)
@@ -103,16 +188,19 @@ static int parse_number(const Where *w, const char *text, int fixed, int64_t *va
     int negative = 0, digits = 0, scale = 0, seen_point = 0;
     uint64_t mantissa = 0, ten = 1, rem, q;
 
+    if (!*p)
+        return fail(w, "a value is missing");
     if (*p == '-' || *p == '+')
         negative = *p++ == '-';
     if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) {
-        char *end;
-        unsigned long long v;
-        errno = 0;
-        v = strtoull(p + 2, &end, 16);
-        if (end == p + 2 || *end || errno || v > 0xFFFFFFFFull)
+        static const char hex[] = "0123456789abcdef";
+        const char *first = p += 2;
+        /* hex digits only (strtoull would take blanks and a sign after the 0x) */
+        for (; isxdigit((unsigned char)*p) && mantissa <= 0xFFFFFFFF; p++)
+            mantissa = mantissa * 16 + (uint64_t)(strchr(hex, tolower((unsigned char)*p)) - hex);
+        if (p == first || *p || mantissa > 0xFFFFFFFF)
             return fail(w, "'%s' is not a 32-bit hexadecimal number", text);
-        *value = negative ? -(int64_t)v : (int64_t)v;
+        *value = negative ? -(int64_t)mantissa : (int64_t)mantissa;
         return 0;
     }
     for (; *p; p++) {
@@ -250,20 +338,46 @@ static int split_call(const Where *w, char *text, char **name, char **args, int 
 
 static const char *const columns[PMD_FUNCTIONS] = {"position", "velocity", "acceleration", "jerk", "time"};
 
+/* Splits a CSV line into trimmed cells, keeping the first max; returns how
+ * many there are. */
 static int split_csv(char *line, char **cells, int max)
 {
     int n = 0;
     char *p = line;
     for (;;) {
         char *comma = strchr(p, ',');
+        if (comma)
+            *comma = '\0';
         if (n < max)
             cells[n] = trim(p);
         n++;
         if (!comma)
             return n;
-        *comma = '\0';
         p = comma + 1;
     }
+}
+
+/* The header names the columns: each a trajectory variable, each at most
+ * once. Returns the number of columns, or -1. */
+static int read_header(const Where *w, char *text, int *columnOf)
+{
+    char *cells[PMD_FUNCTIONS];
+    int n = split_csv(text, cells, PMD_FUNCTIONS), f, k;
+    if (n > PMD_FUNCTIONS)
+        return fail(w, "%d columns: a segment table has at most one each of position, velocity, acceleration, "
+                       "jerk, time", n);
+    for (k = 0; k < n; k++) {
+        for (f = 0; f < PMD_FUNCTIONS && strcmp(cells[k], columns[f]) != 0; f++)
+            ;
+        if (f == PMD_FUNCTIONS)
+            return fail(w, "unknown column '%s' (position, velocity, acceleration, jerk, time)", cells[k]);
+        if (columnOf[f] >= 0)
+            return fail(w, "column '%s' named twice", cells[k]);
+        columnOf[f] = k;
+    }
+    if (columnOf[0] < 0)
+        return fail(w, "a segment table needs a position column");
+    return n;
 }
 
 /* Reads the table; emits, at `cycle`, buffer set-up commands and one memory
@@ -273,96 +387,90 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
                       int64_t firstBuffer, uint32_t memoryWords)
 {
     static const int fixedOfColumn[PMD_FUNCTIONS] = {0, 16, 16, 32, 0};
-    char line[MAX_LINE], *cells[16];
-    int columnOf[PMD_FUNCTIONS], present = 0, engineering = 0, header = 0, f, k;
-    size_t rows = 0, r, base = s->poolCount;
-    Where w = {path, 0, at->error, at->errorSize};
-    FILE *file = fopen(path, "rb");
+    char line[MAX_LINE], *cells[PMD_FUNCTIONS];
+    int columnOf[PMD_FUNCTIONS], nColumns = 0, present = 0, units = -1, header, got, f, k;
+    size_t rows = 0, row, base = s->poolCount;
+    const char *why = "";
+    Reader in = {NULL, {path, 0, at->error, at->errorSize}, 0};
 
-    if (!file)
-        return fail(at, "cannot open segment table %s: %s", path, strerror(errno));
+    if (!(in.file = open_text(path, &why)))
+        return fail(at, "cannot open segment table %s: %s", path, why);
     for (f = 0; f < PMD_FUNCTIONS; f++)
         columnOf[f] = -1;
     /* pass 1 reads the header and counts rows; pass 2 stores the columns one after another */
-    while (fgets(line, sizeof line, file)) {
+    while ((got = read_line(&in, line)) == 1) {
         char *t = trim(line);
-        w.line++;
         if (*t == '#') {
-            char *units = strstr(t, "units:");
-            if (units) {
-                units = trim(units + 6);
-                if (strcmp(units, "counts/cycle") == 0)
-                    engineering = 1;
-                else if (strcmp(units, "raw") != 0)
-                    return fclose(file), fail(&w, "units '%s': say raw or counts/cycle", units);
-            }
+            char *text = strstr(t, "units:");
+            int counts;
+            if (!text)
+                continue;
+            text = trim(text + 6);
+            counts = strcmp(text, "counts/cycle") == 0;
+            if (!counts && strcmp(text, "raw") != 0)
+                return fclose(in.file), fail(&in.w, "units '%s': say raw or counts/cycle", text);
+            if (units >= 0 && units != counts)
+                return fclose(in.file), fail(&in.w, "units '%s' contradict the units stated before", text);
+            units = counts;
             continue;
         }
         if (!*t)
             continue;
-        if (!header) {
-            int n = split_csv(t, cells, 16);
-            for (k = 0; k < n && k < 16; k++) {
-                for (f = 0; f < PMD_FUNCTIONS && strcmp(cells[k], columns[f]) != 0; f++)
-                    ;
-                if (f == PMD_FUNCTIONS)
-                    return fclose(file), fail(&w, "unknown column '%s' (position, velocity, acceleration, jerk, "
-                                                  "time)", cells[k]);
-                columnOf[f] = k;
-            }
-            if (columnOf[0] < 0)
-                return fclose(file), fail(&w, "a segment table needs a position column");
-            header = n;
+        if (!nColumns) {
+            if ((nColumns = read_header(&in.w, t, columnOf)) < 0)
+                return fclose(in.file), -1;
             continue;
         }
         rows++;
     }
-    if (!header || rows == 0)
-        return fclose(file), fail(&w, "no header or no rows");
+    if (got < 0)
+        return fclose(in.file), -1;
+    if (!nColumns || rows == 0)
+        return fclose(in.file), fail(&in.w, "no header or no rows");
     for (f = 0; f < PMD_FUNCTIONS; f++)
         present += columnOf[f] >= 0;
     if (address < 0 || address + (int64_t)(present * rows) > (int64_t)memoryWords)
-        return fclose(file), fail(at, "%zu rows x %d columns at 0x%llX leave the %u-word memory", rows, present,
-                                  (long long)address, (unsigned)memoryWords);
+        return fclose(in.file), fail(at, "%zu rows x %d columns at 0x%llX leave the %u-word memory", rows, present,
+                                     (long long)address, (unsigned)memoryWords);
     if (firstBuffer < PMD_FIRST_PROFILE_BUFFER || firstBuffer + present > PMD_BUFFERS)
-        return fclose(file), fail(at, "buffers %lld.. do not fit IDs 2..31", (long long)firstBuffer);
+        return fclose(in.file), fail(at, "buffers %lld.. do not fit IDs 2..31", (long long)firstBuffer);
     /* pass 2: every row once, each present column into its own block of the pool */
     if (pool_grow(s, (size_t)present * rows))
-        return fclose(file), fail(at, "out of memory");
-    rewind(file);
-    w.line = 0;
-    header = 0;
-    r = 0;
-    while (fgets(line, sizeof line, file) && r < rows) {
+        return fclose(in.file), fail(at, "out of memory");
+    rewind(in.file);
+    in.w.line = 0;
+    in.bytes = 0;
+    got = 1;
+    for (row = 0, header = 0; row < rows && (got = read_line(&in, line)) == 1;) {
         char *t = trim(line);
         int n;
-        w.line++;
         if (*t == '#' || !*t)
             continue;
         if (!header) {
             header = 1;
             continue;
         }
-        n = split_csv(t, cells, 16);
+        if ((n = split_csv(t, cells, PMD_FUNCTIONS)) != nColumns)
+            return fclose(in.file), fail(&in.w, "expected %d values (one per column), found %d", nColumns, n);
         for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
             int64_t v;
             if (columnOf[f] < 0)
                 continue;
-            if (n <= columnOf[f])
-                return fclose(file), fail(&w, "missing %s value", columns[f]);
-            if (parse_number(&w, cells[columnOf[f]], engineering ? fixedOfColumn[f] : 0, &v))
-                return fclose(file), -1;
+            if (parse_number(&in.w, cells[columnOf[f]], units == 1 ? fixedOfColumn[f] : 0, &v))
+                return fclose(in.file), -1;
             if (f == PMDBufferFunctionTime ? (v < 0 || v > 0xFFFFFFFF)
                                            : (v < -(int64_t)0x80000000 || v > 0xFFFFFFFF))
-                return fclose(file), fail(&w, "%s %s does not fit 32 bits", columns[f], cells[columnOf[f]]);
-            s->pool[base + (size_t)k++ * rows + r] = (uint32_t)(v & 0xFFFFFFFF);
+                return fclose(in.file), fail(&in.w, "%s %s does not fit 32 bits", columns[f], cells[columnOf[f]]);
+            s->pool[base + (size_t)k++ * rows + row] = (uint32_t)(v & 0xFFFFFFFF);
         }
-        r++;
+        row++;
     }
-    if (r < rows)
-        return fclose(file), fail(&w, "the table changed while being read");
+    fclose(in.file);
+    if (got < 0)
+        return -1;
+    if (row < rows)
+        return fail(&in.w, "the table changed while being read");
     s->poolCount = base + (size_t)present * rows;
-    fclose(file);
     /* buffers firstBuffer.. at address.., one per present column, then the data */
     for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
         int64_t id = firstBuffer + k, start = address + (int64_t)(k * rows);
@@ -389,14 +497,16 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
     return 0;
 }
 
-/* A path relative to the script's folder. */
-static void resolve(const char *script, const char *path, char *out, size_t size)
+/* A path relative to the script's folder; -1 if it does not fit out. */
+static int resolve(const char *script, const char *path, char *out, size_t size)
 {
     const char *slash = strrchr(script, '/');
+    int n;
     if (path[0] == '/' || !slash)
-        snprintf(out, size, "%s", path);
+        n = snprintf(out, size, "%s", path);
     else
-        snprintf(out, size, "%.*s/%s", (int)(slash - script), script, path);
+        n = snprintf(out, size, "%.*s/%s", (int)(slash - script), script, path);
+    return n < 0 || (size_t)n >= size ? -1 : 0;
 }
 
 /* ---- the script ---- */
@@ -433,7 +543,10 @@ static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle
         if (nArgs != 4 || args[1][0] != '"' || len < 2 || args[1][len - 1] != '"')
             return fail(w, "LoadSegmentTable(Axis, \"file.csv\", address, firstBuffer)");
         args[1][len - 1] = '\0';
-        resolve(w->file, args[1] + 1, path, sizeof path);
+        if (strchr(args[1] + 1, '"'))
+            return fail(w, "LoadSegmentTable: a quote inside the file name %s\"", args[1]);
+        if (resolve(w->file, args[1] + 1, path, sizeof path))
+            return fail(w, "LoadSegmentTable: the table's path is longer than %d characters", (int)sizeof path - 1);
         if (parse_value(w, args[2], 0, &address) || parse_value(w, args[3], 0, &first))
             return -1;
         return load_table(s, w, *cycle, axis, path, address, first, memoryWords);
@@ -453,24 +566,19 @@ int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, c
 {
     char line[MAX_LINE];
     int64_t cycle = 0;
-    Where w = {path, 0, error, errorSize};
-    FILE *file = fopen(path, "rb");
+    int got;
+    const char *why = "";
+    Reader in = {NULL, {path, 0, error, errorSize}, 0};
 
     memset(script, 0, sizeof *script);
     error[0] = '\0';
-    if (!file) {
-        snprintf(error, errorSize, "%s: cannot open the script: %s", path, strerror(errno));
+    if (!(in.file = open_text(path, &why))) {
+        snprintf(error, errorSize, "%s: cannot open the script: %s", path, why);
         return -1;
     }
-    while (fgets(line, sizeof line, file)) {
+    while ((got = read_line(&in, line)) == 1) {
         char *text, *comment;
         int quoted = 0;
-        w.line++;
-        if (!strchr(line, '\n') && !feof(file)) {
-            fclose(file);
-            pmd_script_free(script);
-            return fail(&w, "line longer than %d characters", MAX_LINE - 2);
-        }
         for (comment = line; *comment; comment++) {      /* '#' or '//' outside quotes */
             if (*comment == '"')
                 quoted = !quoted;
@@ -480,13 +588,14 @@ int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, c
             }
         }
         text = trim(line);
-        if (*text && compile_line(script, &w, text, &cycle, memoryWords)) {
-            fclose(file);
-            pmd_script_free(script);
-            return -1;
-        }
+        if (*text && compile_line(script, &in.w, text, &cycle, memoryWords))
+            break;
     }
-    fclose(file);
+    fclose(in.file);
+    if (got != 0) {
+        pmd_script_free(script);
+        return -1;
+    }
     return 0;
 }
 
