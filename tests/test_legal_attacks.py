@@ -293,3 +293,17 @@ def test_fmi3_messages_show_uint32_values_unsigned():
         message = refused_changes_nothing(chip, lambda: chip.fmu.setUInt32([vr(chip, "memory.address")],
                                                                            [0x80000000]))
         assert "2147483648" in message and "-2147483648" not in message
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_a_refused_exit_initialization_changes_nothing(fmi_version, tmp_path):
+    bad = tmp_path / "bad.pmd"
+    bad.write_text("@0\nNoSuchCommand(Axis1);\n")
+    chip = InitializationChip(fmi_version)
+    try:
+        chip.fmu.setString([vr(chip, "script")], [str(bad)])
+        chip.set("cycleTime", 1e-3)
+        message = refused_changes_nothing(chip, chip.fmu.exitInitializationMode)
+        assert "NoSuchCommand" in message
+    finally:
+        chip.free()

@@ -148,8 +148,9 @@ int pmd_memory_store(PmdChip *chip, uint32_t address, uint32_t count, const uint
 
 int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data)
 {
-    if (pmd_memory_store(chip, address, count, data))
-        return -1;
+    if (address > chip->memorySize || count > chip->memorySize - address)
+        return -1;               /* from outside: the caller says why */
+    pmd_memory_store(chip, address, count, data);
     pmd_log(chip, PMD_LOG_BUFFERS, "dual-port memory: %u words written at 0x%X", (unsigned)count, (unsigned)address);
     return 0;
 }

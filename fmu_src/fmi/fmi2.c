@@ -2,7 +2,6 @@
  * checks its component, its pointers and the state it is called in, and
  * answers a bad call with fmi2Error and a log message naming the function,
  * the value and the reason. */
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -120,11 +119,6 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
     if (!inst)
         return fmi2Error;
-    if (!isfinite(startTime)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi2SetupExperiment: start time %g is not finite",
-                         startTime);
-        return fmi2Error;
-    }
     inst->time = startTime;
     return fmi2OK;
 }

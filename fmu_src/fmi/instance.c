@@ -223,8 +223,11 @@ static void run_script(PmdInstance *inst)
             if (err)
                 pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s:%d: the chip refused the command: host "
                                  "I/O error 0x%02X", inst->scriptPath, step->line, err);
-        } else {
-            pmd_memory_write(&inst->chip, step->address, step->count, inst->script.pool + step->first);
+        } else if (pmd_memory_write(&inst->chip, step->address, step->count, inst->script.pool + step->first)) {
+            /* compiled for this memory size, but a restored FMU state may have brought another */
+            pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s:%d: the table's %u words at 0x%X leave the "
+                             "%d-word memory: not written", inst->scriptPath, step->line, (unsigned)step->count,
+                             (unsigned)step->address, inst->memorySize);
         }
     }
 }
@@ -281,26 +284,53 @@ static PmdStatus allocate_record(PmdInstance *inst, const char *fn)
     return PMD_OK;
 }
 
+/* Everything that can fail is done into locals first: a refused
+ * ExitInitializationMode leaves the instance as it was. */
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 {
+    PmdScript script;
+    int32_t *record = NULL;
+    double active = inst->activeCycleTime, anchorTime = inst->anchorTime;
+    int64_t anchorCycle = inst->anchorCycle;
+    PmdStatus status;
+
     inst->activeCycleTime = inst->cycleTime;        /* cycleTime may have changed in initialization */
     inst->anchorTime = 0;
     inst->anchorCycle = 0;
-    if (on_the_grid(inst, fn, inst->time) != PMD_OK)
-        return PMD_ERROR;
+    status = on_the_grid(inst, fn, inst->time);
+    inst->activeCycleTime = active;
+    inst->anchorTime = anchorTime;
+    inst->anchorCycle = anchorCycle;
+    if (status != PMD_OK)
+        return status;
+    memset(&script, 0, sizeof script);
     if (inst->scriptPath && *inst->scriptPath) {
         char error[1024];
-        pmd_script_free(&inst->script);
-        if (pmd_script_load(inst->scriptPath, (uint32_t)inst->memorySize, &inst->script, error, sizeof error)) {
+        if (pmd_script_load(inst->scriptPath, (uint32_t)inst->memorySize, &script, error, sizeof error)) {
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: script refused: %s", fn, error);
             return PMD_ERROR;
         }
+    }
+    if (inst->recordEnabled) {                      /* record.capacity may have changed */
+        record = inst->recordCapacity ? (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS *
+                                                          sizeof(int32_t)) : NULL;
+        if (!record) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: %s for record.capacity %u", fn,
+                             inst->recordCapacity ? "no host memory" : "no cycles", (unsigned)inst->recordCapacity);
+            pmd_script_free(&script);
+            return PMD_ERROR;
+        }
+    }
+    if (inst->scriptPath && *inst->scriptPath) {
+        pmd_script_free(&inst->script);
+        inst->script = script;
         inst->scriptNext = 0;
     }
-    free(inst->record);                             /* record.capacity may have changed */
-    inst->record = NULL;
-    if (inst->recordEnabled && allocate_record(inst, fn) != PMD_OK)
-        return PMD_ERROR;
+    free(inst->record);
+    inst->record = record;
+    inst->activeCycleTime = inst->cycleTime;
+    inst->anchorTime = 0;
+    inst->anchorCycle = 0;
     /* GetSampleTime reads the cycle time, a whole number of microseconds (pmd_set_real checked it) */
     inst->chip.s.sampleTime = (uint16_t)floor(inst->cycleTime * 1e6 + 0.5);
     inst->nextCycle = cycles_before(inst, inst->time);
