@@ -430,7 +430,7 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint, fmi
     *eventHandlingNeeded = fmi3False;
     *terminateSimulation = fmi3False;
     *earlyReturn = fmi3False;
-    *lastSuccessfulTime = status == PMD_OK ? inst->time : currentCommunicationPoint;
+    *lastSuccessfulTime = status <= PMD_WARNING ? inst->time : currentCommunicationPoint;   /* Warning: the step ran */
     return status_of[status];
 }
 
