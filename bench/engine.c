@@ -2,11 +2,12 @@
  * with all five buffers, every cycle's commanded position, velocity and
  * acceleration stored (pmd_chip_run's record rows, as the FMU records them),
  * against a plain C loop of the same exact recurrence storing the same rows,
- * measured in the same run. The plain loop floors with C's division (the
- * baseline of the target); the same loop once more with the core's own floor
- * division (chip_types.h) shows what the core's bookkeeping costs on top of
- * the arithmetic. Prints ns per axis-cycle: plain, plain with the core's
- * division, core. All three must store the same rows. */
+ * measured in the same run. The plain loop floors the position's fraction
+ * (its one non-binary unit) with C's division (the baseline of the target);
+ * the same loop once more with the core's own floor division (chip_types.h)
+ * shows what the core's bookkeeping costs on top of the arithmetic. Prints ns
+ * per axis-cycle: plain, plain with the core's division, core. All three must
+ * store the same rows. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,13 +46,15 @@ static void make_rows(void)
 
 /* ---- the baseline: the recurrence alone, in the core's exact representation ---- */
 
-typedef struct { int32_t pos; int64_t frac, v, a; int32_t j; uint32_t left; int row; } Plain;
+/* chip_types.h: position in whole counts + a fraction in U = 2^-32/6 count;
+ * velocity and acceleration in whole counts + a fraction in 2^-33 count. */
+typedef struct { int32_t pos; int64_t frac, v, vf, a, af; int32_t j; uint32_t left; int row; } Plain;
 
 /* floor(x / y) the plain way */
 static int64_t fdiv(int64_t x, int64_t y) { int64_t q = x / y; return (x % y != 0 && ((x < 0) != (y < 0))) ? q - 1 : q; }
 
 #define FLOOR_COUNTS(x) (core_division ? pmd_floor_counts(x) : fdiv((x), PMD_U_PER_COUNT))
-#define FLOOR_1616(x) (core_division ? pmd_floor_1616(x) : fdiv((x), PMD_U_PER_1616))
+#define ONE ((int64_t)1 << 33)
 
 static double run_plain(int32_t *out, int core_division)
 {
@@ -66,24 +69,29 @@ static double run_plain(int32_t *out, int core_division)
         for (a = 0; a < AXES; a++) {
             Plain *x = &p[a];
             if (x->left == 0) {
+                int64_t v = rows[a][1][x->row], acc = rows[a][2][x->row];
                 x->pos = rows[a][0][x->row]; x->frac = 0;
-                x->v = (int64_t)rows[a][1][x->row] * PMD_U_PER_1616;
-                x->a = (int64_t)rows[a][2][x->row] * PMD_U_PER_1616;
+                x->v = fdiv(v, 65536); x->vf = (v - x->v * 65536) << 17;
+                x->a = fdiv(acc, 65536); x->af = (acc - x->a * 65536) << 17;
                 x->j = rows[a][3][x->row];
                 x->left = (uint32_t)rows[a][4][x->row];
                 x->row = (x->row + 1) % ROWS;
             } else {
-                int64_t dp = x->v + x->a / 2 + x->j, carry = FLOOR_COUNTS(dp);
-                x->frac += dp - carry * PMD_U_PER_COUNT;
-                if (x->frac >= PMD_U_PER_COUNT) { x->frac -= PMD_U_PER_COUNT; carry++; }
-                x->pos = (int32_t)((uint32_t)x->pos + (uint32_t)carry);
-                x->v += x->a + 3 * (int64_t)x->j;
-                x->a += 6 * (int64_t)x->j;
+                /* P += V + A/2 + J/6: 2^-33 count is 3 U, J/6 is j U (>> floors: GCC shifts arithmetically) */
+                int64_t hc = x->a >> 1, hf = (x->af >> 1) | ((x->a & 1) << 32);
+                int64_t f = x->frac + 3 * (x->vf + hf) + x->j, carry = FLOOR_COUNTS(f), s;
+                x->frac = f - carry * PMD_U_PER_COUNT;
+                x->pos = (int32_t)((uint32_t)x->pos + (uint32_t)(x->v + hc + carry));
+                /* V += A + J/2 (j in 2^-33 count), A += J (2 j); the whole counts never pass int64 */
+                s = x->vf + x->af + x->j;
+                x->v += x->a + (s >> 33); x->vf = s & (ONE - 1);
+                s = x->af + 2 * (int64_t)x->j;
+                x->a += s >> 33; x->af = s & (ONE - 1);
             }
             x->left--;
             out[1 + 3 * a] = x->pos;
-            out[2 + 3 * a] = (int32_t)FLOOR_1616(x->v);
-            out[3 + 3 * a] = (int32_t)FLOOR_1616(x->a);
+            out[2 + 3 * a] = (int32_t)((uint32_t)(x->v * 65536) + (uint32_t)(x->vf >> 17));
+            out[3 + 3 * a] = (int32_t)((uint32_t)(x->a * 65536) + (uint32_t)(x->af >> 17));
         }
         out += PMD_RECORD_WORDS;
     }

@@ -51,8 +51,12 @@ int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint
 uint16_t pmd_activity_status(const PmdChip *chip, int axis);
 uint16_t pmd_signal_status(const PmdChip *chip, int axis);
 int pmd_host_interrupt(const PmdChip *chip);
-#define pmd_commanded_velocity(t) pmd_register_1616((t)->velocity)
-#define pmd_commanded_acceleration(t) pmd_register_1616((t)->acceleration)
+#define pmd_commanded_velocity(t) pmd_fixed_register_1616((t)->velocity)
+#define pmd_commanded_acceleration(t) pmd_fixed_register_1616((t)->acceleration)
+/* The exact values as doubles, fraction kept: counts, counts/cycle, counts/cycle^2. */
+#define pmd_commanded_position_counts(t) ((double)(t)->position + (double)(t)->fraction / (double)PMD_U_PER_COUNT)
+#define pmd_commanded_velocity_counts(t) pmd_fixed_double((t)->velocity)
+#define pmd_commanded_acceleration_counts(t) pmd_fixed_double((t)->acceleration)
 int32_t pmd_position_error(const PmdAxis *ax);
 int32_t pmd_actual_velocity(const PmdAxis *ax);
 

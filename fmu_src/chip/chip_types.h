@@ -23,14 +23,30 @@ static inline int32_t pmd_int32(uint32_t u)
  *
  * Seed 000's external-profile recurrence, run once per cycle,
  *     P += V + A/2 + J/6,   V += A + J/2,   A += J,
- * with P in 32.0 counts, V and A in 16.16 and J in 0.32, has only integer
- * terms in the unit U = 2^-32/6 count:
- *     J/6 = j (the raw 0.32 value),  J/2 = 3j,  J = 6j,
- *     V = 6 * 2^16 * v and A = 6 * 2^16 * a for raw 16.16 values v, a.
- * A stays a multiple of 6, so A/2 is exact too. Holding V and A in U and the
- * position as whole counts plus a fraction in U makes every cycle exact: no
- * rounding, no drift, however long a segment runs (CONTRACT 2.3). Register
- * reads truncate toward minus infinity: GetCommandedVelocity = floor(V / (6 * 2^16)). */
+ * starts from P in 32.0 counts, V and A in 16.16 and J in 0.32 (J = j / 2^32
+ * count for the raw value j). J/2 = j / 2^33, so V and A/2 stay multiples of
+ * 2^-33 count and A of 2^-32 count: binary fixed point. Only the position
+ * gains a non-binary term, J/6; it is kept in the unit U = 2^-32/6 count, in
+ * which J/6 = j and V + A/2 (a multiple of 2^-33 count = 3 U) are integers.
+ *
+ *   position  whole counts (int32, wrapping like the register)
+ *             + fraction in U, 0 <= fraction < PMD_U_PER_COUNT = 6 * 2^32;
+ *   velocity, acceleration  PmdFixed: whole counts (int64, wrapping mod 2^64)
+ *             + fraction in 2^-33 count, 0 <= fraction < 2^33.
+ *
+ * Why two parts: the registers need P mod 2^32 counts, so V and A/2 mod 2^32
+ * counts to 2^-33 count: 65 bits, more than one int64 in any one unit (which
+ * is how velocity and acceleration once wrapped). With a 64-bit whole part
+ * (A/2 is then right mod 2^63 counts) each cycle is a few additions, shifts
+ * and masks and one floored division of the position's fraction
+ * (pmd_floor_counts), in unsigned or bounded arithmetic: no rounding, no
+ * drift and no overflow, however long a segment runs (CONTRACT 2.3). Within
+ * an external segment the whole parts do not even wrap: |V| <= 2^15 + 2^47 +
+ * 2^62 counts and |A| <= 2^15 + 2^31 for any segment time below 2^32.
+ *
+ * Register reads truncate toward minus infinity and wrap to 32 bits:
+ * GetCommandedPosition = position, GetCommandedVelocity = floor(V * 2^16)
+ * = (counts << 16) | (fraction >> 17), the same for the acceleration. */
 #define PMD_U_PER_COUNT (6LL << 32)
 #define PMD_U_PER_1616 (6LL << 16)
 
@@ -41,13 +57,19 @@ static inline int64_t pmd_floor_div(int64_t a, int64_t b)
     return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
 }
 
+/* floor(a / 2^k), 0 <= k <= 63, without shifting a negative value. */
+static inline int64_t pmd_floor_shift(int64_t a, int k)
+{
+    return a >= 0 ? a >> k : ~(~a >> k);
+}
+
 /* floor(a / (3 * 2^k)) for 3 <= k <= 61, exact for every int64 a: both units
  * above are 3 * 2^k (k = 33, 17). Run every cycle, so without a signed
- * division: the floored shift (no shift of a negative value) leaves
- * |y| <= 2^(63-k), and the bias 3 * 2^(63-k) makes the division by 3 unsigned. */
+ * division: the floored shift leaves |y| <= 2^(63-k), and the bias
+ * 3 * 2^(63-k) makes the division by 3 unsigned. */
 static inline int64_t pmd_floor_div_3x2k(int64_t a, int k)
 {
-    int64_t y = a >= 0 ? a >> k : ~(~a >> k);                     /* floor(a / 2^k) */
+    int64_t y = pmd_floor_shift(a, k);                            /* floor(a / 2^k) */
     return (int64_t)((uint64_t)(y + ((int64_t)3 << (63 - k))) / 3u) - ((int64_t)1 << (63 - k));
 }
 #define pmd_floor_counts(u) pmd_floor_div_3x2k((u), 33)           /* floor(u / PMD_U_PER_COUNT) */
@@ -59,18 +81,120 @@ static inline int32_t pmd_wrap32(int64_t x)
     return pmd_int32((uint32_t)((uint64_t)x & 0xFFFFFFFFu));
 }
 
-/* GetCommandedVelocity / GetCommandedAcceleration: U per cycle to 16.16, floored. */
-static inline int32_t pmd_register_1616(int64_t u)
+/* A 64-bit word read as a signed value (two's complement, portably). */
+static inline int64_t pmd_int64(uint64_t u)
 {
-    return pmd_wrap32(pmd_floor_1616(u));
+    return u <= (uint64_t)INT64_MAX ? (int64_t)u : -(int64_t)(~u) - 1;
+}
+
+/* ---- velocity and acceleration: whole counts + 33 fraction bits ---- */
+
+#define PMD_FIXED_BITS 33
+#define PMD_FIXED_ONE ((int64_t)1 << PMD_FIXED_BITS)               /* a count in the fraction's unit */
+
+typedef struct {
+    int64_t counts;        /* whole counts: the value floored; arithmetic wraps mod 2^64 */
+    int64_t fraction;      /* the rest in 2^-33 count: 0 <= fraction < PMD_FIXED_ONE */
+} PmdFixed;
+
+#define PMD_FIXED_ZERO ((PmdFixed){0, 0})
+
+static inline int pmd_fixed_is_zero(PmdFixed x)
+{
+    return x.counts == 0 && x.fraction == 0;
+}
+
+/* counts + s / 2^33 for |s| < 2^62: the whole part of s carried, wrapping. */
+static inline PmdFixed pmd_fixed_make(int64_t counts, int64_t s)
+{
+    PmdFixed r;
+    r.counts = pmd_int64((uint64_t)counts + (uint64_t)pmd_floor_shift(s, PMD_FIXED_BITS));
+    r.fraction = (int64_t)((uint64_t)s & (uint64_t)(PMD_FIXED_ONE - 1));
+    return r;
+}
+
+/* A 16.16 value x (any int64: x / 2^16 counts), exactly. */
+static inline PmdFixed pmd_fixed_from_1616(int64_t x)
+{
+    PmdFixed r;
+    r.counts = pmd_floor_shift(x, 16);
+    r.fraction = (int64_t)(((uint64_t)x & 0xFFFFu) << (PMD_FIXED_BITS - 16));
+    return r;
+}
+
+static inline PmdFixed pmd_fixed_add(PmdFixed x, PmdFixed y)
+{
+    return pmd_fixed_make(pmd_int64((uint64_t)x.counts + (uint64_t)y.counts), x.fraction + y.fraction);
+}
+
+static inline PmdFixed pmd_fixed_sub(PmdFixed x, PmdFixed y)
+{
+    return pmd_fixed_make(pmd_int64((uint64_t)x.counts - (uint64_t)y.counts), x.fraction - y.fraction);
+}
+
+/* x + d / 2^33 count for |d| < 2^61: the jerk terms J/2 = j, J = 2 j. */
+static inline PmdFixed pmd_fixed_add_raw(PmdFixed x, int64_t d)
+{
+    return pmd_fixed_make(x.counts, x.fraction + d);
+}
+
+/* x / 2, exact when the fraction is even (an acceleration's always is). */
+static inline PmdFixed pmd_fixed_half(PmdFixed x)
+{
+    PmdFixed r;
+    r.counts = pmd_floor_shift(x.counts, 1);
+    r.fraction = (x.fraction >> 1) | (int64_t)(((uint64_t)x.counts & 1u) << (PMD_FIXED_BITS - 1));
+    return r;
+}
+
+/* x truncated to 16.16 (toward minus infinity). */
+static inline PmdFixed pmd_fixed_floor_1616(PmdFixed x)
+{
+    x.fraction &= ~((PMD_FIXED_ONE >> 16) - 1);
+    return x;
+}
+
+/* The 32-bit 16.16 register: floor(x * 2^16), wrapped. */
+static inline int32_t pmd_fixed_register_1616(PmdFixed x)
+{
+    return pmd_int32((uint32_t)((uint64_t)x.counts << 16) | (uint32_t)(x.fraction >> (PMD_FIXED_BITS - 16)));
+}
+
+/* floor(x * 2^16) as a wide 16.16 value for the trajectory generators'
+ * arithmetic: exact while |x| < 2^46 counts per cycle, held at +-2^62 beyond
+ * (only an external profile handed over mid-segment can be that fast), so
+ * that their sums cannot overflow. */
+#define PMD_WIDE_1616_LIMIT ((int64_t)1 << 46)
+static inline int64_t pmd_fixed_to_1616(PmdFixed x)
+{
+    if (x.counts >= PMD_WIDE_1616_LIMIT)
+        return PMD_WIDE_1616_LIMIT << 16;
+    if (x.counts < -PMD_WIDE_1616_LIMIT)
+        return -(PMD_WIDE_1616_LIMIT << 16);
+    return x.counts * 65536 + (x.fraction >> (PMD_FIXED_BITS - 16));
+}
+
+/* x in counts as a double, for the Real outputs. A value that fits an int64
+ * in U (|x| < 2^31/6 counts) is converted from that integer, as the state
+ * once held it, so those Reals stay bit-identical; a larger one from its parts. */
+static inline double pmd_fixed_double(PmdFixed x)
+{
+    const int64_t most = INT64_MAX / PMD_U_PER_COUNT;            /* whole counts that fit */
+    int64_t rest = 3 * x.fraction;                                /* the fraction in U: below PMD_U_PER_COUNT */
+    if (x.counts >= 0 && x.counts <= most && x.counts * PMD_U_PER_COUNT <= INT64_MAX - rest)
+        return (double)(x.counts * PMD_U_PER_COUNT + rest) / (double)PMD_U_PER_COUNT;
+    if (x.counts < 0 && x.counts >= -most - 1 &&
+        (x.counts + 1) * PMD_U_PER_COUNT >= INT64_MIN + (PMD_U_PER_COUNT - rest))
+        return (double)((x.counts + 1) * PMD_U_PER_COUNT + (rest - PMD_U_PER_COUNT)) / (double)PMD_U_PER_COUNT;
+    return (double)x.counts + (double)x.fraction / (double)PMD_FIXED_ONE;
 }
 
 typedef struct {
-    int32_t position;      /* whole counts; wraps like the 32-bit register */
-    int64_t fraction;      /* 0 <= fraction < PMD_U_PER_COUNT */
-    int64_t velocity;      /* U per cycle */
-    int64_t acceleration;  /* U per cycle^2 */
-    int32_t jerk;          /* raw 0.32: 2^-32 counts per cycle^3 */
+    int32_t position;        /* whole counts; wraps like the 32-bit register */
+    int64_t fraction;        /* of the position, in U: 0 <= fraction < PMD_U_PER_COUNT */
+    PmdFixed velocity;       /* counts per cycle */
+    PmdFixed acceleration;   /* counts per cycle^2 */
+    int32_t jerk;            /* raw 0.32: 2^-32 counts per cycle^3 */
 } PmdTrajectory;
 
 /* The double-buffered trajectory registers (reference 4.1): the host writes

@@ -2,14 +2,16 @@
  * by one, when nothing needs individual cycles.
  *
  * Inside an external-profile segment seed 000's recurrence has an exact
- * closed form in the units of chip_types.h: after n integration steps from
- * (P, V, A) with jerk j,
- *     P += n V + n^2 A / 2 + j n^3,   V += n A + 3 j n^2,   A += 6 j n.
+ * closed form: after k integration steps from (P, V, A) with jerk J = j/2^32,
+ *     P += k V + k^2 A/2 + k^3 J/6,   V += k A + k^2 J/2,   A += k J.
+ * In the state's units (chip_types.h) - V, A and A/2 in 2^-33 count (V', A',
+ * A'/2), the position's fraction in U = 2^-32/6 count -
+ *     V' += k A' + j k^2,   A' += 2 j k,   P += 3 k V' + 3 k^2 A'/2 + k^3 j (in U).
  * So a run of cycles in which every axis is idle or integrating inside a
  * segment, no breakpoint is armed, no trace runs and the servo is ideal (the
  * position error stays 0) costs a few multiplications per axis instead of one
  * step per cycle. Anything else - a segment read, a velocity coming to rest
- * (an event), a value that could wrap - is left to the ordinary cycle.
+ * (an event), a state beyond the bounds below - is left to the ordinary cycle.
  *
  * It needs 128-bit integers; without them it skips nothing, which is the
  * portable fallback: the same results, cycle by cycle. */
@@ -19,29 +21,39 @@
 
 #if defined(__SIZEOF_INT128__) && defined(__GNUC__) && !defined(PMD_PORTABLE_WIDE)
 __extension__ typedef __int128 i128;
+__extension__ typedef unsigned __int128 u128;
 
-#define LIMIT62 ((i128)1 << 62)
+#define TWO33 ((i128)1 << 33)
+/* Every segment stays inside: |A| <= 2^15 + 2^31 counts per cycle^2 (chip_types.h). */
+#define ACCELERATION_LIMIT ((int64_t)1 << 40)
 
-static i128 velocity_after(const PmdTrajectory *t, int64_t k)
+/* V' and A': exact, |V'| < 2^96 and, within ACCELERATION_LIMIT, |A'| < 2^73. */
+static i128 in33(PmdFixed x)
 {
-    return (i128)t->velocity + (i128)k * t->acceleration + (i128)3 * t->jerk * k * k;
+    return (i128)x.counts * TWO33 + x.fraction;
 }
 
-/* Displacement of k integration steps, in U (exact while |V| < 2^62 on the way). */
-static i128 displacement(const PmdTrajectory *t, int64_t k)
+/* V' after k steps, 0 <= k < 2^32: below 2^106 in magnitude. */
+static i128 velocity_after(const PmdTrajectory *t, int64_t k)
 {
-    i128 kk = (i128)k * k;
-    return (i128)k * t->velocity + kk * (t->acceleration / 2) + kk * k * t->jerk;
+    return in33(t->velocity) + (i128)k * in33(t->acceleration) + (i128)t->jerk * k * k;
+}
+
+/* Whether a velocity V' is held exactly by the state the cycles keep: its
+ * whole counts within int64, where their wrapping changes nothing. */
+static int fits_state(i128 v)
+{
+    return v >= (i128)INT64_MIN * TWO33 && v < ((i128)INT64_MAX + 1) * TWO33;
 }
 
 /* The first step k in 1..n at which the velocity becomes exactly 0 from a
  * non-zero value (an external profile's motion-complete event), or n + 1. */
 static int64_t first_rest(const PmdTrajectory *t, int64_t n)
 {
-    double a = 3.0 * t->jerk, b = (double)t->acceleration, c = (double)t->velocity, roots[2];
+    double a = (double)t->jerk, b = (double)in33(t->acceleration), c = (double)in33(t->velocity), roots[2];
     int r, nroots = 0;
     int64_t best = n + 1, k;
-    if (t->velocity == 0 && t->acceleration == 0 && t->jerk == 0)
+    if (pmd_fixed_is_zero(t->velocity) && pmd_fixed_is_zero(t->acceleration) && t->jerk == 0)
         return n + 1;
     if (a == 0) {
         if (b != 0)
@@ -64,37 +76,64 @@ static int64_t first_rest(const PmdTrajectory *t, int64_t n)
     return best;
 }
 
-/* Whether |V| and |A| stay below 2^62 over steps 0..n (V is quadratic in k:
- * its extremes are at the ends or the vertex). */
-static int stays_small(const PmdTrajectory *t, int64_t n)
+/* Whether the closed form holds over steps 0..n (n < 2^32): the acceleration
+ * within ACCELERATION_LIMIT (the products below then fit 128 bits) and the
+ * velocity's whole counts within int64 at every step, so that its exact zeros
+ * are the state's. V is quadratic in k: its extremes are at the ends or next
+ * to the vertex. */
+static int in_bounds(const PmdTrajectory *t, int64_t n)
 {
-    i128 v0 = velocity_after(t, 0), vn = velocity_after(t, n), an = (i128)t->acceleration + (i128)6 * t->jerk * n;
-    if (v0 <= -LIMIT62 || v0 >= LIMIT62 || vn <= -LIMIT62 || vn >= LIMIT62 || an <= -LIMIT62 || an >= LIMIT62)
+    int64_t an = t->acceleration.counts, k;
+    if (an >= ACCELERATION_LIMIT || an < -ACCELERATION_LIMIT)
+        return 0;
+    if (!fits_state(velocity_after(t, 0)) || !fits_state(velocity_after(t, n)))
         return 0;
     if (t->jerk != 0) {
-        double vertex = -(double)t->acceleration / (6.0 * t->jerk);
-        if (vertex > 0 && vertex < (double)n) {
-            i128 v = velocity_after(t, (int64_t)vertex);
-            if (v <= -LIMIT62 || v >= LIMIT62)
-                return 0;
-        }
+        double vertex = -(double)in33(t->acceleration) / (2.0 * t->jerk);
+        if (vertex > 0 && vertex < (double)n)
+            for (k = (int64_t)vertex - 1; k <= (int64_t)vertex + 2; k++)
+                if (k >= 0 && k <= n && !fits_state(velocity_after(t, k)))
+                    return 0;
     }
     return 1;
 }
 
-static void advance(PmdTrajectory *t, int64_t k)
+/* floor(x / U) and x mod U, for any x. */
+static i128 floor_u(i128 x, i128 *rest)
 {
     const i128 u = (i128)PMD_U_PER_COUNT;
-    i128 total = (i128)t->position * u + t->fraction + displacement(t, k);
-    i128 counts = total / u, fraction = total % u;
-    if (fraction < 0) {
-        fraction += u;
-        counts--;
+    i128 q = x / u, r = x % u;
+    if (r < 0) {
+        r += u;
+        q--;
     }
-    t->position = pmd_int32((uint32_t)((uint64_t)counts & 0xFFFFFFFFu));
-    t->fraction = (int64_t)fraction;
-    t->velocity = (int64_t)velocity_after(t, k);
-    t->acceleration += 6 * (int64_t)t->jerk * k;
+    *rest = r;
+    return q;
+}
+
+/* The state after k integration steps (k < 2^32, in_bounds). The position's
+ * whole counts matter mod 2^32 only, its fraction exactly: each term is split
+ * into whole counts and U, so that no product passes 2^106. */
+static void advance(PmdTrajectory *t, int64_t k)
+{
+    const i128 kk = (i128)k * k;
+    const u128 k3 = (u128)kk * (u128)k;                                    /* < 2^96 */
+    PmdFixed half = pmd_fixed_half(t->acceleration);                         /* A'/2 */
+    i128 rest, q3 = (i128)(k3 / (u128)PMD_U_PER_COUNT);                    /* k^3 = q3 U + r3 */
+    i128 r3 = (i128)(k3 % (u128)PMD_U_PER_COUNT);
+    i128 counts = (i128)t->position + (i128)k * t->velocity.counts + kk * half.counts + q3 * t->jerk;
+    i128 fraction = (i128)t->fraction + (i128)3 * k * t->velocity.fraction + (i128)3 * kk * half.fraction +
+                    r3 * t->jerk;
+    u128 v = (u128)velocity_after(t, k), a = (u128)(in33(t->acceleration) + (i128)2 * t->jerk * k);
+
+    counts += floor_u(fraction, &rest);
+    t->position = pmd_int32((uint32_t)(u128)counts);
+    t->fraction = (int64_t)rest;
+    /* two's complement: the shifts floor, the casts keep whole counts mod 2^64 */
+    t->velocity.counts = pmd_int64((uint64_t)(v >> PMD_FIXED_BITS));
+    t->velocity.fraction = (int64_t)((uint64_t)v & (uint64_t)(PMD_FIXED_ONE - 1));
+    t->acceleration.counts = pmd_int64((uint64_t)(a >> PMD_FIXED_BITS));
+    t->acceleration.fraction = (int64_t)((uint64_t)a & (uint64_t)(PMD_FIXED_ONE - 1));
 }
 
 /* The cycles (at most max) that can be skipped now. */
@@ -118,9 +157,9 @@ static int64_t skippable(const PmdChip *chip, int64_t max)
         if ((int64_t)ax->segmentTime < k)       /* the cycle with segment time 0 reads: not skipped */
             k = ax->segmentTime;
         if (k > 0) {
-            k = first_rest(&ax->trajectory, k) - 1;
-            if (k > 0 && !stays_small(&ax->trajectory, k))
+            if (!in_bounds(&ax->trajectory, k))      /* before first_rest: its products must fit */
                 return 0;
+            k = first_rest(&ax->trajectory, k) - 1;
         }
     }
     return k;
@@ -149,7 +188,7 @@ int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
             ax->previousActualPosition = ax->actualPosition;
             if (error <= ax->settleWindow)
                 ax->settleCount = (uint16_t)(ax->settleCount + k > 0xFFFF ? 0xFFFF : ax->settleCount + k);
-            ax->trajectory.acceleration = 0;
+            ax->trajectory.acceleration = PMD_FIXED_ZERO;
         }
     }
     chip->s.nextTime += (uint32_t)k;

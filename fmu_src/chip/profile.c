@@ -2,26 +2,16 @@
  * point-to-point, stops and Update. All arithmetic is exact (chip_types.h). */
 #include "chip.h"
 
-/* ---- exact arithmetic ---------------------------------------------------- */
+/* ---- exact arithmetic (chip_types.h) --------------------------------------- */
 
-/* Wrapping add: a host can integrate a segment past any register range; the
- * chip's registers wrap, and so do we, without undefined behaviour. */
-static int64_t wadd(int64_t a, int64_t b)
+/* Moves the exact position by x / 2^16 counts (a 16.16 value of any size):
+ * the whole counts wrap like the register, the rest joins the fraction. */
+static void move_by_1616(PmdTrajectory *t, int64_t x)
 {
-    uint64_t u = (uint64_t)a + (uint64_t)b;
-    return u <= (uint64_t)INT64_MAX ? (int64_t)u : -(int64_t)(~u) - 1;
-}
-
-/* Moves the exact position by dp units U. */
-static void move_by(PmdTrajectory *t, int64_t dp)
-{
-    int64_t carry = pmd_floor_counts(dp);
-    t->fraction += dp - carry * PMD_U_PER_COUNT;
-    if (t->fraction >= PMD_U_PER_COUNT) {
-        t->fraction -= PMD_U_PER_COUNT;
-        carry++;
-    }
-    t->position = pmd_wrap32((int64_t)t->position + carry);
+    int64_t f = t->fraction + (int64_t)((uint64_t)x & 0xFFFFu) * PMD_U_PER_1616;
+    uint32_t carry = f >= PMD_U_PER_COUNT;
+    t->fraction = f - (carry ? PMD_U_PER_COUNT : 0);
+    t->position = pmd_int32((uint32_t)t->position + (uint32_t)pmd_floor_shift(x, 16) + carry);
 }
 
 /* ---- external profile (seed 000) ----------------------------------------- */
@@ -50,8 +40,8 @@ void pmd_abrupt_stop(PmdChip *chip, int n)
 {
     PmdTrajectory *t = &chip->s.axis[n].trajectory;
     /* Reference 5, stops: velocity zeroed at once, commanded position held. */
-    t->velocity = 0;
-    t->acceleration = 0;
+    t->velocity = PMD_FIXED_ZERO;
+    t->acceleration = PMD_FIXED_ZERO;
     t->jerk = 0;
     pmd_halt(chip, n);
 }
@@ -160,12 +150,20 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
     return 1;
 }
 
+/* One step of the recurrence, exactly (chip_types.h): in 2^-33 count (3 U)
+ * V + A/2 is whole, J/2 is j and J is 2 j; J/6 is j U. */
 static void integrate(PmdTrajectory *t)
 {
     int64_t j = t->jerk;
-    move_by(t, wadd(wadd(t->velocity, t->acceleration / 2), j));    /* P += V + A/2 + J/6 */
-    t->velocity = wadd(t->velocity, wadd(t->acceleration, 3 * j));   /* V += A + J/2 */
-    t->acceleration = wadd(t->acceleration, 6 * j);                   /* A += J */
+    PmdFixed half = pmd_fixed_half(t->acceleration);
+    int64_t f = t->fraction + 3 * (t->velocity.fraction + half.fraction) + j;        /* P += V + A/2 + J/6 */
+    int64_t carry = pmd_floor_counts(f);                                              /* -1 .. 3 */
+    t->fraction = f - carry * PMD_U_PER_COUNT;
+    t->position = pmd_int32((uint32_t)t->position + (uint32_t)t->velocity.counts + (uint32_t)half.counts +
+                            (uint32_t)carry);
+    t->velocity = pmd_fixed_make(pmd_int64((uint64_t)t->velocity.counts + (uint64_t)t->acceleration.counts),
+                                 t->velocity.fraction + t->acceleration.fraction + j); /* V += A + J/2 */
+    t->acceleration = pmd_fixed_add_raw(t->acceleration, 2 * j);                     /* A += J */
 }
 
 /* One cycle of seed 000's pseudo code. The decrement closes every cycle that
@@ -175,7 +173,7 @@ static void external_cycle(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
     PmdTrajectory *t = &ax->trajectory;
-    int64_t before = t->velocity;
+    int moving = !pmd_fixed_is_zero(t->velocity);
 
     if (ax->segmentTime == 0) {
         int32_t v[PMD_FUNCTIONS];
@@ -185,8 +183,8 @@ static void external_cycle(PmdChip *chip, int n)
         }
         t->position = v[PMDBufferFunctionPosition];
         t->fraction = 0;
-        t->velocity = (int64_t)v[PMDBufferFunctionVelocity] * PMD_U_PER_1616;
-        t->acceleration = (int64_t)v[PMDBufferFunctionAcceleration] * PMD_U_PER_1616;
+        t->velocity = pmd_fixed_from_1616(v[PMDBufferFunctionVelocity]);
+        t->acceleration = pmd_fixed_from_1616(v[PMDBufferFunctionAcceleration]);
         t->jerk = v[PMDBufferFunctionJerk];
         ax->segmentTime = (uint32_t)v[PMDBufferFunctionTime];
         if (ax->segmentTime == 0) {
@@ -201,7 +199,7 @@ static void external_cycle(PmdChip *chip, int n)
     ax->segmentTime--;
     /* Seed 000, 1.6: in external mode the motion-complete bit is set whenever
      * the axis comes to rest, which may happen many times in one profile. */
-    if (before != 0 && t->velocity == 0)
+    if (moving && pmd_fixed_is_zero(t->velocity))
         motion_complete(chip, n);
 }
 
@@ -225,9 +223,9 @@ static int64_t run_out(int64_t x, int64_t d)
  * acceleration follow exactly. */
 static void step_velocity(PmdTrajectory *t, int64_t v, int64_t v2)
 {
-    move_by(t, v2 * PMD_U_PER_1616);
-    t->velocity = v2 * PMD_U_PER_1616;
-    t->acceleration = (v2 - v) * PMD_U_PER_1616;
+    move_by_1616(t, v2);
+    t->velocity = pmd_fixed_from_1616(v2);
+    t->acceleration = pmd_fixed_from_1616(v2 - v);
     t->jerk = 0;
 }
 
@@ -249,7 +247,7 @@ static void trapezoidal_cycle(PmdChip *chip, int n)
     int64_t acc = r->acceleration, dec = r->deceleration ? r->deceleration : r->acceleration;
     int64_t vmax = r->velocity;
     int64_t p = (int64_t)t->position * 65536 + t->fraction / PMD_U_PER_1616;
-    int64_t v = pmd_floor_1616(t->velocity);
+    int64_t v = pmd_fixed_to_1616(t->velocity);             /* |v| <= 2^62: the sums below fit */
     int64_t dest = (int64_t)r->position * 65536;
     int64_t d = dest - p;
     int64_t s = d > 0 ? 1 : d < 0 ? -1 : (v >= 0 ? 1 : -1);   /* frame in which the destination is ahead */
@@ -302,7 +300,7 @@ static void velocity_cycle(PmdChip *chip, int n)
     int64_t acc = ax->active.acceleration;
     int64_t dec = ax->active.deceleration ? ax->active.deceleration : acc;
     int64_t target = ax->motion == PMD_MOTION_SMOOTH_STOP ? 0 : ax->active.velocity;
-    int64_t v = pmd_floor_1616(t->velocity), v2;
+    int64_t v = pmd_fixed_to_1616(t->velocity), v2;
 
     if (v == target) {
         v2 = v;
@@ -322,23 +320,23 @@ static void velocity_cycle(PmdChip *chip, int n)
 
 /* The slave's commanded position follows the master's actual or commanded
  * position times the 16.16 ratio (reference 5): each cycle it moves by the
- * master's change times the ratio, exactly. */
+ * master's change times the ratio, exactly; that move is its velocity, and
+ * the change from the last velocity truncated to 16.16 its acceleration. */
 void pmd_gear_cycle(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
+    PmdTrajectory *t = &ax->trajectory;
     const PmdAxis *master = &chip->s.axis[ax->gearMasterAxis];
     int32_t position = ax->gearMasterSource == PMDPositionSourceCommanded ? master->trajectory.position
                                                                           : master->actualPosition;
     int64_t delta = pmd_wrap32((int64_t)position - ax->gearMasterLast);
-    int64_t d16 = delta * ax->active.gearRatio;            /* 16.16 slave counts, |d16| < 2^62 */
-    int64_t carry = pmd_floor_div(d16, 65536);
-    int64_t v = pmd_floor_1616(ax->trajectory.velocity);
+    int64_t d16 = delta * ax->active.gearRatio;            /* 16.16 slave counts, |d16| <= 2^62 */
+    PmdFixed before = pmd_fixed_floor_1616(t->velocity);
     ax->gearMasterLast = position;
-    ax->trajectory.position = pmd_wrap32((int64_t)ax->trajectory.position + carry);
-    move_by(&ax->trajectory, (d16 - carry * 65536) * PMD_U_PER_1616);
-    ax->trajectory.velocity = wadd(0, (int64_t)((uint64_t)d16 * (uint64_t)PMD_U_PER_1616));
-    ax->trajectory.acceleration = wadd(ax->trajectory.velocity, -v * PMD_U_PER_1616);
-    ax->trajectory.jerk = 0;
+    move_by_1616(t, d16);
+    t->velocity = pmd_fixed_from_1616(d16);
+    t->acceleration = pmd_fixed_sub(t->velocity, before);
+    t->jerk = 0;
 }
 
 void pmd_profile_cycle(PmdChip *chip, int n)
@@ -367,7 +365,7 @@ void pmd_profile_cycle(PmdChip *chip, int n)
         break;                 /* after the other axes: pmd_gear_cycle */
     default:
         /* at rest: the braking of the last moving cycle is over */
-        chip->s.axis[n].trajectory.acceleration = 0;
+        chip->s.axis[n].trajectory.acceleration = PMD_FIXED_ZERO;
         break;
     }
 }

@@ -149,7 +149,7 @@ static int64_t scaled_floor(int negative, uint64_t a, int64_t m, uint64_t c)
 static void finish(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
-    ax->trajectory.velocity = ax->trajectory.acceleration = 0;
+    ax->trajectory.velocity = ax->trajectory.acceleration = PMD_FIXED_ZERO;
     ax->scurvePhase = 0;
     pmd_halt(chip, n);
 }
@@ -180,8 +180,8 @@ void pmd_scurve_cycle(PmdChip *chip, int n)
     }
     t->position = pmd_int32((uint32_t)c->start + (uint32_t)(negative ? -(int64_t)q : (int64_t)q));
     t->fraction = (int64_t)pmd_muldiv(rem, (uint64_t)PMD_U_PER_COUNT, (uint64_t)c->p6Total, &rem);
-    t->velocity = scaled_floor(negative, d << 16, 3 * c->v2, (uint64_t)c->p6Total) * PMD_U_PER_1616;
-    t->acceleration = scaled_floor(negative, d << 16, 6 * c->a, (uint64_t)c->p6Total) * PMD_U_PER_1616;
+    t->velocity = pmd_fixed_from_1616(scaled_floor(negative, d << 16, 3 * c->v2, (uint64_t)c->p6Total));
+    t->acceleration = pmd_fixed_from_1616(scaled_floor(negative, d << 16, 6 * c->a, (uint64_t)c->p6Total));
     t->jerk = 0;
     ax->atMaximumVelocity = phase == 4;
     ax->scurvePhase = (uint8_t)phase;

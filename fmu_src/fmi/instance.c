@@ -549,13 +549,13 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
     t = &AXIS_OF(v)->trajectory;               /* the Reals left are per axis */
     switch (v->family) {
     case VAR_axis_position:
-        *value = (double)t->position + (double)t->fraction / (double)PMD_U_PER_COUNT;
+        *value = pmd_commanded_position_counts(t);
         break;
     case VAR_axis_velocity:
-        *value = (double)t->velocity / (double)PMD_U_PER_COUNT / inst->activeCycleTime;
+        *value = pmd_commanded_velocity_counts(t) / inst->activeCycleTime;
         break;
     default:   /* VAR_axis_acceleration */
-        *value = (double)t->acceleration / (double)PMD_U_PER_COUNT / (inst->activeCycleTime * inst->activeCycleTime);
+        *value = pmd_commanded_acceleration_counts(t) / (inst->activeCycleTime * inst->activeCycleTime);
         break;
     }
     return PMD_OK;
