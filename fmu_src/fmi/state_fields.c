@@ -68,11 +68,17 @@ static const PmdStateField scurve_fields[] = {
 };
 static const PmdStateStruct scurve = DESCRIBE(PmdSCurve, scurve_fields);
 
+static const PmdStateField fixed_fields[] = {
+    SIGNED(PmdFixed, counts, ANY_I64),
+    SIGNED(PmdFixed, fraction, 0, PMD_FIXED_ONE - 1),
+};
+static const PmdStateStruct fixed = DESCRIBE(PmdFixed, fixed_fields);
+
 static const PmdStateField trajectory_fields[] = {
     SIGNED(PmdTrajectory, position, ANY_I32),
     SIGNED(PmdTrajectory, fraction, 0, PMD_U_PER_COUNT - 1),
-    SIGNED(PmdTrajectory, velocity, ANY_I64),
-    SIGNED(PmdTrajectory, acceleration, ANY_I64),
+    STRUCT(PmdTrajectory, velocity, fixed),
+    STRUCT(PmdTrajectory, acceleration, fixed),
     SIGNED(PmdTrajectory, jerk, ANY_I32),
 };
 static const PmdStateStruct trajectory = DESCRIBE(PmdTrajectory, trajectory_fields);

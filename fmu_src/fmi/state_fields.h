@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 /* Bumped whenever a field is added, removed or changes meaning. */
-#define PMD_STATE_VERSION 2u
+#define PMD_STATE_VERSION 3u
 
 /* A snapshot (state.c): this header, the instance image, the memory words. */
 #define PMD_STATE_MAGIC "PMDFMUST"

@@ -18,14 +18,22 @@ static int print_leaf(const PmdStateLeaf *leaf, void *context)
     return 0;
 }
 
+/* Each struct once, however many fields have its type. */
 static void print_members(const PmdStateStruct *s)
 {
-    size_t f;
-    for (f = 0; f < s->nFields; f++) {
+    static const PmdStateStruct *printed[64];
+    static size_t nPrinted;
+    size_t f, i;
+    for (i = 0; i < nPrinted; i++)
+        if (printed[i] == s)
+            return;
+    if (nPrinted < sizeof printed / sizeof printed[0])
+        printed[nPrinted++] = s;
+    for (f = 0; f < s->nFields; f++)
         printf("member %s %s\n", s->name, s->fields[f].name);
-        if (s->fields[f].kind == PMD_SF_STRUCT && (f == 0 || s->fields[f - 1].sub != s->fields[f].sub))
+    for (f = 0; f < s->nFields; f++)
+        if (s->fields[f].kind == PMD_SF_STRUCT)
             print_members(s->fields[f].sub);
-    }
 }
 
 int main(void)
