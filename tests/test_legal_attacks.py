@@ -271,7 +271,8 @@ def test_a_refused_enter_initialization_changes_nothing():
                           modelIdentifier=chip.model_description.coSimulation.modelIdentifier, instanceName="x")
         fresh.instantiate(loggingOn=False)
         fresh.setReal([vr(chip, "cycleTime")], [1e-3])
-        fresh.setupExperiment(startTime=1e300)     # finite, but no cycle index holds it
+        fresh.setupExperiment(startTime=1e10)      # 10^13 cycles of 1 ms: on the grid
+        fresh.setReal([vr(chip, "cycleTime")], [1e-6])      # 10^16 cycles of 1 us: no cycle index holds it
         probe = type("Probe", (), {"fmu": fresh})()
         before = snapshot(probe)
         with pytest.raises(FMICallException):

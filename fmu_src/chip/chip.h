@@ -44,7 +44,8 @@ void pmd_encode_field(const PmdField *field, int64_t value, uint16_t *words);
  * (sanitizer and fuzz builds) it aborts, so that fuzzing finds it. */
 int pmd_memory_store(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data);
 
-/* The dual-port memory path: pmd_memory_store, bypassing the processor, logged. */
+/* The dual-port memory path, bypassing the processor, logged: returns -1
+ * (nothing written) if the block leaves the memory, else pmd_memory_store's. */
 int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data);
 
 /* Register views. */

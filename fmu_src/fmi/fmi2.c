@@ -117,10 +117,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
 {
     PmdInstance *inst = begin(c, "fmi2SetupExperiment", PMD_INSTANTIATED);
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    if (!inst)
-        return fmi2Error;
-    inst->time = startTime;
-    return fmi2OK;
+    return inst ? status_of[pmd_setup_experiment(inst, "fmi2SetupExperiment", startTime)] : fmi2Error;
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)

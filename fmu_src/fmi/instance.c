@@ -250,6 +250,20 @@ static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t)
     return PMD_OK;
 }
 
+/* FMI 2 sets the start time before initialization: the same check as
+ * EnterInitializationMode's, at the cycle time set so far (it checks again). */
+PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime)
+{
+    double active = inst->activeCycleTime;
+    PmdStatus status;
+    inst->activeCycleTime = inst->cycleTime;
+    status = on_the_grid(inst, fn, startTime);
+    inst->activeCycleTime = active;
+    if (status == PMD_OK)
+        inst->time = startTime;
+    return status;
+}
+
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime)
 {
     double active = inst->activeCycleTime;
@@ -267,7 +281,7 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double sta
 
 /* The record.data buffer, allocated when recording is enabled: an instance
  * that never records does not carry it, and doStep never allocates. */
-static PmdStatus allocate_record(PmdInstance *inst, const char *fn)
+PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
 {
     if (inst->record)
         return PMD_OK;
@@ -715,7 +729,7 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
         return PMD_ERROR;
     value = value != 0;
     if (!apply)          /* recording needs its buffer: allocated by the check, so that applying cannot fail */
-        return v->family == VAR_record_enabled && value ? allocate_record(inst, fn) : PMD_OK;
+        return v->family == VAR_record_enabled && value ? pmd_record_allocate(inst, fn) : PMD_OK;
     switch (v->family) {
     case VAR_loopback: inst->chip.s.loopback = (uint8_t)value; break;
     case VAR_axis_positiveLimit: AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;

@@ -85,9 +85,12 @@ void pmd_instance_reset(PmdInstance *inst);
 /* nCategories = 0: all categories; an unknown category is an error and changes nothing. */
 PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
                                 const char *const categories[]);
+PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime);
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime);
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn);
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);
+/* Allocates record.data's buffer (record.capacity cycles) unless it exists; never in doStep. */
+PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn);
 
 /* Returns inst if a call to fn is legal in its state (a mask of PmdState), else logs and returns NULL. */
 PmdInstance *pmd_begin(PmdInstance *inst, const char *fn, unsigned states);

@@ -12,6 +12,7 @@
  * Get/SetFMUState and (De)SerializeFMUState, in this process or another one of
  * the same build and platform. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -126,24 +127,32 @@ static int check_trace(const PmdChipState *s, char *why, size_t whySize)
         if (condition[k] && ((condition[k] & 0xF) >= PMD_AXES || ((condition[k] >> 4) & 0xF) > PMDTraceConditionSignalStatus))
             return WHY("chip.s.trace.%s = 0x%04X: not an axis 0..3 and a condition 0..4", k ? "stop" : "start",
                        (unsigned)condition[k]);
+    /* A stopped trace's period and buffer 0 may change (only a running trace
+     * locks them), and a start resets the countdown: these hold while it runs. */
+    if (!t->active)
+        return 0;
+    if (s->buffer[0].length == 0)
+        return WHY("chip.s.trace.active = 1 with trace buffer 0 of length 0");
     if (t->countdown >= t->period)
         return WHY("chip.s.trace.countdown = %u is not below the period %u", (unsigned)t->countdown,
                    (unsigned)t->period);
-    if (t->active && s->buffer[0].length == 0)
-        return WHY("chip.s.trace.active = 1 with trace buffer 0 of length 0");
     if (t->count > s->buffer[0].length)
         return WHY("chip.s.trace.count = %u is more than trace buffer 0 holds (%u)", (unsigned)t->count,
                    (unsigned)s->buffer[0].length);
     return 0;
 }
 
-/* A moving S-curve: what pmd_scurve_cycle reads must describe the plan's unit curve. */
+/* A moving S-curve: what pmd_scurve_cycle reads must describe the plan's unit
+ * curve. A smooth stop shortens the cruise (t4) and keeps the plan's p6Total,
+ * so p6Total is at least what the phases give; 0 means "already there". */
 static int check_scurve(const PmdSCurve *c, int n, char *why, size_t whySize)
 {
-    int64_t total = 4 * c->t1 + 2 * c->t2 + c->t4;
-    if (c->p6Total != pmd_scurve_p6_total(c->t1, c->t2, c->t4))
-        return WHY("chip.s.axis[%d].scurve.p6Total = %lld is not 6 t1 (t1 + t2) (2 t1 + t2 + t4) below 2^62", n,
-                   (long long)c->p6Total);
+    int64_t total = 4 * c->t1 + 2 * c->t2 + c->t4, p6 = pmd_scurve_p6_total(c->t1, c->t2, c->t4);
+    if (c->p6Total == 0)
+        return 0;
+    if (p6 < 0 || c->p6Total < p6)
+        return WHY("chip.s.axis[%d].scurve.p6Total = %lld is less than 6 t1 (t1 + t2) (2 t1 + t2 + t4) or that "
+                   "passes 2^62", n, (long long)c->p6Total);
     if (c->step >= total || c->p6 > c->p6Total || c->v2 > 2 * c->t1 * (c->t1 + c->t2) || c->a > c->t1 ||
         c->a < -c->t1)
         return WHY("chip.s.axis[%d].scurve: step %lld, p6 %lld, v2 %lld or a %lld is not on the unit curve", n,
@@ -165,10 +174,6 @@ static int check_axes(const PmdChip *chip, char *why, size_t whySize)
         if (ax->active.stopMode != PMDNoStopMode || ax->active.clearPositionError)
             return WHY("chip.s.axis[%d].active: stopMode %u or clearPositionError %u (Update clears them)", n,
                        (unsigned)ax->active.stopMode, (unsigned)ax->active.clearPositionError);
-        if (ax->active.velocity < 0 && ax->active.profileMode != PMDVelocityContouringProfile &&
-            ax->active.profileMode != PMDExternalProfile && ax->active.profileMode != PMDElectronicGearProfile)
-            return WHY("chip.s.axis[%d].active.velocity = %d: negative in profile mode %u", n, ax->active.velocity,
-                       (unsigned)ax->active.profileMode);
         if (ax->motion == PMD_MOTION_SCURVE && check_scurve(&ax->scurve, n, why, whySize))
             return -1;
     }
@@ -186,11 +191,14 @@ static int check_instance(const PmdInstance *s, const PmdInstance *live, uint64_
         return WHY("state = %u is not one FMI state", (unsigned)s->state);
     if (!(s->cycleTime > 0) || !(s->activeCycleTime > 0))
         return WHY("cycleTime %g and activeCycleTime %g must be > 0", s->cycleTime, s->activeCycleTime);
-    if (!(fabs((s->time - s->anchorTime) / s->activeCycleTime) < (double)(INT64_C(1) << 53)))
+    if (s->state != PMD_INSTANTIATED &&            /* before, EnterInitializationMode checks the start time */
+        !(fabs((s->time - s->anchorTime) / s->activeCycleTime) < (double)(INT64_C(1) << 53)))
         return WHY("time %g lies beyond 2^53 cycles of anchorTime %g", s->time, s->anchorTime);
     if (s->memoryStrobe != s->memoryStrobeSeen && s->memoryCount > s->memorySize - s->memoryAddress)
         return WHY("memoryAddress %d + memoryCount %d of the pending write leave the %d-word memory",
                    s->memoryAddress, s->memoryCount, s->memorySize);
+    if (s->chip.s.sampleTimeChanged && s->chip.s.sampleTime == 0)
+        return WHY("chip.s.sampleTimeChanged = 1 with chip.s.sampleTime = 0 (SetSampleTime takes 1..65535)");
     if (s->scriptNext > live->script.count)
         return WHY("scriptNext = %zu: this instance's script has %zu steps", s->scriptNext, live->script.count);
     if (check_buffers(&s->chip.s, (uint32_t)memoryWords, why, whySize) || check_trace(&s->chip.s, why, whySize))
@@ -248,11 +256,18 @@ PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char 
     Header h;
     PmdInstance *saved = (PmdInstance *)malloc(sizeof *saved);
     uint32_t *memory = inst->chip.memory;
+    uint8_t recording;
     if (!saved) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory", fn);
         return PMD_ERROR;
     }
     memcpy(&h, in, sizeof h);
+    /* a state that records needs the record.data buffer (of this instance's record.capacity) */
+    memcpy(&recording, in + sizeof h + offsetof(PmdInstance, recordEnabled), sizeof recording);
+    if (recording && pmd_record_allocate(inst, fn)) {
+        free(saved);
+        return PMD_ERROR;
+    }
     if ((int64_t)h.memoryWords != inst->memorySize) {
         memory = (uint32_t *)realloc(inst->chip.memory, (size_t)h.memoryWords * sizeof(uint32_t));
         if (!memory) {
@@ -270,9 +285,7 @@ PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char 
      * the recording buffer) stay the instance's */
     copy_process_fields(inst, saved);
     free(saved);
-    /* the restored state has recorded nothing yet, and records only if this instance has the buffer */
-    inst->recordEnabled = (uint8_t)(inst->recordEnabled && inst->record);
-    inst->recordCount = 0;
+    inst->recordCount = 0;                          /* the restored state has recorded nothing yet */
     return PMD_OK;
 }
 

@@ -171,7 +171,7 @@ static const PmdStateField chip_state_fields[] = {
     STRUCT(PmdChipState, trace, trace),
     UNSIGNED(PmdChipState, updatedAxes, 0, (1 << PMD_AXES) - 1),
     UNSIGNED(PmdChipState, bufferEpoch, ANY_U32),
-    UNSIGNED(PmdChipState, sampleTime, 1, UINT16_MAX),
+    UNSIGNED(PmdChipState, sampleTime, ANY_U16),                          /* 0 until initialized */
     UNSIGNED(PmdChipState, sampleTimeChanged, BOOL),
     UNSIGNED(PmdChipState, time, ANY_U32),
     UNSIGNED(PmdChipState, nextTime, ANY_U32),
@@ -224,7 +224,7 @@ static const PmdStateField instance_fields[] = {
     UNSIGNED(PmdInstance, recordEnabled, BOOL),
     PROCESS(PmdInstance, recordCapacity),         /* sizes this process's record buffer: the instance keeps its own */
     PROCESS(PmdInstance, record),
-    UNSIGNED(PmdInstance, recordCount, 0, PMD_MAX_RECORD_CYCLES),
+    PROCESS(PmdInstance, recordCount),            /* rows in this process's record buffer: none after a restore */
     PROCESS(PmdInstance, staged),
 };
 const PmdStateStruct pmd_instance_state = DESCRIBE(PmdInstance, instance_fields);
