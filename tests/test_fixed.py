@@ -1,12 +1,15 @@
 """Seed 000, 1.7 and seed 001: the fixed-point examples; the core's floor division."""
 import shutil
 import subprocess
+from decimal import Decimal
 from fractions import Fraction
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from pmdfmu import fixed_0_32, fixed_16_16, fixed_32_0, from_fixed, signed, to_fixed
+from pmdfmu.fixed import to_word
 
 
 def test_velocity_2_75_is_2c000():
@@ -44,6 +47,47 @@ def test_out_of_range_raises_instead_of_clamping():
     with pytest.raises(ValueError):
         to_fixed(0.5, "0.32")
     assert to_fixed(-32768, "16.16") == 0x80000000
+
+
+def test_words_outside_32_bits_are_refused_not_masked():
+    for word in (2**32, -2**31 - 1, 2**40 + 5):
+        with pytest.raises(ValueError, match=f"{word} .*-2147483648 .. 4294967295"):
+            from_fixed(word, "16.16")
+        with pytest.raises(ValueError, match=str(word)):
+            signed(word)
+    with pytest.raises(ValueError, match="not an integer"):
+        from_fixed(2.0, "32.0")
+    # both readings of the same 32 bits are the same word
+    assert from_fixed(-1, "16.16") == from_fixed(0xFFFFFFFF, "16.16") == Fraction(-1, 65536)
+    assert from_fixed(-2**31, "32.0") == from_fixed(0x80000000, "32.0") == -2**31
+    assert signed(-2**31) == signed(0x80000000) == -2**31 and signed(2**31 - 1) == 2**31 - 1
+
+
+def test_to_word_takes_either_reading_of_the_bits_and_nothing_wider():
+    assert to_word(-1, 16) == to_word(0xFFFF, 16) == 0xFFFF
+    assert to_word(-32768, 16) == 0x8000
+    for value in (0x10000, -32769):
+        with pytest.raises(ValueError, match=f"what = {value} .*-32768 .. 65535"):
+            to_word(value, 16, "what")
+    assert to_word(np.uint32(0xFFFFFFFF)) == to_word(np.int64(-1)) == 0xFFFFFFFF
+
+
+def test_bad_formats_and_non_finite_values_are_refused():
+    with pytest.raises(ValueError, match="16.16"):
+        from_fixed(1, "8.8")
+    with pytest.raises(ValueError, match="formats"):
+        to_fixed(1, "16")
+    for value in (float("nan"), float("inf"), Decimal("-Infinity")):
+        with pytest.raises(ValueError, match="not a finite number"):
+            fixed_16_16(value)
+    with pytest.raises(ValueError, match=r"does not fit the 0.32 format \(-0.5 .. 0.4999"):
+        to_fixed(0.5, "0.32")
+
+
+def test_numpy_floats_convert_as_the_decimal_they_print_as():
+    assert fixed_16_16(np.float64(2.75)) == 0x2C000
+    assert fixed_16_16(np.float32(-1.95)) == fixed_16_16(-1.95) == 0xFFFE0CCD
+    assert fixed_0_32(np.float64(0.0075)) == fixed_0_32(0.0075)
 
 
 @pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")

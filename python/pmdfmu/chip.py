@@ -16,6 +16,7 @@ from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, 
 from fmpy.fmi3 import FMU3Slave, fmi3Binary, fmi3ValueReference
 
 from . import tables
+from .fixed import integer, to_word
 from .tables import Command, Field
 
 PACKAGE = Path(__file__).resolve().parent
@@ -57,6 +58,13 @@ DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32":
 CYCLE = ("cycle", np.uint32)
 # FMI 2 reads unsigned registers as signed Integers: these masks give back their bits
 UNSIGNED = {n: (1 << 8 * t.itemsize) - 1 for n, t in DTYPES.items() if t.kind == "u"}
+# the width of each integer variable's word (FMI 3 type), by FMI 2 name and by FMI 3 array name: set()
+# takes -2^(w-1) .. 2^w-1 for it, in both FMI versions
+WIDTHS: Dict[str, int] = {}
+for _v in tables.read_variables(tables_dir() / "variables.csv"):
+    if _v.fmi3Type in ("Int32", "UInt32", "UInt16"):
+        WIDTHS[_v.name] = WIDTHS[_v.name.split("[")[0]] = 16 if _v.fmi3Type == "UInt16" else 32
+del _v
 # record.data's columns after the chip time (FMI 3 bulk recording)
 RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
             for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
@@ -96,21 +104,31 @@ class LogMessage:
 
 
 def encode(command: Command, values: Sequence[int]) -> List[int]:
-    """The data words of a command, as C-Motion packs them."""
+    """The data words of a command, as C-Motion packs them.
+
+    An argument is an integer (Python or numpy); a float is refused, even 2.0: a
+    16.16 or 0.32 argument takes the word (pmdfmu.fixed_16_16(2.75)), a count takes
+    whole counts. A 16- or 32-bit argument takes -2^(w-1) .. 2^w-1, its signed or its
+    unsigned reading of the same bits (SetVelocity(-1) and SetVelocity(0xFFFFFFFF)
+    send the same words); a packed field (`name@shift:width`) takes 0 .. 2^width-1.
+    Anything else raises ValueError naming the command, the argument and the range:
+    nothing is masked."""
     if len(values) != len(command.args):
         names = ", ".join(f.name for f in command.args)
         raise TypeError(f"{command.name}({names}) takes {len(command.args)} arguments, {len(values)} given")
     words = [0] * command.arg_words
     for f, v in zip(command.args, values):
-        v = int(v)
+        what = f"{command.name}: {f.name}"
+        if f.fixed and not isinstance(v, (int, np.integer)):
+            raise ValueError(f"{what} = {v!r} is not an integer: the argument is the {f.fixed} word, "
+                             f"e.g. pmdfmu.fixed_{f.fixed.replace('.', '_')}({v!r})")
         if f.kind == "bits":
+            v = integer(v, what)
             if not 0 <= v < (1 << f.width):
-                raise ValueError(f"{command.name}: {f.name} = {v} does not fit {f.width} bits")
+                raise ValueError(f"{what} = {v} does not fit its {f.width}-bit field: 0 .. {(1 << f.width) - 1}")
             words[f.word] |= v << f.shift
         else:
-            if not -(1 << (f.width - 1)) <= v < (1 << f.width):
-                raise ValueError(f"{command.name}: {f.name} = {v} does not fit {f.width} bits")
-            v &= (1 << f.width) - 1
+            v = to_word(v, f.width, what)
             if f.width == 32:
                 words[f.word], words[f.word + 1] = v >> 16, v & 0xFFFF
             else:
@@ -131,15 +149,21 @@ def decode(fields: Tuple[Field, ...], words: Sequence[int]) -> List[int]:
     return out
 
 
+def axis_number(number) -> int:
+    """An axis number 0..3 (PMDAxis1..PMDAxis4); anything else raises ValueError."""
+    n = integer(number, "axis")
+    if not 0 <= n < 4:
+        raise ValueError(f"axis {n}: the chip has axes 0..3 (PMDAxis1..PMDAxis4)")
+    return n
+
+
 class Axis:
     """An axis handle: C-Motion's PMDAxisHandle. Its methods are the C-Motion
     calls without the PMD prefix and the handle: ax.SetBufferStart(2, 0x200)."""
 
     def __init__(self, chip: "Chip", number: int):
-        if not 0 <= number < 4:
-            raise ValueError(f"axis {number}: the chip has axes 0..3 (PMDAxis1..PMDAxis4)")
         self.chip = chip
-        self.number = number
+        self.number = axis_number(number)
 
     def __getattr__(self, name: str):
         command = COMMANDS.get(name)
@@ -265,9 +289,22 @@ class Chip:
         return int(v.dimensions[0].start) if getattr(v, "dimensions", None) else 1
 
     def set(self, name: str, value) -> None:
-        """Sets an FMU input or parameter by name (an FMI 3 array takes a list)."""
+        """Sets an FMU input or parameter by name (an FMI 3 array takes a list).
+
+        An integer variable of w bits (variables.csv's FMI 3 type: Int32, UInt32,
+        UInt16) takes an integer from -2^(w-1) to 2^w-1, its signed or unsigned
+        reading of the same bits, through FMI 2 and FMI 3 alike; anything else (a
+        value that does not fit, a float) raises ValueError before anything is set.
+        The FMU then checks the value's meaning (memorySize, host.wordCount, ...)."""
         v = self.variables[name]
-        self._setters[v.type]([v.valueReference], list(value) if self._size(name) > 1 else [value])
+        values = list(value) if self._size(name) > 1 else [value]
+        if name in WIDTHS:
+            bits = WIDTHS[name]
+            values = [to_word(x, bits, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else ""))
+                      for i, x in enumerate(values)]
+            if (self.fmi_version == 2 and bits == 32) or v.type == "Int32":     # int32: the same bits, signed
+                values = [x - (1 << 32) if x >> 31 else x for x in values]
+        self._setters[v.type]([v.valueReference], values)
 
     def get(self, name: str):
         """Reads an FMU variable by name (an FMI 3 array reads as a list)."""
@@ -320,9 +357,18 @@ class Chip:
 
     def batch(self, words: Sequence[int]) -> Tuple[int, List[int]]:
         """Sends raw host words (whole commands) as one batch; returns
-        (host.error, reply words). It executes now, before the next cycle."""
+        (host.error, reply words). It executes now, before the next cycle.
+
+        A word is an integer 0 .. 0xFFFF, or -32768 .. -1 for its two's complement
+        (-1 sends 0xFFFF), through FMI 2 and FMI 3 alike. Anything else (0x10010, a
+        float) raises ValueError naming the word and its index before anything is
+        sent."""
         if len(words) > BATCH_WORDS:
             raise ValueError(f"a batch holds at most {BATCH_WORDS} words, not {len(words)}")
+        try:
+            words = [to_word(w, 16, f"batch: word {i}") for i, w in enumerate(words)]
+        except ValueError as e:
+            raise ValueError(f"{e}; nothing was sent") from None
         # a new strobe value, whoever set the last one
         strobe = (self.get("host.strobe") + 1) & 0x7FFFFFFF
         if self.fmi_version == 2:
@@ -333,7 +379,7 @@ class Chip:
                 [self._vr["host.ack"], self._vr["host.error"], self._vr["host.replyCount"]] +
                 [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)])
         else:
-            self.set("host.word", [w & 0xFFFF for w in words] + [0] * (BATCH_WORDS - len(words)))
+            self.set("host.word", words + [0] * (BATCH_WORDS - len(words)))
             self.fmu.setInt32([self._vr["host.wordCount"], self._vr["host.strobe"]], [len(words), strobe])
             ack, count = self.fmu.getInt32([self._vr["host.ack"], self._vr["host.replyCount"]])
             error = self.get("host.error")
@@ -361,16 +407,27 @@ class Chip:
         self.set("record.enabled", True)
         try:
             done = 0
+            row_bytes = 4 * (1 + len(RECORDED))
             while done < cycles:
                 n = min(capacity, cycles - done)
-                self.fmu.doStep(self.time, n * self.cycle_time)
+                self.fmu.doStep(self.time, n * self.cycle_time)      # Warning if the step's cycles changed
                 self.cycles += n
-                # fmi3GetBinary lends the FMU's own buffer until the next call: read it in place, once
+                # fmi3GetBinary lends the FMU's own buffer until the next call: read it in place, once,
+                # as many whole rows as it holds, never more
                 self.fmu.fmi3GetBinary(self.fmu.component, vr, 1, size, value, 1)
-                if size[0] != 4 * n * (1 + len(RECORDED)):
-                    raise RuntimeError(f"record.data holds {size[0] // (4 + 4 * len(RECORDED))} cycles, not {n}: "
-                                       "a script changed the sample time during run(record=...)")
-                rows = np.ctypeslib.as_array(cast(value[0], POINTER(c_int32)), (n, 1 + len(RECORDED)))
+                held = size[0] // row_bytes
+                if held != n or size[0] % row_bytes:
+                    # the chip ran `held` cycles up to the step's end: the harness follows its new grid
+                    end, self.cycles = self.time, self.cycles - n + held
+                    self._anchor = (end, self.cycles)
+                    self._follow_sample_time()
+                    raise RuntimeError(
+                        f"record.data holds {held} cycles, not {n}: a script changed the sample time during "
+                        f"run(record=...), so the time of {n} cycles held {held}; the cycles recorded before "
+                        "are lost. Run the cycles up to the change in one run(record=...) and those after it "
+                        "in another, or set the cycle time with the cycleTime parameter instead of "
+                        "SetSampleTime in the script")
+                rows = np.ctypeslib.as_array(cast(value[0], POINTER(c_int32)), (held, 1 + len(RECORDED)))
                 for at, column, width in runs:
                     table[done:done + n, at:at + width] = rows[:, column:column + width]
                 done += n
@@ -390,6 +447,7 @@ class Chip:
         Returns None, the reply value, or a tuple of reply values."""
         if isinstance(command, str):
             command = COMMANDS[command]
+        axis = axis_number(axis)
         instruction = command.opcode | ((0 if command.scope == "chip" else axis) << 8)
         error, reply = self.batch([instruction] + encode(command, args))
         if error:
@@ -401,13 +459,44 @@ class Chip:
 
     def write_memory(self, address: int, words: Sequence[int]) -> None:
         """Writes 32-bit words straight into external memory (the seed's dual-port
-        upload, bypassing the processor), 64 words per strobe."""
-        data = (np.asarray(words, dtype=np.int64) & 0xFFFFFFFF).astype(np.uint32)
+        upload, bypassing the processor), 64 words per strobe.
+
+        A word is an integer from -2^31 to 2^32-1, its signed or unsigned reading
+        (-1 and 0xFFFFFFFF store the same word); the words must fit the memory
+        (0 <= address, address + len(words) <= memorySize). Anything else (a value
+        that does not fit 32 bits, a float, a negative address, a block leaving the
+        memory) raises ValueError naming it before anything is written."""
+        data = self._memory_words(words)
+        address = integer(address, "write_memory: address")
+        size = self.get("memorySize")
+        if address < 0 or address + len(data) > size:
+            raise ValueError(f"write_memory: {len(data)} words at address {address} leave the {size}-word memory "
+                             f"(memorySize; addresses 0 .. {size - 1}); nothing was written")
         strobe = self.get("memory.strobe")
         for start in range(0, len(data), BATCH_WORDS):
             strobe = (strobe + 1) & 0x7FFFFFFF
             self._memory_strobe(address + start, data[start:start + BATCH_WORDS], strobe)
             self.get("host.ack")                      # executes the write now
+
+    @staticmethod
+    def _memory_words(words: Sequence[int]) -> np.ndarray:
+        """write_memory's words as uint32, checked: integers from -2^31 to 2^32-1."""
+        array = np.asarray(words)
+        if array.ndim != 1:
+            raise ValueError(f"write_memory: words must be a sequence of integers, not {words!r}")
+        try:
+            if array.dtype.kind in "iub":          # numpy integers: the whole array checked at once
+                wide = array.astype(np.int64) if array.dtype.kind != "u" else array
+                bad = np.flatnonzero((wide > 0xFFFFFFFF) | ((wide < -(1 << 31)) if wide.dtype.kind == "i" else False))
+                if len(bad):
+                    to_word(int(array[bad[0]]), 32, f"write_memory: words[{bad[0]}]")     # raises, naming it
+            else:                                   # Python ints beyond int64, floats, anything else: one by one,
+                items = words.tolist() if isinstance(words, np.ndarray) else list(words)     # as the caller wrote them
+                array = np.array([to_word(w, 32, f"write_memory: words[{i}]") for i, w in enumerate(items)],
+                                 dtype=np.int64)
+        except ValueError as e:
+            raise ValueError(f"{e}; nothing was written") from None
+        return (array.astype(np.int64) & 0xFFFFFFFF).astype(np.uint32)
 
     def _memory_strobe(self, address: int, chunk: np.ndarray, strobe: int) -> None:
         """Sets memory.data, .address, .count and .strobe for one write, each value

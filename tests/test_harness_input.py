@@ -1,0 +1,175 @@
+"""The harness never rounds or masks what the user passes (issue 11, item 9): a value
+that does not fit is refused with a ValueError naming it, before anything reaches the
+FMU; the in-range boundary values do exactly what they say, through FMI 2 and FMI 3."""
+import re
+
+import pytest
+
+import pmdfmu
+from pmdfmu.chip import COMMANDS, RECORDED
+
+SET_POSITION = COMMANDS["SetPosition"].opcode
+GET_POSITION = COMMANDS["GetPosition"].opcode
+
+
+def refused(chip, call, *patterns):
+    """call() raises ValueError whose message holds each pattern, and the chip is unchanged."""
+    before = chip.get_state()
+    with pytest.raises(ValueError) as info:
+        call()
+    for p in patterns:
+        assert re.search(p, str(info.value)), (p, str(info.value))
+    assert chip.get_state() == before
+    return str(info.value)
+
+
+def same_effect(chip, *calls):
+    """Each call, from the same starting state, leaves the chip in the same state."""
+    start = chip.get_state()
+    states = []
+    for call in calls:
+        chip.set_state(start)
+        call()
+        states.append(chip.get_state())
+    assert all(s == states[0] for s in states[1:])
+
+
+# ---- batch: host words are 16 bits ----
+
+def test_a_batch_word_beyond_16_bits_is_refused_by_both_fmi_versions(any_chip):
+    chip = any_chip
+    refused(chip, lambda: chip.batch([0x10010]), r"word 0\b", "65552", "0x10010", r"0 \.\. 0xFFFF",
+            "nothing was sent")
+    refused(chip, lambda: chip.batch([SET_POSITION, 1, 0x10000]), r"word 2\b", "65536")
+    refused(chip, lambda: chip.batch([SET_POSITION, -32769, 0]), r"word 1\b", "-32769", "-0x8000")
+    refused(chip, lambda: chip.batch([SET_POSITION, 1.0, 0]), r"word 1\b", "not an integer")
+
+
+def test_batch_words_0xffff_and_minus_1_send_the_same_word(any_chip):
+    chip = any_chip
+    same_effect(chip, lambda: chip.batch([SET_POSITION, 0xFFFF, 0xFFFF]),
+                lambda: chip.batch([SET_POSITION, -1, -1]),
+                lambda: chip.batch([SET_POSITION, 0xFFFF, -1]))
+    assert chip.batch([GET_POSITION]) == (0, [0xFFFF, 0xFFFF])
+    chip.batch([SET_POSITION, -32768, 0x8000])                   # both halves 0x8000
+    held = chip.get("host.word")[:3] if chip.fmi_version == 3 else [chip.get(f"host.word[{i}]") for i in (1, 2, 3)]
+    assert held == [SET_POSITION, 0x8000, 0x8000]                 # the FMU holds the 16-bit words
+    assert chip.batch([GET_POSITION]) == (0, [0x8000, 0x8000])
+
+
+# ---- write_memory: 32-bit words inside the memory ----
+
+def test_a_memory_word_beyond_32_bits_is_refused(any_chip):
+    chip = any_chip
+    refused(chip, lambda: chip.write_memory(0x300, [1, 2, 2**40 + 5]), r"words\[2\]", str(2**40 + 5),
+            "-2147483648 .. 4294967295", "nothing was written")
+    refused(chip, lambda: chip.write_memory(0x300, [2**32]), r"words\[0\]", "4294967296")
+    refused(chip, lambda: chip.write_memory(0x300, [0, -2**31 - 1]), r"words\[1\]", "-2147483649")
+    refused(chip, lambda: chip.write_memory(0x300, [2**70]), r"words\[0\]")
+    refused(chip, lambda: chip.write_memory(0x300, [7, 2.5]), r"words\[1\] = 2.5 is not an integer")
+
+
+def test_a_memory_write_at_a_negative_address_or_leaving_the_memory_is_refused_whole(any_chip):
+    chip = any_chip
+    size = chip.get("memorySize")
+    refused(chip, lambda: chip.write_memory(-1, [5]), "address -1", "memorySize", "nothing was written")
+    refused(chip, lambda: chip.write_memory(2**32 - 1, [5, 6]), f"address {2**32 - 1}")
+    refused(chip, lambda: chip.write_memory(2**40, [5]), f"address {2**40}")
+    # 100 words at size - 70: the first strobe's 64 would fit, the rest not: nothing is written
+    refused(chip, lambda: chip.write_memory(size - 70, list(range(100))), f"100 words at address {size - 70}",
+            f"{size}-word memory")
+    chip.write_memory(size - 1, [9])                              # the last word is still writable
+
+
+def test_memory_words_minus_1_and_0xffffffff_store_the_same_word(any_chip):
+    chip = any_chip
+    ax = chip.axis(0)
+    ax.SetBufferStart(2, 0x300)
+    ax.SetBufferLength(2, 4)
+    same_effect(chip, lambda: chip.write_memory(0x300, [-1, -2**31, 2**31 - 1, 0]),
+                lambda: chip.write_memory(0x300, [0xFFFFFFFF, 0x80000000, 0x7FFFFFFF, 0]))
+    assert [ax.ReadBuffer(2) for _ in range(4)] == [-1, -2**31, 2**31 - 1, 0]      # ReadBuffer is signed
+
+
+# ---- C-Motion calls: each argument fits its field ----
+
+def test_a_command_argument_that_does_not_fit_its_field_is_refused(any_chip):
+    chip = any_chip
+    ax = chip.axis(1)
+    message = refused(chip, lambda: ax.SetPosition(2**32), "SetPosition", "position", "4294967296",
+                      "-2147483648 .. 4294967295")
+    assert "32 bits" in message
+    refused(chip, lambda: ax.SetPosition(-2**31 - 1), "SetPosition", "position")
+    refused(chip, lambda: ax.SetProfileMode(0x10000), "SetProfileMode", "mode", "16 bits", "-32768 .. 65535")
+    refused(chip, lambda: ax.SetBreakpoint(0, 16, 0, 0), "SetBreakpoint", "sourceAxis", "4-bit field", r"0 \.\. 15")
+    refused(chip, lambda: ax.SetBreakpoint(0, -1, 0, 0), "SetBreakpoint", "sourceAxis", r"0 \.\. 15")
+    refused(chip, lambda: ax.SetPosition(1000.5), "SetPosition", "position", "not an integer")
+    refused(chip, lambda: ax.SetPosition(1000.0), "SetPosition", "position", "not an integer")
+    refused(chip, lambda: ax.SetVelocity(2.75), "SetVelocity", "velocity", "16.16", r"fixed_16_16\(2.75\)")
+    refused(chip, lambda: ax.SetJerk(0.0075), "SetJerk", "jerk", r"fixed_0_32\(0.0075\)")
+    refused(chip, lambda: chip.command(4, "SetPosition", [5]), "axis 4", "0..3")
+    with pytest.raises(ValueError, match="axis 4"):
+        chip.axis(4)
+
+
+def test_command_arguments_in_either_reading_of_their_bits_send_the_same_words(any_chip):
+    chip = any_chip
+    ax = chip.axis(0)
+    same_effect(chip, lambda: ax.SetPosition(-1), lambda: ax.SetPosition(0xFFFFFFFF))
+    ax.SetPosition(0xFFFFFFFF)
+    assert ax.GetPosition() == -1
+    same_effect(chip, lambda: ax.SetAcceleration(pmdfmu.fixed_16_16(1.5)), lambda: ax.SetAcceleration(0x18000))
+    ax.SetVelocity(pmdfmu.fixed_16_16(-1.95))                      # an unsigned word for a signed argument
+    assert ax.GetVelocity() == pmdfmu.signed(0xFFFE0CCD)
+
+
+# ---- set: FMU variables take the word of their width ----
+
+def test_a_variable_value_that_does_not_fit_is_refused(any_chip):
+    chip = any_chip
+    refused(chip, lambda: chip.set("axis1.actualPosition", 2**32), "axis1.actualPosition", "32 bits")
+    refused(chip, lambda: chip.set("axis1.actualPosition", 1.5), "axis1.actualPosition", "not an integer")
+    chip.set("axis1.actualPosition", 0xFFFFFFFF)
+    assert chip.get("axis1.actualPosition") == -1
+    chip.set("axis1.actualPosition", -2**31)
+    assert chip.get("axis1.actualPosition") == -2**31
+
+
+# ---- fixed point through the chip ----
+
+def test_from_fixed_refuses_what_a_get_call_cannot_return(any_chip):
+    ax = any_chip.axis(0)
+    ax.SetVelocity(pmdfmu.fixed_16_16(-2.5))
+    assert pmdfmu.from_fixed(ax.GetVelocity(), "16.16") == pmdfmu.from_fixed(pmdfmu.fixed_16_16(-2.5), "16.16")
+    with pytest.raises(ValueError, match="4294967296"):
+        pmdfmu.from_fixed(2**32, "16.16")
+
+
+# ---- bulk recording (FMI 3): never past record.data ----
+
+def test_a_sample_time_change_inside_a_bulk_recording_says_what_to_do_and_the_chip_runs_on(tmp_path):
+    script = tmp_path / "slower.script"
+    script.write_text("@10\nSetSampleTime(Axis1, 200)\n")
+    with pmdfmu.Chip(fmi_version=3, script=script) as chip:
+        with pytest.raises(RuntimeError, match="holds 55 cycles, not 100") as info:
+            chip.run(100, record=RECORDED)
+        assert "cycleTime" in str(info.value) and "run(record=...)" in str(info.value)
+        # the harness follows the chip's new grid: the next run records the next cycles
+        assert chip.cycle_time == pytest.approx(200e-6)
+        rows = chip.run(5, record=["axis1.commandedPosition"])
+        assert list(rows["cycle"]) == [55, 56, 57, 58, 59]
+
+
+def test_a_bulk_recording_reads_only_the_rows_record_data_holds():
+    """If record.data holds fewer bytes than asked (here a cut in the middle of a row),
+    the rows are counted from its size, and the run is refused."""
+    with pmdfmu.Chip(fmi_version=3) as chip:
+        real = chip.fmu.fmi3GetBinary
+
+        def short(*args):
+            status = real(*args)
+            args[3][0] = 4 * (1 + len(RECORDED)) * 3 + 5                # 3 cycles and part of a fourth
+            return status
+        chip.fmu.fmi3GetBinary = short
+        with pytest.raises(RuntimeError, match="holds 3 cycles, not 100"):
+            chip.run(100, record=RECORDED)
