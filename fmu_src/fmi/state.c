@@ -39,47 +39,39 @@ size_t pmd_state_size(const PmdInstance *inst)
     return sizeof(Header) + sizeof(PmdInstance) + (size_t)inst->memorySize * sizeof(uint32_t);
 }
 
-/* Copies every field the list declares as this process's from one image to another (or clears it). */
+/* Copies the leaves of one kind (the state's, or the process's) from one image to another. */
 typedef struct {
     unsigned char *to;
-    const unsigned char *from;   /* NULL: clear */
-} ProcessCopy;
+    const unsigned char *from;
+    int process;
+} LeafCopy;
 
-static int copy_process_field(const PmdStateLeaf *leaf, void *context)
+static int copy_leaf(const PmdStateLeaf *leaf, void *context)
 {
-    const ProcessCopy *c = (const ProcessCopy *)context;
-    if (leaf->kind != PMD_SF_PROCESS)
-        return 0;
-    if (c->from)
+    const LeafCopy *c = (const LeafCopy *)context;
+    if ((leaf->kind == PMD_SF_PROCESS) == c->process)
         memcpy(c->to + leaf->offset, c->from + leaf->offset, leaf->size);
-    else
-        memset(c->to + leaf->offset, 0, leaf->size);
     return 0;
 }
 
-static void copy_process_fields(PmdInstance *to, const PmdInstance *from)
+static void copy_leaves(void *to, const void *from, int process)
 {
-    ProcessCopy c;
+    LeafCopy c;
     c.to = (unsigned char *)to;
     c.from = (const unsigned char *)from;
-    pmd_state_walk(copy_process_field, &c);
+    c.process = process;
+    pmd_state_walk(0, copy_leaf, &c);
 }
 
+/* The image holds the declared state's fields and zeros elsewhere: no
+ * process field, and no padding byte (whatever the compiler left in it). */
 void pmd_state_write(const PmdInstance *inst, unsigned char *out)
 {
     Header h;
     unsigned char *body = out + sizeof h;
-    PmdInstance *copy = (PmdInstance *)malloc(sizeof *copy);    /* large: not on the stack */
 
-    if (copy) {
-        memcpy(copy, inst, sizeof *copy);
-        copy_process_fields(copy, NULL);
-        memcpy(body, copy, sizeof *copy);
-        free(copy);
-    } else {                     /* no room for a copy: clear the process's fields in place */
-        memcpy(body, inst, sizeof *inst);
-        copy_process_fields((PmdInstance *)(void *)body, NULL);
-    }
+    memset(body, 0, sizeof(PmdInstance));
+    copy_leaves(body, inst, 0);
     memcpy(body + sizeof(PmdInstance), inst->chip.memory, (size_t)inst->memorySize * sizeof(uint32_t));
 
     memset(&h, 0, sizeof h);
@@ -283,7 +275,7 @@ PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char 
     memcpy(inst, in + sizeof h, sizeof *inst);
     /* this process's fields (the memory block, hooks, logging, the script and
      * the recording buffer) stay the instance's */
-    copy_process_fields(inst, saved);
+    copy_leaves(inst, saved, 1);
     free(saved);
     inst->recordCount = 0;                          /* the restored state has recorded nothing yet */
     return PMD_OK;

@@ -233,6 +233,7 @@ const PmdStateStruct pmd_instance_state = DESCRIBE(PmdInstance, instance_fields)
 
 typedef int (*Visit)(const PmdStateLeaf *leaf, void *context);
 
+/* prefix NULL: no paths (a snapshot copies ~700 leaves; only messages need their names) */
 static int walk(const PmdStateStruct *s, size_t base, const char *prefix, Visit visit, void *context)
 {
     size_t f;
@@ -242,15 +243,17 @@ static int walk(const PmdStateStruct *s, size_t base, const char *prefix, Visit 
         for (e = 0; e < field->count; e++) {
             PmdStateLeaf leaf;
             int result;
-            if (field->count > 1)
+            leaf.path[0] = '\0';
+            if (prefix && field->count > 1)
                 snprintf(leaf.path, sizeof leaf.path, "%s%s[%u]", prefix, field->name, e);
-            else
+            else if (prefix)
                 snprintf(leaf.path, sizeof leaf.path, "%s%s", prefix, field->name);
             leaf.offset = base + field->offset + e * field->size;
             if (field->kind == PMD_SF_STRUCT) {
                 char sub[sizeof leaf.path + 1];
-                snprintf(sub, sizeof sub, "%s.", leaf.path);
-                result = walk(field->sub, leaf.offset, sub, visit, context);
+                if (prefix)
+                    snprintf(sub, sizeof sub, "%s.", leaf.path);
+                result = walk(field->sub, leaf.offset, prefix ? sub : NULL, visit, context);
             } else {
                 leaf.size = field->size;
                 leaf.kind = field->kind;
@@ -265,9 +268,9 @@ static int walk(const PmdStateStruct *s, size_t base, const char *prefix, Visit 
     return 0;
 }
 
-int pmd_state_walk(int (*visit)(const PmdStateLeaf *leaf, void *context), void *context)
+int pmd_state_walk(int named, int (*visit)(const PmdStateLeaf *leaf, void *context), void *context)
 {
-    return walk(&pmd_instance_state, 0, "", visit, context);
+    return walk(&pmd_instance_state, 0, named ? "" : NULL, visit, context);
 }
 
 /* ---- range checks ---- */
@@ -322,5 +325,7 @@ int pmd_state_check_ranges(const void *instance, char *why, size_t whySize)
     c.image = (const unsigned char *)instance;
     c.why = why;
     c.whySize = whySize;
-    return pmd_state_walk(check_leaf, &c);
+    if (pmd_state_walk(0, check_leaf, &c) == 0)
+        return 0;
+    return pmd_state_walk(1, check_leaf, &c);       /* again, to name the field */
 }

@@ -60,9 +60,9 @@ typedef struct {
     int64_t min, max;
 } PmdStateLeaf;
 
-/* Calls visit for every leaf in declaration order; stops and returns its
- * non-zero result. */
-int pmd_state_walk(int (*visit)(const PmdStateLeaf *leaf, void *context), void *context);
+/* Calls visit for every leaf in declaration order (with its path if named);
+ * stops and returns its non-zero result. */
+int pmd_state_walk(int named, int (*visit)(const PmdStateLeaf *leaf, void *context), void *context);
 
 /* Checks every field of the instance image against its declared range; on the
  * first that is out of it, writes "path = value is not in min..max" into why

@@ -39,7 +39,7 @@ static void print_members(const PmdStateStruct *s)
 int main(void)
 {
     printf("header %zu %zu\n", sizeof(PmdStateHeader), offsetof(PmdStateHeader, checksum));
-    pmd_state_walk(print_leaf, NULL);
+    pmd_state_walk(1, print_leaf, NULL);
     print_members(&pmd_instance_state);
     return 0;
 }
