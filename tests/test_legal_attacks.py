@@ -11,19 +11,12 @@ from fmpy.fmi3 import FMU3Slave
 import pmdfmu
 from pmdfmu import PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer
 from pmdfmu.chip import COMMANDS, encode
+from states import snapshot
 
 
 def command(name, *args, axis=0):
     c = COMMANDS[name]
     return [c.opcode | ((0 if c.scope == "chip" else axis) << 8)] + encode(c, args)
-
-
-def snapshot(chip) -> bytes:
-    state = chip.fmu.getFMUState()
-    try:
-        return bytes(chip.fmu.serializeFMUState(state))
-    finally:
-        chip.fmu.freeFMUState(state)
 
 
 def errors(chip):

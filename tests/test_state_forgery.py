@@ -15,6 +15,7 @@ import pmdfmu
 from pmdfmu import (PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer,
                     PMDTraceTime)
 from pmdfmu.profile import load_external_profile, start_external_profile
+from states import snapshot
 
 ROOT = Path(__file__).resolve().parent.parent
 HEADERS = Path(__import__("fmpy").__file__).parent / "c-code"
@@ -110,14 +111,6 @@ def rich_state_chip(fmi_version):
     ax2.Update()                                # no change: the trace starts on this update
     chip.run(25)
     return chip
-
-
-def snapshot(chip) -> bytes:
-    state = chip.fmu.getFMUState()
-    try:
-        return bytes(chip.fmu.serializeFMUState(state))
-    finally:
-        chip.fmu.freeFMUState(state)
 
 
 def fnv1a(data: bytes) -> int:
