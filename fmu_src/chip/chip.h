@@ -74,6 +74,8 @@ void pmd_scurve_cycle(PmdChip *chip, int axis);
 void pmd_scurve_smooth_stop(PmdAxis *ax);
 /* p6Total of a plan with these phase lengths (each at most 2^60), or -1 past 2^62. */
 int64_t pmd_scurve_p6_total(int64_t t1, int64_t t2, int64_t t4);
+/* Whether p6, v2 and a are the unit curve's after `step` steps of these phases. */
+int pmd_scurve_on_curve(const PmdSCurve *c);
 int pmd_segment_plan_valid(const PmdChip *chip, int n);
 void pmd_set_event(PmdChip *chip, int axis, uint16_t mask);
 

@@ -55,6 +55,26 @@ int64_t pmd_scurve_p6_total(int64_t t1, int64_t t2, int64_t t4)
     return p6_total(t1, t2, t4);
 }
 
+/* The unit curve after c->step steps, phase by phase in closed form: m steps
+ * of jerk j from (p6, v2, a) add 3 m v2 + 3 m^2 a + j m^3, 2 m a + j m^2 and
+ * j m. The terms are summed modulo 2^64 (unsigned): on the curve every value
+ * stays within p6Total < 2^62, so the sums are exact whatever the terms are. */
+int pmd_scurve_on_curve(const PmdSCurve *c)
+{
+    const int64_t length[7] = {c->t1, c->t2, c->t1, c->t4, c->t1, c->t2, c->t1};
+    uint64_t p6 = 0, v2 = 0, a = 0, left = (uint64_t)c->step;
+    int k;
+    for (k = 0; k < 7 && left > 0; k++) {
+        uint64_t m = left < (uint64_t)length[k] ? left : (uint64_t)length[k];
+        uint64_t j = (uint64_t)(int64_t)jerk_of_phase[k + 1];
+        p6 += 3 * m * v2 + 3 * m * m * a + j * m * m * m;
+        v2 += 2 * m * a + j * m * m;
+        a += j * m;
+        left -= m;
+    }
+    return p6 == (uint64_t)c->p6 && v2 == (uint64_t)c->v2 && a == (uint64_t)c->a;
+}
+
 /* Which limit the plan breaks: 1 jerk, 2 acceleration, 3 velocity, 0 none.
  * D * (peak of the unit curve) / (p6Total / 6) <= limit, compared exactly. */
 static int broken_limit(uint64_t d, const PmdProfileRegisters *r, int64_t t1, int64_t t2, int64_t p6)

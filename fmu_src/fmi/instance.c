@@ -66,7 +66,9 @@ static void set_defaults(PmdInstance *inst)
     inst->scriptNext = 0;
     free(inst->record);
     inst->record = NULL;
+    inst->recordRows = 0;
     inst->recordEnabled = 0;
+    inst->scriptDigest = 0;
     inst->recordCapacity = 65536;
     inst->recordCount = 0;
     memset(inst->chip.memory, 0, (size_t)inst->memorySize * sizeof(uint32_t));
@@ -184,7 +186,7 @@ int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const vo
 /* Cycles with k * cycleTime < t are before t. A master's t is a sum of
  * floating-point steps, so k * cycleTime == t can arrive as a hair above or
  * below; within the tolerance a grid point counts as "at t". */
-static int64_t cycles_before(const PmdInstance *inst, double t)
+int64_t pmd_cycles_before(const PmdInstance *inst, double t)
 {
     double x = (t - inst->anchorTime) / inst->activeCycleTime;
     return inst->anchorCycle + (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
@@ -283,18 +285,23 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double sta
  * that never records does not carry it, and doStep never allocates. */
 PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
 {
-    if (inst->record)
+    int32_t *record;
+    if (inst->record && inst->recordRows == inst->recordCapacity)
         return PMD_OK;
     if (inst->recordCapacity == 0) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: record.capacity is 0", fn);
         return PMD_ERROR;
     }
-    inst->record = (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS * sizeof(int32_t));
-    if (!inst->record) {
+    record = (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS * sizeof(int32_t));
+    if (!record) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: no host memory for record.capacity %u",
                          fn, (unsigned)inst->recordCapacity);
         return PMD_ERROR;
     }
+    free(inst->record);                             /* sized for another record.capacity */
+    inst->record = record;
+    inst->recordRows = inst->recordCapacity;
+    inst->recordCount = 0;
     return PMD_OK;
 }
 
@@ -340,14 +347,17 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         inst->script = script;
         inst->scriptNext = 0;
     }
+    inst->scriptDigest = pmd_script_digest(&inst->script);
     free(inst->record);
     inst->record = record;
+    inst->recordRows = record ? inst->recordCapacity : 0;
+    inst->recordCount = 0;
     inst->activeCycleTime = inst->cycleTime;
     inst->anchorTime = 0;
     inst->anchorCycle = 0;
     /* GetSampleTime reads the cycle time, a whole number of microseconds (pmd_set_real checked it) */
     inst->chip.s.sampleTime = (uint16_t)floor(inst->cycleTime * 1e6 + 0.5);
-    inst->nextCycle = cycles_before(inst, inst->time);
+    inst->nextCycle = pmd_cycles_before(inst, inst->time);
     inst->state = PMD_STEP_MODE;
     return PMD_OK;
 }
@@ -372,31 +382,31 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
      * anchor lies between it and the end), so no grid change can overflow it. */
     x = (t + h - inst->anchorTime) /
         (inst->activeCycleTime < FINEST_CYCLE_TIME ? inst->activeCycleTime : FINEST_CYCLE_TIME);
-    if (!(x < MAX_CYCLES_PER_STEP && (double)inst->anchorCycle + x < MAX_CYCLE_INDEX)) {
+    if (!(x > -1 && x < MAX_CYCLES_PER_STEP && (double)inst->anchorCycle + x < MAX_CYCLE_INDEX)) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: step to %g s lies beyond 2^53 cycles of 1 us (the "
                          "finest cycle time SetSampleTime can choose) from %g s: not run", fn, t + h, inst->anchorTime);
         return PMD_ERROR;
     }
-    end = cycles_before(inst, t + h);
+    end = pmd_cycles_before(inst, t + h);
     if (inst->recordEnabled && end - inst->nextCycle > (int64_t)inst->recordCapacity) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: recording a step of %lld cycles, but record.capacity "
                          "is %u: not run", fn, (long long)(end - inst->nextCycle), (unsigned)inst->recordCapacity);
         return PMD_ERROR;
     }
     pmd_commit_ports(inst);
-    end = cycles_before(inst, t + h);               /* the batch may have restarted the grid */
+    end = pmd_cycles_before(inst, t + h);               /* the batch may have restarted the grid */
     inst->recordCount = 0;
     /* script steps due at a cycle run just before it, inside the step that runs it */
     while (inst->nextCycle < end) {
         run_script(inst);
         if (follow_sample_time(inst, inst->anchorTime + (double)(inst->nextCycle - inst->anchorCycle) *
                                                           inst->activeCycleTime)) {
-            end = cycles_before(inst, t + h);
+            end = pmd_cycles_before(inst, t + h);
             continue;
         }
         if (inst->recordEnabled) {               /* every cycle recorded: no fast-forward */
             /* rows past record.capacity are not recorded: the grid may have restarted finer inside the step */
-            int64_t k = cycles_to_skip(inst, end), room = (int64_t)inst->recordCapacity - recorded;
+            int64_t k = cycles_to_skip(inst, end), room = (int64_t)inst->recordRows - recorded;
             int64_t r = k < room ? k : room;
             pmd_chip_run(&inst->chip, r, inst->record + (size_t)recorded * PMD_RECORD_WORDS);
             pmd_chip_run(&inst->chip, k - r, NULL);
@@ -629,17 +639,21 @@ static PmdStatus out_of_range(PmdInstance *inst, const char *fn, const PmdVariab
     return PMD_ERROR;
 }
 
+int pmd_cycle_time_valid(double seconds)
+{
+    double us = seconds * 1e6;
+    return us >= 0.5 && us < 65535.5 && fabs(us - floor(us + 0.5)) <= 1e-9 * us;
+}
+
 PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
-    double us;
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
     /* The only Real that can be set is cycleTime. The chip's sample time
      * register (GetSampleTime) holds whole microseconds, 1..65535: a cycle time
      * it cannot hold is refused rather than rounded. */
-    us = value * 1e6;
-    if (!(us >= 0.5 && us < 65535.5 && fabs(us - floor(us + 0.5)) <= 1e-9 * us))
+    if (!pmd_cycle_time_valid(value))
         return out_of_range(inst, fn, v, value, "a whole number of microseconds, 1e-6 .. 0.065535 s");
     if (apply)
         inst->cycleTime = value;
@@ -708,7 +722,7 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
         return PMD_OK;
     }
     switch (v->family) {
-    case VAR_memorySize: set_memory_size(inst, (int32_t)value); break;
+    case VAR_memorySize: set_memory_size(inst, inst->staged.memorySize); break;   /* the call's last value */
     case VAR_axis_actualPosition: AXIS_OF(v)->actualPositionInput = (int32_t)value; break;
     case VAR_host_word: inst->hostWord[v->index] = (int32_t)value; break;
     case VAR_host_wordCount: inst->hostWordCount = (int32_t)value; break;

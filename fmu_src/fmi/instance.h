@@ -59,11 +59,13 @@ typedef struct {
     char *scriptPath;
     PmdScript script;
     size_t scriptNext;               /* the next step to run */
+    uint64_t scriptDigest;           /* of the compiled script this state runs (0: none): a snapshot runs on only with it */
 
     /* bulk recording (FMI 3 record.data): PMD_RECORD_WORDS int32 per cycle of the last doStep */
     uint8_t recordEnabled;
     uint32_t recordCapacity;         /* cycles */
     int32_t *record;
+    uint32_t recordRows;             /* cycles the record buffer holds (record.capacity when it was allocated) */
     uint32_t recordCount;            /* cycles recorded by the last doStep */
 
     /* A set call checks every value, then what they ask for together (a memory
@@ -86,6 +88,10 @@ void pmd_instance_reset(PmdInstance *inst);
 PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
                                 const char *const categories[]);
 PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime);
+/* Whether seconds is a cycle time the sample time register holds: whole microseconds, 1..65535. */
+int pmd_cycle_time_valid(double seconds);
+/* The grid index of the first cycle at or after t (within a master's rounding). */
+int64_t pmd_cycles_before(const PmdInstance *inst, double t);
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime);
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn);
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);

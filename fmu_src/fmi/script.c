@@ -605,3 +605,25 @@ void pmd_script_free(PmdScript *script)
     free(script->pool);
     memset(script, 0, sizeof *script);
 }
+
+static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = (const unsigned char *)data;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 1099511628211u;
+    }
+    return h;
+}
+
+/* The steps are zeroed before they are filled (new_step): no padding byte varies. */
+uint64_t pmd_script_digest(const PmdScript *script)
+{
+    uint64_t h;
+    if (script->count == 0)
+        return 0;
+    h = fnv1a(14695981039346656037u, script->steps, script->count * sizeof *script->steps);
+    h = fnv1a(h, script->pool, script->poolCount * sizeof *script->pool);
+    return (h & (uint64_t)INT64_MAX) | 1u;          /* never 0: that means no script */
+}

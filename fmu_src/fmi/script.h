@@ -29,5 +29,8 @@ typedef struct {
  * or -1 with "file:line: reason" in error (and nothing allocated). */
 int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, char *error, size_t errorSize);
 void pmd_script_free(PmdScript *script);
+/* A digest of what the compiled script does (FNV-1a over its steps and table words,
+ * 63 bits), or 0 for no script: FMU states name the script they run with it. */
+uint64_t pmd_script_digest(const PmdScript *script);
 
 #endif

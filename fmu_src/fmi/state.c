@@ -94,7 +94,7 @@ static int check_buffers(const PmdChipState *s, uint32_t memoryWords, char *why,
     int i;
     for (i = 0; i < PMD_BUFFERS; i++) {
         const PmdBuffer *b = &s->buffer[i];
-        if (b->start > memoryWords || b->length > memoryWords - b->start)
+        if (b->length > 0 && (b->start > memoryWords || b->length > memoryWords - b->start))
             return WHY("chip.s.buffer[%d]: start 0x%X + length %u leave the %u-word memory", i, (unsigned)b->start,
                        (unsigned)b->length, (unsigned)memoryWords);
         if (b->length == 0 ? (b->readIndex | b->writeIndex | b->unread) != 0
@@ -145,8 +145,7 @@ static int check_scurve(const PmdSCurve *c, int n, char *why, size_t whySize)
     if (p6 < 0 || c->p6Total < p6)
         return WHY("chip.s.axis[%d].scurve.p6Total = %lld is less than 6 t1 (t1 + t2) (2 t1 + t2 + t4) or that "
                    "passes 2^62", n, (long long)c->p6Total);
-    if (c->step >= total || c->p6 > c->p6Total || c->v2 > 2 * c->t1 * (c->t1 + c->t2) || c->a > c->t1 ||
-        c->a < -c->t1)
+    if (c->step >= total || c->p6 > c->p6Total || !pmd_scurve_on_curve(c))
         return WHY("chip.s.axis[%d].scurve: step %lld, p6 %lld, v2 %lld or a %lld is not on the unit curve", n,
                    (long long)c->step, (long long)c->p6, (long long)c->v2, (long long)c->a);
     return 0;
@@ -181,18 +180,28 @@ static int check_instance(const PmdInstance *s, const PmdInstance *live, uint64_
                    (unsigned)s->chip.memorySize, (unsigned long long)memoryWords);
     if (s->state & (s->state - 1))
         return WHY("state = %u is not one FMI state", (unsigned)s->state);
-    if (!(s->cycleTime > 0) || !(s->activeCycleTime > 0))
-        return WHY("cycleTime %g and activeCycleTime %g must be > 0", s->cycleTime, s->activeCycleTime);
-    if (s->state != PMD_INSTANTIATED &&            /* before, EnterInitializationMode checks the start time */
-        !(fabs((s->time - s->anchorTime) / s->activeCycleTime) < (double)(INT64_C(1) << 53)))
-        return WHY("time %g lies beyond 2^53 cycles of anchorTime %g", s->time, s->anchorTime);
+    if (!pmd_cycle_time_valid(s->cycleTime) || !pmd_cycle_time_valid(s->activeCycleTime))
+        return WHY("cycleTime %g or activeCycleTime %g is not a whole number of microseconds, 1..65535",
+                   s->cycleTime, s->activeCycleTime);
+    if (s->state & (PMD_STEP_MODE | PMD_TERMINATED)) {
+        /* the grid as doStep leaves it: the next cycle is the first at or after time, on a grid
+         * anchored before it (before step mode, ExitInitializationMode sets it up) */
+        if (!(s->anchorTime <= s->time && (s->time - s->anchorTime) / s->activeCycleTime < (double)(INT64_C(1) << 53)))
+            return WHY("time %.17g is not within 2^53 cycles after anchorTime %.17g", s->time, s->anchorTime);
+        if (s->nextCycle != pmd_cycles_before(s, s->time) || s->anchorCycle > s->nextCycle)
+            return WHY("nextCycle %lld or anchorCycle %lld is not where time %.17g lies on the grid",
+                       (long long)s->nextCycle, (long long)s->anchorCycle, s->time);
+        if (s->scriptDigest != live->scriptDigest || s->scriptNext > live->script.count)
+            return WHY("scriptDigest: the state runs another script than this instance (restore it into an "
+                       "instance initialized with the same script)");
+    } else if (s->scriptNext != 0) {
+        return WHY("scriptNext = %zu before the script is compiled", s->scriptNext);
+    }
     if (s->memoryStrobe != s->memoryStrobeSeen && s->memoryCount > s->memorySize - s->memoryAddress)
         return WHY("memoryAddress %d + memoryCount %d of the pending write leave the %d-word memory",
                    s->memoryAddress, s->memoryCount, s->memorySize);
     if (s->chip.s.sampleTimeChanged && s->chip.s.sampleTime == 0)
         return WHY("chip.s.sampleTimeChanged = 1 with chip.s.sampleTime = 0 (SetSampleTime takes 1..65535)");
-    if (s->scriptNext > live->script.count)
-        return WHY("scriptNext = %zu: this instance's script has %zu steps", s->scriptNext, live->script.count);
     if (check_buffers(&s->chip.s, (uint32_t)memoryWords, why, whySize) || check_trace(&s->chip.s, why, whySize))
         return -1;
     return check_axes(&s->chip, why, whySize);

@@ -221,9 +221,11 @@ static const PmdStateField instance_fields[] = {
     PROCESS(PmdInstance, scriptPath),
     PROCESS(PmdInstance, script),
     UNSIGNED(PmdInstance, scriptNext, 0, INT64_MAX),                     /* within this instance's script: state.c */
+    UNSIGNED(PmdInstance, scriptDigest, 0, INT64_MAX),
     UNSIGNED(PmdInstance, recordEnabled, BOOL),
     PROCESS(PmdInstance, recordCapacity),         /* sizes this process's record buffer: the instance keeps its own */
     PROCESS(PmdInstance, record),
+    PROCESS(PmdInstance, recordRows),
     PROCESS(PmdInstance, recordCount),            /* rows in this process's record buffer: none after a restore */
     PROCESS(PmdInstance, staged),
 };
