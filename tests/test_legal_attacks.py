@@ -5,18 +5,11 @@ import math
 
 import pytest
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
-from fmpy.fmi3 import FMU3Slave
+from fmpy.fmi2 import FMU2Slave
 
 import pmdfmu
 from pmdfmu import PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer
-from pmdfmu.chip import COMMANDS, encode
-from states import snapshot
-
-
-def command(name, *args, axis=0):
-    c = COMMANDS[name]
-    return [c.opcode | ((0 if c.scope == "chip" else axis) << 8)] + encode(c, args)
+from states import InitializationChip, command, pend_batch, snapshot
 
 
 def errors(chip):
@@ -31,17 +24,6 @@ def refused_changes_nothing(chip, call) -> str:
         call()
     assert snapshot(chip) == before, "a refused call changed the FMU state"
     return errors(chip)
-
-
-def pend_batch(chip, words):
-    """Writes a host batch and a new strobe without reading anything: it executes at the next get or doStep."""
-    if chip.fmi_version == 2:
-        for i, w in enumerate(words):
-            chip.set(f"host.word[{i + 1}]", w)
-    else:
-        chip.set("host.word", list(words) + [0] * (64 - len(words)))
-    chip.set("host.wordCount", len(words))
-    chip.set("host.strobe", chip.get("host.ack") + 1)
 
 
 def pend_memory_write(chip, address, words, strobe=None):
@@ -184,51 +166,6 @@ def test_memory_size_in_initialization_keeps_the_memory_and_the_registers(fmi_ve
         chip.free()
 
 
-class InitializationChip:
-    """An instance left in initialization mode (pmdfmu.Chip initializes at once),
-    with Chip's own set and get, beside a Chip of the same unzipped FMU."""
-
-    def __init__(self, fmi_version):
-        self._proto = pmdfmu.Chip(fmi_version=fmi_version)
-        desc = self._proto.model_description
-        self.fmi_version, self.variables, self.messages = fmi_version, self._proto.variables, []
-        kwargs = dict(guid=desc.guid, unzipDirectory=self._proto._unzipdir,
-                      modelIdentifier=desc.coSimulation.modelIdentifier, instanceName="init")
-
-        def record(status, message):
-            self.messages.append(pmdfmu.chip.LogMessage(pmdfmu.chip.STATUS_NAMES[status], "", message.decode()))
-
-        if fmi_version == 2:
-            self.fmu = FMU2Slave(**kwargs)
-            self._callbacks = fmi2CallbackFunctions()
-            self._callbacks.logger = fmi2CallbackLoggerTYPE(lambda env, name, status, cat, msg: record(status, msg))
-            self.fmu.instantiate(callbacks=self._callbacks)
-            self.fmu.setupExperiment(startTime=0.0)
-            self.fmu.enterInitializationMode()
-            types = ("Real", "Integer", "Boolean")
-        else:
-            self.fmu = FMU3Slave(**kwargs)
-            self.fmu.instantiate(logMessage=lambda env, status, cat, msg: record(status, msg))
-            self.fmu.enterInitializationMode(startTime=0.0)
-            types = ("Float64", "Int32", "UInt32", "UInt16", "Boolean")
-        self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
-        self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
-
-    set = pmdfmu.Chip.set
-    get = pmdfmu.Chip.get
-    _size = pmdfmu.Chip._size
-
-    def reply(self):
-        n = self.get("host.replyCount")
-        if self.fmi_version == 2:
-            return [self.get(f"host.reply[{i + 1}]") for i in range(n)]
-        return self.get("host.reply")[:n]
-
-    def free(self):
-        self.fmu.freeInstance()
-        self._proto.close()
-
-
 # ---- 5. a huge step after a sample-time change ----
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
@@ -301,3 +238,34 @@ def test_a_refused_exit_initialization_changes_nothing(fmi_version, tmp_path):
         assert "NoSuchCommand" in message
     finally:
         chip.free()
+
+
+# ---- found by review: legal sequences that overflowed ----
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+@pytest.mark.parametrize("sizes", [[0x100000, 16], [16, 0x100000], [0x4000, 16]])
+def test_a_set_call_naming_memory_size_twice_takes_the_last(fmi_version, sizes):
+    chip = InitializationChip(fmi_version)
+    try:
+        memory_size = chip.variables["memorySize"]
+        chip._setters[memory_size.type]([memory_size.valueReference] * 2, sizes)
+        assert chip.get("memorySize") == sizes[-1]
+        chip.fmu.exitInitializationMode()
+        chip.fmu.doStep(0.0, 1e-3)
+        assert chip.get("chipTime") == 9
+    finally:
+        chip.free()
+
+
+def test_a_restored_recording_state_records_into_a_buffer_of_the_current_capacity():
+    with pmdfmu.Chip(fmi_version=3, **{"record.capacity": 64}) as chip:
+        chip.set("record.enabled", True)
+        state = chip.fmu.getFMUState()
+        chip.fmu.reset()
+        chip.set("record.enabled", True)                  # a buffer of 64 rows
+        chip.set("record.capacity", 5000)
+        chip.fmu.setFMUState(state)                       # a state that records: with a buffer of 5000
+        chip.fmu.freeFMUState(state)
+        chip.set("record.enabled", True)
+        chip.fmu.doStep(0.0, 5000 * 1e-4)
+        assert len(chip.fmu.getBinary([vr(chip, "record.data")])[0]) == 5000 * 13 * 4

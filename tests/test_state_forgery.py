@@ -4,6 +4,7 @@ never gives it, with a message naming the field, and the instance must stay as
 it was. The declared field list (fmu_src/fmi/state_fields.c) drives the forger;
 the compiler's debug information checks that the list names every struct member."""
 import shutil
+import struct
 import subprocess
 import sys
 from pathlib import Path
@@ -15,7 +16,7 @@ import pmdfmu
 from pmdfmu import (PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer,
                     PMDTraceTime)
 from pmdfmu.profile import load_external_profile, start_external_profile
-from states import snapshot
+from states import InitializationChip, command, pend_batch, snapshot
 
 ROOT = Path(__file__).resolve().parent.parent
 HEADERS = Path(__import__("fmpy").__file__).parent / "c-code"
@@ -177,7 +178,7 @@ def test_every_field_just_outside_its_range_is_refused_naming_it(rich, declared)
     for path, offset, size, kind, lo, hi in declared[1]:
         if kind == SF_REAL:
             values = [(float("nan"), "<d"), (float("inf"), "<d")]
-            raws = [__import__("struct").pack(fmt, v) for v, fmt in values]
+            raws = [struct.pack(fmt, v) for v, fmt in values]
         elif kind in (SF_UNSIGNED, SF_SIGNED):
             raws = [(v & ((1 << (8 * size)) - 1)).to_bytes(size, "little") for v in outside(size, kind, lo, hi)]
         else:
@@ -227,3 +228,60 @@ def test_header_bytes_after_the_token_are_checked(rich, declared):
     blob = bytearray(snapshot(rich))
     blob[16 + 47] = 0x41                                    # the last byte of the token field, after its NUL
     assert "instantiation token" in refused(rich, bytes(blob))
+
+
+GRID_FORGERIES = {               # field: forged value, and what the message must name (found by review)
+    "nextCycle": (-(1 << 62), "nextCycle"),                     # a doStep would run 2^62 cycles
+    "anchorCycle": (1 << 40, "anchorCycle"),
+    "anchorTime": (1e9, "anchorTime"),                          # an anchor after the time: negative steps
+    "cycleTime": (1.0, "cycleTime"),                            # no 16-bit sample time holds it
+    "activeCycleTime": (0.5e-6, "activeCycleTime"),
+}
+
+
+@pytest.mark.parametrize("name", GRID_FORGERIES)
+def test_a_forged_time_grid_is_refused(rich, declared, name):
+    leaves = {path: (offset, size, kind) for path, offset, size, kind, *_ in declared[1]}
+    value, expected = GRID_FORGERIES[name]
+    offset, size, kind = leaves[name]
+    raw = struct.pack("<d", value) if kind == SF_REAL else value.to_bytes(size, "little", signed=True)
+    assert expected in refused(rich, Forger(snapshot(rich), declared[0]).forge(offset, raw))
+
+
+@pytest.mark.parametrize("field", ["p6", "v2", "a", "step"])
+def test_an_s_curve_off_its_unit_curve_is_refused(rich, declared, field):
+    """Each value alone in range, but not where the unit curve is after `step` steps: the move would
+    run off without bound (found by review: a constant acceleration through the cruise)."""
+    leaves = {path: (offset, size) for path, offset, size, *_ in declared[1]}
+    blob = snapshot(rich)
+    offset, size = leaves[f"chip.s.axis[1].scurve.{field}"]
+    value = int.from_bytes(blob[declared[0][0] + offset:][:size], "little", signed=True)
+    assert "scurve" in refused(rich, Forger(blob, declared[0]).forge(offset, (value + 1).to_bytes(size, "little",
+                                                                                                signed=True)))
+
+
+def test_a_state_that_ran_a_script_restores_only_where_that_script_runs(tmp_path):
+    one, other = tmp_path / "one.pmd", tmp_path / "other.pmd"
+    one.write_text("@0\nSetPosition(Axis1, 100);\n@5\nSetPosition(Axis1, 200);\n")
+    other.write_text("@0\nSetPosition(Axis1, 100);\n@6\nSetPosition(Axis1, 200);\n")
+    with pmdfmu.Chip(script=one) as a, pmdfmu.Chip(script=one) as same, pmdfmu.Chip(script=other) as b:
+        a.run(3)
+        data = snapshot(a)
+        restore(same, data)
+        assert snapshot(same) == data
+        assert "scriptDigest" in refused(b, data)
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_a_buffer_of_length_0_may_start_beyond_a_memory_made_smaller(fmi_version):
+    """A state the model reaches (found by review): SetBufferStart(5, 0x3000) with length 0, then memorySize 0x1000."""
+    chip = InitializationChip(fmi_version)
+    try:
+        pend_batch(chip, command("SetBufferStart", 5, 0x3000))
+        chip.get("host.ack")
+        chip.set("memorySize", 0x1000)
+        data = snapshot(chip)
+        restore(chip, data)
+        assert snapshot(chip) == data
+    finally:
+        chip.free()
