@@ -3,7 +3,13 @@
 for a while (issue 6). A crash leaves its input in fuzz/findings/; copy it into
 fuzz/regressions/TARGET/ and the test suite replays it from then on.
 
-    python fuzz/run.py [--seconds 60] [target ...]      targets: host fmi script
+    python fuzz/run.py [--seconds 60] [target ...]      targets: host fmi script sequence
+
+sequence (fuzz_sequence.c, issue 11) decodes its input as a sequence of legal
+operations through FMI 2 or 3 and checks properties after every call (see the
+head of that file: the input format, the properties, FUZZ_SEQUENCE_TRACE=1 to
+print a crash file's calls); fuzz/sequence_inputs.py writes its hand-built
+seeds and regression inputs.
 """
 import argparse
 import subprocess
@@ -12,14 +18,17 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-TARGETS = ("host", "fmi", "script")
+TARGETS = ("host", "fmi", "script", "sequence")
 
 
 def sources(target: str, gen: Path):
     chip = sorted(str(p) for p in (ROOT / "fmu_src" / "chip").glob("*.c"))
     fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "state.c", "state_fields.c", "script.c")]
     generated = [str(gen / n) for n in ("variables.c", "command_table.c", "pmd_constants.c")]
-    extra = [str(ROOT / "fmu_src" / "fmi" / "fmi2.c")] if target == "fmi" else []
+    extra = {"fmi": ["fmi2.c"], "sequence": ["fmi2.c", "fmi3.c"]}.get(target, [])
+    extra = [str(ROOT / "fmu_src" / "fmi" / n) for n in extra]
+    if target == "sequence":
+        generated.append(str(gen / "variables3.c"))
     return [str(ROOT / "fuzz" / f"fuzz_{target}.c"), *chip, *fmi, *extra, *generated]
 
 
@@ -35,10 +44,16 @@ def generated() -> Path:
     return gen
 
 
+# PMD_CHECK_INVARIANTS: the chip's invariant checks (pmd_memory_store) abort instead of refusing quietly
+CHECKS = ["-DPMD_CHECK_INVARIANTS"]
+
+
 def build(target: str, gen: Path, out: Path) -> Path:
     exe = out / f"fuzz_{target}"
-    subprocess.run(["clang", "-g", "-O1", "-std=c99", "-D_DEFAULT_SOURCE", "-fsanitize=fuzzer,address,undefined",
-                    "-fno-sanitize-recover=all", *include_flags(gen), *sources(target, gen), "-lm", "-o", str(exe)],
+    subprocess.run(["clang", "-g", "-O1", "-std=c99", "-D_DEFAULT_SOURCE", *CHECKS,
+                    "-fsanitize=fuzzer,address,undefined,float-cast-overflow", "-fno-sanitize-recover=all",
+                    f"-fsanitize-coverage-ignorelist={ROOT / 'fuzz' / 'coverage_ignore.txt'}",
+                    *include_flags(gen), *sources(target, gen), "-lm", "-o", str(exe)],
                    check=True)
     return exe
 
@@ -58,13 +73,18 @@ def main() -> int:
         corpus.mkdir(parents=True, exist_ok=True)
         findings = ROOT / "fuzz" / "findings" / target
         findings.mkdir(parents=True, exist_ok=True)
-        seeds = ROOT / "fuzz" / "corpus" / target
+        # seeds: the saved corpus and the regression inputs (deep states, already minimal)
+        seeds = [str(d) for d in (ROOT / "fuzz" / "corpus" / target, ROOT / "fuzz" / "regressions" / target)
+                 if d.is_dir()]
         print(f"fuzzing {target} for {args.seconds} s", flush=True)
-        result = subprocess.run([str(exe), str(corpus), str(seeds), f"-max_total_time={args.seconds}",
+        result = subprocess.run([str(exe), str(corpus), *seeds, f"-max_total_time={args.seconds}",
                                  "-rss_limit_mb=2048", "-timeout=20", f"-artifact_prefix={findings}/",
                                  "-print_final_stats=1"], capture_output=True, text=True)
-        tail = "\n".join(result.stderr.splitlines()[-6:])
-        print(tail, flush=True)
+        lines = result.stderr.splitlines()
+        # what went wrong (sanitizer, property, crash file), then libFuzzer's final stats
+        said = [line for line in lines if any(k in line for k in ("ERROR:", "runtime error", "property violated",
+                                                                   "the FMU's last error", "Test unit written"))]
+        print("\n".join(said[:8] + lines[-6:]), flush=True)
         if result.returncode != 0:
             failed.append(target)
     print("fuzzing found problems in: " + ", ".join(failed) if failed else "fuzzing found nothing")

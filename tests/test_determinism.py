@@ -1,6 +1,7 @@
 """Determinism (issue 6): the same scripted profile run 10 times, and through
 FMI 2 and FMI 3, gives byte-identical CSVs."""
 import hashlib
+import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -22,23 +23,42 @@ def test_ten_runs_through_fmi2_and_fmi3_write_identical_csvs(tmp_path):
     assert len(digests) == 1
 
 
+SANITIZERS = ["-fsanitize=address,undefined,float-cast-overflow", "-fno-sanitize-recover=all"]
+
+
+def sanitizers_available(tmp_path) -> bool:
+    """Whether cc can build and run an ASan + UBSan program here."""
+    probe = tmp_path / "probe.c"
+    probe.write_text("int main(void) { return 0; }\n")
+    built = subprocess.run(["cc", *SANITIZERS, str(probe), "-o", str(tmp_path / "probe")], capture_output=True)
+    return built.returncode == 0 and subprocess.run([str(tmp_path / "probe")], capture_output=True).returncode == 0
+
+
 @pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
     """Every input in fuzz/corpus and fuzz/regressions runs through its target,
-    built with the ordinary compiler and a replay driver (fuzz/replay.c)."""
+    built with the ordinary compiler and a replay driver (fuzz/replay.c), with
+    the fuzz build's invariant checks and, where cc has them, ASan and UBSan
+    (some regression inputs fail only under a sanitizer). Each input runs on its
+    own, so that a failure names every input that fails."""
     import sys
     sys.path.insert(0, str(ROOT / "fuzz"))
     import run as fuzz
     gen = fuzz.generated()
+    sanitize = SANITIZERS if sanitizers_available(tmp_path) else []
+    env = {**os.environ, "ASAN_OPTIONS": "detect_leaks=0", "UBSAN_OPTIONS": "print_stacktrace=1"}
+    failed = []
     for target in fuzz.TARGETS:
         inputs = sorted(p for d in ("corpus", "regressions") for p in (ROOT / "fuzz" / d / target).glob("*")
                         if p.is_file())
         if not inputs:
             continue
         exe = tmp_path / f"replay_{target}"
-        subprocess.run(["cc", "-O1", "-std=c99", "-D_DEFAULT_SOURCE", *fuzz.include_flags(gen),
-                        str(ROOT / "fuzz" / "replay.c"), *fuzz.sources(target, gen), "-lm", "-o", str(exe)],
-                       check=True)
-        out = subprocess.run([str(exe), *map(str, inputs)], capture_output=True, text=True, timeout=300)
-        assert out.returncode == 0, out.stderr[-2000:]
-        assert f"replayed {len(inputs)} inputs" in out.stdout
+        subprocess.run(["cc", "-g", "-O1", "-std=c99", "-D_DEFAULT_SOURCE", *fuzz.CHECKS, *sanitize,
+                        *fuzz.include_flags(gen), str(ROOT / "fuzz" / "replay.c"), *fuzz.sources(target, gen), "-lm",
+                        "-o", str(exe)], check=True)
+        for path in inputs:
+            out = subprocess.run([str(exe), str(path)], capture_output=True, text=True, timeout=300, env=env)
+            if out.returncode != 0 or "replayed 1 inputs" not in out.stdout:
+                failed.append(f"{path.relative_to(ROOT)}:\n{out.stderr[-1500:]}")
+    assert not failed, f"{len(failed)} saved fuzz inputs fail:\n" + "\n".join(failed)

@@ -1,0 +1,512 @@
+#!/usr/bin/env python3
+"""Hand-built inputs of the sequence fuzzer (fuzz/fuzz_sequence.c, issue 11):
+seeds that reach deep states (fuzz/corpus/sequence/) and one regression input
+per bug reached by legal calls (fuzz/regressions/sequence/). The test suite
+replays both folders (tests/test_determinism.py).
+
+    python fuzz/sequence_inputs.py        (re)writes the files named below
+
+Seq mirrors the byte layout that fuzz_sequence.c decodes, operation by
+operation: change both together. To see what an input does, run it traced:
+FUZZ_SEQUENCE_TRACE=1 build/fuzz/fuzz_sequence FILE.
+"""
+import importlib.util
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+_spec = importlib.util.spec_from_file_location("tables", HERE.parent / "python" / "pmdfmu" / "tables.py")
+tables = importlib.util.module_from_spec(_spec)
+sys.modules["tables"] = tables
+_spec.loader.exec_module(tables)
+
+COMMANDS = tables.read_commands(HERE.parent / "modelDescription" / "commands.csv")
+COMMAND_INDEX = {c.name: i for i, c in enumerate(COMMANDS)}
+
+# the rows of OPS[] in fuzz_sequence.c, in order
+OPS = ["command", "buffer", "write_buffer", "buffer_index", "external_profile", "move", "trace", "breakpoint",
+       "sample_time", "stop", "chip_reset", "memory", "step", "replay", "save", "restore", "reinitialize", "input",
+       "record", "logging", "refused", "script", "enter_initialization", "parameter", "exit_initialization",
+       "axis_setup"]
+
+# value(): selector bytes for symbolic values (M is the memory size)
+SYMBOLS = {"lo": 0, "lo+1": 1, "hi": 2, "hi-1": 3, "zero": 4, "one": 5, "M": 6, "M-1": 7, "M+1": 8}
+EXACT = 11
+
+CYCLE_TIMES = [1e-4, 1e-6, 0.065535, 1e-3, 2.5e-5, 3e-4, 0.065534, 2e-6]
+START_TIMES = [0, 1, 0.5, -1, 1e3, 1e-4]
+
+
+class Seq:
+    """An input: the FMI version, then operations."""
+
+    def __init__(self, fmi3=False):
+        self.data = bytearray([1 if fmi3 else 0])
+
+    def bytes(self) -> bytes:
+        return bytes(self.data)
+
+    # -- the byte reader's vocabulary ---------------------------------------------------
+
+    def byte(self, x):
+        self.data.append(x & 0xFF)
+
+    def value(self, x):
+        """An exact value (int, within the field's range), a symbol of SYMBOLS, or ("M-", k):
+        a selector byte and a 4-byte payload."""
+        if isinstance(x, str):
+            self.byte(SYMBOLS[x])
+            payload = 0
+        elif isinstance(x, tuple):
+            self.byte(9)
+            payload = x[1]
+        else:
+            self.byte(EXACT)
+            payload = x & 0xFFFFFFFF
+        self.data += payload.to_bytes(4, "big")
+
+    def op(self, name):
+        self.byte(OPS.index(name))
+
+    def flags(self, axis=0, pending=False, bits=0):
+        self.byte(axis | (4 if pending else 0) | bits << 3)
+
+    # -- operations ---------------------------------------------------------------------
+
+    def command(self, name, *args, axis=0, pending=False):
+        self.op("command")
+        self.flags(axis, pending)
+        self.byte(COMMAND_INDEX[name])
+        assert len(args) == len(COMMANDS[COMMAND_INDEX[name]].args), name
+        for a in args:
+            self.value(a)
+        return self
+
+    def buffer(self, id, start, length, function=None, length_first=False, unassign=False, axis=0, pending=False):
+        self.op("buffer")
+        self.flags(axis, pending, (1 if length_first else 0) | (2 if unassign else 0))
+        self.value(id)
+        self.value(start)
+        self.value(length)
+        self.byte(5 if function is None else function)
+        return self
+
+    def write_buffer(self, id, values, axis=0, pending=False):
+        assert 1 <= len(values) <= 32
+        self.op("write_buffer")
+        self.flags(axis, pending)
+        self.value(id)
+        self.byte(len(values) - 1)
+        for v in values:
+            self.value(v)
+        return self
+
+    def buffer_index(self, kind, id, index, axis=0, pending=False):
+        """kind: "write" (SetBufferWriteIndex), "read" (SetBufferReadIndex), "readbuffer" (index % 8 + 1 reads)."""
+        self.op("buffer_index")
+        self.flags(axis, pending, ["write", "read", "readbuffer"].index(kind))
+        self.value(id)
+        self.value(index)
+        return self
+
+    def external_profile(self, start, rows, functions=(0, 4), axis=0, pending=False):
+        """rows: one dict per segment, function number -> value; buffers 2+f hold function f,
+        at start + f * len(rows)."""
+        mask = sum(1 << f for f in functions) | 1
+        assert 1 <= len(rows) <= 8
+        self.op("external_profile")
+        self.flags(axis, pending, mask)
+        self.byte(len(rows) - 1)
+        self.value(start)
+        for f in range(5):
+            if mask >> f & 1:
+                for row in rows:
+                    self.value(row.get(f, 0 if f != 4 else 1))
+        return self
+
+    def move(self, mode, position, velocity, acceleration, deceleration=0, jerk=None, gear=None, multi=None,
+             axis=0, pending=False):
+        """mode 0 trapezoidal, 1 velocity, 2 S-curve (jerk), 3 gear (gear = (master, ratio, source)),
+        4 external; multi: a MultiUpdate mask instead of Update."""
+        self.op("move")
+        self.flags(axis, pending, 1 if multi is not None else 0)
+        self.byte(mode)
+        for v in (position, velocity, acceleration, deceleration):
+            self.value(v)
+        if mode == 2:
+            self.value(jerk)
+        if mode == 3:
+            master, ratio, source = gear
+            self.byte(master)
+            self.value(ratio)
+            self.byte(source)
+        if multi is not None:
+            self.value(multi)
+        return self
+
+    def trace(self, start_address, length, variables, mode, period, start, stop=None, start_first=True,
+              axis=0, pending=False):
+        """variables: (axis, variable ID) per slot; start, stop: (axis, condition, bit, state)."""
+        self.op("trace")
+        self.flags(axis, pending, (1 if start_first else 0) | (2 if stop else 0))
+        self.byte(len(variables))
+        self.value(start_address)
+        self.value(length)
+        for a, v in variables:
+            self.byte(a)
+            self.byte(v)
+        self.byte(mode)
+        self.value(period)
+        for word in (start, stop or (0, 0, 0, 0)):
+            for x in word:
+                self.byte(x)
+        return self
+
+    def breakpoint(self, bp, source, action, trigger, value, axis=0, pending=False):
+        self.op("breakpoint")
+        self.flags(axis, pending)
+        for x in (bp, source, action, trigger):
+            self.byte(x)
+        self.value(value)
+        return self
+
+    def sample_time(self, us, pending=False):
+        self.op("sample_time")
+        self.flags(0, pending)
+        self.value(us)
+        return self
+
+    def stop(self, smooth=False, multi=False, axis=0, pending=False):
+        self.op("stop")
+        self.flags(axis, pending, (1 if smooth else 0) | (2 if multi else 0))
+        return self
+
+    def chip_reset(self, read_error=True, pending=False):
+        self.op("chip_reset")
+        self.flags(0, pending, 1 if read_error else 0)
+        return self
+
+    def memory(self, kind, address=0, count=0, seed=0, pending=False):
+        """kind: "write" (address, count, data seed, seed+1, ..., new strobe), or "address", "count",
+        "strobe" alone."""
+        self.op("memory")
+        self.byte(["write", "address", "count", "strobe"].index(kind) | (4 if pending else 0))
+        self.value(address)
+        self.value(count)
+        self.value(seed)
+        return self
+
+    def _cycles(self, cycles):
+        """A kind byte and a 2-byte payload: 1, 2..9, 10..999, 1000 + 2k (k < 65536), n + 0.5 (n < 8),
+        "capacity-1/0/+1", ("huge", e) for 2^e cycles (40 <= e < 64), ("fraction", k) for k/256 of a cycle."""
+        if cycles == 1:
+            kind, p = 0, 0
+        elif isinstance(cycles, int) and 2 <= cycles <= 9:
+            kind, p = 1, cycles - 2
+        elif isinstance(cycles, int) and 10 <= cycles < 1000:
+            kind, p = 2, cycles - 10
+        elif isinstance(cycles, int) and cycles >= 1000 and (cycles - 1000) % 2 == 0:
+            kind, p = 3, (cycles - 1000) // 2
+        elif isinstance(cycles, float):
+            kind, p = 4, int(cycles)
+        elif isinstance(cycles, str) and cycles.startswith("capacity"):
+            kind, p = 5, {"capacity-1": 0, "capacity": 1, "capacity+1": 2}[cycles]
+        elif cycles[0] == "huge":
+            kind, p = 6, (1 | (53 - cycles[1]) << 1) if cycles[1] in (52, 53) else (cycles[1] - 40) << 1
+        else:
+            kind, p = 7, cycles[1] - 1
+        self.byte(kind)
+        self.data += p.to_bytes(2, "big")
+
+    def step(self, cycles=1):
+        self.op("step")
+        self._cycles(cycles)
+        return self
+
+    def replay(self, *steps, via_bytes=False):
+        assert 1 <= len(steps) <= 4
+        self.op("replay")
+        self.byte(len(steps) - 1)
+        self.byte(1 if via_bytes else 0)
+        for c in steps:
+            self._cycles(c)
+        return self
+
+    def save(self, slot=0):
+        self.op("save")
+        self.byte(slot)
+        return self
+
+    def restore(self, slot=0, via_bytes=False):
+        self.op("restore")
+        self.byte(slot)
+        self.byte(1 if via_bytes else 0)
+        return self
+
+    def reinitialize(self, memory=0x4000, capacity=65536, cycle_time=1e-4, start=0, loopback=True, record=False,
+                     terminate=False, early=False, bad_cycle_time=None, start_in_cycles=False):
+        bits = (1 if terminate else 0) | (2 if early else 0) | (0 if loopback else 4) | (8 if record else 0) | \
+               (32 if start_in_cycles else 0)
+        if bad_cycle_time is not None:
+            bits |= 16 | bad_cycle_time << 6
+        self.op("reinitialize")
+        self.byte(bits)
+        self.value(memory)
+        self.value(capacity)
+        self.byte(CYCLE_TIMES.index(cycle_time))
+        self.byte(START_TIMES.index(start))
+        return self
+
+    def input(self, axis, kind, value):
+        """kind: "actualPosition" (int), "positiveLimit", "negativeLimit", "home" (bool)."""
+        self.op("input")
+        self.byte(axis)
+        k = ["actualPosition", "positiveLimit", "negativeLimit", "home"].index(kind)
+        self.byte(k)
+        if k == 0:
+            self.value(value)
+        else:
+            self.byte(1 if value else 0)
+        return self
+
+    def record(self, on=True):
+        self.op("record")
+        self.byte(1 if on else 0)
+        return self
+
+    def logging(self, on=True):
+        self.op("logging")
+        self.byte(1 if on else 0)
+        return self
+
+    def refused(self, kind, *extra):
+        """kind 0 unknown vr, 1 wrong type, 2 memorySize, 3 cycleTime in step mode, 4 step off the
+        communication point, 5 bad step size (extra: 0..3 for 0, -1, NaN, inf), 6 wordCount 65,
+        7 memory.count (extra: 1 for -1), 8 corrupted state (extra: 4-byte offset, xor-1)."""
+        self.op("refused")
+        self.byte(kind)
+        if kind == 8:
+            offset, xor = extra
+            self.data += offset.to_bytes(4, "big")
+            self.byte(xor - 1)
+        else:
+            for x in extra:
+                self.byte(x)
+        return self
+
+    def script(self, lines, capacity=65536, cycle_time=1e-4, record=False):
+        """lines: (cycle delta, axis, command name, args...) each; a new initialization runs them."""
+        assert 1 <= len(lines) <= 8
+        self.op("script")
+        self.byte(1 if record else 0)
+        self.byte(len(lines) - 1)
+        self.value(capacity)
+        self.byte(CYCLE_TIMES.index(cycle_time))
+        for delta, axis, name, *args in lines:
+            self.byte(delta)
+            self.byte(axis)
+            self.byte(COMMAND_INDEX[name])
+            assert len(args) == len(COMMANDS[COMMAND_INDEX[name]].args), name
+            for a in args:
+                self.value(a)
+        return self
+
+    def enter_initialization(self, start=0, terminate=False, start_in_cycles=False):
+        """Reset and initialization mode, until exit_initialization."""
+        self.op("enter_initialization")
+        self.byte((1 if terminate else 0) | (2 if start_in_cycles else 0))
+        self.byte(START_TIMES.index(start))
+        return self
+
+    def parameter(self, name, value):
+        """name: "memorySize" (value), "cycleTime" (one of CYCLE_TIMES), "badCycleTime" (index 0..3),
+        "loopback" (bool), "record.capacity" (value)."""
+        self.op("parameter")
+        k = ["memorySize", "cycleTime", "badCycleTime", "loopback", "record.capacity"].index(name)
+        self.byte(k)
+        if k == 1:
+            self.byte(CYCLE_TIMES.index(value))
+        elif k in (2, 3):
+            self.byte(int(value))
+        else:
+            self.value(value)
+        return self
+
+    def exit_initialization(self):
+        self.op("exit_initialization")
+        return self
+
+    def axis_setup(self, error_limit, settle_time, settle_window, tracking_window, signal_sense, interrupt_mask,
+                   auto_stop=False, settled_complete=False, limits=True, capture_home=False, motor_off=False,
+                   axis=0, pending=False):
+        self.op("axis_setup")
+        self.flags(axis, pending, (1 if auto_stop else 0) | (2 if settled_complete else 0) | (4 if limits else 0) |
+                   (8 if capture_home else 0) | (16 if motor_off else 0))
+        for v in (error_limit, settle_time, settle_window, tracking_window, signal_sense, interrupt_mask):
+            self.value(v)
+        return self
+
+
+# ---- seeds: short sequences into deep states ---------------------------------------------
+
+def seeds():
+    out = {}
+    # a trace armed to start on the next Update, buffer 0 then changed, then Update (issue 11, item 1's shape)
+    out["trace-start-on-update-then-buffer0-changes"] = (
+        Seq().trace(0x100, 8, [(0, 2), (0, 3)], 1, 1, (0, 1, 0, 0))
+        .buffer(0, 0x200, 3)
+        .move(0, 1000, 0x10000, 0x1000)
+        .step(5).replay(3, 1, via_bytes=True))
+    # every trace start and stop condition on a moving axis
+    s = Seq(fmi3=True)
+    for cond in range(5):
+        s.trace(0, 16, [(1, 8), (1, 13), (1, 12)], cond % 2, 1 + cond, (1, cond, 10, 1), stop=(1, 4 - cond, 3, 0),
+                start_first=bool(cond % 2))
+        s.move(0, 5000 * (cond + 1), 0x20000, 0x800, axis=1).step(20)
+        s.command("GetTraceStatus").command("GetTraceCount")
+    out["trace-every-condition"] = s.replay(10, 7)
+    # FMI 3 recording, then the sample time changes while recording
+    out["record-then-sample-time-changes"] = (
+        Seq(fmi3=True).reinitialize(capacity=1000, record=True)
+        .move(1, 0, 0x30000, 0x1000, axis=2)
+        .step(100).sample_time(50).step(10).sample_time(200, pending=True).step(3)
+        .record(False).step(2000).replay(5, 1, via_bytes=True))
+    # an external profile over all five functions, saved, run, restored through bytes
+    rows = [{0: 10 * k, 1: 0x8000 * k, 2: 0x100, 3: 1 << k, 4: 2 + k} for k in range(6)]
+    out["external-profile-five-functions"] = (
+        Seq().external_profile(0x40, rows, functions=(0, 1, 2, 3, 4)).save(0)
+        .step(30).replay(4, 9, via_bytes=True).restore(0, via_bytes=True).step(7))
+    # streaming: WriteBuffer into a running profile, indexes, ReadBuffer, dual-port memory writes
+    out["streamed-profile-and-memory-port"] = (
+        Seq().buffer(2, 0x300, 4, function=0).buffer(3, 0x304, 4, function=4)
+        .write_buffer(2, [1, 2, 3, 4]).write_buffer(3, [3, 3, 3, 3])
+        .move(4, 0, 0, 0).step(6).buffer_index("read", 2, 3).buffer_index("write", 3, 1)
+        .memory("write", 0x300, 4, 77).memory("write", ("M-", 64), 64, 5, pending=True)
+        .step(9).buffer_index("readbuffer", 2, 5).replay(8))
+    # the four axes in four profile modes, a breakpoint, stops
+    out["four-axes-moves-breakpoint-stop"] = (
+        Seq().move(0, 100000, 0x50000, 0x2000, 0x1000)
+        .move(1, 0, -0x40000, 0x3000, axis=1)
+        .move(2, -20000, 0x40000, 0x4000, jerk=0x10000, axis=2)
+        .move(3, 0, 0, 0, gear=(0, 0x20000, 1), axis=3)
+        .breakpoint(0, 0, 2, 1, 50000, axis=0)
+        .step(500).stop(smooth=True, axis=1).stop(multi=True, axis=2).step(3000)
+        .replay(1000, 20))
+    # other parameters: a small memory, 1 us cycles, no loopback, switches and encoder inputs
+    out["small-memory-no-loopback-switches"] = (
+        Seq(fmi3=True).reinitialize(memory=64, cycle_time=1e-6, loopback=False, start=1e3, early=True)
+        .input(0, "actualPosition", 12345).input(0, "positiveLimit", True).input(1, "home", True)
+        .command("SetCaptureSource", 1, axis=1).move(0, 1 << 20, 0x10000, 0x100)
+        .step(50).input(0, "positiveLimit", False).command("ResetEventStatus", 0).step(10)
+        .buffer(2, "M-1", 1).write_buffer(2, [9]).replay(3))
+    # the refusals, in states with pending writes
+    out["refused-calls-in-deep-states"] = (
+        Seq().move(0, 1000, 0x10000, 0x100).sample_time(10, pending=True).refused(4).refused(5, 2)
+        .memory("write", 0, 64, 1, pending=True).refused(7, 1).refused(6).refused(2).refused(3)
+        .refused(8, 4096, 0x80).step(3).refused(0).refused(1))
+    # a chip Reset between moves, logging on, save and restore across a re-initialization
+    out["reset-logging-restore-across-reinit"] = (
+        Seq(fmi3=True).logging(True).move(0, 500, 0x10000, 0x100).step(10).save(1)
+        .chip_reset().step(2).reinitialize(memory=0x1000, cycle_time=1e-3, capacity=10, record=True)
+        .step("capacity").step("capacity+1").restore(1).step(20).logging(False))
+    # a script that moves, traces and changes the sample time while the host steps and records
+    out["script-moves-and-sample-time"] = (
+        Seq(fmi3=True).script([(0, 0, "SetBufferLength", 0, 32), (0, 0, "SetTraceVariable", 0, 0, 8),
+                               (0, 0, "SetTraceStart", 0, 1, 0, 0), (3, 0, "SetVelocity", 0x30000),
+                               (0, 0, "SetProfileMode", 1), (0, 0, "Update"), (20, 0, "SetSampleTime", 7),
+                               (40, 0, "SetSampleTime", 100)], capacity=1000, record=True)
+        .step(30).step(50).record(False).step(1).replay(100, 3))
+    # commands and memory writes in initialization mode, then memorySize changes (keeping the registers)
+    out["initialization-mode-commands-then-memory-size"] = (
+        Seq(fmi3=True).enter_initialization(start=1, start_in_cycles=True)
+        .buffer(2, 0x10, 8, function=0).memory("write", 0x10, 8, 3).parameter("memorySize", 0x18)
+        .parameter("memorySize", 0x17).parameter("memorySize", 0x8000).parameter("cycleTime", 2.5e-5)
+        .parameter("badCycleTime", 1).memory("write", 0x7FF0, 16, 9, pending=True).parameter("memorySize", 0x7FF8)
+        .step(1).exit_initialization().move(4, 0, 0, 0).step(20).replay(5))
+    # an axis whose position error trips auto stop, settles, meets a limit
+    out["auto-stop-settle-limit"] = (
+        Seq().reinitialize(loopback=False)
+        .axis_setup(10, 5, 2, 3, 0, 0xFFFF, auto_stop=True, settled_complete=True)
+        .move(0, 100000, 0x20000, 0x1000).step(3).input(0, "actualPosition", 1000).step(10)
+        .command("ResetEventStatus", 0).command("SetMotorMode", 1).move(0, 0, 0x20000, 0x1000).step(5)
+        .input(0, "actualPosition", 5).step(40).input(0, "negativeLimit", True).step(2)
+        .move(0, -100, 0x10000, 0x1000).refused(9).refused(10).replay(4))
+    return out
+
+
+# ---- regressions: the legal-call bugs of issue 11 ---------------------------------------
+
+def regressions():
+    out = {}
+    # 1. A trace armed to start on the next Update (buffer 0 of length 1, rolling), then buffer 0
+    #    set to length 0 and moved to the end of the memory (accepted: the trace only waits), then
+    #    Update: the trace's first sample was written at address 0x4000, past the memory.
+    out["trace-start-after-buffer0-moved-past-memory"] = (
+        Seq().trace(0, 1, [(0, 2)], 1, 1, (0, 1, 0, 0))
+        .buffer(0, "M", 0, length_first=True)
+        .command("Update").step(1).step(3))
+    # 2. FMI 3, record.capacity 100, recording; a host batch SetSampleTime(1) left pending; one doStep
+    #    of 100 cycles at the old cycle time: the grid restarted inside the step, which ran 10 000
+    #    cycles and wrote them past record.data.
+    out["recording-step-across-sample-time-change"] = (
+        Seq(fmi3=True).reinitialize(capacity=100, record=True).move(1, 0, 0x10000, 0)
+        .sample_time(1, pending=True).step(100).step(1))
+    #    The same through a script: SetSampleTime(1) at cycle 0 of a 100-cycle recording step.
+    out["recording-step-across-script-sample-time"] = (
+        Seq(fmi3=True).script([(0, 0, "SetSampleTime", 1), (5, 1, "SetVelocity", 0x10000),
+                               (0, 1, "SetProfileMode", 1), (0, 1, "Update")], capacity=100, record=True)
+        .step(100).step(1))
+    # 3. A valid 64-word memory write pending, then memory.address set to 0x3FF0 (the write would
+    #    leave the memory): refused, yet the new address stayed (and the pending write was dropped).
+    out["refused-memory-address-keeps-pending-write"] = (
+        Seq().memory("write", 0, 64, 1, pending=True).memory("address", ("M-", 16)).step(1))
+    out["refused-memory-address-keeps-pending-write-fmi3"] = (
+        Seq(fmi3=True).memory("write", 0, 64, 1, pending=True).memory("address", ("M-", 16)).step(1))
+    # 4. cycleTime 0.065535, SetSampleTime(1) pending, doStep(t, 2^52 * 0.065535): accepted on the old
+    #    grid, the new one's cycle index overflowed a float-to-int conversion.
+    out["huge-step-after-pending-sample-time"] = (
+        Seq().reinitialize(cycle_time=0.065535).sample_time(1, pending=True).step(("huge", 52)).step(1))
+    # 5. (found by this fuzzer) A state the FMU saved itself is refused on restore. A one-time trace
+    #    fills buffer 0 (length 1) and stops; buffer 0 is then set to length 0 (allowed: no trace
+    #    runs); GetFMUState, SetFMUState: "chip.s.trace.count = 1 is more than trace buffer 0 holds".
+    out["restore-refuses-trace-count-after-buffer0-shrinks"] = (
+        Seq().trace(0x100, 1, [(0, 2)], 0, 1, (0, 0, 0, 0)).step(3)
+        .buffer(0, 0x100, 0, length_first=True).replay(1))
+    #    The same with the countdown: a trace of period 6 samples once (countdown 5), is stopped, and
+    #    the period set to 5: "chip.s.trace.countdown = 5 is not below the period 5".
+    out["restore-refuses-trace-countdown-after-period-shrinks"] = (
+        Seq().trace(0x100, 8, [(0, 2)], 1, 6, (0, 0, 0, 0)).step(1)
+        .command("SetTraceStop", 0, 0, 0, 0).command("SetTracePeriod", 5).replay(1))
+    # 6. (found by this fuzzer) SetFMUState does not restore record.data's row count (recordCount,
+    #    part of the serialized state): after save, restore, the state differs from the saved one
+    #    and, in FMI 3, record.data is empty where it held the last step's rows.
+    out["restore-resets-record-count"] = (
+        Seq(fmi3=True).reinitialize(capacity=1, record=True).step(1).replay("capacity+1"))
+    # 7. (found by this fuzzer) The FMU state holds uninitialized bytes: pmd_update copies its local
+    #    PmdSCurve plan, padding and all, into the axis (profile.c, ax->scurve = plan), so an S-curve
+    #    Update executed in a step leaves different state bytes in a run and in its replay.
+    out["scurve-update-copies-uninitialized-padding-into-the-state"] = (
+        Seq().move(2, 1000, 0x10000, 0x100, 0, jerk=0x1000, pending=True).replay(1))
+    # 8. (found by this fuzzer) A state the FMU saved is refused on restore: an S-curve Update to the
+    #    current position with jerk 0: "chip.s.axis[0].scurve: step 0, p6 0, v2 0 or a 0 is not on
+    #    the unit curve".
+    out["restore-refuses-zero-distance-scurve"] = (
+        Seq().move(2, 0, 0x4000, 1, 0, jerk=0).replay(1))
+    # 9. (found by this fuzzer) A state the FMU saved is refused on restore: initialization at a
+    #    negative start time (legal: -1 s) leaves time before the grid's anchor (0), which the state
+    #    check refuses: "time -1 is not within 2^53 cycles after anchorTime 0".
+    out["restore-refuses-negative-start-time"] = Seq().reinitialize(start=-1).replay(1)
+    return out
+
+
+def main():
+    for folder, inputs in (("corpus", seeds()), ("regressions", regressions())):
+        d = HERE / folder / "sequence"
+        d.mkdir(parents=True, exist_ok=True)
+        for name, seq in inputs.items():
+            (d / name).write_bytes(seq.bytes())
+            print(f"{d.relative_to(HERE.parent)}/{name}: {len(seq.data)} bytes")
+
+
+if __name__ == "__main__":
+    main()
