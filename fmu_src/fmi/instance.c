@@ -365,7 +365,7 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
 {
     int64_t end, recorded = 0, ran = 0;
-    double x;
+    double x, fine;
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: communication point %g, step size %g: the step "
                          "size must be finite and > 0", fn, t, h);
@@ -376,15 +376,18 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
                          "time %.17g", fn, t, inst->time);
         return PMD_ERROR;
     }
-    /* A pending batch or a script step may restart the grid inside the step, at
-     * any cycle time down to 1 us: the step's end must be a valid cycle index on
-     * the finest grid the step can run on, from the current anchor (a later
-     * anchor lies between it and the end), so no grid change can overflow it. */
-    x = (t + h - inst->anchorTime) /
-        (inst->activeCycleTime < FINEST_CYCLE_TIME ? inst->activeCycleTime : FINEST_CYCLE_TIME);
-    if (!(x > -1 && x < MAX_CYCLES_PER_STEP && (double)inst->anchorCycle + x < MAX_CYCLE_INDEX)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: step to %g s lies beyond 2^53 cycles of 1 us (the "
-                         "finest cycle time SetSampleTime can choose) from %g s: not run", fn, t + h, inst->anchorTime);
+    /* The step's end must be a cycle index on the current grid; and a pending
+     * batch or a script step may restart the grid inside the step (anchored
+     * between t and t + h) at any cycle time down to 1 us, so the step must also
+     * hold fewer than 2^53 cycles of 1 us, and its last index stay far from
+     * overflow: no grid change can then overflow it. */
+    x = (t + h - inst->anchorTime) / inst->activeCycleTime;
+    fine = h / (inst->activeCycleTime < FINEST_CYCLE_TIME ? inst->activeCycleTime : FINEST_CYCLE_TIME);
+    if (!(fabs(x) < MAX_CYCLES_PER_STEP && fine < MAX_CYCLES_PER_STEP &&
+          (double)inst->nextCycle + fine < MAX_CYCLE_INDEX)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: a step of %g s to %g s holds more than 2^53 cycles "
+                         "of 1 us (the finest cycle time SetSampleTime can choose), or ends beyond 2^53 cycles of the "
+                         "grid: not run", fn, h, t + h);
         return PMD_ERROR;
     }
     end = pmd_cycles_before(inst, t + h);

@@ -184,13 +184,13 @@ static int check_instance(const PmdInstance *s, const PmdInstance *live, uint64_
         return WHY("cycleTime %g or activeCycleTime %g is not a whole number of microseconds, 1..65535",
                    s->cycleTime, s->activeCycleTime);
     if (s->state & (PMD_STEP_MODE | PMD_TERMINATED)) {
-        /* the grid as doStep leaves it: the next cycle is the first at or after time, on a grid
-         * anchored before it (before step mode, ExitInitializationMode sets it up) */
-        if (!(s->anchorTime <= s->time && (s->time - s->anchorTime) / s->activeCycleTime < (double)(INT64_C(1) << 53)))
-            return WHY("time %.17g is not within 2^53 cycles after anchorTime %.17g", s->time, s->anchorTime);
-        if (s->nextCycle != pmd_cycles_before(s, s->time) || s->anchorCycle > s->nextCycle)
-            return WHY("nextCycle %lld or anchorCycle %lld is not where time %.17g lies on the grid",
-                       (long long)s->nextCycle, (long long)s->anchorCycle, s->time);
+        /* the grid as doStep leaves it: the next cycle is the first at or after time (before
+         * step mode, ExitInitializationMode sets it up) */
+        if (!(fabs(s->time - s->anchorTime) / s->activeCycleTime < (double)(INT64_C(1) << 53)))
+            return WHY("time %.17g is not within 2^53 cycles of anchorTime %.17g", s->time, s->anchorTime);
+        if (s->nextCycle != pmd_cycles_before(s, s->time))
+            return WHY("nextCycle %lld is not where time %.17g lies on the grid of anchorTime %.17g, anchorCycle "
+                       "%lld", (long long)s->nextCycle, s->time, s->anchorTime, (long long)s->anchorCycle);
         if (s->scriptDigest != live->scriptDigest || s->scriptNext > live->script.count)
             return WHY("scriptDigest: the state runs another script than this instance (restore it into an "
                        "instance initialized with the same script)");
