@@ -180,15 +180,20 @@ def test_a_step_that_a_pending_sample_time_change_would_make_too_long_is_refused
 
 # ---- 9. no silent rounding or wiping ----
 
+@pytest.mark.parametrize("fmi_version", [2, 3])
 @pytest.mark.parametrize("cycle_time", [1.0, 123.4567e-6, 0.5e-6, 0.0655355, -1e-4, math.nan])
-def test_a_cycle_time_the_sample_time_register_cannot_hold_is_refused(cycle_time):
-    with pytest.raises(FMICallException):
-        pmdfmu.Chip(cycleTime=cycle_time)
+def test_a_cycle_time_the_sample_time_register_cannot_hold_is_refused(fmi_version, cycle_time):
+    with pmdfmu.Chip(fmi_version=fmi_version) as chip:
+        chip.fmu.reset()                              # instantiated again: parameters may be set
+        message = refused_changes_nothing(chip, lambda: chip.set("cycleTime", cycle_time))
+        chip.reinitialize()
+    assert "whole number of microseconds" in message
 
 
+@pytest.mark.parametrize("fmi_version", [2, 3])
 @pytest.mark.parametrize("cycle_time,micros", [(1e-6, 1), (1e-4, 100), (0.065535, 65535), (123e-6, 123)])
-def test_a_whole_number_of_microseconds_is_the_sample_time(cycle_time, micros):
-    with pmdfmu.Chip(cycleTime=cycle_time) as chip:
+def test_a_whole_number_of_microseconds_is_the_sample_time(fmi_version, cycle_time, micros):
+    with pmdfmu.Chip(fmi_version=fmi_version, cycleTime=cycle_time) as chip:
         assert chip.axis(0).GetSampleTime() == micros
 
 
@@ -269,3 +274,11 @@ def test_a_restored_recording_state_records_into_a_buffer_of_the_current_capacit
         chip.set("record.enabled", True)
         chip.fmu.doStep(0.0, 5000 * 1e-4)
         assert len(chip.fmu.getBinary([vr(chip, "record.data")])[0]) == 5000 * 13 * 4
+
+
+def test_a_refused_fmi3_enter_initialization_changes_nothing():
+    with pmdfmu.Chip(fmi_version=3) as chip:
+        chip.fmu.reset()
+        chip.set("cycleTime", 1e-6)
+        refused_changes_nothing(chip, lambda: chip.fmu.enterInitializationMode(startTime=1e10))
+        chip.reinitialize()
