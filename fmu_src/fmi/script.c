@@ -606,7 +606,7 @@ void pmd_script_free(PmdScript *script)
     memset(script, 0, sizeof *script);
 }
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
+uint64_t pmd_fnv1a(uint64_t h, const void *data, size_t n)
 {
     const unsigned char *p = (const unsigned char *)data;
     size_t i;
@@ -623,7 +623,7 @@ uint64_t pmd_script_digest(const PmdScript *script)
     uint64_t h;
     if (script->count == 0)
         return 0;
-    h = fnv1a(14695981039346656037u, script->steps, script->count * sizeof *script->steps);
-    h = fnv1a(h, script->pool, script->poolCount * sizeof *script->pool);
+    h = pmd_fnv1a(PMD_FNV1A_BASIS, script->steps, script->count * sizeof *script->steps);
+    h = pmd_fnv1a(h, script->pool, script->poolCount * sizeof *script->pool);
     return (h & (uint64_t)INT64_MAX) | 1u;          /* never 0: that means no script */
 }

@@ -29,6 +29,11 @@ typedef struct {
  * or -1 with "file:line: reason" in error (and nothing allocated). */
 int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, char *error, size_t errorSize);
 void pmd_script_free(PmdScript *script);
+/* The 64-bit FNV-1a hash of n bytes, continuing from h (start: PMD_FNV1A_BASIS):
+ * the script digest and the FMU state checksum. */
+#define PMD_FNV1A_BASIS UINT64_C(14695981039346656037)
+uint64_t pmd_fnv1a(uint64_t h, const void *data, size_t n);
+
 /* A digest of what the compiled script does (FNV-1a over its steps and table words,
  * 63 bits), or 0 for no script: FMU states name the script they run with it. */
 uint64_t pmd_script_digest(const PmdScript *script);

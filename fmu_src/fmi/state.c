@@ -23,17 +23,6 @@
 #define MAGIC PMD_STATE_MAGIC
 typedef PmdStateHeader Header;
 
-static uint64_t fnv1a(const unsigned char *p, size_t n)
-{
-    uint64_t h = 14695981039346656037u;
-    size_t i;
-    for (i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 1099511628211u;
-    }
-    return h;
-}
-
 size_t pmd_state_size(const PmdInstance *inst)
 {
     return sizeof(Header) + sizeof(PmdInstance) + (size_t)inst->memorySize * sizeof(uint32_t);
@@ -81,7 +70,7 @@ void pmd_state_write(const PmdInstance *inst, unsigned char *out)
     strncpy(h.token, PMD_INSTANTIATION_TOKEN, sizeof h.token - 1);
     h.totalSize = pmd_state_size(inst);
     h.memoryWords = (uint64_t)inst->memorySize;
-    h.checksum = fnv1a(body, (size_t)h.totalSize - sizeof h);
+    h.checksum = pmd_fnv1a(PMD_FNV1A_BASIS, body, (size_t)h.totalSize - sizeof h);
     memcpy(out, &h, sizeof h);
 }
 
@@ -230,7 +219,7 @@ PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigne
             why = "its sizes are inconsistent";
         else if (h.totalSize != size)
             why = "it is truncated or has trailing bytes";
-        else if (fnv1a(in + sizeof h, size - sizeof h) != h.checksum)
+        else if (pmd_fnv1a(PMD_FNV1A_BASIS, in + sizeof h, size - sizeof h) != h.checksum)
             why = "it is corrupted (checksum mismatch)";
     }
     if (!why) {
