@@ -179,6 +179,14 @@ def test_an_unreadable_script_is_refused(tmp_path, version):
     assert "s.script: cannot open the script: Permission denied" in refusal(version, script)
 
 
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_script_that_cannot_be_opened_is_refused_even_for_root(tmp_path, version):
+    """An open that fails, as CI can try it (it runs as root, which reads any file): a path through a file."""
+    (tmp_path / "file").write_text("")
+    script = tmp_path / "file" / "s.script"
+    assert "s.script: cannot open the script: Not a directory" in refusal(version, script)
+
+
 LONG = "x" * 4096
 HEADER_17 = "position," * 16 + "bogus"
 # the script's line 2 (after a comment), the table t.csv next to it -> what the refusal says
