@@ -289,3 +289,39 @@ def test_a_refused_fmi3_enter_initialization_changes_nothing():
         chip.set("cycleTime", 1e-6)
         refused_changes_nothing(chip, lambda: chip.fmu.enterInitializationMode(startTime=1e10))
         chip.reinitialize()
+
+
+# ---- every class of bad FMI 3 call, checked as "the state bytes do not change" ----
+# (tests/test_robustness.py runs the FMI 2 calls this way on a busy pair of instances)
+
+FMI3_REFUSALS = {
+    "unknown value reference": lambda c: c.fmu.getInt32([7777]),
+    "wrong type": lambda c: c.fmu.getFloat64([vr(c, "axis1.commandedPosition")]),
+    "an output set": lambda c: c.fmu.setInt32([vr(c, "host.ack")], [3]),
+    "a fixed parameter after initialization": lambda c: c.fmu.setFloat64([vr(c, "cycleTime")], [1e-3]),
+    "a word count over 64": lambda c: c.fmu.setInt32([vr(c, "host.wordCount")], [65]),
+    "a memory address past the memory": lambda c: c.fmu.setUInt32([vr(c, "memory.address")], [0x80000000]),
+    "a NaN step size": lambda c: c.fmu.doStep(c.time, math.nan),
+    "a negative step size": lambda c: c.fmu.doStep(c.time, -1e-4),
+    "a huge step size": lambda c: c.fmu.doStep(c.time, 1e300),
+    "a step not at the last communication point": lambda c: c.fmu.doStep(c.time + 1.0, 1e-4),
+    "EnterInitializationMode twice": lambda c: c.fmu.enterInitializationMode(),
+    "an unknown log category": lambda c: c.fmu.setDebugLogging(True, ["nonsense"]),
+    "a truncated state blob": lambda c: c.fmu.deserializeFMUState(snapshot(c)[:-100]),
+    "a foreign state blob": lambda c: c.fmu.deserializeFMUState(b"FOREIGN!" + bytes(400)),
+    "a get with an unknown value reference while a batch is pending":
+        lambda c: c.fmu.getInt32([vr(c, "host.ack"), 7777]),
+}
+
+
+@pytest.mark.parametrize("name", FMI3_REFUSALS)
+def test_fmi3_refusals_change_nothing(name):
+    with pmdfmu.Chip(fmi_version=3) as chip:
+        chip.axis(1).SetVelocity(0x20000)
+        chip.axis(1).SetAcceleration(0x1000)
+        chip.axis(1).SetPosition(100_000)
+        chip.axis(1).Update()
+        chip.run(50)
+        if "pending" in name:                       # the batch is part of the state before the call
+            pend_batch(chip, command("SetPosition", 5))
+        refused_changes_nothing(chip, lambda: FMI3_REFUSALS[name](chip))
