@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Hand-built inputs of the sequence fuzzer (fuzz/fuzz_sequence.c, issue 11):
-seeds that reach deep states (fuzz/corpus/sequence/) and one regression input
-per bug reached by legal calls (fuzz/regressions/sequence/). The test suite
+seeds that reach deep states (fuzz/corpus/sequence/), one regression input
+per bug reached by legal calls (fuzz/regressions/sequence/), and the bad
+script and table files of issue 11 for fuzz_script.c (fuzz/regressions/script/). The test suite
 replays both folders (tests/test_determinism.py).
 
     python fuzz/sequence_inputs.py        (re)writes the files named below
@@ -496,16 +497,63 @@ def regressions():
     #    negative start time (legal: -1 s) leaves time before the grid's anchor (0), which the state
     #    check refuses: "time -1 is not within 2^53 cycles after anchorTime 0".
     out["restore-refuses-negative-start-time"] = Seq().reinitialize(start=-1).replay(1)
+    # The other findings of issue 11, so that the fuzzer starts from each of them:
+    # 4b. A memory write leaving the memory asked for by the strobe alone: refused, the old strobe stays.
+    out["refused-memory-strobe-keeps-its-value"] = (
+        Seq().memory("address", ("M-", 16)).memory("count", 0, 64).memory("strobe").step(1))
+    # 4c. In initialization mode, a write pending at 0x1000 and memorySize 0x800: refused, nothing reset.
+    out["refused-memory-size-in-initialization-keeps-everything"] = (
+        Seq().enter_initialization().memory("write", 0x1000, 8, 1, pending=True)
+        .parameter("memorySize", 0x800).exit_initialization().step(1))
+    # 9. memorySize set to its own value in initialization (used to wipe memory and registers), and a
+    #    cycle time the sample time register cannot hold (refused, not rounded).
+    out["memory-size-set-to-itself-keeps-everything"] = (
+        Seq().enter_initialization().command("SetPosition", 1234).buffer(2, 0x10, 8, function=0)
+        .parameter("memorySize", 0x4000).parameter("badCycleTime", 0).exit_initialization().replay(1))
+    # 7. Legal extremes: acceleration 0x7FFFFFFF for 11 500 cycles (the 64-bit state wrapped at 10 923),
+    #    and a gear of ratio 0x40000000 behind a master jumping 65536 counts (signed overflow).
+    out["external-segment-at-full-acceleration"] = (
+        Seq().external_profile(0x200, [{0: 0, 2: 0x7FFFFFFF, 4: 11500}, {4: 0}], functions=(0, 2, 4))
+        .step(11500).step(2))
+    out["gear-behind-a-jumping-master"] = (
+        Seq().move(3, 0, 0, 0, gear=(1, 0x40000000, 1))
+        .external_profile(0x200, [{0: 0, 4: 2}, {0: 65536, 4: 2}, {4: 0}], axis=1).step(8))
+    # 10. A get refused for an unknown value reference while a batch is pending executes nothing.
+    out["refused-get-keeps-the-pending-batch"] = (
+        Seq().command("SetPosition", 99, pending=True).refused(0).step(1))
     return out
 
 
+# ---- script regressions: the file findings of issue 11 (fuzz_script.c: the first half of an
+# input is the script, the second half the table t.csv it may load) --------------------------
+
+def script_input(script: str, table: str = "") -> bytes:
+    body, rest = script.encode(), table.encode()
+    pad = max(len(body), len(rest))
+    return body.ljust(pad, b"\n") + rest.ljust(pad, b"\n")
+
+
+def script_regressions():
+    load = '@0\nLoadSegmentTable(Axis1, "t.csv", 0x200, 2);\n'
+    return {
+        "table-comment-longer-than-a-line": script_input(load, "# " + "x" * 5000 + "\nposition,time\n1,2\n"),
+        "table-with-17-columns": script_input(load, "position," * 16 + "time\n" + "1," * 16 + "1\n"),
+        "table-column-named-twice": script_input(load, "position,time,position\n1,2,3\n"),
+        "hex-with-a-blank": script_input("@0\nSetPosition(Axis1, 0x 5);\n"),
+        "hex-with-a-sign": script_input("@0\nSetPosition(Axis1, 0x+7);\n"),
+        "nul-in-a-script-line": script_input("@0\nSetPosition(Axis1,\0 5);\n"),
+    }
+
+
 def main():
-    for folder, inputs in (("corpus", seeds()), ("regressions", regressions())):
-        d = HERE / folder / "sequence"
+    for folder, target, inputs in (("corpus", "sequence", seeds()), ("regressions", "sequence", regressions()),
+                                   ("regressions", "script", script_regressions())):
+        d = HERE / folder / target
         d.mkdir(parents=True, exist_ok=True)
-        for name, seq in inputs.items():
-            (d / name).write_bytes(seq.bytes())
-            print(f"{d.relative_to(HERE.parent)}/{name}: {len(seq.data)} bytes")
+        for name, data in inputs.items():
+            data = data if isinstance(data, bytes) else data.bytes()
+            (d / name).write_bytes(data)
+            print(f"{d.relative_to(HERE.parent)}/{name}: {len(data)} bytes")
 
 
 if __name__ == "__main__":
