@@ -239,14 +239,15 @@ static void run_script(PmdInstance *inst)
 /* SetSampleTime's finest grid: 1 microsecond (the register counts microseconds) */
 #define FINEST_CYCLE_TIME 1e-6
 
-/* A time on the cycle grid: finite and within 2^53 cycles of the anchor (the
- * cycle index must fit an integer exactly). */
-static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t)
+/* A time on the grid of cycleTime anchored at anchorTime: finite and within
+ * 2^53 cycles of the anchor (the cycle index must fit an integer exactly).
+ * The grid is a parameter: initialization checks the grid it will set up. */
+static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t, double anchorTime, double cycleTime)
 {
-    double x = (t - inst->anchorTime) / inst->activeCycleTime;
+    double x = (t - anchorTime) / cycleTime;
     if (!(fabs(x) < MAX_CYCLES_PER_STEP)) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: time %g is not finite or lies beyond 2^53 cycles of "
-                         "%g s", fn, t, inst->activeCycleTime);
+                         "%g s", fn, t, cycleTime);
         return PMD_ERROR;
     }
     return PMD_OK;
@@ -256,11 +257,7 @@ static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t)
  * EnterInitializationMode's, at the cycle time set so far (it checks again). */
 PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime)
 {
-    double active = inst->activeCycleTime;
-    PmdStatus status;
-    inst->activeCycleTime = inst->cycleTime;
-    status = on_the_grid(inst, fn, startTime);
-    inst->activeCycleTime = active;
+    PmdStatus status = on_the_grid(inst, fn, startTime, inst->anchorTime, inst->cycleTime);
     if (status == PMD_OK)
         inst->time = startTime;
     return status;
@@ -268,14 +265,10 @@ PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTi
 
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime)
 {
-    double active = inst->activeCycleTime;
-    PmdStatus status;
-    inst->activeCycleTime = inst->cycleTime;        /* the grid the start time must lie on */
-    status = on_the_grid(inst, fn, startTime);
-    if (status != PMD_OK) {
-        inst->activeCycleTime = active;
+    PmdStatus status = on_the_grid(inst, fn, startTime, inst->anchorTime, inst->cycleTime);
+    if (status != PMD_OK)
         return status;
-    }
+    inst->activeCycleTime = inst->cycleTime;
     inst->time = startTime;
     inst->state = PMD_INITIALIZATION_MODE;
     return PMD_OK;
@@ -305,23 +298,15 @@ PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
     return PMD_OK;
 }
 
-/* Everything that can fail is done into locals first: a refused
- * ExitInitializationMode leaves the instance as it was. */
+/* What can fail comes first and changes no state field: the grid is checked,
+ * the script compiled into a local, record.data sized for record.capacity (a
+ * buffer of this process, which may have changed in initialization); a refused
+ * ExitInitializationMode leaves the state as it was. */
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 {
     PmdScript script;
-    int32_t *record = NULL;
-    double active = inst->activeCycleTime, anchorTime = inst->anchorTime;
-    int64_t anchorCycle = inst->anchorCycle;
-    PmdStatus status;
+    PmdStatus status = on_the_grid(inst, fn, inst->time, 0, inst->cycleTime);
 
-    inst->activeCycleTime = inst->cycleTime;        /* cycleTime may have changed in initialization */
-    inst->anchorTime = 0;
-    inst->anchorCycle = 0;
-    status = on_the_grid(inst, fn, inst->time);
-    inst->activeCycleTime = active;
-    inst->anchorTime = anchorTime;
-    inst->anchorCycle = anchorCycle;
     if (status != PMD_OK)
         return status;
     memset(&script, 0, sizeof script);
@@ -332,15 +317,9 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
             return PMD_ERROR;
         }
     }
-    if (inst->recordEnabled) {                      /* record.capacity may have changed */
-        record = inst->recordCapacity ? (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS *
-                                                          sizeof(int32_t)) : NULL;
-        if (!record) {
-            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: %s for record.capacity %u", fn,
-                             inst->recordCapacity ? "no host memory" : "no cycles", (unsigned)inst->recordCapacity);
-            pmd_script_free(&script);
-            return PMD_ERROR;
-        }
+    if (inst->recordEnabled && pmd_record_allocate(inst, fn) != PMD_OK) {
+        pmd_script_free(&script);
+        return PMD_ERROR;
     }
     if (inst->scriptPath && *inst->scriptPath) {
         pmd_script_free(&inst->script);
@@ -348,9 +327,11 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         inst->scriptNext = 0;
     }
     inst->scriptDigest = pmd_script_digest(&inst->script);
-    free(inst->record);
-    inst->record = record;
-    inst->recordRows = record ? inst->recordCapacity : 0;
+    if (!inst->recordEnabled) {                     /* an instance that does not record carries no buffer */
+        free(inst->record);
+        inst->record = NULL;
+        inst->recordRows = 0;
+    }
     inst->recordCount = 0;
     inst->activeCycleTime = inst->cycleTime;
     inst->anchorTime = 0;
