@@ -24,7 +24,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         int count = data[i++] % (PMD_BATCH_WORDS + 1), n = 0, replies, cycles;
         for (; n < count && i + 1 < size; n++, i += 2)
             words[n] = (uint16_t)(data[i] << 8 | data[i + 1]);
-        pmd_host_batch(&chip, words, n, reply, &replies);
+        pmd_host_batch(&chip, words, n, reply, &replies, NULL);
         if (replies < 0 || replies > PMD_BATCH_WORDS)
             abort();
         cycles = i < size ? data[i++] % 8 : 0;

@@ -433,7 +433,7 @@ static const char *difference(const Fuzz *f, const Bytes *a, const Bytes *b)
 #define FIELD(x) {#x, offsetof(PmdInstance, x)}
     static const struct { const char *name; size_t offset; } fields[] = {
         FIELD(chip.s.axis), FIELD(chip.s.buffer), FIELD(chip.s.trace), FIELD(chip.s.updatedAxes),
-        FIELD(chip.s.bufferEpoch), FIELD(chip.s.sampleTime), FIELD(chip.s.sampleTimeChanged), FIELD(chip.s.time),
+        FIELD(chip.s.bufferEpoch), FIELD(chip.s.sampleTime), FIELD(chip.s.time),
         FIELD(chip.s.nextTime), FIELD(chip.s.hostIOError), FIELD(chip.s.loopback), FIELD(chip.memory),
         FIELD(state), FIELD(cycleTime), FIELD(memorySize), FIELD(time), FIELD(nextCycle), FIELD(activeCycleTime),
         FIELD(anchorTime), FIELD(anchorCycle), FIELD(hostWord), FIELD(hostWordCount), FIELD(hostStrobe),

@@ -31,8 +31,14 @@ int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max);
 
 /* Executes a batch of host words (whole commands as C-Motion sends them).
  * Get replies are appended to reply (at most PMD_BATCH_WORDS words).
- * Returns the host I/O error code of the first failing command, or 0. */
-int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *reply, int *replyCount);
+ * Returns the host I/O error code of the first failing command, or 0.
+ * *gridChanged (unless gridChanged is NULL) is 1 if a command of the batch
+ * changed the cycle time (SetSampleTime): the caller restarts its time grid
+ * there; else 0. A command handler says so by returning PMD_GRID_CHANGED, a
+ * bit above the 8-bit error codes that pmd_host_batch strips. */
+#define PMD_GRID_CHANGED 0x100
+int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *reply, int *replyCount,
+                   int *gridChanged);
 
 /* Packs one value into a command's data words as the host port carries it. */
 void pmd_encode_field(const PmdField *field, int64_t value, uint16_t *words);

@@ -313,7 +313,6 @@ typedef struct {
     uint8_t updatedAxes;     /* axes updated since the last cycle's trace check (trace condition 1) */
     uint32_t bufferEpoch;    /* counts buffer set-ups and assignments: a running profile rechecks its buffers */
     uint16_t sampleTime;     /* SetSampleTime, microseconds */
-    uint8_t sampleTimeChanged;
     uint32_t time;           /* GetTime: chip time of the last executed cycle */
     uint32_t nextTime;       /* chip time of the next cycle */
     uint16_t hostIOError;    /* first error since last read; 1 after reset */

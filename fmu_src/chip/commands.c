@@ -622,7 +622,8 @@ int cmd_GetInterruptAxis(PmdChip *chip, int axis, const int64_t *arg, int64_t *r
     return 0;
 }
 
-/* The cycle time, in microseconds; the FMU restarts its cycle grid at once (CONTRACT 2.2). */
+/* The cycle time, in microseconds; the FMU restarts its cycle grid at once
+ * (CONTRACT 2.2): PMD_GRID_CHANGED tells pmd_host_batch's caller. */
 int cmd_SetSampleTime(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     (void)axis; (void)reply;
@@ -631,8 +632,7 @@ int cmd_SetSampleTime(PmdChip *chip, int axis, const int64_t *arg, int64_t *repl
         return PMD_ERR_InvalidParameter;
     }
     chip->s.sampleTime = (uint16_t)arg[0];
-    chip->s.sampleTimeChanged = 1;
-    return 0;
+    return PMD_GRID_CHANGED;
 }
 
 int cmd_GetSampleTime(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)

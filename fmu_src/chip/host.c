@@ -67,9 +67,10 @@ static void refuse(PmdChip *chip, int axis, int code)
     pmd_set_event(chip, axis < PMD_AXES ? axis : 0, PMDEventInstructionErrorMask);
 }
 
-int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *reply, int *replyCount)
+int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *reply, int *replyCount,
+                   int *gridChanged)
 {
-    int first = 0, i = 0;
+    int first = 0, i = 0, changed = 0;
     *replyCount = 0;
     while (i < count) {
         uint16_t instruction = words[i++];
@@ -115,6 +116,8 @@ int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *re
                 pmd_log(chip, PMD_LOG_COMMANDS, "axis %d: %s(%lld, %lld, %lld, %lld)", axis + 1, c->name,
                         (long long)arg[0], (long long)arg[1], (long long)arg[2], (long long)arg[3]);
             err = c->handler(chip, c->chipWide ? 0 : axis, arg, value);
+            changed |= (err & PMD_GRID_CHANGED) != 0;
+            err &= ~PMD_GRID_CHANGED;
         }
         if (err) {
             refuse(chip, axis, err);
@@ -129,5 +132,7 @@ int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *re
             pmd_encode_field(&c->reply[k], value[k], reply + *replyCount);
         *replyCount += c->replyWords;
     }
+    if (gridChanged)
+        *gridChanged = changed;
     return first;
 }

@@ -192,17 +192,13 @@ int64_t pmd_cycles_before(const PmdInstance *inst, double t)
     return inst->anchorCycle + (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
 }
 
-/* SetSampleTime: the grid restarts with the new cycle time at `at`, the time
- * of the next cycle. Returns whether it did. */
-static int follow_sample_time(PmdInstance *inst, double at)
+/* SetSampleTime (a batch reported the grid changed): the grid restarts with
+ * the new cycle time at `at`, the time of the next cycle. */
+static void restart_grid(PmdInstance *inst, double at)
 {
-    if (!inst->chip.s.sampleTimeChanged)
-        return 0;
-    inst->chip.s.sampleTimeChanged = 0;
     inst->anchorTime = at;
     inst->anchorCycle = inst->nextCycle;
     inst->activeCycleTime = inst->chip.s.sampleTime * 1e-6;
-    return 1;
 }
 
 /* How many cycles may run without the FMU stepping in: up to the end of the step and the next script step. */
@@ -214,14 +210,17 @@ static int64_t cycles_to_skip(const PmdInstance *inst, int64_t end)
     return n;
 }
 
-/* Runs the script steps due before the next cycle. */
-static void run_script(PmdInstance *inst)
+/* Runs the script steps due before the next cycle; returns whether one changed the grid. */
+static int run_script(PmdInstance *inst)
 {
+    int changed = 0;
     while (inst->scriptNext < inst->script.count && inst->script.steps[inst->scriptNext].cycle <= inst->nextCycle) {
         const PmdScriptStep *step = &inst->script.steps[inst->scriptNext++];
         if (step->nWords) {
             uint16_t reply[PMD_BATCH_WORDS];
-            int count, err = pmd_host_batch(&inst->chip, step->words, step->nWords, reply, &count);
+            int count, stepChanged, err = pmd_host_batch(&inst->chip, step->words, step->nWords, reply, &count,
+                                                         &stepChanged);
+            changed |= stepChanged;
             if (err)
                 pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s:%d: the chip refused the command: host "
                                  "I/O error 0x%02X", inst->scriptPath, step->line, err);
@@ -232,6 +231,7 @@ static void run_script(PmdInstance *inst)
                              (unsigned)step->address, inst->memorySize);
         }
     }
+    return changed;
 }
 
 #define MAX_CYCLES_PER_STEP ((double)(1LL << 53))
@@ -382,9 +382,9 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
     inst->recordCount = 0;
     /* script steps due at a cycle run just before it, inside the step that runs it */
     while (inst->nextCycle < end) {
-        run_script(inst);
-        if (follow_sample_time(inst, inst->anchorTime + (double)(inst->nextCycle - inst->anchorCycle) *
-                                                          inst->activeCycleTime)) {
+        if (run_script(inst)) {
+            restart_grid(inst, inst->anchorTime + (double)(inst->nextCycle - inst->anchorCycle) *
+                                                      inst->activeCycleTime);
             end = pmd_cycles_before(inst, t + h);
             continue;
         }
@@ -467,15 +467,16 @@ void pmd_commit_ports(PmdInstance *inst)
     int i;
     if (inst->hostStrobe != inst->hostAck) {
         uint16_t words[PMD_BATCH_WORDS], reply[PMD_BATCH_WORDS];
-        int count = 0;
+        int count = 0, gridChanged;
         for (i = 0; i < inst->hostWordCount; i++)
             words[i] = (uint16_t)(inst->hostWord[i] & 0xFFFF);
-        inst->hostError = pmd_host_batch(&inst->chip, words, inst->hostWordCount, reply, &count);
+        inst->hostError = pmd_host_batch(&inst->chip, words, inst->hostWordCount, reply, &count, &gridChanged);
         for (i = 0; i < PMD_BATCH_WORDS; i++)
             inst->hostReply[i] = i < count ? reply[i] : 0;
         inst->hostReplyCount = count;
         inst->hostAck = inst->hostStrobe;
-        follow_sample_time(inst, inst->time);
+        if (gridChanged)
+            restart_grid(inst, inst->time);
     }
     if (inst->memoryStrobe != inst->memoryStrobeSeen) {
         uint32_t data[PMD_BATCH_WORDS];

@@ -189,8 +189,6 @@ static int check_instance(const PmdInstance *s, const PmdInstance *live, uint64_
     if (s->memoryStrobe != s->memoryStrobeSeen && s->memoryCount > s->memorySize - s->memoryAddress)
         return WHY("memoryAddress %d + memoryCount %d of the pending write leave the %d-word memory",
                    s->memoryAddress, s->memoryCount, s->memorySize);
-    if (s->chip.s.sampleTimeChanged && s->chip.s.sampleTime == 0)
-        return WHY("chip.s.sampleTimeChanged = 1 with chip.s.sampleTime = 0 (SetSampleTime takes 1..65535)");
     if (check_buffers(&s->chip.s, (uint32_t)memoryWords, why, whySize) || check_trace(&s->chip.s, why, whySize))
         return -1;
     return check_axes(&s->chip, why, whySize);

@@ -172,7 +172,6 @@ static const PmdStateField chip_state_fields[] = {
     UNSIGNED(PmdChipState, updatedAxes, 0, (1 << PMD_AXES) - 1),
     UNSIGNED(PmdChipState, bufferEpoch, ANY_U32),
     UNSIGNED(PmdChipState, sampleTime, ANY_U16),                          /* 0 until initialized */
-    UNSIGNED(PmdChipState, sampleTimeChanged, BOOL),
     UNSIGNED(PmdChipState, time, ANY_U32),
     UNSIGNED(PmdChipState, nextTime, ANY_U32),
     UNSIGNED(PmdChipState, hostIOError, ANY_U8),
