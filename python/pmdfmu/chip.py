@@ -2,9 +2,11 @@
 on axis handles, and cycle-exact runs recorded into numpy arrays."""
 from __future__ import annotations
 
+import inspect
 import os
 import shutil
 import struct
+import textwrap
 from ctypes import POINTER, Array, c_int32, c_size_t, c_uint32, cast
 from dataclasses import dataclass
 from pathlib import Path
@@ -158,29 +160,112 @@ def axis_number(number) -> int:
 
 
 class Axis:
-    """An axis handle: C-Motion's PMDAxisHandle. Its methods are the C-Motion
-    calls without the PMD prefix and the handle: ax.SetBufferStart(2, 0x200)."""
+    """An axis handle: C-Motion's PMDAxisHandle, made by chip.axis(n).
+
+    Its methods are the C-Motion calls of modelDescription/commands.csv without
+    the PMD prefix and the handle, with C-Motion's arguments in C-Motion's order:
+    PMDSetBufferStart(&hAxis1, 2, 0x200) is ax.SetBufferStart(2, 0x200).
+    help(ax.SetVelocity) gives a call's argument formats and what it returns."""
 
     def __init__(self, chip: "Chip", number: int):
         self.chip = chip
         self.number = axis_number(number)
 
     def __getattr__(self, name: str):
-        command = COMMANDS.get(name)
-        if command is None:
-            raise AttributeError(f"{name} is not a command of this chip (see pmdfmu info)")
-
-        def call(*args):
-            return self.chip.command(self.number, command, args)
-        call.__name__ = name
-        call.__doc__ = command.summary
-        return call
-
-    def __dir__(self):
-        return sorted(COMMANDS)
+        # only for names that are not attributes: every command is a method of the class
+        raise AttributeError(f"{name} is not a command of this chip (see pmdfmu info)")
 
     def __repr__(self):
         return f"<PMDAxis{self.number + 1}>"
+
+
+def _bits_doc(f: Field, word: str) -> str:
+    return f"packed field: bits {f.shift}..{f.shift + f.width - 1} of {word} {f.word + 1}, 0 .. {(1 << f.width) - 1}"
+
+
+def _field_doc(f: Field) -> str:
+    """What an argument is, as C-Motion's manual gives it: the word it occupies,
+    its format and the integers it takes (encode's checks)."""
+    if f.kind == "bits":
+        return _bits_doc(f, "word")
+    words = "two words, high word first" if f.width == 32 else "one word"
+    if f.fixed:
+        scale = 16 if f.fixed == "16.16" else 32
+        return (f"{f.fixed} fixed point ({'signed' if f.signed else 'unsigned'} 32-bit word = value * 2^{scale}, "
+                f"{words}): pass the word, e.g. pmdfmu.fixed_{f.fixed.replace('.', '_')}(x); "
+                f"-2^31 .. 2^32-1")
+    reading = "signed" if f.signed else "unsigned"
+    lo, hi = -(1 << (f.width - 1)), (1 << f.width) - 1
+    return f"{f.width}-bit {reading} integer ({words}); {lo} .. {hi}, either reading of the same bits"
+
+
+def _reply_doc(command: Command, f: Field) -> str:
+    """What a reply value is (decode's reading of it)."""
+    if f.kind == "bits":
+        return _bits_doc(f, "reply word")
+    lo, hi = (-(1 << (f.width - 1)), (1 << (f.width - 1)) - 1) if f.signed else (0, (1 << f.width) - 1)
+    text = f"{f.width}-bit {'signed' if f.signed else 'unsigned'} integer, {lo} .. {hi}"
+    # a Get's value is the word its Set takes: the same format (GetVelocity reads SetVelocity's 16.16 word)
+    setter = COMMANDS.get("Set" + command.name[3:]) if command.name.startswith("Get") else None
+    fixed = next((a.fixed for a in setter.args if a.name == f.name and a.fixed), "") if setter else ""
+    if fixed:
+        text += f": the {fixed} word {setter.name} takes (pmdfmu.from_fixed(word, \"{fixed}\"))"
+    return text
+
+
+def _item(name: str, text: str) -> str:
+    return textwrap.fill(f"{name}: {text}", 96, initial_indent="    ", subsequent_indent="        ")
+
+
+def _method_doc(command: Command) -> str:
+    lines = [command.summary + ".", "",
+             f"C-Motion PMD{command.name}, opcode 0x{command.opcode:02X}; "
+             + ("chip-wide: sent with axis field 0, whatever the handle's axis." if command.scope == "chip"
+                else "acts on this handle's axis.")]
+    if command.args:
+        lines += ["", "Arguments (integers; nothing is rounded or masked):"]
+        lines += [_item(f.name, _field_doc(f)) for f in command.args]
+    lines += [""]
+    if not command.reply:
+        lines += ["Returns None."]
+    elif len(command.reply) == 1:
+        lines += [textwrap.fill(f"Returns {command.reply[0].name}: {_reply_doc(command, command.reply[0])}.", 96)]
+    else:
+        lines += [f"Returns the tuple ({', '.join(f.name for f in command.reply)}):"]
+        lines += [_item(f.name, _reply_doc(command, f)) for f in command.reply]
+    lines += ["", "Raises PMDError (.code: the host I/O error) if the chip refuses the call; TypeError for a",
+              "wrong number of arguments; ValueError for a value that is not an integer or does not fit."]
+    return "\n".join(lines)
+
+
+def _c_motion_method(command: Command):
+    """The Axis method of one command: a real function with the command's
+    signature, name and docstring (inspect, help(), dir() and tab completion
+    see it as written by hand)."""
+    parameters = [inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD) for f in command.args]
+    public = inspect.Signature(parameters)
+    signature = inspect.Signature([inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)] + parameters)
+
+    def method(self, *args, **kwargs):
+        try:
+            bound = signature.bind(self, *args, **kwargs)
+        except TypeError as e:
+            raise TypeError(f"{command.name}{public}: {e}") from None
+        return self.chip.command(self.number, command, bound.args[1:])
+
+    method.__name__ = command.name
+    method.__qualname__ = f"Axis.{command.name}"
+    method.__module__ = __name__
+    method.__doc__ = _method_doc(command)
+    method.__signature__ = signature
+    return method
+
+
+for _command in COMMANDS.values():
+    if hasattr(Axis, _command.name):
+        raise ValueError(f"command {_command.name} clashes with an attribute of Axis")
+    setattr(Axis, _command.name, _c_motion_method(_command))
+del _command
 
 
 class Chip:
@@ -384,7 +469,8 @@ class Chip:
             ack, count = self.fmu.getInt32([self._vr["host.ack"], self._vr["host.replyCount"]])
             error = self.get("host.error")
             reply = self.get("host.reply")
-        assert ack == strobe, "the FMU did not execute the batch"
+        if ack != strobe:
+            raise FMUError(f"host.ack is {ack}, not the strobe {strobe}: the FMU did not execute the batch")
         if SET_SAMPLE_TIME in opcodes(words):
             self._follow_sample_time()
         return error, reply[:count]

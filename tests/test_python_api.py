@@ -1,0 +1,117 @@
+"""The Python API explains itself: the C-Motion methods made from the command table
+have real signatures, names and docstrings, and wrong calls say which call was wrong."""
+import ast
+import inspect
+import pydoc
+from pathlib import Path
+
+import pytest
+
+import pmdfmu
+from pmdfmu.chip import COMMANDS, Axis, FMUError
+
+PACKAGE = Path(pmdfmu.__file__).parent
+
+
+def test_every_command_is_a_method_of_the_class_with_its_arguments_as_parameters(chip):
+    ax = chip.axis(0)
+    for name, command in COMMANDS.items():
+        method = vars(Axis)[name]              # on the class itself, not made on attribute lookup
+        assert method.__name__ == name
+        assert method.__qualname__ == f"Axis.{name}"
+        assert method.__module__ == "pmdfmu.chip"
+        assert list(inspect.signature(getattr(ax, name)).parameters) == [f.name for f in command.args]
+        assert list(inspect.signature(method).parameters) == ["self"] + [f.name for f in command.args]
+        assert name in dir(ax)
+
+
+def test_signatures_read_as_c_motion_writes_them(chip):
+    ax = chip.axis(0)
+    assert str(inspect.signature(ax.SetPosition)) == "(position)"
+    assert str(inspect.signature(ax.SetBufferStart)) == "(bufferID, address)"
+    assert str(inspect.signature(ax.SetTraceStart)) == "(triggerAxis, condition, bit, state)"
+    assert str(inspect.signature(ax.GetActivityStatus)) == "()"
+
+
+def test_docstrings_give_the_summary_the_formats_and_what_a_call_returns(chip):
+    ax = chip.axis(0)
+    for name, command in COMMANDS.items():
+        doc = inspect.getdoc(getattr(ax, name))
+        assert doc.startswith(command.summary)
+        assert f"0x{command.opcode:02X}" in doc
+        for f in command.args + command.reply:
+            assert f"{f.name}: " in doc
+    velocity = pydoc.render_doc(ax.SetVelocity, renderer=pydoc.plaintext)
+    assert "SetVelocity(velocity)" in velocity
+    assert "16.16" in velocity and "fixed_16_16" in velocity and "Returns None." in velocity
+    assert "0.32" in inspect.getdoc(ax.SetJerk) and "fixed_0_32" in inspect.getdoc(ax.SetJerk)
+    assert "the 16.16 word SetVelocity takes" in " ".join(inspect.getdoc(ax.GetVelocity).split())
+    trace = inspect.getdoc(ax.SetTraceStart)
+    assert "condition: packed field: bits 4..7 of word 1, 0 .. 15" in trace
+    version = inspect.getdoc(ax.GetVersion)
+    assert "Returns the tuple (generation, motorType, numberAxes, special, custom, major, minor)" in version
+    assert "16-bit unsigned integer" in inspect.getdoc(ax.SetProfileMode)
+    assert "chip-wide" in inspect.getdoc(ax.SetBufferStart)
+
+
+def test_help_on_the_class_lists_the_c_motion_calls():
+    text = pydoc.render_doc(Axis, renderer=pydoc.plaintext)
+    for name in ("SetPosition(self, position)", "GetVersion(self)", "SetBufferStart(self, bufferID, address)"):
+        assert name in text
+
+
+def test_a_wrong_number_of_arguments_raises_type_error_naming_the_call_and_sends_nothing(any_chip):
+    ax = any_chip.axis(1)
+    strobe = any_chip.get("host.strobe")
+    with pytest.raises(TypeError, match=r"^SetPosition\(position\): too many positional arguments"):
+        ax.SetPosition(1, 2)
+    with pytest.raises(TypeError, match=r"^SetBufferStart\(bufferID, address\): missing a required argument: "
+                                        r"'address'"):
+        ax.SetBufferStart(2)
+    with pytest.raises(TypeError, match=r"^GetPosition\(\): too many positional arguments"):
+        ax.GetPosition(0)
+    with pytest.raises(TypeError, match=r"^SetVelocity\(velocity\): got an unexpected keyword argument 'speed'"):
+        ax.SetVelocity(0, speed=1)
+    assert any_chip.get("host.strobe") == strobe
+
+
+def test_arguments_may_be_named_as_in_the_signature(any_chip):
+    ax = any_chip.axis(2)
+    ax.SetBufferStart(address=0x300, bufferID=5)
+    assert ax.GetBufferStart(bufferID=5) == 0x300
+    ax.SetPosition(position=-7)
+    assert ax.GetPosition() == -7
+
+
+def test_chip_command_still_takes_a_name_and_an_argument_list(chip):
+    chip.command(3, "SetPosition", [1234])
+    assert chip.command(3, "GetPosition") == 1234 == chip.axis(3).GetPosition()
+    with pytest.raises(TypeError, match=r"SetPosition\(position\) takes 1 arguments, 0 given"):
+        chip.command(3, "SetPosition", [])
+
+
+def test_an_unknown_method_says_it_is_not_a_command(chip):
+    with pytest.raises(AttributeError, match="SetWarpSpeed is not a command of this chip"):
+        chip.axis(0).SetWarpSpeed
+
+
+def test_a_batch_the_fmu_did_not_acknowledge_raises_fmu_error(chip, monkeypatch):
+    real = chip.fmu.getInteger
+    ack = chip._vr["host.ack"]
+
+    def stale_ack(vrs, *args, **kwargs):
+        values = list(real(vrs, *args, **kwargs))
+        if ack in vrs:
+            values[list(vrs).index(ack)] -= 1
+        return values
+
+    monkeypatch.setattr(chip.fmu, "getInteger", stale_ack)
+    with pytest.raises(FMUError, match="did not execute the batch"):
+        chip.axis(0).GetPosition()
+
+
+def test_no_assert_statement_does_a_runtime_check_in_the_package():
+    for path in sorted(PACKAGE.glob("*.py")):
+        tree = ast.parse(path.read_text(), str(path))
+        asserts = [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Assert)]
+        assert not asserts, f"{path.name}: assert at lines {asserts} (python -O drops it): raise instead"
