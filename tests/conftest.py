@@ -1,3 +1,20 @@
+"""Where shared test code lives. tests/ holds three kinds of file:
+
+- test_*.py: the tests. A test file never imports another test file (nor this
+  one): whatever two test files share lives in one of the two places below, so
+  that a test file can be read, run or deleted on its own.
+- conftest.py, this file: the fixtures, which pytest hands to any test that names
+  them as an argument (chip, any_chip). Nothing imports it.
+- helper modules: plain Python with no tests in it, imported by name (pytest puts
+  tests/ on sys.path): reference.py, the exact reference model of seed 000 written
+  independently of the C core; states.py, work below the Chip API (FMU states as
+  bytes, raw host words, pending batches, an instance left in initialization);
+  scenarios.py, chip set-ups several test files run (a busy chip, seed 000's
+  worked example, random external profiles).
+
+Fixtures for what a test receives ready-made, helper modules for what it calls or
+compares with: test_suite_layout.py checks the rule.
+"""
 import pytest
 
 import pmdfmu

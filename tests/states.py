@@ -1,5 +1,7 @@
-"""Helpers for tests that compare FMU states (a refused call changes nothing):
-the state as bytes, host batches left pending, an instance in initialization mode."""
+"""Helpers for tests that work below the Chip API (a helper module, not a test
+file: see conftest.py): the FMU state as bytes (a refused call changes nothing),
+raw host words, host batches left pending, value references for raw FMI calls,
+an instance left in initialization mode."""
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
 from fmpy.fmi3 import FMU3Slave
 
@@ -19,6 +21,16 @@ def snapshot(chip) -> bytes:
 def command(name, *args, axis=0):
     c = COMMANDS[name]
     return [c.opcode | ((0 if c.scope == "chip" else axis) << 8)] + encode(c, args)
+
+
+def op(name, axis=0):
+    """The instruction word alone, with any axis number in its axis field (scope not applied)."""
+    return COMMANDS[name].opcode | (axis << 8)
+
+
+def vr(chip, name):
+    """A variable's value reference, for raw FMI calls."""
+    return chip.variables[name].valueReference
 
 
 def pend_batch(chip, words):

@@ -2,7 +2,6 @@
 error code and does not execute it; a bad FMI call gets fmi2Error and a log
 message naming the function, the value and the reason; nothing else changes."""
 import math
-from ctypes import POINTER, c_int, c_uint, cast
 
 import pytest
 from fmpy import extract, read_model_description
@@ -10,11 +9,8 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave
 
 import pmdfmu
-from pmdfmu import COMMANDS, PMDError
-
-
-def op(name, axis=0):
-    return COMMANDS[name].opcode | (axis << 8)
+from pmdfmu import PMDError
+from states import op
 
 
 def errors(chip):

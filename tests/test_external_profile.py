@@ -6,9 +6,8 @@ from math import floor
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDAbruptStop, PMDBufferFunctionJerk, PMDBufferFunctionPosition, PMDBufferFunctionTime,
-                    PMDBufferFunctionVelocity, PMDError, PMDEventMotionCompleteMask, PMDExternalProfile,
-                    PMDSmoothStop)
+from pmdfmu import (PMDAbruptStop, PMDBufferFunctionPosition, PMDBufferFunctionVelocity, PMDError,
+                    PMDEventMotionCompleteMask, PMDExternalProfile, PMDSmoothStop)
 from reference import ExternalProfile, wrap32
 
 OUTPUTS = ["axis{n}.commandedPosition", "axis{n}.commandedVelocity", "axis{n}.commandedAcceleration"]

@@ -2,35 +2,13 @@
 the result is bit-identical to stepping cycle by cycle (issue 5)."""
 import random
 
-import numpy as np
-
 import pmdfmu
 from pmdfmu.profile import load_external_profile, start_external_profile
 from reference import wrap32
+from scenarios import REAL, load_random_profiles
 
 OUT = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
                                                       "commandedAcceleration", "activityStatus", "eventStatus")]
-REAL = [f"axis{n}.{q}" for n in range(1, 5) for q in ("position", "velocity", "acceleration")]
-
-
-def load(chip, rng, rows_per_axis=12, long=(50, 4000)):
-    tables = {}
-    for axis in range(3):                                  # axis 4 stays idle
-        rows = []
-        for _ in range(rows_per_axis):
-            v = rng.choice([0, rng.randrange(-0x30000, 0x30000)])
-            a = rng.choice([0, rng.randrange(-0x400, 0x400)])
-            j = rng.choice([0, rng.randrange(-0x100000, 0x100000)])
-            if rng.random() < 0.3:                         # velocity exactly 0 after 100 cycles: an event
-                m = rng.choice([1, -1]) * rng.randrange(1, 0x100)
-                v, a, j = 200 * m, -2 * m, 0
-            rows.append((rng.randrange(-5000, 5000), v, a, j, rng.randrange(*long)))
-        rows.append((rng.randrange(-10, 10), 0, 0, 0, 0))
-        tables[axis] = rows
-    load_external_profile(chip, tables)
-    start_external_profile(chip, tables)
-
-
 def snapshot(chip):
     return [chip.get(n) for n in OUT + REAL + ["chipTime"]]
 
@@ -41,8 +19,8 @@ def test_coarse_steps_equal_cycle_by_cycle_at_every_step_boundary():
     for seed in range(3):
         rng = random.Random(seed)
         with pmdfmu.Chip() as fine, pmdfmu.Chip() as coarse:
-            load(fine, random.Random(seed))
-            load(coarse, random.Random(seed))
+            load_random_profiles(fine, random.Random(seed))
+            load_random_profiles(coarse, random.Random(seed))
             total = 0
             for _ in range(12):
                 n = rng.randrange(1, 4000)

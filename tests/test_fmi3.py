@@ -12,7 +12,7 @@ from fmpy.fmi3 import FMU3Slave
 from fmpy.validation import validate_fmu
 
 import pmdfmu
-from test_fmu_state import NAMES, busy_chip
+from scenarios import BUSY_OUTPUTS, busy_chip
 
 FMU3 = pmdfmu.default_fmu(3)
 
@@ -44,7 +44,7 @@ def test_the_same_scenario_gives_identical_outputs_through_fmi2_and_fmi3():
     for version in (2, 3):
         with pmdfmu.Chip(fmi_version=version) as chip:
             busy_chip(chip)
-            runs.append(chip.run(1500, record=NAMES))
+            runs.append(chip.run(1500, record=BUSY_OUTPUTS))
     assert np.array_equal(runs[0], runs[1])
 
 
@@ -53,9 +53,9 @@ def test_fmu_state_round_trip_through_fmi3():
         busy_chip(chip)
         chip.run(300)
         saved = chip.get_state()
-        first = chip.run(600, record=NAMES)
+        first = chip.run(600, record=BUSY_OUTPUTS)
         chip.set_state(saved)
-        assert np.array_equal(chip.run(600, record=NAMES), first)
+        assert np.array_equal(chip.run(600, record=BUSY_OUTPUTS), first)
         with pytest.raises(FMICallException):
             chip.fmu.deserializeFMUState(saved[chip._HARNESS.size:][:-3])
         assert any("refused" in m.message for m in chip.messages)

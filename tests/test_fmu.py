@@ -1,8 +1,6 @@
 """The FMU as a co-simulation tool sees it (CONTRACT 2)."""
 import re
-import xml.etree.ElementTree as ET
 import zipfile
-from pathlib import Path
 
 import numpy as np
 import pytest

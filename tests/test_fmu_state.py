@@ -8,40 +8,15 @@ import pytest
 from fmpy.fmi1 import FMICallException
 
 import pmdfmu
-
-NAMES = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration",
-         "axis1.activityStatus", "axis1.eventStatus", "axis2.commandedPosition", "axis1.position", "host.interrupt"]
-
-
-def busy_chip(chip):
-    """An external profile with jerk streaming on axis 1, a trapezoid on axis 2, a breakpoint armed."""
-    ax = chip.axis(0)
-    rows = [(0, 0x12345, 0x321, 0x1234567, 700), (5, -0x20000, 0, -0x1000, 400), (0, 0, 0, 0, 0)]
-    for v in range(5):
-        ax.SetBufferStart(2 + v, 0x200 + 4 * v)
-        ax.SetBufferLength(2 + v, 3)
-        ax.SetBufferFunction(v, 2 + v)
-        for r in rows:
-            ax.WriteBuffer(2 + v, r[v])
-    ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-    ax.Update()
-    ax.SetInterruptMask(pmdfmu.PMDEventBreakpoint1Mask)
-    ax.SetBreakpointValue(0, 0x20000000)
-    ax.SetBreakpoint(0, 0, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointActivityStatus)
-    a2 = chip.axis(1)
-    a2.SetPosition(-30_000)
-    a2.SetVelocity(0x50000)
-    a2.SetAcceleration(0x800)
-    a2.Update()
-
+from scenarios import BUSY_OUTPUTS, busy_chip
 
 def test_step_save_step_restore_step_gives_identical_outputs(chip):
     busy_chip(chip)
     chip.run(300)
     saved = chip.get_state()
-    first = chip.run(900, record=NAMES)
+    first = chip.run(900, record=BUSY_OUTPUTS)
     chip.set_state(saved)
-    again = chip.run(900, record=NAMES)
+    again = chip.run(900, record=BUSY_OUTPUTS)
     assert np.array_equal(first, again)
     assert first["host.interrupt"][-1]                     # the run crossed the end of the profile
 
@@ -50,16 +25,16 @@ def test_restore_in_a_second_instance_and_a_second_process(chip, tmp_path):
     busy_chip(chip)
     chip.run(250)
     saved = chip.get_state()
-    expected = chip.run(800, record=NAMES)
+    expected = chip.run(800, record=BUSY_OUTPUTS)
     with pmdfmu.Chip() as other:
         other.set_state(saved)
-        assert np.array_equal(other.run(800, record=NAMES), expected)
+        assert np.array_equal(other.run(800, record=BUSY_OUTPUTS), expected)
     (tmp_path / "state.bin").write_bytes(saved)
     script = textwrap.dedent(f"""
         import numpy as np, pmdfmu, sys
         with pmdfmu.Chip() as chip:
             chip.set_state(open({str(tmp_path / 'state.bin')!r}, 'rb').read())
-            np.save({str(tmp_path / 'out.npy')!r}, chip.run(800, record={NAMES!r}))
+            np.save({str(tmp_path / 'out.npy')!r}, chip.run(800, record={BUSY_OUTPUTS!r}))
     """)
     subprocess.run([sys.executable, "-c", script], check=True)
     assert np.array_equal(np.load(tmp_path / "out.npy"), expected)
@@ -84,6 +59,8 @@ def test_a_state_with_another_memory_size_resizes_the_memory():
     (lambda b: b[:20] + b"{00000000-0000-0000-0000-000000000000}" + b[58:], "instantiation token"),
     (lambda b: b"", "shorter"),
 ])
+
+
 def test_a_corrupted_or_foreign_state_is_refused_and_nothing_changes(chip, damage, reason):
     busy_chip(chip)
     chip.run(100)

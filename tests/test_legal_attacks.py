@@ -9,7 +9,7 @@ from fmpy.fmi2 import FMU2Slave
 
 import pmdfmu
 from pmdfmu import PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer
-from states import InitializationChip, command, pend_batch, snapshot
+from states import InitializationChip, command, pend_batch, snapshot, vr
 
 
 def errors(chip):
@@ -35,10 +35,6 @@ def pend_memory_write(chip, address, words, strobe=None):
     chip.set("memory.address", address)
     chip.set("memory.count", len(words))
     chip.set("memory.strobe", chip.get("memory.strobe") + 1 if strobe is None else strobe)
-
-
-def vr(chip, name):
-    return chip.variables[name].valueReference
 
 
 # ---- 1. the trace writes only into buffer 0 as it is when it writes ----

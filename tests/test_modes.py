@@ -3,7 +3,6 @@ stops in every mode (seed 001; pmd-reference 5)."""
 import numpy as np
 import pytest
 
-import pmdfmu
 from pmdfmu import (PMDAbruptStop, PMDElectronicGearProfile, PMDError, PMDEventMotionCompleteMask,
                     PMDPositionSourceActual, PMDPositionSourceCommanded, PMDSmoothStop, PMDTrapezoidal,
                     PMDVelocityContouringProfile)

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import pmdfmu
-from test_fastforward import REAL, load
+from scenarios import REAL, load_random_profiles
 
 STATUS = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
                                                          "commandedAcceleration", "activityStatus",
@@ -29,7 +29,7 @@ def never_fires(chip):
 def mixed(chip, seed):
     """External profiles with short and long segments on axes 1-3 (velocities coming
     to rest: events), then every other mode in turn on axis 4 and a motor turned off."""
-    load(chip, random.Random(seed), long=(1, 60))
+    load_random_profiles(chip, random.Random(seed), long=(1, 60))
     ax = chip.axis(0)
     ax.SetMotionCompleteMode(pmdfmu.PMDMotionCompleteActualPosition)
     ax.SetSettleTime(3)

@@ -6,7 +6,7 @@ from fmpy.fmi1 import FMICallException
 
 import pmdfmu
 from pmdfmu.chip import RECORDED
-from test_fmu_state import busy_chip
+from scenarios import busy_chip
 
 
 def test_bulk_recording_equals_cycle_by_cycle_recording_through_fmi2():

@@ -1,6 +1,5 @@
 """Breakpoints, interrupts, Reset, actual position and the ports' order (pmd-reference 2.5, 4.1, 4.2)."""
 import numpy as np
-import pytest
 
 import pmdfmu
 from pmdfmu import (PMDBreakpoint1, PMDBreakpoint2, PMDBreakpointActionAbruptStop, PMDBreakpointActionMotorOff,

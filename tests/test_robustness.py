@@ -9,24 +9,8 @@ import pytest
 from fmpy.fmi1 import FMICallException
 
 import pmdfmu
-from pmdfmu import COMMANDS, PMDError
-from test_fmu_state import NAMES, busy_chip
-
-
-def blob(chip):
-    state = chip.fmu.getFMUState()
-    try:
-        return bytes(chip.fmu.serializeFMUState(state))
-    finally:
-        chip.fmu.freeFMUState(state)
-
-
-def vr(chip, name):
-    return chip.variables[name].valueReference
-
-
-def op(name, axis=0):
-    return COMMANDS[name].opcode | (axis << 8)
+from scenarios import BUSY_OUTPUTS, busy_chip
+from states import op, snapshot, vr
 
 
 # (row of docs/robustness.md, action on chip A); FMI-level refusals raise FMICallException
@@ -49,8 +33,8 @@ FMI_CALLS = {
     "NULL value arrays": lambda c: c.fmu._functions["fmi2GetInteger"](c.fmu.component, None, 3, None) == 3
                                     and (_ for _ in ()).throw(FMICallException("fmi2GetInteger", 3)),
     "an unknown log category": lambda c: c.fmu.setDebugLogging(True, ["nonsense"]),
-    "a truncated state blob": lambda c: c.fmu.deserializeFMUState(blob(c)[:-100]),
-    "a corrupted state blob": lambda c: c.fmu.deserializeFMUState(blob(c)[:200] + b"\x55" + blob(c)[201:]),
+    "a truncated state blob": lambda c: c.fmu.deserializeFMUState(snapshot(c)[:-100]),
+    "a corrupted state blob": lambda c: c.fmu.deserializeFMUState(snapshot(c)[:200] + b"\x55" + snapshot(c)[201:]),
     "a foreign state blob": lambda c: c.fmu.deserializeFMUState(b"FOREIGN!" + bytes(400)),
     "an unsupported function": lambda c: c.fmu._functions["fmi2CancelStep"](c.fmu.component) == 3
                                          and (_ for _ in ()).throw(FMICallException("fmi2CancelStep", 3)),
@@ -84,12 +68,12 @@ def pair():
 @pytest.mark.parametrize("row", FMI_CALLS)
 def test_a_refused_fmi_call_changes_nothing_and_the_other_instance_goes_on(pair, row):
     a, b = pair
-    before = blob(a)
+    before = snapshot(a)
     with pytest.raises(FMICallException):
         FMI_CALLS[row](a)
-    assert blob(a) == before
+    assert snapshot(a) == before
     assert any(m.status == "Error" for m in a.messages) or row in ("NULL value arrays", "an unsupported function")
-    assert np.array_equal(a.run(400, record=NAMES), b.run(400, record=NAMES))
+    assert np.array_equal(a.run(400, record=BUSY_OUTPUTS), b.run(400, record=BUSY_OUTPUTS))
 
 
 @pytest.mark.parametrize("row", CHIP_COMMANDS)
@@ -100,7 +84,7 @@ def test_a_refused_chip_command_is_not_executed_and_the_other_instance_goes_on(p
     assert error == code
     assert a.axis(0).GetHostIOError() == code
     assert a.axis(0).GetEventStatus() & pmdfmu.PMDEventInstructionErrorMask     # the chip's answer ...
-    ra, rb = a.run(400, record=NAMES), b.run(400, record=NAMES)
+    ra, rb = a.run(400, record=BUSY_OUTPUTS), b.run(400, record=BUSY_OUTPUTS)
     ra["axis1.eventStatus"] &= 0xFFFF & ~pmdfmu.PMDEventInstructionErrorMask      # ... and all it changed (uint16)
     assert np.array_equal(ra, rb)
 
@@ -110,7 +94,7 @@ def test_a_refused_memory_write_writes_nothing(pair):
     with pytest.raises(FMICallException):
         a.fmu.setInteger([vr(a, "memory.data[1]"), vr(a, "memory.address"), vr(a, "memory.count"),
                           vr(a, "memory.strobe")], [12345, 0x3FFF, 5, a.get("memory.strobe") + 1])
-    assert np.array_equal(a.run(400, record=NAMES), b.run(400, record=NAMES))
+    assert np.array_equal(a.run(400, record=BUSY_OUTPUTS), b.run(400, record=BUSY_OUTPUTS))
     a.axis(0).SetBufferStart(9, 0x3FFF)
     a.axis(0).SetBufferLength(9, 1)
     assert a.axis(0).ReadBuffer(9) == 0

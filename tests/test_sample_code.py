@@ -7,7 +7,6 @@ so do we. Each axis's profile is checked against the reference model over
 the memory the seed's writes really leave behind."""
 import pytest
 
-import pmdfmu
 from pmdfmu import (PMDAbruptStop, PMDActivityInMotionMask, PMDAxis1, PMDAxis1Mask, PMDAxis2Mask, PMDAxis3Mask,
                     PMDBreakpoint1, PMDBreakpointActivityStatus, PMDBreakpointNoAction, PMDBufferFunctionPosition,
                     PMDBufferFunctionTime, PMDEventBreakpoint1Mask, PMDExternalProfile, PMDTrapezoidal)

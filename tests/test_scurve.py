@@ -7,7 +7,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import pmdfmu
 from pmdfmu import PMDError, PMDSCurveProfile, PMDSmoothStop
 
 NAMES = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration",

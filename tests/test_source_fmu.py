@@ -9,7 +9,7 @@ from fmpy.build import build_platform_binary
 from fmpy.util import create_zip_archive
 
 import pmdfmu
-from test_worked_example import WORKED_TABLE, run_worked_example
+from scenarios import WORKED_TABLE, run_worked_example
 
 
 @pytest.mark.skipif(not shutil.which("cmake"), reason="cmake not installed")

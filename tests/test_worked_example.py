@@ -1,34 +1,6 @@
 """Seed 000's worked table, chip times 11003..11013, out of the FMU cycle by cycle."""
 import pmdfmu
-from pmdfmu import PMDBufferFunctionPosition, PMDBufferFunctionTime, PMDBufferFunctionVelocity
-
-# chip time, commanded position, commanded velocity (the table's rows)
-WORKED_TABLE = [(11003, 0, 0x10000), (11004, 1, 0x10000), (11005, 2, 0x10000), (11006, 3, 0x10000),
-                (11007, 4, 0x10000), (11008, 5, 0x10000), (11009, 6, 0x10000), (11010, 7, 0x10000),
-                (11011, 8, 0x10000), (11012, 9, 0x10000), (11013, 10, 0)]
-
-
-def run_worked_example(chip):
-    """The seed's two rows, started so that the first is read at chip time 11003."""
-    ax = chip.axis(pmdfmu.PMDAxis1)
-    for buffer_id, function, address in ((2, PMDBufferFunctionPosition, 0x200),
-                                         (3, PMDBufferFunctionVelocity, 0x210),
-                                         (4, PMDBufferFunctionTime, 0x220)):
-        ax.SetBufferStart(buffer_id, address)
-        ax.SetBufferLength(buffer_id, 2)
-        ax.SetBufferFunction(function, buffer_id)
-    # "Initial set of values": position 0, velocity 10000h, time 10; then 10, 0, 15
-    for position, velocity, time in ((0, 0x10000, 10), (10, 0, 15)):
-        ax.WriteBuffer(2, position)
-        ax.WriteBuffer(3, velocity)
-        ax.WriteBuffer(4, time)
-    chip.run(11003)
-    assert ax.GetTime() == 11002
-    ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-    ax.Update()
-    return chip.run(11, record=["axis1.commandedPosition", "axis1.commandedVelocity",
-                                "axis1.commandedAcceleration", "axis1.activityStatus"])
-
+from scenarios import WORKED_TABLE, run_worked_example
 
 def test_worked_table_comes_out_cycle_by_cycle(any_chip):
     rows = run_worked_example(any_chip)
