@@ -50,6 +50,7 @@
 #include "fmi3Functions.h"
 #include "command_table.h"
 #include "instance.h"
+#include "state_fields.h"
 #include "variables.h"
 #include "variables3.h"
 
@@ -180,6 +181,7 @@ static void append(Bytes *b, const void *data, size_t n)
  * The fuzzer reads it only to size its steps (memory size, cycle time, whether
  * the chip idles) and to name a changed field, never to decide a property. */
 static const PmdInstance *instance(const Fuzz *f) { return *(PmdInstance *const *)f->c; }
+static double cycle_time(const PmdInstance *inst) { return pmd_grid(&inst->s, &inst->chip.s).cycleTime; }
 
 /* Value references by name, from the generated variable table. */
 static unsigned vr(const char *name)
@@ -426,24 +428,30 @@ static void snapshot(Fuzz *f, Bytes *out)
         fail("getting and serializing the FMU state failed");
 }
 
-/* NULL if two snapshots are equal, else where they first differ (a field of
- * PmdInstance, a memory word, the size or the header). */
+/* The declared field whose bytes hold image offset `at`, named by the walk. */
+typedef struct {
+    size_t at;
+    char path[sizeof(((PmdStateLeaf *)0)->path)];
+    size_t offset;
+} FieldAt;
+
+static int field_at(const PmdStateLeaf *leaf, void *context)
+{
+    FieldAt *w = (FieldAt *)context;
+    if (w->at < leaf->offset || w->at >= leaf->offset + leaf->size)
+        return 0;
+    memcpy(w->path, leaf->path, sizeof w->path);
+    w->offset = leaf->offset;
+    return 1;
+}
+
+/* NULL if two snapshots are equal, else where they first differ (a declared
+ * field, a memory word, the size or the header). */
 static const char *difference(const Fuzz *f, const Bytes *a, const Bytes *b)
 {
-#define FIELD(x) {#x, offsetof(PmdInstance, x)}
-    static const struct { const char *name; size_t offset; } fields[] = {
-        FIELD(chip.s.axis), FIELD(chip.s.buffer), FIELD(chip.s.trace), FIELD(chip.s.updatedAxes),
-        FIELD(chip.s.bufferEpoch), FIELD(chip.s.sampleTime), FIELD(chip.s.time),
-        FIELD(chip.s.nextTime), FIELD(chip.s.hostIOError), FIELD(chip.s.loopback), FIELD(chip.memory),
-        FIELD(state), FIELD(cycleTime), FIELD(memorySize), FIELD(time), FIELD(nextCycle), FIELD(activeCycleTime),
-        FIELD(anchorTime), FIELD(anchorCycle), FIELD(hostWord), FIELD(hostWordCount), FIELD(hostStrobe),
-        FIELD(hostAck), FIELD(hostReply), FIELD(hostReplyCount), FIELD(hostError), FIELD(memoryAddress),
-        FIELD(memoryCount), FIELD(memoryStrobe), FIELD(memoryStrobeSeen), FIELD(memoryData), FIELD(scriptNext),
-        FIELD(recordEnabled), FIELD(recordCapacity), FIELD(recordCount), FIELD(staged),
-    };
-#undef FIELD
     static char where[160];
-    size_t header = a->n - sizeof(PmdInstance) - (size_t)instance(f)->memorySize * sizeof(uint32_t), i, k, at;
+    size_t header = a->n - sizeof(PmdStateImage) - (size_t)instance(f)->s.memorySize * sizeof(uint32_t), i, at;
+    FieldAt w;
     if (a->n == b->n && memcmp(a->p, b->p, a->n) == 0)
         return NULL;
     if (a->n != b->n) {
@@ -455,18 +463,15 @@ static const char *difference(const Fuzz *f, const Bytes *a, const Bytes *b)
     if (i == a->n)
         return "the header only";
     at = i - header;
-    if (at >= sizeof(PmdInstance)) {
-        snprintf(where, sizeof where, "memory word 0x%zX", (at - sizeof(PmdInstance)) / 4);
+    if (at >= sizeof(PmdStateImage)) {
+        snprintf(where, sizeof where, "memory word 0x%zX", (at - sizeof(PmdStateImage)) / 4);
         return where;
     }
-    for (k = 0; k + 1 < sizeof fields / sizeof fields[0] && fields[k + 1].offset <= at; k++)
-        ;
-    if (k == 0)                                   /* an axis: which, and where in PmdAxis */
-        snprintf(where, sizeof where, "chip.s.axis[%zu] + %zu: 0x%02X, then 0x%02X", at / sizeof(PmdAxis),
-                 at % sizeof(PmdAxis), a->p[i], b->p[i]);
+    w.at = at;
+    if (pmd_state_walk(1, field_at, &w))
+        snprintf(where, sizeof where, "%s + %zu: 0x%02X, then 0x%02X", w.path, at - w.offset, a->p[i], b->p[i]);
     else
-        snprintf(where, sizeof where, "%s + %zu: 0x%02X, then 0x%02X", fields[k].name, at - fields[k].offset,
-                 a->p[i], b->p[i]);
+        snprintf(where, sizeof where, "padding at image offset %zu: 0x%02X, then 0x%02X", at, a->p[i], b->p[i]);
     return where;
 }
 
@@ -580,7 +585,7 @@ static int chip_idle(const PmdInstance *inst)
 {
     const PmdChipState *s = &inst->chip.s;
     int n;
-    if (inst->recordEnabled || inst->scriptNext < inst->script.count || s->trace.active || s->trace.start)
+    if (inst->s.recordEnabled || inst->s.scriptNext < inst->script.count || s->trace.active || s->trace.start)
         return 0;
     for (n = 0; n < PMD_AXES; n++) {
         const PmdAxis *ax = &s->axis[n];
@@ -598,15 +603,15 @@ static int pending_batch(const PmdInstance *inst, int *harmless)
 {
     int i = 0, smallest = 0;
     *harmless = 1;
-    if (inst->hostStrobe == inst->hostAck)
+    if (inst->s.hostStrobe == inst->s.hostAck)
         return 0;
-    while (i < inst->hostWordCount) {
-        int index = pmd_command_of_opcode[inst->hostWord[i] & 0xFF];
+    while (i < inst->s.hostWordCount) {
+        int index = pmd_command_of_opcode[inst->s.hostWord[i] & 0xFF];
         const PmdCommand *c = index >= 0 ? &pmd_commands[index] : NULL;
         if (!c)
             break;
-        if (strcmp(c->name, "SetSampleTime") == 0 && i + 1 < inst->hostWordCount) {
-            int us = inst->hostWord[i + 1] & 0xFFFF;
+        if (strcmp(c->name, "SetSampleTime") == 0 && i + 1 < inst->s.hostWordCount) {
+            int us = inst->s.hostWord[i + 1] & 0xFFFF;
             if (us && (!smallest || us < smallest))
                 smallest = us;
         } else if (strncmp(c->name, "Get", 3) != 0 && strcmp(c->name, "NoOperation") != 0) {
@@ -650,11 +655,11 @@ static int step(Fuzz *f, double cycles)
 {
     const PmdInstance *inst = instance(f);
     int harmless, pending = pending_batch(inst, &harmless);
-    double h = cycles * inst->activeCycleTime, fastest = inst->activeCycleTime, estimate;
+    double h = cycles * cycle_time(inst), fastest = cycle_time(inst), estimate;
     int status;
     if (pending && pending * 1e-6 < fastest)
         fastest = pending * 1e-6;
-    if (inst->scriptNext < inst->script.count)     /* the script may set any sample time */
+    if (inst->s.scriptNext < inst->script.count)     /* the script may set any sample time */
         fastest = 1e-6;
     estimate = h / fastest;
     if (estimate > (double)f->budget && !(harmless && chip_idle(inst))) {
@@ -753,7 +758,7 @@ static void add(Fuzz *f, Batch *b, int axis, const PmdCommand *c, const int64_t 
  * complement if lo < 0). A value outside [lo, hi] wraps into it. */
 static int64_t value(Fuzz *f, Reader *r, int64_t lo, int64_t hi)
 {
-    int64_t m = instance(f)->memorySize, v;
+    int64_t m = instance(f)->s.memorySize, v;
     unsigned selector = below(r, 16);
     uint32_t u = bytes(r, 4);
     switch (selector) {
@@ -789,7 +794,7 @@ static int64_t field_value(Fuzz *f, Reader *r, const PmdField *field)
 
 #define I32(f, r) value(f, r, INT32_MIN, INT32_MAX)
 #define POSITIVE31(f, r) value(f, r, 0, INT32_MAX)                  /* acceleration, jerk, ... */
-#define ADDRESS(f, r) value(f, r, 0, instance(f)->memorySize)
+#define ADDRESS(f, r) value(f, r, 0, instance(f)->s.memorySize)
 #define BUFFER_ID(f, r) value(f, r, 0, PMD_BUFFERS - 1)
 
 /* The flags byte every host operation starts with: bits 0-1 axis, bit 2
@@ -1002,7 +1007,7 @@ static void op_chip_reset(Fuzz *f, Reader *r)
 static void op_memory(Fuzz *f, Reader *r)
 {
     unsigned kind = byte(r);
-    int64_t address = value(f, r, 0, instance(f)->memorySize + 64), count = value(f, r, 0, PMD_BATCH_WORDS);
+    int64_t address = value(f, r, 0, instance(f)->s.memorySize + 64), count = value(f, r, 0, PMD_BATCH_WORDS);
     int64_t strobe = 0, data[PMD_BATCH_WORDS], seed = value(f, r, 0, 0xFFFFFFFFLL);
     int i;
     for (i = 0; i < PMD_BATCH_WORDS; i++)
@@ -1170,11 +1175,11 @@ static void op_enter_initialization(Fuzz *f, Reader *r)
     unsigned bits = byte(r);
     double start = start_times[below(r, sizeof start_times / sizeof start_times[0])];
     if (bits & 1)
-        CALL(f, instance(f)->state & (PMD_INITIALIZATION_MODE | PMD_STEP_MODE) ? MUST_SUCCEED : MUST_FAIL,
+        CALL(f, instance(f)->s.state & (PMD_INITIALIZATION_MODE | PMD_STEP_MODE) ? MUST_SUCCEED : MUST_FAIL,
              terminate(f));
     CALL(f, MUST_SUCCEED, reset(f));
-    CALL(f, MUST_SUCCEED, enter_initialization(f, start * (bits & 2 ? instance(f)->cycleTime : 1)));
-    f->t = start * (bits & 2 ? instance(f)->cycleTime : 1);
+    CALL(f, MUST_SUCCEED, enter_initialization(f, start * (bits & 2 ? instance(f)->s.cycleTime : 1)));
+    f->t = start * (bits & 2 ? instance(f)->s.cycleTime : 1);
 }
 
 /* A parameter: settable before the end of initialization, refused after. A
@@ -1182,7 +1187,7 @@ static void op_enter_initialization(Fuzz *f, Reader *r)
  * memory write that would leave the new size. */
 static void op_parameter(Fuzz *f, Reader *r)
 {
-    int settable = instance(f)->state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE);
+    int settable = instance(f)->s.state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE);
     switch (below(r, 5)) {
     case 0: CALL(f, settable ? MAY_FAIL : MUST_FAIL, set_int(f, VR.memorySize, value(f, r, 1, MAX_MEMORY))); break;
     case 1: {
@@ -1202,7 +1207,7 @@ static void op_parameter(Fuzz *f, Reader *r)
 static void op_exit_initialization(Fuzz *f, Reader *r)
 {
     (void)r;
-    CALL(f, instance(f)->state == PMD_INITIALIZATION_MODE ? MAY_FAIL : MUST_FAIL, exit_initialization(f));
+    CALL(f, instance(f)->s.state == PMD_INITIALIZATION_MODE ? MAY_FAIL : MUST_FAIL, exit_initialization(f));
 }
 
 /* The axis registers that decide events: position error limit, auto stop,
@@ -1313,7 +1318,7 @@ static void op_refused(Fuzz *f, Reader *r)
 {
     const PmdInstance *inst = instance(f);
     unsigned kind = below(r, 11);
-    int stepping = inst->state == PMD_STEP_MODE;
+    int stepping = inst->s.state == PMD_STEP_MODE;
     double d = 0;
     switch (kind) {
     case 0: {                                                                        /* no such variable */
@@ -1338,16 +1343,16 @@ static void op_refused(Fuzz *f, Reader *r)
             CALL(f, MUST_FAIL, set_real(f, VR.cycleTime, 1e-4));
         break;
     case 9:                                                                          /* the wrong FMI state */
-        if (inst->state != PMD_INSTANTIATED)
+        if (inst->s.state != PMD_INSTANTIATED)
             CALL(f, MUST_FAIL, enter_initialization(f, f->t));
         break;
     case 10:
-        if (inst->state != PMD_INITIALIZATION_MODE)
+        if (inst->s.state != PMD_INITIALIZATION_MODE)
             CALL(f, MUST_FAIL, exit_initialization(f));
         break;
     case 4:                                  /* not at the current time (beyond the rounding tolerance) */
-        CALL(f, MUST_FAIL, do_step(f, f->t + fmax(inst->activeCycleTime, 64 * DBL_EPSILON * fabs(f->t)),
-                                   inst->activeCycleTime));
+        CALL(f, MUST_FAIL, do_step(f, f->t + fmax(cycle_time(inst), 64 * DBL_EPSILON * fabs(f->t)),
+                                   cycle_time(inst)));
         break;
     case 5: {
         static const double sizes[] = {0, -1, NAN, INFINITY};
@@ -1358,7 +1363,7 @@ static void op_refused(Fuzz *f, Reader *r)
     case 7: CALL(f, MUST_FAIL, set_int(f, VR.memoryCount, byte(r) & 1 ? -1 : PMD_BATCH_WORDS + 1)); break;
     default: {
         static Bytes corrupt;
-        size_t body = sizeof(PmdInstance) + (size_t)inst->memorySize * sizeof(uint32_t), at = bytes(r, 4) % body;
+        size_t body = sizeof(PmdStateImage) + (size_t)inst->s.memorySize * sizeof(uint32_t), at = bytes(r, 4) % body;
         snapshot(f, &corrupt);                        /* a byte of the body: the checksum must catch it */
         corrupt.p[corrupt.n - body + at] ^= (uint8_t)(1 + below(r, 255));
         CALL(f, MUST_FAIL, deserialize(f, &corrupt, &f->restored));

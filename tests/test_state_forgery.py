@@ -235,7 +235,7 @@ GRID_FORGERIES = {               # field: forged value, and what the message mus
     "anchorCycle": (1 << 40, "anchorCycle"),
     "anchorTime": (1e9, "anchorTime"),                          # an anchor after the time: negative steps
     "cycleTime": (1.0, "cycleTime"),                            # no 16-bit sample time holds it
-    "activeCycleTime": (0.5e-6, "activeCycleTime"),
+    "chip.s.sampleTime": (0, "sampleTime"),                    # the grid's cycle time (the register's, 1..65535 us)
 }
 
 

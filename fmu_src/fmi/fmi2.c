@@ -123,7 +123,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 {
     PmdInstance *inst = begin(c, "fmi2EnterInitializationMode", PMD_INSTANTIATED);
-    return inst ? status_of[pmd_enter_initialization(inst, "fmi2EnterInitializationMode", inst->time)] : fmi2Error;
+    return inst ? status_of[pmd_enter_initialization(inst, "fmi2EnterInitializationMode", inst->s.time)] : fmi2Error;
 }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)
@@ -137,7 +137,7 @@ fmi2Status fmi2Terminate(fmi2Component c)
     PmdInstance *inst = begin(c, "fmi2Terminate", PMD_INITIALIZATION_MODE | PMD_STEP_MODE);
     if (!inst)
         return fmi2Error;
-    inst->state = PMD_TERMINATED;
+    inst->s.state = PMD_TERMINATED;
     return fmi2OK;
 }
 
@@ -165,7 +165,7 @@ fmi2Status fmi2Reset(fmi2Component c)
         for (i = 0; i < nvr; i++)                                                                \
             if (!pmd_variable_given(inst, #fn, vr[i], type))                                     \
                 return fmi2Error;                                                                \
-        if (inst->state != PMD_TERMINATED)                                                       \
+        if (inst->s.state != PMD_TERMINATED)                                                       \
             pmd_commit_ports(inst);                                                              \
         for (i = 0; i < nvr; i++)                                                                \
             if (get(inst, #fn, vr[i], &value[i]) != PMD_OK)                                      \

@@ -152,7 +152,7 @@ fmi3Status fmi3Terminate(fmi3Instance c)
     PmdInstance *inst = begin(c, "fmi3Terminate", PMD_INITIALIZATION_MODE | PMD_STEP_MODE);
     if (!inst)
         return fmi3Error;
-    inst->state = PMD_TERMINATED;
+    inst->s.state = PMD_TERMINATED;
     return fmi3OK;
 }
 
@@ -203,11 +203,21 @@ static int count_matches(PmdInstance *inst, const char *fn, const char *type, co
     return 1;
 }
 
+/* A type get_element or set_element has no case for (String and Binary have
+ * functions of their own): a bug of this file, refused rather than read or
+ * written as another type. */
+static PmdStatus unhandled_type(PmdInstance *inst, const char *fn, PmdType3 type, unsigned vr)
+{
+    pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u: this FMU has no %s element access",
+                     fn, vr, type_names[type]);
+    return PMD_ERROR;
+}
+
 /* Element e of an FMI 3 variable is the FMI 2 scalar with value reference vr + e. */
 static PmdStatus get_element(PmdInstance *inst, const char *fn, PmdType3 type, unsigned vr, void *values, size_t k)
 {
     double d;
-    int32_t n;
+    int32_t n = 0;
     int b;
     PmdStatus s;
     switch (type) {
@@ -219,15 +229,20 @@ static PmdStatus get_element(PmdInstance *inst, const char *fn, PmdType3 type, u
         s = pmd_get_boolean(inst, fn, vr, &b);
         ((fmi3Boolean *)values)[k] = b != 0;
         return s;
-    default:
+    case PMD3_INT32:
         s = pmd_get_integer(inst, fn, vr, &n);
-        if (type == PMD3_INT32)
-            ((fmi3Int32 *)values)[k] = n;
-        else if (type == PMD3_UINT32)
-            ((fmi3UInt32 *)values)[k] = (uint32_t)n;      /* the register's 32 bits */
-        else
-            ((fmi3UInt16 *)values)[k] = (uint16_t)((uint32_t)n & 0xFFFFu);
+        ((fmi3Int32 *)values)[k] = n;
         return s;
+    case PMD3_UINT32:
+        s = pmd_get_integer(inst, fn, vr, &n);
+        ((fmi3UInt32 *)values)[k] = (uint32_t)n;          /* the register's 32 bits */
+        return s;
+    case PMD3_UINT16:
+        s = pmd_get_integer(inst, fn, vr, &n);
+        ((fmi3UInt16 *)values)[k] = (uint16_t)((uint32_t)n & 0xFFFFu);
+        return s;
+    default:
+        return unhandled_type(inst, fn, type, vr);
     }
 }
 
@@ -239,7 +254,8 @@ static PmdStatus set_element(PmdInstance *inst, const char *fn, PmdType3 type, u
     case PMD3_BOOLEAN: return pmd_set_boolean(inst, fn, vr, ((const fmi3Boolean *)values)[k], apply);
     case PMD3_INT32: return pmd_set_integer(inst, fn, vr, ((const fmi3Int32 *)values)[k], apply);
     case PMD3_UINT32: return pmd_set_integer(inst, fn, vr, ((const fmi3UInt32 *)values)[k], apply);
-    default: return pmd_set_integer(inst, fn, vr, ((const fmi3UInt16 *)values)[k], apply);
+    case PMD3_UINT16: return pmd_set_integer(inst, fn, vr, ((const fmi3UInt16 *)values)[k], apply);
+    default: return unhandled_type(inst, fn, type, vr);
     }
 }
 
@@ -253,7 +269,7 @@ static fmi3Status get_values(fmi3Instance c, const char *fn, PmdType3 type, cons
     if (!inst || !pmd_arrays_given(inst, fn, nvr, vrs, values) ||
         !count_matches(inst, fn, type_names[type], vrs, nvr, nValues))
         return fmi3Error;
-    if (inst->state != PMD_TERMINATED)
+    if (inst->s.state != PMD_TERMINATED)
         pmd_commit_ports(inst);
     for (i = 0; i < nvr; i++) {
         const PmdVariable3 *v = &pmd_variables3[pmd_variable3_of_vr[vrs[i]]];
@@ -391,9 +407,9 @@ fmi3Status fmi3SetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t 
     if (!inst || !pmd_arrays_given(inst, "fmi3SetBinary", nvr, vrs, vrs) ||
         !count_matches(inst, "fmi3SetBinary", "Binary", vrs, nvr, nValues))
         return fmi3Error;
-    if (nvr > 0) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi3SetBinary: %s is an output and cannot be set",
-                         pmd_variables3[pmd_variable3_of_vr[vrs[0]]].name);
+    if (nvr > 0) {                                  /* record.data, the only Binary, is an output */
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "fmi3SetBinary: value reference %u (%s) is an output and "
+                         "cannot be set", vrs[0], pmd_variables3[pmd_variable3_of_vr[vrs[0]]].name);
         return fmi3Error;
     }
     return fmi3OK;
@@ -430,7 +446,7 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint, fmi
     *eventHandlingNeeded = fmi3False;
     *terminateSimulation = fmi3False;
     *earlyReturn = fmi3False;
-    *lastSuccessfulTime = status <= PMD_WARNING ? inst->time : currentCommunicationPoint;   /* Warning: the step ran */
+    *lastSuccessfulTime = status <= PMD_WARNING ? inst->s.time : currentCommunicationPoint;  /* Warning: it ran */
     return status_of[status];
 }
 

@@ -44,35 +44,26 @@ static void update_chip_log_mask(PmdInstance *inst)
     inst->chip.logMask = inst->loggingOn ? inst->categories : 0;
 }
 
+/* The declared state as instantiation leaves it; the memory size stays the caller's. */
 static void set_defaults(PmdInstance *inst)
 {
-    inst->state = PMD_INSTANTIATED;
-    inst->cycleTime = DEFAULT_CYCLE_TIME;
-    inst->time = 0;
-    inst->nextCycle = 0;
-    inst->activeCycleTime = DEFAULT_CYCLE_TIME;
-    inst->anchorTime = 0;
-    inst->anchorCycle = 0;
-    memset(inst->hostWord, 0, sizeof inst->hostWord);
-    memset(inst->hostReply, 0, sizeof inst->hostReply);
-    memset(inst->memoryData, 0, sizeof inst->memoryData);
-    inst->hostWordCount = inst->hostStrobe = inst->hostAck = inst->hostReplyCount = inst->hostError = 0;
-    inst->memoryAddress = inst->memoryCount = inst->memoryStrobe = inst->memoryStrobeSeen = 0;
+    int32_t memorySize = inst->s.memorySize;
+    memset(&inst->s, 0, sizeof inst->s);
+    inst->s.state = PMD_INSTANTIATED;
+    inst->s.cycleTime = DEFAULT_CYCLE_TIME;
+    inst->s.memorySize = memorySize;
     memset(&inst->chip.s, 0, sizeof inst->chip.s);
     inst->chip.s.loopback = 1;
     free(inst->scriptPath);
     inst->scriptPath = NULL;
     pmd_script_free(&inst->script);
-    inst->scriptNext = 0;
     free(inst->record);
     inst->record = NULL;
     inst->recordRows = 0;
-    inst->recordEnabled = 0;
-    inst->scriptDigest = 0;
     inst->recordCapacity = 65536;
     inst->recordCount = 0;
-    memset(inst->chip.memory, 0, (size_t)inst->memorySize * sizeof(uint32_t));
-    pmd_chip_init(&inst->chip, inst->chip.memory, (uint32_t)inst->memorySize);
+    memset(inst->chip.memory, 0, (size_t)memorySize * sizeof(uint32_t));
+    pmd_chip_init(&inst->chip, inst->chip.memory, (uint32_t)memorySize);
 }
 
 PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment)
@@ -81,8 +72,8 @@ PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger
     if (!inst)
         return NULL;
     inst->instanceName = (char *)malloc(strlen(instanceName) + 1);
-    inst->memorySize = DEFAULT_MEMORY_SIZE;
-    inst->chip.memory = (uint32_t *)calloc((size_t)inst->memorySize, sizeof(uint32_t));
+    inst->s.memorySize = DEFAULT_MEMORY_SIZE;
+    inst->chip.memory = (uint32_t *)calloc((size_t)inst->s.memorySize, sizeof(uint32_t));
     if (!inst->instanceName || !inst->chip.memory) {
         pmd_instance_free(inst);
         return NULL;
@@ -114,7 +105,7 @@ void pmd_instance_reset(PmdInstance *inst)
     uint32_t *memory = (uint32_t *)realloc(inst->chip.memory, DEFAULT_MEMORY_SIZE * sizeof(uint32_t));
     if (memory) {   /* shrinking cannot fail in practice; if it does, keep the larger block */
         inst->chip.memory = memory;
-        inst->memorySize = DEFAULT_MEMORY_SIZE;
+        inst->s.memorySize = DEFAULT_MEMORY_SIZE;
     }
     set_defaults(inst);
 }
@@ -165,8 +156,8 @@ PmdInstance *pmd_begin(PmdInstance *inst, const char *fn, unsigned states)
 {
     if (!inst)
         return NULL;
-    if (!(inst->state & states)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not allowed in %s", fn, state_name(inst->state));
+    if (!(inst->s.state & states)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not allowed in %s", fn, state_name(inst->s.state));
         return NULL;
     }
     return inst;
@@ -183,39 +174,78 @@ int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const vo
 
 /* ---- time grid ---------------------------------------------------------------- */
 
+/* What initialization loads into the sample time register: the cycleTime
+ * parameter in whole microseconds (pmd_set_real checked that it is one). */
+static uint16_t sample_time_of(double cycleTime)
+{
+    return (uint16_t)floor(cycleTime * 1e6 + 0.5);
+}
+
 /* Cycles with k * cycleTime < t are before t. A master's t is a sum of
  * floating-point steps, so k * cycleTime == t can arrive as a hair above or
  * below; within the tolerance a grid point counts as "at t". */
-int64_t pmd_cycles_before(const PmdInstance *inst, double t)
+static int64_t cycles_before(double anchorTime, int64_t anchorCycle, double cycleTime, double t)
 {
-    double x = (t - inst->anchorTime) / inst->activeCycleTime;
-    return inst->anchorCycle + (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
+    double x = (t - anchorTime) / cycleTime;
+    return anchorCycle + (int64_t)ceil(x - (1e-6 + 8 * DBL_EPSILON * fabs(x)));
 }
 
-/* SetSampleTime (a batch reported the grid changed): the grid restarts with
- * the new cycle time at `at`, the time of the next cycle. */
+int64_t pmd_cycles_before(const PmdGrid *grid, double t)
+{
+    return cycles_before(grid->anchorTime, grid->anchorCycle, grid->cycleTime, t);
+}
+
+PmdGrid pmd_grid(const PmdInstanceState *s, const PmdChipState *chip)
+{
+    PmdGrid g;
+    if (s->state & (PMD_STEP_MODE | PMD_TERMINATED)) {
+        g.anchorTime = s->anchorTime;
+        g.anchorCycle = s->anchorCycle;
+        g.cycleTime = chip->sampleTime / 1e6;
+        g.nextCycle = s->nextCycle;
+    } else {                                        /* what pmd_exit_initialization sets up */
+        g.anchorTime = 0;
+        g.anchorCycle = 0;
+        g.cycleTime = sample_time_of(s->cycleTime) / 1e6;
+        g.nextCycle = cycles_before(0, 0, g.cycleTime, s->time);
+    }
+    return g;
+}
+
+/* SetSampleTime (a batch said the grid changed): the grid restarts with the
+ * new cycle time at `at`, the time of the next cycle. Before the end of
+ * initialization there is no grid to restart: initialization sets it up. */
 static void restart_grid(PmdInstance *inst, double at)
 {
-    inst->anchorTime = at;
-    inst->anchorCycle = inst->nextCycle;
-    inst->activeCycleTime = inst->chip.s.sampleTime * 1e-6;
+    if (inst->s.state != PMD_STEP_MODE)
+        return;
+    inst->s.anchorTime = at;
+    inst->s.anchorCycle = inst->s.nextCycle;
+}
+
+/* The script step to run next, or NULL once the script has run. */
+static const PmdScriptStep *next_script_step(const PmdInstance *inst)
+{
+    return inst->s.scriptNext < inst->script.count ? &inst->script.steps[inst->s.scriptNext] : NULL;
 }
 
 /* How many cycles may run without the FMU stepping in: up to the end of the step and the next script step. */
 static int64_t cycles_to_skip(const PmdInstance *inst, int64_t end)
 {
-    int64_t n = end - inst->nextCycle;
-    if (inst->scriptNext < inst->script.count && inst->script.steps[inst->scriptNext].cycle - inst->nextCycle < n)
-        n = inst->script.steps[inst->scriptNext].cycle - inst->nextCycle;
+    const PmdScriptStep *next = next_script_step(inst);
+    int64_t n = end - inst->s.nextCycle;
+    if (next && next->cycle - inst->s.nextCycle < n)
+        n = next->cycle - inst->s.nextCycle;
     return n;
 }
 
 /* Runs the script steps due before the next cycle; returns whether one changed the grid. */
 static int run_script(PmdInstance *inst)
 {
+    const PmdScriptStep *step;
     int changed = 0;
-    while (inst->scriptNext < inst->script.count && inst->script.steps[inst->scriptNext].cycle <= inst->nextCycle) {
-        const PmdScriptStep *step = &inst->script.steps[inst->scriptNext++];
+    while ((step = next_script_step(inst)) != NULL && step->cycle <= inst->s.nextCycle) {
+        inst->s.scriptNext++;
         if (step->nWords) {
             uint16_t reply[PMD_BATCH_WORDS];
             int count, stepChanged, err = pmd_host_batch(&inst->chip, step->words, step->nWords, reply, &count,
@@ -228,7 +258,7 @@ static int run_script(PmdInstance *inst)
             /* compiled for this memory size, but a restored FMU state may have brought another */
             pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s:%d: the table's %u words at 0x%X leave the "
                              "%d-word memory: not written", inst->scriptPath, step->line, (unsigned)step->count,
-                             (unsigned)step->address, inst->memorySize);
+                             (unsigned)step->address, inst->s.memorySize);
         }
     }
     return changed;
@@ -257,20 +287,19 @@ static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t, 
  * EnterInitializationMode's, at the cycle time set so far (it checks again). */
 PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime)
 {
-    PmdStatus status = on_the_grid(inst, fn, startTime, inst->anchorTime, inst->cycleTime);
+    PmdStatus status = on_the_grid(inst, fn, startTime, inst->s.anchorTime, inst->s.cycleTime);
     if (status == PMD_OK)
-        inst->time = startTime;
+        inst->s.time = startTime;
     return status;
 }
 
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime)
 {
-    PmdStatus status = on_the_grid(inst, fn, startTime, inst->anchorTime, inst->cycleTime);
+    PmdStatus status = on_the_grid(inst, fn, startTime, inst->s.anchorTime, inst->s.cycleTime);
     if (status != PMD_OK)
         return status;
-    inst->activeCycleTime = inst->cycleTime;
-    inst->time = startTime;
-    inst->state = PMD_INITIALIZATION_MODE;
+    inst->s.time = startTime;
+    inst->s.state = PMD_INITIALIZATION_MODE;
     return PMD_OK;
 }
 
@@ -305,41 +334,40 @@ PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 {
     PmdScript script;
-    PmdStatus status = on_the_grid(inst, fn, inst->time, 0, inst->cycleTime);
+    PmdStatus status = on_the_grid(inst, fn, inst->s.time, 0, inst->s.cycleTime);
 
     if (status != PMD_OK)
         return status;
     memset(&script, 0, sizeof script);
     if (inst->scriptPath && *inst->scriptPath) {
         char error[1024];
-        if (pmd_script_load(inst->scriptPath, (uint32_t)inst->memorySize, &script, error, sizeof error)) {
+        if (pmd_script_load(inst->scriptPath, (uint32_t)inst->s.memorySize, &script, error, sizeof error)) {
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: script refused: %s", fn, error);
             return PMD_ERROR;
         }
     }
-    if (inst->recordEnabled && pmd_record_allocate(inst, fn) != PMD_OK) {
+    if (inst->s.recordEnabled && pmd_record_allocate(inst, fn) != PMD_OK) {
         pmd_script_free(&script);
         return PMD_ERROR;
     }
     if (inst->scriptPath && *inst->scriptPath) {
         pmd_script_free(&inst->script);
         inst->script = script;
-        inst->scriptNext = 0;
+        inst->s.scriptNext = 0;
     }
-    inst->scriptDigest = pmd_script_digest(&inst->script);
-    if (!inst->recordEnabled) {                     /* an instance that does not record carries no buffer */
+    inst->s.scriptDigest = pmd_script_digest(&inst->script);
+    if (!inst->s.recordEnabled) {                     /* an instance that does not record carries no buffer */
         free(inst->record);
         inst->record = NULL;
         inst->recordRows = 0;
     }
     inst->recordCount = 0;
-    inst->activeCycleTime = inst->cycleTime;
-    inst->anchorTime = 0;
-    inst->anchorCycle = 0;
-    /* GetSampleTime reads the cycle time, a whole number of microseconds (pmd_set_real checked it) */
-    inst->chip.s.sampleTime = (uint16_t)floor(inst->cycleTime * 1e6 + 0.5);
-    inst->nextCycle = pmd_cycles_before(inst, inst->time);
-    inst->state = PMD_STEP_MODE;
+    /* the grid: the cycle time is the sample time register's (GetSampleTime reads it), anchored at 0 */
+    inst->s.nextCycle = pmd_grid(&inst->s, &inst->chip.s).nextCycle;
+    inst->s.anchorTime = 0;
+    inst->s.anchorCycle = 0;
+    inst->chip.s.sampleTime = sample_time_of(inst->s.cycleTime);
+    inst->s.state = PMD_STEP_MODE;
     return PMD_OK;
 }
 
@@ -347,14 +375,15 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
 {
     int64_t end, recorded = 0, ran = 0;
     double x, fine;
+    PmdGrid g = pmd_grid(&inst->s, &inst->chip.s);
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: communication point %g, step size %g: the step "
                          "size must be finite and > 0", fn, t, h);
         return PMD_ERROR;
     }
-    if (fabs(t - inst->time) > 1e-6 * inst->activeCycleTime + 8 * DBL_EPSILON * fabs(inst->time)) {
+    if (fabs(t - inst->s.time) > 1e-6 * g.cycleTime + 8 * DBL_EPSILON * fabs(inst->s.time)) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: communication point %.17g is not the current "
-                         "time %.17g", fn, t, inst->time);
+                         "time %.17g", fn, t, inst->s.time);
         return PMD_ERROR;
     }
     /* The step's end must be a cycle index on the current grid; and a pending
@@ -362,33 +391,34 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
      * between t and t + h) at any cycle time down to 1 us, so the step must also
      * hold fewer than 2^53 cycles of 1 us, and its last index stay far from
      * overflow: no grid change can then overflow it. */
-    x = (t + h - inst->anchorTime) / inst->activeCycleTime;
-    fine = h / (inst->activeCycleTime < FINEST_CYCLE_TIME ? inst->activeCycleTime : FINEST_CYCLE_TIME);
+    x = (t + h - g.anchorTime) / g.cycleTime;
+    fine = h / (g.cycleTime < FINEST_CYCLE_TIME ? g.cycleTime : FINEST_CYCLE_TIME);
     if (!(fabs(x) < MAX_CYCLES_PER_STEP && fine < MAX_CYCLES_PER_STEP &&
-          (double)inst->nextCycle + fine < MAX_CYCLE_INDEX)) {
+          (double)inst->s.nextCycle + fine < MAX_CYCLE_INDEX)) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: a step of %g s to %g s holds more than 2^53 cycles "
                          "of 1 us (the finest cycle time SetSampleTime can choose), or ends beyond 2^53 cycles of the "
                          "grid: not run", fn, h, t + h);
         return PMD_ERROR;
     }
-    end = pmd_cycles_before(inst, t + h);
-    if (inst->recordEnabled && end - inst->nextCycle > (int64_t)inst->recordCapacity) {
+    end = pmd_cycles_before(&g, t + h);
+    if (inst->s.recordEnabled && end - inst->s.nextCycle > (int64_t)inst->recordCapacity) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: recording a step of %lld cycles, but record.capacity "
-                         "is %u: not run", fn, (long long)(end - inst->nextCycle), (unsigned)inst->recordCapacity);
+                         "is %u: not run", fn, (long long)(end - inst->s.nextCycle), (unsigned)inst->recordCapacity);
         return PMD_ERROR;
     }
     pmd_commit_ports(inst);
-    end = pmd_cycles_before(inst, t + h);               /* the batch may have restarted the grid */
+    g = pmd_grid(&inst->s, &inst->chip.s);              /* the batch may have restarted the grid */
+    end = pmd_cycles_before(&g, t + h);
     inst->recordCount = 0;
     /* script steps due at a cycle run just before it, inside the step that runs it */
-    while (inst->nextCycle < end) {
-        if (run_script(inst)) {
-            restart_grid(inst, inst->anchorTime + (double)(inst->nextCycle - inst->anchorCycle) *
-                                                      inst->activeCycleTime);
-            end = pmd_cycles_before(inst, t + h);
+    while (inst->s.nextCycle < end) {
+        if (run_script(inst)) {                    /* at the next cycle's time on the grid it ran on */
+            restart_grid(inst, g.anchorTime + (double)(inst->s.nextCycle - g.anchorCycle) * g.cycleTime);
+            g = pmd_grid(&inst->s, &inst->chip.s);
+            end = pmd_cycles_before(&g, t + h);
             continue;
         }
-        if (inst->recordEnabled) {               /* every cycle recorded: no fast-forward */
+        if (inst->s.recordEnabled) {               /* every cycle recorded: no fast-forward */
             /* rows past record.capacity are not recorded: the grid may have restarted finer inside the step */
             int64_t k = cycles_to_skip(inst, end), room = (int64_t)inst->recordRows - recorded;
             int64_t r = k < room ? k : room;
@@ -396,14 +426,14 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
             pmd_chip_run(&inst->chip, k - r, NULL);
             recorded += r;
             ran += k;
-            inst->nextCycle += k;
+            inst->s.nextCycle += k;
         } else {
             pmd_chip_cycle(&inst->chip);
-            inst->nextCycle++;
-            inst->nextCycle += pmd_chip_fast_forward(&inst->chip, cycles_to_skip(inst, end));
+            inst->s.nextCycle++;
+            inst->s.nextCycle += pmd_chip_fast_forward(&inst->chip, cycles_to_skip(inst, end));
         }
     }
-    inst->time = t + h;
+    inst->s.time = t + h;
     inst->recordCount = (uint32_t)recorded;
     if (ran > recorded) {
         pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s: SetSampleTime restarted the cycle grid during a "
@@ -420,10 +450,10 @@ void pmd_set_begin(PmdInstance *inst)
 {
     free(inst->staged.memory);                      /* left by a call that was refused after its check */
     inst->staged.memory = NULL;
-    inst->staged.memorySize = inst->memorySize;
-    inst->staged.memoryAddress = inst->memoryAddress;
-    inst->staged.memoryCount = inst->memoryCount;
-    inst->staged.memoryStrobe = inst->memoryStrobe;
+    inst->staged.memorySize = inst->s.memorySize;
+    inst->staged.memoryAddress = inst->s.memoryAddress;
+    inst->staged.memoryCount = inst->s.memoryCount;
+    inst->staged.memoryStrobe = inst->s.memoryStrobe;
 }
 
 /* What the staged values ask for together: a new memory.strobe a write that
@@ -434,7 +464,7 @@ PmdStatus pmd_set_check(PmdInstance *inst, const char *fn)
 {
     uint32_t size = (uint32_t)inst->staged.memorySize;
     int id;
-    if (inst->staged.memoryStrobe != inst->memoryStrobeSeen &&
+    if (inst->staged.memoryStrobe != inst->s.memoryStrobeSeen &&
         ((uint32_t)inst->staged.memoryAddress > size ||
          (uint32_t)inst->staged.memoryCount > size - (uint32_t)inst->staged.memoryAddress)) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: memory.strobe %d: writing %u words at address %u "
@@ -442,7 +472,7 @@ PmdStatus pmd_set_check(PmdInstance *inst, const char *fn)
                          (unsigned)inst->staged.memoryCount, (unsigned)inst->staged.memoryAddress, (unsigned)size);
         return PMD_ERROR;
     }
-    if (size == (uint32_t)inst->memorySize)
+    if (size == (uint32_t)inst->s.memorySize)
         return PMD_OK;
     for (id = 0; id < PMD_BUFFERS; id++) {
         const PmdBuffer *b = &inst->chip.s.buffer[id];
@@ -465,25 +495,25 @@ PmdStatus pmd_set_check(PmdInstance *inst, const char *fn)
 void pmd_commit_ports(PmdInstance *inst)
 {
     int i;
-    if (inst->hostStrobe != inst->hostAck) {
+    if (inst->s.hostStrobe != inst->s.hostAck) {
         uint16_t words[PMD_BATCH_WORDS], reply[PMD_BATCH_WORDS];
         int count = 0, gridChanged;
-        for (i = 0; i < inst->hostWordCount; i++)
-            words[i] = (uint16_t)(inst->hostWord[i] & 0xFFFF);
-        inst->hostError = pmd_host_batch(&inst->chip, words, inst->hostWordCount, reply, &count, &gridChanged);
+        for (i = 0; i < inst->s.hostWordCount; i++)
+            words[i] = (uint16_t)(inst->s.hostWord[i] & 0xFFFF);
+        inst->s.hostError = pmd_host_batch(&inst->chip, words, inst->s.hostWordCount, reply, &count, &gridChanged);
         for (i = 0; i < PMD_BATCH_WORDS; i++)
-            inst->hostReply[i] = i < count ? reply[i] : 0;
-        inst->hostReplyCount = count;
-        inst->hostAck = inst->hostStrobe;
+            inst->s.hostReply[i] = i < count ? reply[i] : 0;
+        inst->s.hostReplyCount = count;
+        inst->s.hostAck = inst->s.hostStrobe;
         if (gridChanged)
-            restart_grid(inst, inst->time);
+            restart_grid(inst, inst->s.time);
     }
-    if (inst->memoryStrobe != inst->memoryStrobeSeen) {
+    if (inst->s.memoryStrobe != inst->s.memoryStrobeSeen) {
         uint32_t data[PMD_BATCH_WORDS];
-        for (i = 0; i < inst->memoryCount; i++)
-            data[i] = (uint32_t)inst->memoryData[i];
-        pmd_memory_write(&inst->chip, (uint32_t)inst->memoryAddress, (uint32_t)inst->memoryCount, data);
-        inst->memoryStrobeSeen = inst->memoryStrobe;
+        for (i = 0; i < inst->s.memoryCount; i++)
+            data[i] = (uint32_t)inst->s.memoryData[i];
+        pmd_memory_write(&inst->chip, (uint32_t)inst->s.memoryAddress, (uint32_t)inst->s.memoryCount, data);
+        inst->s.memoryStrobeSeen = inst->s.memoryStrobe;
     }
 }
 
@@ -529,16 +559,26 @@ PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const 
 static int settable(PmdInstance *inst, const char *fn, const PmdVariable *v)
 {
     if (v->causality == PMD_OUTPUT || v->causality == PMD_INDEPENDENT) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s is an %s and cannot be set", fn, v->name,
-                         v->causality == PMD_OUTPUT ? "output" : "independent variable");
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is an %s and cannot be set",
+                         fn, v->vr, v->name, v->causality == PMD_OUTPUT ? "output" : "independent variable");
         return 0;
     }
-    if (v->causality == PMD_PARAMETER && !(inst->state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE))) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s is a fixed parameter and cannot be set after "
-                         "initialization", fn, v->name);
+    if (v->causality == PMD_PARAMETER && !(inst->s.state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE))) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a fixed parameter and "
+                         "cannot be set after initialization", fn, v->vr, v->name);
         return 0;
     }
     return 1;
+}
+
+/* A variable of the right type that a get or set below has no case for: a
+ * row of variables.csv without its code. Refused, never answered with
+ * another variable's value or applied to another variable. */
+static PmdStatus unhandled(PmdInstance *inst, const char *fn, const PmdVariable *v, const char *what)
+{
+    pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s): this FMU has no %s for it", fn,
+                     v->vr, v->name, what);
+    return PMD_ERROR;
 }
 
 /* The axis of a per-axis variable (index 0..3); only per-axis cases use it:
@@ -548,24 +588,23 @@ static int settable(PmdInstance *inst, const char *fn, const PmdVariable *v)
 PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
-    const PmdTrajectory *t;
+    PmdGrid g;
     if (!v)
         return PMD_ERROR;
-    if (v->family == VAR_cycleTime || v->family == VAR_time) {
-        *value = v->family == VAR_time ? inst->time : inst->cycleTime;
-        return PMD_OK;
-    }
-    t = &AXIS_OF(v)->trajectory;               /* the Reals left are per axis */
+    g = pmd_grid(&inst->s, &inst->chip.s);
     switch (v->family) {
-    case VAR_axis_position:
-        *value = pmd_commanded_position_counts(t);
+    case VAR_time: *value = inst->s.time; break;
+    case VAR_cycleTime: *value = inst->s.cycleTime; break;
+    case VAR_activeCycleTime: *value = g.cycleTime; break;
+    case VAR_nextCycleTime: *value = g.anchorTime + (double)(g.nextCycle - g.anchorCycle) * g.cycleTime; break;
+    case VAR_nextCycle: *value = (double)g.nextCycle; break;
+    case VAR_script_lastCycle: *value = (double)inst->script.lastCycle; break;
+    case VAR_axis_position: *value = pmd_commanded_position_counts(&AXIS_OF(v)->trajectory); break;
+    case VAR_axis_velocity: *value = pmd_commanded_velocity_counts(&AXIS_OF(v)->trajectory) / g.cycleTime; break;
+    case VAR_axis_acceleration:
+        *value = pmd_commanded_acceleration_counts(&AXIS_OF(v)->trajectory) / (g.cycleTime * g.cycleTime);
         break;
-    case VAR_axis_velocity:
-        *value = pmd_commanded_velocity_counts(t) / inst->activeCycleTime;
-        break;
-    default:   /* VAR_axis_acceleration */
-        *value = pmd_commanded_acceleration_counts(t) / (inst->activeCycleTime * inst->activeCycleTime);
-        break;
+    default: return unhandled(inst, fn, v, "Real getter");
     }
     return PMD_OK;
 }
@@ -576,7 +615,7 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     if (!v)
         return PMD_ERROR;
     switch (v->family) {
-    case VAR_memorySize: *value = inst->memorySize; break;
+    case VAR_memorySize: *value = inst->s.memorySize; break;
     case VAR_chipTime: *value = pmd_int32(inst->chip.s.time); break;
     case VAR_axis_commandedPosition: *value = AXIS_OF(v)->trajectory.position; break;
     case VAR_axis_commandedVelocity: *value = pmd_commanded_velocity(&AXIS_OF(v)->trajectory); break;
@@ -584,18 +623,20 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     case VAR_axis_activityStatus: *value = pmd_activity_status(&inst->chip, v->index); break;
     case VAR_axis_eventStatus: *value = AXIS_OF(v)->eventStatus; break;
     case VAR_axis_actualPosition: *value = AXIS_OF(v)->actualPositionInput; break;
-    case VAR_host_word: *value = inst->hostWord[v->index]; break;
-    case VAR_host_wordCount: *value = inst->hostWordCount; break;
-    case VAR_host_strobe: *value = inst->hostStrobe; break;
-    case VAR_host_ack: *value = inst->hostAck; break;
-    case VAR_host_reply: *value = inst->hostReply[v->index]; break;
-    case VAR_host_replyCount: *value = inst->hostReplyCount; break;
-    case VAR_host_error: *value = inst->hostError; break;
-    case VAR_memory_address: *value = inst->memoryAddress; break;
-    case VAR_memory_count: *value = inst->memoryCount; break;
-    case VAR_memory_strobe: *value = inst->memoryStrobe; break;
+    case VAR_host_word: *value = inst->s.hostWord[v->index]; break;
+    case VAR_host_wordCount: *value = inst->s.hostWordCount; break;
+    case VAR_host_strobe: *value = inst->s.hostStrobe; break;
+    case VAR_host_ack: *value = inst->s.hostAck; break;
+    case VAR_host_reply: *value = inst->s.hostReply[v->index]; break;
+    case VAR_host_replyCount: *value = inst->s.hostReplyCount; break;
+    case VAR_host_error: *value = inst->s.hostError; break;
+    case VAR_memory_address: *value = inst->s.memoryAddress; break;
+    case VAR_memory_count: *value = inst->s.memoryCount; break;
+    case VAR_memory_strobe: *value = inst->s.memoryStrobe; break;
+    case VAR_memory_data: *value = inst->s.memoryData[v->index]; break;
     case VAR_record_capacity: *value = (int32_t)inst->recordCapacity; break;
-    default: *value = inst->memoryData[v->index]; break;   /* VAR_memory_data */
+    case VAR_script_axes: *value = inst->script.axes; break;
+    default: return unhandled(inst, fn, v, "Integer getter");
     }
     return PMD_OK;
 }
@@ -610,8 +651,9 @@ PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *v
     case VAR_axis_positiveLimit: *value = AXIS_OF(v)->positiveLimitInput; break;
     case VAR_axis_negativeLimit: *value = AXIS_OF(v)->negativeLimitInput; break;
     case VAR_axis_home: *value = AXIS_OF(v)->homeInput; break;
-    case VAR_record_enabled: *value = inst->recordEnabled; break;
-    default: *value = pmd_host_interrupt(&inst->chip); break;   /* VAR_host_interrupt */
+    case VAR_record_enabled: *value = inst->s.recordEnabled; break;
+    case VAR_host_interrupt: *value = pmd_host_interrupt(&inst->chip); break;
+    default: return unhandled(inst, fn, v, "Boolean getter");
     }
     return PMD_OK;
 }
@@ -635,14 +677,19 @@ PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double va
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
-    /* The only Real that can be set is cycleTime. The chip's sample time
-     * register (GetSampleTime) holds whole microseconds, 1..65535: a cycle time
-     * it cannot hold is refused rather than rounded. */
-    if (!pmd_cycle_time_valid(value))
-        return out_of_range(inst, fn, v, value, "a whole number of microseconds, 1e-6 .. 0.065535 s");
-    if (apply)
-        inst->cycleTime = value;
-    return PMD_OK;
+    switch (v->family) {
+    case VAR_cycleTime:
+        /* The chip's sample time register (GetSampleTime) holds whole
+         * microseconds, 1..65535: a cycle time it cannot hold is refused
+         * rather than rounded. */
+        if (!pmd_cycle_time_valid(value))
+            return out_of_range(inst, fn, v, value, "a whole number of microseconds, 1e-6 .. 0.065535 s");
+        if (apply)
+            inst->s.cycleTime = value;
+        return PMD_OK;
+    default:
+        return unhandled(inst, fn, v, "Real setter");
+    }
 }
 
 /* A new memory size keeps the words both sizes have and every register
@@ -650,14 +697,15 @@ PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double va
 static void set_memory_size(PmdInstance *inst, int32_t words)
 {
     uint32_t *memory = inst->staged.memory;
+    int32_t kept = words < inst->s.memorySize ? words : inst->s.memorySize;
     if (!memory)
         return;                                     /* the same size: nothing to do */
-    memcpy(memory, inst->chip.memory, (size_t)(words < inst->memorySize ? words : inst->memorySize) * sizeof *memory);
+    memcpy(memory, inst->chip.memory, (size_t)kept * sizeof *memory);
     free(inst->chip.memory);
     inst->staged.memory = NULL;
     inst->chip.memory = memory;
     inst->chip.memorySize = (uint32_t)words;
-    inst->memorySize = words;
+    inst->s.memorySize = words;
 }
 
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_t value, int apply)
@@ -665,7 +713,7 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
-    switch (v->family) {
+    switch (v->family) {                                    /* the value's range */
     case VAR_memorySize:
         if (value < 1 || value > PMD_MAX_MEMORY_WORDS)
             return out_of_range(inst, fn, v, (double)value, "1 .. 2^26 words");
@@ -691,10 +739,14 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
         if (value < INT32_MIN || value > UINT32_MAX)      /* FMI 2 Integer or FMI 3 UInt32: the word's 32 bits */
             return out_of_range(inst, fn, v, (double)value, "a 32-bit word");
         break;
-    default:                                                /* Int32 variables: FMI already bounds them */
+    case VAR_axis_actualPosition:
+    case VAR_host_strobe:
+    case VAR_memory_strobe:                                 /* Int32 variables: FMI already bounds them */
         if (value < INT32_MIN || value > INT32_MAX)
             return out_of_range(inst, fn, v, (double)value, "a 32-bit signed integer");
         break;
+    default:
+        return unhandled(inst, fn, v, "Integer setter");
     }
     if (!apply) {
         switch (v->family) {                                /* what pmd_set_check looks at */
@@ -702,21 +754,22 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
         case VAR_memory_address: inst->staged.memoryAddress = (int32_t)value; break;
         case VAR_memory_count: inst->staged.memoryCount = (int32_t)value; break;
         case VAR_memory_strobe: inst->staged.memoryStrobe = (int32_t)value; break;
-        default: break;
+        default: break;                                     /* checked above; nothing to stage */
         }
         return PMD_OK;
     }
     switch (v->family) {
     case VAR_memorySize: set_memory_size(inst, inst->staged.memorySize); break;   /* the call's last value */
     case VAR_axis_actualPosition: AXIS_OF(v)->actualPositionInput = (int32_t)value; break;
-    case VAR_host_word: inst->hostWord[v->index] = (int32_t)value; break;
-    case VAR_host_wordCount: inst->hostWordCount = (int32_t)value; break;
-    case VAR_host_strobe: inst->hostStrobe = (int32_t)value; break;
-    case VAR_memory_address: inst->memoryAddress = (int32_t)value; break;
-    case VAR_memory_count: inst->memoryCount = (int32_t)value; break;
-    case VAR_memory_strobe: inst->memoryStrobe = (int32_t)value; break;
+    case VAR_host_word: inst->s.hostWord[v->index] = (int32_t)value; break;
+    case VAR_host_wordCount: inst->s.hostWordCount = (int32_t)value; break;
+    case VAR_host_strobe: inst->s.hostStrobe = (int32_t)value; break;
+    case VAR_memory_address: inst->s.memoryAddress = (int32_t)value; break;
+    case VAR_memory_count: inst->s.memoryCount = (int32_t)value; break;
+    case VAR_memory_strobe: inst->s.memoryStrobe = (int32_t)value; break;
+    case VAR_memory_data: inst->s.memoryData[v->index] = pmd_int32((uint32_t)value); break;
     case VAR_record_capacity: inst->recordCapacity = (uint32_t)value; break;
-    default: inst->memoryData[v->index] = pmd_int32((uint32_t)value); break;   /* VAR_memory_data */
+    default: return unhandled(inst, fn, v, "Integer setter");   /* the check pass refused it already */
     }
     return PMD_OK;
 }
@@ -727,14 +780,18 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
     value = value != 0;
-    if (!apply)          /* recording needs its buffer: allocated by the check, so that applying cannot fail */
-        return v->family == VAR_record_enabled && value ? pmd_record_allocate(inst, fn) : PMD_OK;
     switch (v->family) {
-    case VAR_loopback: inst->chip.s.loopback = (uint8_t)value; break;
-    case VAR_axis_positiveLimit: AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;
-    case VAR_axis_negativeLimit: AXIS_OF(v)->negativeLimitInput = (uint8_t)value; break;
-    case VAR_record_enabled: inst->recordEnabled = (uint8_t)value; break;
-    default: AXIS_OF(v)->homeInput = (uint8_t)value; break;   /* VAR_axis_home */
+    case VAR_loopback: if (apply) inst->chip.s.loopback = (uint8_t)value; break;
+    case VAR_axis_positiveLimit: if (apply) AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;
+    case VAR_axis_negativeLimit: if (apply) AXIS_OF(v)->negativeLimitInput = (uint8_t)value; break;
+    case VAR_axis_home: if (apply) AXIS_OF(v)->homeInput = (uint8_t)value; break;
+    case VAR_record_enabled:
+        /* recording needs its buffer: allocated by the check, so that applying cannot fail */
+        if (!apply)
+            return value ? pmd_record_allocate(inst, fn) : PMD_OK;
+        inst->s.recordEnabled = (uint8_t)value;
+        break;
+    default: return unhandled(inst, fn, v, "Boolean setter");
     }
     return PMD_OK;
 }
@@ -744,7 +801,10 @@ PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const c
     const PmdVariable *v = lookup(inst, fn, vr, PMD_STRING);
     if (!v)
         return PMD_ERROR;
-    *value = inst->scriptPath ? inst->scriptPath : "";     /* the only String: script */
+    switch (v->family) {
+    case VAR_script: *value = inst->scriptPath ? inst->scriptPath : ""; break;
+    default: return unhandled(inst, fn, v, "String getter");
+    }
     return PMD_OK;
 }
 
@@ -754,6 +814,8 @@ PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const c
     char *copy;
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
+    if (v->family != VAR_script)
+        return unhandled(inst, fn, v, "String setter");
     if (!value) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s: the value is NULL", fn, v->name);
         return PMD_ERROR;
@@ -776,8 +838,13 @@ PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const u
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BINARY);
     if (!v)
         return PMD_ERROR;
-    /* the only Binary: record.data, little-endian int32 words as this platform stores them */
-    *value = (const unsigned char *)inst->record;
-    *size = (size_t)inst->recordCount * PMD_RECORD_WORDS * sizeof(int32_t);
+    switch (v->family) {
+    case VAR_record_data:
+        /* little-endian int32 words as this platform stores them */
+        *value = (const unsigned char *)inst->record;
+        *size = (size_t)inst->recordCount * PMD_RECORD_WORDS * sizeof(int32_t);
+        break;
+    default: return unhandled(inst, fn, v, "Binary getter");
+    }
     return PMD_OK;
 }

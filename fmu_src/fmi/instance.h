@@ -25,24 +25,24 @@ typedef enum {
 typedef void (*PmdInstanceLogger)(void *environment, const char *instanceName, PmdStatus status,
                                   const char *category, const char *message);
 
+/* The instance's declared state: plain data, no pointer, nothing of this
+ * process. An FMU state (state.c) is this struct, the chip's (chip.s) and the
+ * memory words, copied field by field by the list in state_fields.c. */
 typedef struct {
-    PmdChip chip;
     PmdState state;
-    char *instanceName;
-    PmdInstanceLogger logger;
-    void *environment;
-    int loggingOn;
-    unsigned categories;        /* bit per PmdLogCategory enabled by SetDebugLogging */
 
     /* parameters */
-    double cycleTime;
+    double cycleTime;                /* initialization loads it into the chip's sample time register */
     int32_t memorySize;
 
-    /* time: cycle k runs at anchorTime + (k - anchorCycle) * activeCycleTime;
-     * nextCycle is the next k to run. SetSampleTime moves the anchor (CONTRACT 2.2). */
+    /* The time grid: chip cycle k runs at anchorTime + (k - anchorCycle) * the
+     * cycle time, which is the chip's sample time register (pmd_grid); nextCycle
+     * is the next k to run, time the last communication point. A host batch or
+     * script step that changes the sample time restarts the grid at the next
+     * cycle (CONTRACT 2.2). Initialization sets it up at time 0, cycle 0. */
     double time;
     int64_t nextCycle;
-    double activeCycleTime, anchorTime;
+    double anchorTime;
     int64_t anchorCycle;
 
     /* host port */
@@ -55,15 +55,32 @@ typedef struct {
     int32_t memoryAddress, memoryCount, memoryStrobe, memoryStrobeSeen;
     int32_t memoryData[PMD_BATCH_WORDS];
 
+    /* how far the script ran */
+    size_t scriptNext;               /* the next step to run */
+    uint64_t scriptDigest;           /* of the compiled script it runs (0: none): a snapshot runs on only with it */
+
+    uint8_t recordEnabled;           /* record.enabled */
+} PmdInstanceState;
+
+/* The process shell around the declared state: names, hooks and buffers of
+ * this process, which an FMU state neither holds nor restores. */
+typedef struct {
+    PmdInstanceState s;
+    PmdChip chip;                    /* chip.s is declared state; its memory block and logger are this process's */
+    char *instanceName;
+    PmdInstanceLogger logger;
+    void *environment;
+    int loggingOn;
+    unsigned categories;             /* bit per PmdLogCategory enabled by SetDebugLogging */
+
     /* the script parameter, compiled at the end of initialization */
     char *scriptPath;
     PmdScript script;
-    size_t scriptNext;               /* the next step to run */
-    uint64_t scriptDigest;           /* of the compiled script this state runs (0: none): a snapshot runs on only with it */
 
-    /* bulk recording (FMI 3 record.data): PMD_RECORD_WORDS int32 per cycle of the last doStep */
-    uint8_t recordEnabled;
-    uint32_t recordCapacity;         /* cycles */
+    /* bulk recording (FMI 3 record.data): PMD_RECORD_WORDS int32 per cycle of the
+     * last doStep. The buffer and its size are this process's: a restored state
+     * keeps the instance's record.capacity and has recorded nothing yet. */
+    uint32_t recordCapacity;         /* cycles (the record.capacity parameter) */
     int32_t *record;
     uint32_t recordRows;             /* cycles the record buffer holds (record.capacity when it was allocated) */
     uint32_t recordCount;            /* cycles recorded by the last doStep */
@@ -90,8 +107,20 @@ PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn
 PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime);
 /* Whether seconds is a cycle time the sample time register holds: whole microseconds, 1..65535. */
 int pmd_cycle_time_valid(double seconds);
+
+/* The time grid as it stands: chip cycle k runs at anchorTime + (k - anchorCycle)
+ * * cycleTime, nextCycle is the next k to run. From the end of initialization
+ * on, the declared anchor and nextCycle, and the chip's sample time register
+ * in seconds (sampleTime / 1e6, correctly rounded); before it, the grid
+ * initialization will set up: anchored at time 0, cycle 0, with the cycleTime
+ * parameter as the register will hold it. */
+typedef struct {
+    double anchorTime, cycleTime;
+    int64_t anchorCycle, nextCycle;
+} PmdGrid;
+PmdGrid pmd_grid(const PmdInstanceState *s, const PmdChipState *chip);
 /* The grid index of the first cycle at or after t (within a master's rounding). */
-int64_t pmd_cycles_before(const PmdInstance *inst, double t);
+int64_t pmd_cycles_before(const PmdGrid *grid, double t);
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime);
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn);
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);

@@ -23,6 +23,9 @@ typedef struct {
     size_t count, capacity;
     uint32_t *pool;                  /* table words */
     size_t poolCount, poolCapacity;
+    /* what a master may ask about the script without parsing it again */
+    uint8_t axes;                    /* the axes its calls address: bit n for axis n + 1 */
+    int64_t lastCycle;               /* the time of its last @ line (0: none), 0 .. 10^18 - 1 */
 } PmdScript;
 
 /* Compiles the script at path for a memory of memoryWords words. Returns 0,

@@ -1,16 +1,18 @@
 /* FMU state: a snapshot of an instance as one self-describing block of bytes.
  *
- * A snapshot is the instance struct, with the fields state_fields.c declares
- * as this process's (pointers, hooks, logging) cleared, followed by the memory
- * words (the compiled script stays the instance's: a snapshot holds how far the
- * script ran), behind a header that lets a restore refuse anything that is not
- * a snapshot of this FMU build: magic, format version, instantiation token,
- * struct size, memory size, total size and a checksum of the body. The
- * checksum catches accidents, not forgeries: a restore also checks every field
- * against its declared range and against the fields it depends on, and
- * refuses the whole snapshot, naming the field. The same bytes serve fmi2/fmi3
- * Get/SetFMUState and (De)SerializeFMUState, in this process or another one of
- * the same build and platform. */
+ * A snapshot is the declared state (state_fields.h: the instance's
+ * PmdInstanceState and the chip's PmdChipState, copied field by field into a
+ * zeroed image), followed by the memory words, behind a header that lets a
+ * restore refuse anything that is not a snapshot of this FMU build: magic,
+ * format version, instantiation token, image size, memory size, total size
+ * and a checksum of the body. What belongs to this process (names, hooks,
+ * logging, the compiled script, the record buffer) is in the PmdInstance shell
+ * around the declared state and stays the instance's: a snapshot holds how far
+ * the script ran. The checksum catches accidents, not forgeries: a restore
+ * also checks every field against its declared range and against the fields
+ * it depends on, and refuses the whole snapshot, naming the field. The same
+ * bytes serve fmi2/fmi3 Get/SetFMUState and (De)SerializeFMUState, in this
+ * process or another one of the same build and platform. */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -22,55 +24,55 @@
 
 #define MAGIC PMD_STATE_MAGIC
 typedef PmdStateHeader Header;
+typedef PmdStateImage Image;
 
 size_t pmd_state_size(const PmdInstance *inst)
 {
-    return sizeof(Header) + sizeof(PmdInstance) + (size_t)inst->memorySize * sizeof(uint32_t);
+    return sizeof(Header) + sizeof(Image) + (size_t)inst->s.memorySize * sizeof(uint32_t);
 }
 
-/* Copies the leaves of one kind (the state's, or the process's) from one image to another. */
-typedef struct {
-    unsigned char *to;
-    const unsigned char *from;
-    int process;
-} LeafCopy;
-
-static int copy_leaf(const PmdStateLeaf *leaf, void *context)
+/* Where a field of the image lives in the instance: the instance's part in
+ * inst->s, the chip's in inst->chip.s. */
+static const unsigned char *live_field(const PmdInstance *inst, size_t offset)
 {
-    const LeafCopy *c = (const LeafCopy *)context;
-    if ((leaf->kind == PMD_SF_PROCESS) == c->process)
-        memcpy(c->to + leaf->offset, c->from + leaf->offset, leaf->size);
+    if (offset >= offsetof(Image, chip))
+        return (const unsigned char *)&inst->chip.s + (offset - offsetof(Image, chip));
+    return (const unsigned char *)&inst->s + (offset - offsetof(Image, instance));
+}
+
+typedef struct {
+    unsigned char *image;
+    const PmdInstance *inst;
+} Writer;
+
+static int write_leaf(const PmdStateLeaf *leaf, void *context)
+{
+    const Writer *w = (const Writer *)context;
+    memcpy(w->image + leaf->offset, live_field(w->inst, leaf->offset), leaf->size);
     return 0;
 }
 
-static void copy_leaves(void *to, const void *from, int process)
-{
-    LeafCopy c;
-    c.to = (unsigned char *)to;
-    c.from = (const unsigned char *)from;
-    c.process = process;
-    pmd_state_walk(0, copy_leaf, &c);
-}
-
-/* The image holds the declared state's fields and zeros elsewhere: no
- * process field, and no padding byte (whatever the compiler left in it). */
+/* The image holds the declared fields and zeros elsewhere: no padding byte
+ * (whatever the compiler left in it) reaches the snapshot. */
 void pmd_state_write(const PmdInstance *inst, unsigned char *out)
 {
     Header h;
-    unsigned char *body = out + sizeof h;
+    Writer w;
 
-    memset(body, 0, sizeof(PmdInstance));
-    copy_leaves(body, inst, 0);
-    memcpy(body + sizeof(PmdInstance), inst->chip.memory, (size_t)inst->memorySize * sizeof(uint32_t));
+    w.image = out + sizeof h;
+    w.inst = inst;
+    memset(w.image, 0, sizeof(Image));
+    pmd_state_walk(0, write_leaf, &w);
+    memcpy(w.image + sizeof(Image), inst->chip.memory, (size_t)inst->s.memorySize * sizeof(uint32_t));
 
     memset(&h, 0, sizeof h);
     memcpy(h.magic, MAGIC, sizeof h.magic);
     h.formatVersion = PMD_STATE_VERSION;
-    h.instanceSize = (uint32_t)sizeof(PmdInstance);
+    h.instanceSize = (uint32_t)sizeof(Image);
     strncpy(h.token, PMD_INSTANTIATION_TOKEN, sizeof h.token - 1);
     h.totalSize = pmd_state_size(inst);
-    h.memoryWords = (uint64_t)inst->memorySize;
-    h.checksum = pmd_fnv1a(PMD_FNV1A_BASIS, body, (size_t)h.totalSize - sizeof h);
+    h.memoryWords = (uint64_t)inst->s.memorySize;
+    h.checksum = pmd_fnv1a(PMD_FNV1A_BASIS, w.image, (size_t)h.totalSize - sizeof h);
     memcpy(out, &h, sizeof h);
 }
 
@@ -160,27 +162,32 @@ static int check_axes(const PmdChip *chip, char *why, size_t whySize)
     return 0;
 }
 
-/* The instance around the chip; live is the instance the snapshot would replace. */
-static int check_instance(const PmdInstance *s, const PmdInstance *live, uint64_t memoryWords, char *why,
-                          size_t whySize)
+/* The instance's declared state beside the chip's; live is the instance the
+ * snapshot would replace. */
+static int check_instance(const PmdInstanceState *s, const PmdChip *chip, const PmdInstance *live,
+                          uint64_t memoryWords, char *why, size_t whySize)
 {
-    if ((uint64_t)s->memorySize != memoryWords || s->chip.memorySize != (uint32_t)s->memorySize)
-        return WHY("memorySize %d, chip.memorySize %u and the header's %llu words differ", s->memorySize,
-                   (unsigned)s->chip.memorySize, (unsigned long long)memoryWords);
+    if ((uint64_t)s->memorySize != memoryWords)
+        return WHY("memorySize %d and the header's %llu words differ", s->memorySize,
+                   (unsigned long long)memoryWords);
     if (s->state & (s->state - 1))
         return WHY("state = %u is not one FMI state", (unsigned)s->state);
-    if (!pmd_cycle_time_valid(s->cycleTime) || !pmd_cycle_time_valid(s->activeCycleTime))
-        return WHY("cycleTime %g or activeCycleTime %g is not a whole number of microseconds, 1..65535",
-                   s->cycleTime, s->activeCycleTime);
+    if (!pmd_cycle_time_valid(s->cycleTime))
+        return WHY("cycleTime %g is not a whole number of microseconds, 1..65535", s->cycleTime);
     if (s->state & (PMD_STEP_MODE | PMD_TERMINATED)) {
-        /* the grid as doStep leaves it: the next cycle is the first at or after time (before
-         * step mode, ExitInitializationMode sets it up) */
-        if (!(fabs(s->time - s->anchorTime) / s->activeCycleTime < (double)(INT64_C(1) << 53)))
+        /* the grid as doStep leaves it: its cycle time is the sample time register's, and the
+         * next cycle is the first at or after time (before step mode, ExitInitializationMode
+         * sets it up) */
+        PmdGrid g;
+        if (chip->s.sampleTime == 0)
+            return WHY("chip.s.sampleTime = 0: the time grid's cycle time is 1..65535 microseconds");
+        g = pmd_grid(s, &chip->s);
+        if (!(fabs(s->time - g.anchorTime) / g.cycleTime < (double)(INT64_C(1) << 53)))
             return WHY("time %.17g is not within 2^53 cycles of anchorTime %.17g", s->time, s->anchorTime);
-        if (s->nextCycle != pmd_cycles_before(s, s->time))
+        if (s->nextCycle != pmd_cycles_before(&g, s->time))
             return WHY("nextCycle %lld is not where time %.17g lies on the grid of anchorTime %.17g, anchorCycle "
                        "%lld", (long long)s->nextCycle, s->time, s->anchorTime, (long long)s->anchorCycle);
-        if (s->scriptDigest != live->scriptDigest || s->scriptNext > live->script.count)
+        if (s->scriptDigest != live->s.scriptDigest || s->scriptNext > live->script.count)
             return WHY("scriptDigest: the state runs another script than this instance (restore it into an "
                        "instance initialized with the same script)");
     } else if (s->scriptNext != 0) {
@@ -189,9 +196,9 @@ static int check_instance(const PmdInstance *s, const PmdInstance *live, uint64_
     if (s->memoryStrobe != s->memoryStrobeSeen && s->memoryCount > s->memorySize - s->memoryAddress)
         return WHY("memoryAddress %d + memoryCount %d of the pending write leave the %d-word memory",
                    s->memoryAddress, s->memoryCount, s->memorySize);
-    if (check_buffers(&s->chip.s, (uint32_t)memoryWords, why, whySize) || check_trace(&s->chip.s, why, whySize))
+    if (check_buffers(&chip->s, (uint32_t)memoryWords, why, whySize) || check_trace(&chip->s, why, whySize))
         return -1;
-    return check_axes(&s->chip, why, whySize);
+    return check_axes(chip, why, whySize);
 }
 
 PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigned char *in, size_t size)
@@ -210,10 +217,10 @@ PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigne
             why = "its format version is not this build's";
         else if (memcmp(h.token, token, sizeof token) != 0)
             why = "it comes from another FMU (instantiation token differs)";
-        else if (h.instanceSize != sizeof(PmdInstance))
+        else if (h.instanceSize != sizeof(Image))
             why = "it comes from a build with another state layout";
         else if (h.memoryWords < 1 || h.memoryWords > PMD_MAX_MEMORY_WORDS ||
-                 h.totalSize != sizeof h + sizeof(PmdInstance) + h.memoryWords * sizeof(uint32_t))
+                 h.totalSize != sizeof h + sizeof(Image) + h.memoryWords * sizeof(uint32_t))
             why = "its sizes are inconsistent";
         else if (h.totalSize != size)
             why = "it is truncated or has trailing bytes";
@@ -221,16 +228,20 @@ PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigne
             why = "it is corrupted (checksum mismatch)";
     }
     if (!why) {
-        PmdInstance *copy = (PmdInstance *)malloc(sizeof *copy);
-        if (!copy) {
+        /* the declared state as the checks read it: the chip's inside a chip without memory or logger */
+        PmdInstanceState *s = (PmdInstanceState *)malloc(sizeof *s);
+        PmdChip *chip = (PmdChip *)calloc(1, sizeof *chip);
+        if (!s || !chip) {
             why = "no host memory to check it";
         } else {
-            memcpy(copy, in + sizeof h, sizeof *copy);
-            if (pmd_state_check_ranges(copy, field, sizeof field) ||
-                check_instance(copy, inst, h.memoryWords, field, sizeof field))
+            memcpy(s, in + sizeof h + offsetof(Image, instance), sizeof *s);
+            memcpy(&chip->s, in + sizeof h + offsetof(Image, chip), sizeof chip->s);
+            if (pmd_state_check_ranges(in + sizeof h, field, sizeof field) ||
+                check_instance(s, chip, inst, h.memoryWords, field, sizeof field))
                 why = field;
-            free(copy);
         }
+        free(s);
+        free(chip);
     }
     if (why) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: FMU state of %zu bytes refused: %s", fn, size, why);
@@ -239,40 +250,33 @@ PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigne
     return PMD_OK;
 }
 
+/* Restores a snapshot pmd_state_check accepted: the declared state and the
+ * memory; this process's fields (the memory block, hooks, logging, the script
+ * and the record buffer) stay the instance's. */
 PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char *in)
 {
     Header h;
-    PmdInstance *saved = (PmdInstance *)malloc(sizeof *saved);
+    PmdInstanceState s;
     uint32_t *memory = inst->chip.memory;
-    uint8_t recording;
-    if (!saved) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory", fn);
-        return PMD_ERROR;
-    }
+
     memcpy(&h, in, sizeof h);
+    memcpy(&s, in + sizeof h + offsetof(Image, instance), sizeof s);
     /* a state that records needs the record.data buffer (of this instance's record.capacity) */
-    memcpy(&recording, in + sizeof h + offsetof(PmdInstance, recordEnabled), sizeof recording);
-    if (recording && pmd_record_allocate(inst, fn)) {
-        free(saved);
+    if (s.recordEnabled && pmd_record_allocate(inst, fn))
         return PMD_ERROR;
-    }
-    if ((int64_t)h.memoryWords != inst->memorySize) {
+    if ((int64_t)h.memoryWords != inst->s.memorySize) {
         memory = (uint32_t *)realloc(inst->chip.memory, (size_t)h.memoryWords * sizeof(uint32_t));
         if (!memory) {
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: out of host memory for %llu words", fn,
                              (unsigned long long)h.memoryWords);
-            free(saved);
             return PMD_ERROR;
         }
         inst->chip.memory = memory;
     }
-    memcpy(memory, in + sizeof h + sizeof(PmdInstance), (size_t)h.memoryWords * sizeof(uint32_t));
-    *saved = *inst;
-    memcpy(inst, in + sizeof h, sizeof *inst);
-    /* this process's fields (the memory block, hooks, logging, the script and
-     * the recording buffer) stay the instance's */
-    copy_leaves(inst, saved, 1);
-    free(saved);
+    memcpy(memory, in + sizeof h + sizeof(Image), (size_t)h.memoryWords * sizeof(uint32_t));
+    inst->s = s;
+    memcpy(&inst->chip.s, in + sizeof h + offsetof(Image, chip), sizeof inst->chip.s);
+    inst->chip.memorySize = (uint32_t)inst->s.memorySize;
     inst->recordCount = 0;                          /* the restored state has recorded nothing yet */
     return PMD_OK;
 }

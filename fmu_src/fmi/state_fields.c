@@ -1,7 +1,7 @@
-/* The declared instance state (state_fields.h): one row per field of
- * PmdInstance and of every struct inside it, with the values the field may
- * hold. Ranges are those the commands and the engine keep a field in (the
- * handler's check or the register's width); what depends on other fields
+/* The declared state (state_fields.h): one row per field of
+ * PmdInstanceState, PmdChipState and every struct inside them, with the
+ * values the field may hold. Ranges are those the commands and the engine
+ * keep a field in (the handler's check or the register's width); what depends on other fields
  * (a buffer inside the memory, a read index below its buffer's length...) is
  * checked by state.c. tests/test_state_forgery.py checks that every struct
  * member is listed here (from the compiler's debug information) and that a
@@ -24,7 +24,6 @@
 #define REAL(T, m) {#m, MEMBER(T, m), PMD_SF_REAL, 0, 0, NULL}
 #define STRUCT(T, m, S) {#m, MEMBER(T, m), PMD_SF_STRUCT, 0, 0, &S}
 #define STRUCTS(T, m, S) {#m, ELEMENTS(T, m), PMD_SF_STRUCT, 0, 0, &S}
-#define PROCESS(T, m) {#m, MEMBER(T, m), PMD_SF_PROCESS, 0, 0, NULL}
 #define DESCRIBE(T, list) {#T, sizeof(T), sizeof list / sizeof list[0], list}
 
 #define BOOL 0, 1
@@ -179,56 +178,41 @@ static const PmdStateField chip_state_fields[] = {
 };
 static const PmdStateStruct chip_state = DESCRIBE(PmdChipState, chip_state_fields);
 
-static const PmdStateField chip_fields[] = {
-    STRUCT(PmdChip, s, chip_state),
-    PROCESS(PmdChip, memory),
-    UNSIGNED(PmdChip, memorySize, 1, PMD_MAX_MEMORY_WORDS),
-    PROCESS(PmdChip, logger),
-    PROCESS(PmdChip, logContext),
-    PROCESS(PmdChip, logMask),
-};
-static const PmdStateStruct chip = DESCRIBE(PmdChip, chip_fields);
-
+/* The grid's fields: state.c checks that time lies on the grid with nextCycle
+ * where it belongs (doStep keeps the indexes below 2^62). */
 #define CYCLE_INDEX -(INT64_C(1) << 62), INT64_C(1) << 62
-static const PmdStateField instance_fields[] = {
-    STRUCT(PmdInstance, chip, chip),
-    UNSIGNED(PmdInstance, state, PMD_INSTANTIATED, PMD_TERMINATED),      /* one bit of PmdState: state.c */
-    PROCESS(PmdInstance, instanceName),
-    PROCESS(PmdInstance, logger),
-    PROCESS(PmdInstance, environment),
-    PROCESS(PmdInstance, loggingOn),
-    PROCESS(PmdInstance, categories),
-    REAL(PmdInstance, cycleTime),
-    SIGNED(PmdInstance, memorySize, 1, PMD_MAX_MEMORY_WORDS),
-    REAL(PmdInstance, time),
-    SIGNED(PmdInstance, nextCycle, CYCLE_INDEX),
-    REAL(PmdInstance, activeCycleTime),
-    REAL(PmdInstance, anchorTime),
-    SIGNED(PmdInstance, anchorCycle, CYCLE_INDEX),
-    SIGNEDS(PmdInstance, hostWord, -32768, 65535),
-    SIGNED(PmdInstance, hostWordCount, 0, PMD_BATCH_WORDS),
-    SIGNED(PmdInstance, hostStrobe, ANY_I32),
-    SIGNED(PmdInstance, hostAck, ANY_I32),
-    SIGNEDS(PmdInstance, hostReply, ANY_U16),
-    SIGNED(PmdInstance, hostReplyCount, 0, PMD_BATCH_WORDS),
-    SIGNED(PmdInstance, hostError, ANY_U8),
-    SIGNED(PmdInstance, memoryAddress, 0, PMD_MAX_MEMORY_WORDS),
-    SIGNED(PmdInstance, memoryCount, 0, PMD_BATCH_WORDS),
-    SIGNED(PmdInstance, memoryStrobe, ANY_I32),
-    SIGNED(PmdInstance, memoryStrobeSeen, ANY_I32),
-    SIGNEDS(PmdInstance, memoryData, ANY_I32),
-    PROCESS(PmdInstance, scriptPath),
-    PROCESS(PmdInstance, script),
-    UNSIGNED(PmdInstance, scriptNext, 0, INT64_MAX),                     /* within this instance's script: state.c */
-    UNSIGNED(PmdInstance, scriptDigest, 0, INT64_MAX),
-    UNSIGNED(PmdInstance, recordEnabled, BOOL),
-    PROCESS(PmdInstance, recordCapacity),         /* sizes this process's record buffer: the instance keeps its own */
-    PROCESS(PmdInstance, record),
-    PROCESS(PmdInstance, recordRows),
-    PROCESS(PmdInstance, recordCount),            /* rows in this process's record buffer: none after a restore */
-    PROCESS(PmdInstance, staged),
+static const PmdStateField instance_state_fields[] = {
+    UNSIGNED(PmdInstanceState, state, PMD_INSTANTIATED, PMD_TERMINATED),      /* one bit of PmdState: state.c */
+    REAL(PmdInstanceState, cycleTime),
+    SIGNED(PmdInstanceState, memorySize, 1, PMD_MAX_MEMORY_WORDS),
+    REAL(PmdInstanceState, time),
+    SIGNED(PmdInstanceState, nextCycle, CYCLE_INDEX),
+    REAL(PmdInstanceState, anchorTime),
+    SIGNED(PmdInstanceState, anchorCycle, CYCLE_INDEX),
+    SIGNEDS(PmdInstanceState, hostWord, -32768, 65535),
+    SIGNED(PmdInstanceState, hostWordCount, 0, PMD_BATCH_WORDS),
+    SIGNED(PmdInstanceState, hostStrobe, ANY_I32),
+    SIGNED(PmdInstanceState, hostAck, ANY_I32),
+    SIGNEDS(PmdInstanceState, hostReply, ANY_U16),
+    SIGNED(PmdInstanceState, hostReplyCount, 0, PMD_BATCH_WORDS),
+    SIGNED(PmdInstanceState, hostError, ANY_U8),
+    SIGNED(PmdInstanceState, memoryAddress, 0, PMD_MAX_MEMORY_WORDS),
+    SIGNED(PmdInstanceState, memoryCount, 0, PMD_BATCH_WORDS),
+    SIGNED(PmdInstanceState, memoryStrobe, ANY_I32),
+    SIGNED(PmdInstanceState, memoryStrobeSeen, ANY_I32),
+    SIGNEDS(PmdInstanceState, memoryData, ANY_I32),
+    UNSIGNED(PmdInstanceState, scriptNext, 0, INT64_MAX),            /* within this instance's script: state.c */
+    UNSIGNED(PmdInstanceState, scriptDigest, 0, INT64_MAX),
+    UNSIGNED(PmdInstanceState, recordEnabled, BOOL),
 };
-const PmdStateStruct pmd_instance_state = DESCRIBE(PmdInstance, instance_fields);
+static const PmdStateStruct instance_state = DESCRIBE(PmdInstanceState, instance_state_fields);
+
+/* The instance's fields keep their names; the chip's are named chip.s. as the instance reaches them. */
+static const PmdStateField image_fields[] = {
+    {"", MEMBER(PmdStateImage, instance), PMD_SF_STRUCT, 0, 0, &instance_state},
+    {"chip.s", MEMBER(PmdStateImage, chip), PMD_SF_STRUCT, 0, 0, &chip_state},
+};
+const PmdStateStruct pmd_state_image = DESCRIBE(PmdStateImage, image_fields);
 
 /* ---- walking the list ---- */
 
@@ -252,7 +236,9 @@ static int walk(const PmdStateStruct *s, size_t base, const char *prefix, Visit 
             leaf.offset = base + field->offset + e * field->size;
             if (field->kind == PMD_SF_STRUCT) {
                 char sub[sizeof leaf.path + 1];
-                if (prefix)
+                if (prefix && !*field->name)
+                    snprintf(sub, sizeof sub, "%s", prefix);
+                else if (prefix)
                     snprintf(sub, sizeof sub, "%s.", leaf.path);
                 result = walk(field->sub, leaf.offset, prefix ? sub : NULL, visit, context);
             } else {
@@ -271,7 +257,7 @@ static int walk(const PmdStateStruct *s, size_t base, const char *prefix, Visit 
 
 int pmd_state_walk(int named, int (*visit)(const PmdStateLeaf *leaf, void *context), void *context)
 {
-    return walk(&pmd_instance_state, 0, named ? "" : NULL, visit, context);
+    return walk(&pmd_state_image, 0, named ? "" : NULL, visit, context);
 }
 
 /* ---- range checks ---- */
@@ -290,8 +276,6 @@ static int check_leaf(const PmdStateLeaf *leaf, void *context)
     int64_t value;
     double real;
     switch (leaf->kind) {
-    case PMD_SF_PROCESS:
-        return 0;
     case PMD_SF_REAL:
         memcpy(&real, p, sizeof real);
         if (isfinite(real))
@@ -320,10 +304,10 @@ static int check_leaf(const PmdStateLeaf *leaf, void *context)
     return 0;
 }
 
-int pmd_state_check_ranges(const void *instance, char *why, size_t whySize)
+int pmd_state_check_ranges(const void *image, char *why, size_t whySize)
 {
     RangeCheck c;
-    c.image = (const unsigned char *)instance;
+    c.image = (const unsigned char *)image;
     c.why = why;
     c.whySize = whySize;
     if (pmd_state_walk(0, check_leaf, &c) == 0)

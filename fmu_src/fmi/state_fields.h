@@ -1,23 +1,33 @@
-/* The declared instance state: every field of PmdInstance, what it may hold,
- * and whether it belongs to the FMU state or to this process (state_fields.c).
- * QEMU's VMStateDescription is the model: a snapshot is refused, naming the
- * field, when a field holds a value the model never gives it, so a forged or
- * corrupted state cannot reach the engine. */
+/* The declared state: every field of the structs an FMU state holds (the
+ * instance's PmdInstanceState and the chip's PmdChipState), what each may
+ * hold (state_fields.c). QEMU's VMStateDescription is the model: a snapshot
+ * is refused, naming the field, when a field holds a value the model never
+ * gives it, so a forged or corrupted state cannot reach the engine. */
 #ifndef PMD_STATE_FIELDS_H
 #define PMD_STATE_FIELDS_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-/* Bumped whenever a field is added, removed or changes meaning. */
-#define PMD_STATE_VERSION 3u
+#include "instance.h"
 
-/* A snapshot (state.c): this header, the instance image, the memory words. */
+/* Bumped whenever a field is added, removed or changes meaning. */
+#define PMD_STATE_VERSION 4u
+
+/* The declared state as a snapshot holds it: the instance's, then the chip's.
+ * Its fields are named as the instance reaches them (hostWordCount,
+ * chip.s.trace.period). */
+typedef struct {
+    PmdInstanceState instance;
+    PmdChipState chip;
+} PmdStateImage;
+
+/* A snapshot (state.c): this header, the state image, the memory words. */
 #define PMD_STATE_MAGIC "PMDFMUST"
 typedef struct {
     char magic[8];
     uint32_t formatVersion;      /* PMD_STATE_VERSION */
-    uint32_t instanceSize;       /* sizeof(PmdInstance): the layout of this build */
+    uint32_t instanceSize;       /* sizeof(PmdStateImage): the layout of this build */
     char token[48];              /* PMD_INSTANTIATION_TOKEN, zero-padded */
     uint64_t totalSize;
     uint64_t memoryWords;
@@ -28,8 +38,7 @@ typedef enum {
     PMD_SF_UNSIGNED,     /* an unsigned integer of 1, 2, 4 or 8 bytes, within [min, max] */
     PMD_SF_SIGNED,       /* a signed integer, within [min, max] */
     PMD_SF_REAL,         /* a double: finite */
-    PMD_SF_STRUCT,       /* a nested struct (sub) */
-    PMD_SF_PROCESS       /* this process's, not the state's (pointers, hooks, logging): kept on restore */
+    PMD_SF_STRUCT        /* a nested struct (sub); named "": its fields are named as if they were this struct's */
 } PmdStateFieldKind;
 
 typedef struct PmdStateStruct PmdStateStruct;
@@ -50,13 +59,15 @@ struct PmdStateStruct {
     const PmdStateField *fields;
 };
 
-extern const PmdStateStruct pmd_instance_state;
+/* The image's two parts; their fields, and those of the structs in them, are
+ * every member (tests/test_state_forgery.py checks it). */
+extern const PmdStateStruct pmd_state_image;
 
 /* One scalar of the flattened list: an element of an array, a field of a nested struct. */
 typedef struct {
     char path[96];                /* e.g. "chip.s.axis[2].trajectory.fraction" */
-    size_t offset, size;          /* in PmdInstance */
-    unsigned char kind;           /* PMD_SF_UNSIGNED, _SIGNED, _REAL or _PROCESS */
+    size_t offset, size;          /* in PmdStateImage */
+    unsigned char kind;           /* PMD_SF_UNSIGNED, _SIGNED or _REAL */
     int64_t min, max;
 } PmdStateLeaf;
 
@@ -64,9 +75,9 @@ typedef struct {
  * stops and returns its non-zero result. */
 int pmd_state_walk(int named, int (*visit)(const PmdStateLeaf *leaf, void *context), void *context);
 
-/* Checks every field of the instance image against its declared range; on the
+/* Checks every field of the state image against its declared range; on the
  * first that is out of it, writes "path = value is not in min..max" into why
  * and returns -1. */
-int pmd_state_check_ranges(const void *instance, char *why, size_t whySize);
+int pmd_state_check_ranges(const void *image, char *why, size_t whySize);
 
 #endif

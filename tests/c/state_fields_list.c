@@ -1,8 +1,10 @@
-/* Prints the declared instance state (fmu_src/fmi/state_fields.c) for
+/* Prints the declared state (fmu_src/fmi/state_fields.c) for
  * tests/test_state_forgery.py, which forges snapshots from it:
- *   header SIZE CHECKSUM                         bytes before the instance image, checksum offset
+ *   header SIZE CHECKSUM                         bytes before the state image, checksum offset
  *   leaf PATH OFFSET SIZE KIND MIN MAX           one per scalar of the image
- *   member STRUCT NAME                           one per declared field of each struct */
+ *   member STRUCT NAME                           one per declared field of each struct in the image
+ * (the image itself, PmdStateImage, only puts the instance's and the chip's
+ * state side by side: its parts are the structs the instance holds) */
 #include <stdio.h>
 
 #include <stddef.h>
@@ -38,8 +40,10 @@ static void print_members(const PmdStateStruct *s)
 
 int main(void)
 {
+    size_t part;
     printf("header %zu %zu\n", sizeof(PmdStateHeader), offsetof(PmdStateHeader, checksum));
     pmd_state_walk(1, print_leaf, NULL);
-    print_members(&pmd_instance_state);
+    for (part = 0; part < pmd_state_image.nFields; part++)
+        print_members(pmd_state_image.fields[part].sub);
     return 0;
 }
