@@ -23,18 +23,19 @@ TARGETS = ("host", "fmi", "script", "sequence")
 
 def sources(target: str, gen: Path):
     chip = sorted(str(p) for p in (ROOT / "fmu_src" / "chip").glob("*.c"))
-    fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "state.c", "state_fields.c", "script.c")]
+    fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "state.c", "state_fields.c")]
+    script = [str(ROOT / "fmu_src" / "script" / "script.c")]
     generated = [str(gen / n) for n in ("variables.c", "command_table.c", "pmd_constants.c")]
     extra = {"fmi": ["fmi2.c"], "sequence": ["fmi2.c", "fmi3.c"]}.get(target, [])
     extra = [str(ROOT / "fmu_src" / "fmi" / n) for n in extra]
     if target == "sequence":
         generated.append(str(gen / "variables3.c"))
-    return [str(ROOT / "fuzz" / f"fuzz_{target}.c"), *chip, *fmi, *extra, *generated]
+    return [str(ROOT / "fuzz" / f"fuzz_{target}.c"), *chip, *script, *fmi, *extra, *generated]
 
 
 def include_flags(gen: Path):
     headers = Path(__import__("fmpy").__file__).parent / "c-code"
-    return [f"-I{ROOT / 'fmu_src' / 'chip'}", f"-I{ROOT / 'fmu_src' / 'fmi'}", f"-I{gen}", f"-I{headers}"]
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "fmi")] + [f"-I{gen}", f"-I{headers}"]
 
 
 def generated() -> Path:
@@ -61,10 +62,12 @@ def build(target: str, gen: Path, out: Path) -> Path:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--seconds", type=int, default=60)
+    parser.add_argument("--out", type=Path, default=ROOT / "build" / "fuzz",
+                        help="where the targets and their growing corpora go (default: build/fuzz)")
     parser.add_argument("targets", nargs="*", default=list(TARGETS))
     args = parser.parse_args()
     gen = generated()
-    out = ROOT / "build" / "fuzz"
+    out = args.out.resolve()
     out.mkdir(parents=True, exist_ok=True)
     failed = []
     for target in args.targets:

@@ -1,4 +1,5 @@
-/* Command scripts: the FMU used stand-alone, without a host model (script.c). */
+/* Command scripts: the FMU used stand-alone, without a host model (script.c).
+ * Plain C over the chip's command table; no FMI inside (the instance runs them). */
 #ifndef PMD_SCRIPT_H
 #define PMD_SCRIPT_H
 
