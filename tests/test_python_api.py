@@ -8,7 +8,10 @@ from pathlib import Path
 import pytest
 
 import pmdfmu
+from pmdfmu import profile
 from pmdfmu.chip import COMMANDS, Axis, FMUError
+from scenarios import busy_chip
+from states import snapshot
 
 PACKAGE = Path(pmdfmu.__file__).parent
 
@@ -115,3 +118,43 @@ def test_no_assert_statement_does_a_runtime_check_in_the_package():
         tree = ast.parse(path.read_text(), str(path))
         asserts = [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Assert)]
         assert not asserts, f"{path.name}: assert at lines {asserts} (python -O drops it): raise instead"
+
+
+# ---- the harness keeps no copy of what the FMU knows (issue 12, items 2 and 6) ----
+
+def test_get_state_is_the_fmus_serialized_state_as_it_is(any_chip):
+    busy_chip(any_chip)
+    any_chip.run(10)
+    assert any_chip.get_state() == snapshot(any_chip)
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_a_grid_a_script_changes_is_read_from_the_fmu_cycle_by_cycle(tmp_path, fmi_version):
+    script = tmp_path / "slower.script"
+    script.write_text("@10\nSetSampleTime(Axis1, 200)\n")
+    with pmdfmu.Chip(fmi_version=fmi_version, script=script) as chip:
+        rec = chip.run(30, record=["axis1.activityStatus"])        # one doStep per cycle, in FMI 3 too
+        assert list(rec["cycle"]) == list(range(30))               # no cycle skipped or run twice
+        assert chip.cycle_time == chip.get("activeCycleTime") == 200e-6
+        assert chip.cycles == chip.get("nextCycle") == 30
+        assert chip.time == chip.get("nextCycleTime")
+
+
+def test_what_a_script_addresses_comes_from_the_compiled_script(tmp_path):
+    script = tmp_path / "axes.script"
+    script.write_text("# Axis3 is named only in this comment\n"
+                      "@ 0\nSetPosition(Axis2, 5);\nMultiUpdate(Axis4, PMDAxis2Mask);\n"
+                      "@ 250\nSetStopMode(Axis2, PMDAbruptStop);\nUpdate(Axis2);\n")
+    with pmdfmu.Chip(script=script) as chip:
+        assert profile.script_axes(chip) == [1, 3]
+        rec = profile.run_script(chip)
+        assert rec["cycle"][-1] >= 250 and "axis4.commandedPosition" in rec.dtype.names
+    with pmdfmu.Chip() as chip:                                    # no script: axis 1 alone
+        assert profile.script_axes(chip) == [0]
+
+
+def test_no_module_of_the_package_parses_scripts_again():
+    for name in ("cli.py", "sweep.py", "profile.py"):
+        tree = ast.parse((PACKAGE / name).read_text())
+        imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
+        assert "re" not in imported, f"{name} imports re: ask the compiled script (script.axes, script.lastCycle)"

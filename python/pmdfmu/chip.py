@@ -5,12 +5,11 @@ from __future__ import annotations
 import inspect
 import os
 import shutil
-import struct
 import textwrap
-from ctypes import POINTER, Array, c_int32, c_size_t, c_uint32, cast
+from ctypes import POINTER, Array, c_double, c_int32, c_size_t, c_uint32, cast
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Dict, Iterable, List, Sequence, Tuple, Union
 
 import numpy as np
 from fmpy import extract, read_model_description
@@ -50,7 +49,6 @@ ERROR_NAMES: Dict[int, str] = {v: n for g, n, v in tables.read_constants(tables_
                                if g == "Error"}
 
 
-SET_SAMPLE_TIME = COMMANDS["SetSampleTime"].opcode
 # run()'s columns have each register's own width (variables.csv's FMI 3 type), in FMI 2 as well;
 # `cycle` is the 32-bit chip time (GetTime)
 DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32": np.int32, "UInt32": np.uint32,
@@ -70,19 +68,6 @@ del _v
 # record.data's columns after the chip time (FMI 3 bulk recording)
 RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
             for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
-
-
-def opcodes(words: Sequence[int]) -> List[int]:
-    """The opcodes of a batch of whole commands, found by the table's word counts."""
-    found, i = [], 0
-    by_opcode = {c.opcode: c for c in COMMANDS.values()}
-    while i < len(words):
-        op = words[i] & 0xFF
-        found.append(op)
-        if op not in by_opcode:
-            break
-        i += 1 + by_opcode[op].arg_words
-    return found
 
 
 class PMDError(Exception):
@@ -318,6 +303,10 @@ class Chip:
             self.fmu = None
             raise
         self._vr = {name: v.valueReference for name, v in self.variables.items()}
+        # where the FMU's grid stands, read before every doStep (once a cycle while recording): its last
+        # communication point, the next cycle's time and the cycle time, into arrays made once
+        self._grid_vrs = (c_uint32 * 3)(*[self._vr[n] for n in ("time", "nextCycleTime", "activeCycleTime")])
+        self._grid = (c_double * 3)()
         self._memory_vrs: Dict[int, Array] = {}     # write_memory (FMI 2): value references per word count
 
     # ---- life cycle ----
@@ -336,9 +325,6 @@ class Chip:
         except Exception:
             errors = [m.message for m in self.messages if m.status == "Error"]
             raise FMUError("\n".join(errors) or "initialization failed") from None
-        self.cycle_time = self.get("cycleTime")
-        self.cycles = 0               # chip cycles run since initialization (the time grid index)
-        self._anchor = (0.0, 0)       # (time, cycle) where the grid last restarted (SetSampleTime)
 
     def reinitialize(self, **parameters) -> None:
         """The same instance as new: fmiReset, then these parameters and a new
@@ -401,38 +387,54 @@ class Chip:
             return list(self._getters[v.type]([v.valueReference], nValues=self._size(name)))
         return self._getters[v.type]([v.valueReference])[0]
 
+    # ---- the time grid: the FMU's (activeCycleTime, nextCycleTime, nextCycle); the harness keeps no copy ----
+
     @property
     def time(self) -> float:
-        """Simulation time of the next cycle."""
-        anchor_time, anchor_cycle = self._anchor
-        return anchor_time + (self.cycles - anchor_cycle) * self.cycle_time
+        """Simulation time of the next cycle (the FMU's nextCycleTime)."""
+        return self.get("nextCycleTime")
+
+    @property
+    def cycle_time(self) -> float:
+        """The cycle time of the grid now, s (the FMU's activeCycleTime: the sample
+        time register, which SetSampleTime changes)."""
+        return self.get("activeCycleTime")
+
+    @property
+    def cycles(self) -> int:
+        """Chip cycles run since initialization: the grid index of the next cycle
+        (the FMU's nextCycle; an FMU state restores it)."""
+        return int(self.get("nextCycle"))
+
+    def _step(self, cycles: int) -> None:
+        """One doStep that runs the next `cycles` cycles of the FMU's grid: from its
+        last communication point to the time of the cycle after them."""
+        if self.fmi_version == 2:
+            self.fmu.fmi2GetReal(self.fmu.component, self._grid_vrs, 3, self._grid)
+        else:
+            self.fmu.fmi3GetFloat64(self.fmu.component, self._grid_vrs, 3, self._grid, 3)
+        now, next_time, cycle_time = self._grid
+        self.fmu.doStep(now, (next_time - now) + cycles * cycle_time)
 
     # ---- FMU state ----
 
-    _HARNESS = struct.Struct("<4sqdqd")      # magic, cycles, anchor time, anchor cycle, cycle time
-
     def get_state(self) -> bytes:
-        """The whole chip as bytes (the FMU's serialized FMU state plus this
-        harness's cycle count): restorable with set_state in any Chip of the same
-        FMU build, in this process or another."""
+        """The whole chip as bytes: the FMU's serialized FMU state, as it is (the
+        time grid is in it). Restorable with set_state in any Chip of the same FMU
+        build, in this process or another."""
         state = self.fmu.getFMUState()
         try:
-            blob = bytes(self.fmu.serializeFMUState(state))
+            return bytes(self.fmu.serializeFMUState(state))
         finally:
             self.fmu.freeFMUState(state)
-        return self._HARNESS.pack(b"PMDH", self.cycles, *self._anchor, self.cycle_time) + blob
 
     def set_state(self, data: bytes) -> None:
         """Restores a get_state snapshot; the FMU refuses a corrupted or foreign one."""
-        magic, cycles, anchor_time, anchor_cycle, cycle_time = self._HARNESS.unpack_from(data)
-        if magic != b"PMDH":
-            raise ValueError("not a pmdfmu Chip state")
-        state = self.fmu.deserializeFMUState(data[self._HARNESS.size:])
+        state = self.fmu.deserializeFMUState(data)
         try:
             self.fmu.setFMUState(state)
         finally:
             self.fmu.freeFMUState(state)
-        self.cycles, self._anchor, self.cycle_time = cycles, (anchor_time, anchor_cycle), cycle_time
 
     # ---- host port ----
 
@@ -471,8 +473,6 @@ class Chip:
             reply = self.get("host.reply")
         if ack != strobe:
             raise FMUError(f"host.ack is {ack}, not the strobe {strobe}: the FMU did not execute the batch")
-        if SET_SAMPLE_TIME in opcodes(words):
-            self._follow_sample_time()
         return error, reply[:count]
 
     def _run_recorded(self, cycles: int, names: Sequence[str]) -> np.ndarray:
@@ -496,17 +496,13 @@ class Chip:
             row_bytes = 4 * (1 + len(RECORDED))
             while done < cycles:
                 n = min(capacity, cycles - done)
-                self.fmu.doStep(self.time, n * self.cycle_time)      # Warning if the step's cycles changed
-                self.cycles += n
+                self._step(n)                       # Warning if the step's cycles changed
                 # fmi3GetBinary lends the FMU's own buffer until the next call: read it in place, once,
                 # as many whole rows as it holds, never more
                 self.fmu.fmi3GetBinary(self.fmu.component, vr, 1, size, value, 1)
                 held = size[0] // row_bytes
                 if held != n or size[0] % row_bytes:
-                    # the chip ran `held` cycles up to the step's end: the harness follows its new grid
-                    end, self.cycles = self.time, self.cycles - n + held
-                    self._anchor = (end, self.cycles)
-                    self._follow_sample_time()
+                    # the chip ran `held` cycles up to the step's end, on the grid the script chose
                     raise RuntimeError(
                         f"record.data holds {held} cycles, not {n}: a script changed the sample time during "
                         f"run(record=...), so the time of {n} cycles held {held}; the cycles recorded before "
@@ -520,13 +516,6 @@ class Chip:
         finally:
             self.set("record.enabled", False)
         return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)
-
-    def _follow_sample_time(self) -> None:
-        """SetSampleTime restarted the chip's cycle grid at the current time."""
-        micros = decode(COMMANDS["GetSampleTime"].reply, self.batch([COMMANDS["GetSampleTime"].opcode])[1])[0]
-        if micros * 1e-6 != self.cycle_time:
-            self._anchor = (self.time, self.cycles)
-            self.cycle_time = micros * 1e-6
 
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
         """Executes one C-Motion call; raises PMDError if the chip refuses it.
@@ -613,8 +602,7 @@ class Chip:
             raise ValueError("cycles must be >= 0")
         if not record:
             if cycles:
-                self.fmu.doStep(self.time, cycles * self.cycle_time)
-                self.cycles += cycles
+                self._step(cycles)
             return np.zeros(0, dtype=[CYCLE])
         names = list(record)
         for name in names:
@@ -628,8 +616,7 @@ class Chip:
         groups = [(get, ns, [self._vr[n] for n in ns]) for get, ns in groups if ns]
         get_time, time_vr = self._getters[self.variables["chipTime"].type], [self._vr["chipTime"]]
         for i in range(cycles):
-            self.fmu.doStep(self.time, self.cycle_time)
-            self.cycles += 1
+            self._step(1)
             out["cycle"][i] = get_time(time_vr)[0] & 0xFFFFFFFF      # FMI 2 Integer: the same 32 bits
             for get, ns, vrs in groups:
                 for n, value in zip(ns, get(vrs)):

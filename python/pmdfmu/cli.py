@@ -10,7 +10,6 @@
 from __future__ import annotations
 
 import argparse
-import re
 import subprocess
 import sys
 from pathlib import Path
@@ -66,10 +65,9 @@ def cmd_run(args) -> int:
         _run_table(profile.read_segment_table(path), args.fmu, args.cycle_time, args.upload, args.max_cycles,
                    csv_path, plot_path, f"pmdfmu run {args.file}")
         return 0
-    axes = sorted({int(n) - 1 for n in re.findall(r"Axis([1-4])", path.read_text())}) or [0]
     with Chip(fmi_version=args.fmi_version, fmu=args.fmu, cycleTime=args.cycle_time, script=path,
               log_categories=["warnings"]) as chip:
-        rec = profile.run_script(chip, path, axes, max_cycles=args.max_cycles)
+        rec = profile.run_script(chip, max_cycles=args.max_cycles)
         for m in chip.messages:
             print(f"{m.status}: {m.message}", file=sys.stderr)
         cycle_time = chip.cycle_time

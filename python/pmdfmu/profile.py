@@ -4,9 +4,8 @@ the run until every axis's profile segment number drops to 0 (1.6)."""
 from __future__ import annotations
 
 import csv
-import re
 from pathlib import Path
-from typing import Dict, Iterable, List, Sequence, Tuple
+from typing import Dict, Iterable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -136,11 +135,20 @@ def run_until_halted(chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_00
     return out[:end]
 
 
-def run_script(chip: Chip, script: Path, axes: Sequence[int], max_cycles: int = 1_000_000,
+def script_axes(chip: Chip) -> List[int]:
+    """The axes (0..3) the chip's compiled script addresses, as the FMU reports
+    them (script.axes); axis 0 alone for a script that addresses none."""
+    mask = chip.get("script.axes")
+    return [axis for axis in range(4) if mask >> axis & 1] or [0]
+
+
+def run_script(chip: Chip, axes: Optional[Sequence[int]] = None, max_cycles: int = 1_000_000,
                chunk: int = 1000) -> np.ndarray:
-    """Records a script's run (the chip was made with script=...): until its last
-    time has passed and every axis is at rest, or max_cycles."""
-    last = max([int(t, 0) for t in re.findall(r"^\s*@\s*(\w+)", Path(script).read_text(), re.MULTILINE)] or [0])
+    """Records a script's run (the chip was made with script=...): until the time
+    of its last @ line has passed (script.lastCycle) and every axis is at rest, or
+    max_cycles. axes: those to record, by default script_axes(chip)."""
+    axes = script_axes(chip) if axes is None else axes
+    last = chip.get("script.lastCycle")
     names = record_outputs(axes)
     parts, total = [], 0
     while total < max_cycles:

@@ -18,7 +18,6 @@ a failed row with its reason; the sweep goes on.
 from __future__ import annotations
 
 import csv
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple, Union
@@ -106,9 +105,8 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
         if case.script:
             parameters["script"] = case.script
             chip = _instance(case, parameters)
-            text = Path(case.script).read_text()
-            axes = sorted({int(n) - 1 for n in re.findall(r"Axis([1-4])", text)}) or [0]
-            rec = profile.run_script(chip, Path(case.script), axes, max_cycles=case.max_cycles)
+            axes = profile.script_axes(chip)
+            rec = profile.run_script(chip, axes, max_cycles=case.max_cycles)
         else:
             parameters["script"] = ""
             chip = _instance(case, parameters)
