@@ -1,6 +1,7 @@
 /* One FMU instance: the chip, its memory, the host and dual-port memory
- * ports, the parameters and the time grid. Independent of the FMI version;
- * fmi2.c maps the FMI 2.0 API onto it. */
+ * ports, the parameters and the time grid. Declared state (PmdInstanceState,
+ * the chip's PmdChipState) apart from the process shell (PmdInstance).
+ * Independent of the FMI version; fmi2.c and fmi3.c map the FMI APIs onto it. */
 #ifndef PMD_INSTANCE_H
 #define PMD_INSTANCE_H
 
