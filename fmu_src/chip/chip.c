@@ -82,7 +82,7 @@ int32_t pmd_actual_velocity(const PmdAxis *ax)
 uint16_t pmd_activity_status(const PmdChip *chip, int n)
 {
     const PmdAxis *ax = &chip->s.axis[n];
-    uint16_t s = (uint16_t)((ax->active.profileMode & 7u) << 3);
+    uint32_t s = PMD_FIELD_DP(0, PMDActivityProfileMode, ax->active.profileMode);
     if (ax->atMaximumVelocity)
         s |= PMDActivityAtMaximumVelocityMask;
     if (abs32(pmd_position_error(ax)) <= ax->trackingWindow)
@@ -101,10 +101,10 @@ uint16_t pmd_activity_status(const PmdChip *chip, int n)
         s |= PMDActivityInNegativeLimitMask;
     /* Seed 000, 1.6: the profile segment number is 1 while an external profile runs, 0 once halted. */
     if (ax->motion == PMD_MOTION_EXTERNAL)
-        s |= 1u << 13;
+        s = PMD_FIELD_DP(s, PMDActivityProfileSegment, 1);
     else if (ax->motion == PMD_MOTION_SCURVE)
-        s |= (uint16_t)(ax->scurvePhase << 13);    /* reference 5: the S-curve phase 1..7 */
-    return s;
+        s = PMD_FIELD_DP(s, PMDActivityProfileSegment, ax->scurvePhase);   /* reference 5: the S-curve phase 1..7 */
+    return (uint16_t)s;
 }
 
 /* Switches are wired active low, as on PMD boards: an active switch (input
@@ -120,7 +120,7 @@ uint16_t pmd_signal_status(const PmdChip *chip, int n)
         level |= PMDSignalPositiveLimitMask;
     if (!ax->negativeLimitInput)
         level |= PMDSignalNegativeLimitMask;
-    return (uint16_t)((level ^ ax->signalSense) & 0x07FF);
+    return (uint16_t)((level ^ ax->signalSense) & PMDSignalStatusMask);
 }
 
 int pmd_host_interrupt(const PmdChip *chip)

@@ -146,7 +146,7 @@ int cmd_MultiUpdate(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     int n;
     (void)axis; (void)reply;
-    if (arg[0] & ~0xF) {
+    if (arg[0] & ~(int64_t)((1u << PMD_AXES) - 1u)) {
         pmd_log(chip, PMD_LOG_ERRORS, "MultiUpdate(0x%X): mask has bits beyond axis 4", (unsigned)arg[0]);
         return PMD_ERR_InvalidParameter;
     }

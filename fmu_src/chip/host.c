@@ -1,4 +1,5 @@
-/* The host port: instruction word (axis << 8) | opcode, then the data words,
+/* The host port: an instruction word (fields PMDInstructionAxis and
+ * PMDInstructionOpcode), then the data words,
  * 32-bit values high word first (reference 1.1). The command table generated
  * from modelDescription/commands.csv says how many words each opcode takes and
  * how its values are packed. */
@@ -74,7 +75,8 @@ int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *re
     *replyCount = 0;
     while (i < count) {
         uint16_t instruction = words[i++];
-        int opcode = instruction & 0xFF, axis = instruction >> 8, err = 0, k;
+        int opcode = (int)PMD_FIELD_EX(instruction, PMDInstructionOpcode);
+        int axis = (int)PMD_FIELD_EX(instruction, PMDInstructionAxis), err = 0, k;
         int index = pmd_command_of_opcode[opcode];
         const PmdCommand *c = index >= 0 ? &pmd_commands[index] : NULL;
         int64_t arg[PMD_MAX_FIELDS] = {0}, value[PMD_MAX_FIELDS] = {0};

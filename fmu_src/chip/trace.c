@@ -19,9 +19,9 @@ int pmd_trace_busy(const PmdChip *chip, const char *command)
  * (integral, derivative: not on the MC2400) read 0 here: there is no servo. */
 static int32_t trace_value(const PmdChip *chip, uint16_t slot)
 {
-    int n = slot & 0xF;
+    int n = (int)PMD_FIELD_EX(slot, PMDTraceVariableAxis);
     const PmdAxis *ax = &chip->s.axis[n];
-    switch (slot >> 8) {
+    switch (PMD_FIELD_EX(slot, PMDTraceVariableID)) {
     case 1: return pmd_position_error(ax);
     case 2: return ax->trajectory.position;
     case 3: return pmd_commanded_velocity(&ax->trajectory);
@@ -37,25 +37,27 @@ static int32_t trace_value(const PmdChip *chip, uint16_t slot)
     }
 }
 
-/* Start and stop words: bits 0-3 axis, 4-7 condition, 8-11 status bit, 12-15 state. */
+/* Start and stop words: fields PMDTraceTriggerAxis, PMDTraceCondition,
+ * PMDTraceTriggerBit (a status bit) and PMDTraceTriggerState. */
 static int condition_met(const PmdChip *chip, uint16_t word)
 {
-    int n = word & 0xF, bit = (word >> 8) & 0xF, state = (word >> 12) & 0xF;
+    int n = (int)PMD_FIELD_EX(word, PMDTraceTriggerAxis), bit = (int)PMD_FIELD_EX(word, PMDTraceTriggerBit);
+    unsigned state = PMD_FIELD_EX(word, PMDTraceTriggerState);
     uint16_t status;
-    switch ((word >> 4) & 0xF) {
+    switch (PMD_FIELD_EX(word, PMDTraceCondition)) {
     case PMDTraceConditionUpdate: return (chip->s.updatedAxes >> n) & 1;
     case PMDTraceConditionEventStatus: status = chip->s.axis[n].eventStatus; break;
     case PMDTraceConditionActivityStatus: status = pmd_activity_status(chip, n); break;
     case PMDTraceConditionSignalStatus: status = pmd_signal_status(chip, n); break;
     default: return 0;
     }
-    return ((status >> bit) & 1) == state;
+    return ((status >> bit) & 1u) == state;
 }
 
 static int slots_in_use(const PmdTrace *tr)
 {
     int k = 0;
-    while (k < PMD_TRACE_SLOTS && (tr->variable[k] >> 8) != 0)     /* variable 0 ends the list */
+    while (k < PMD_TRACE_SLOTS && PMD_FIELD_EX(tr->variable[k], PMDTraceVariableID) != 0)   /* variable 0 ends the list */
         k++;
     return k;
 }
@@ -178,7 +180,8 @@ int cmd_SetTraceVariable(PmdChip *chip, int axis, const int64_t *arg, int64_t *r
                 "out of range", (int)arg[0], (int)arg[1], (int)arg[2]);
         return PMD_ERR_InvalidParameter;
     }
-    TRACE->variable[arg[0]] = (uint16_t)(arg[1] | (arg[2] << 8));
+    TRACE->variable[arg[0]] = (uint16_t)(PMD_FIELD_DP(0, PMDTraceVariableAxis, arg[1]) |
+                                         PMD_FIELD_DP(0, PMDTraceVariableID, arg[2]));
     return 0;
 }
 
@@ -189,8 +192,8 @@ int cmd_GetTraceVariable(PmdChip *chip, int axis, const int64_t *arg, int64_t *r
         pmd_log(chip, PMD_LOG_ERRORS, "GetTraceVariable: slot %d is not 0..3", (int)arg[0]);
         return PMD_ERR_InvalidParameter;
     }
-    reply[0] = TRACE->variable[arg[0]] & 0xF;
-    reply[1] = TRACE->variable[arg[0]] >> 8;
+    reply[0] = PMD_FIELD_EX(TRACE->variable[arg[0]], PMDTraceVariableAxis);
+    reply[1] = PMD_FIELD_EX(TRACE->variable[arg[0]], PMDTraceVariableID);
     return 0;
 }
 
@@ -201,7 +204,8 @@ static int condition_word(const PmdChip *chip, const char *name, const int64_t *
                 name, (int)arg[0], (int)arg[1], (int)arg[3]);
         return PMD_ERR_InvalidParameter;
     }
-    *word = (uint16_t)(arg[0] | (arg[1] << 4) | (arg[2] << 8) | (arg[3] << 12));
+    *word = (uint16_t)(PMD_FIELD_DP(0, PMDTraceTriggerAxis, arg[0]) | PMD_FIELD_DP(0, PMDTraceCondition, arg[1]) |
+                       PMD_FIELD_DP(0, PMDTraceTriggerBit, arg[2]) | PMD_FIELD_DP(0, PMDTraceTriggerState, arg[3]));
     return 0;
 }
 
@@ -246,10 +250,10 @@ int cmd_SetTraceStop(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply
 
 static void condition_fields(uint16_t word, int64_t *reply)
 {
-    reply[0] = word & 0xF;
-    reply[1] = (word >> 4) & 0xF;
-    reply[2] = (word >> 8) & 0xF;
-    reply[3] = (word >> 12) & 0xF;
+    reply[0] = PMD_FIELD_EX(word, PMDTraceTriggerAxis);
+    reply[1] = PMD_FIELD_EX(word, PMDTraceCondition);
+    reply[2] = PMD_FIELD_EX(word, PMDTraceTriggerBit);
+    reply[3] = PMD_FIELD_EX(word, PMDTraceTriggerState);
 }
 
 int cmd_GetTraceStart(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)

@@ -10,7 +10,7 @@ import csv
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import List, Tuple
+from typing import Dict, List, NamedTuple, Optional, Tuple
 
 AXES = 4
 
@@ -88,53 +88,94 @@ def read_variables3(path: Path) -> List[Variable3]:
     return out
 
 
+class BitField(NamedTuple):
+    """A register field, declared once in constants.csv as a C-Motion-style
+    mask (PMDActivityProfileModeMask 0x0038 declares PMDActivityProfileMode:
+    shift 3, length 3), as QEMU's include/hw/registerfields.h declares FIELD()s.
+    The C side has the same as NAME_SHIFT, NAME_LENGTH, NAMEMask and
+    PMD_FIELD_EX / PMD_FIELD_DP (pmd_constants.h, generated)."""
+    shift: int
+    length: int
+    mask: int
+
+    def ex(self, value: int) -> int:
+        """The field's value inside a register word (PMD_FIELD_EX)."""
+        return (value & self.mask) >> self.shift
+
+    def dp(self, value: int, x: int) -> int:
+        """value with the field replaced by x, cut to the field's width (PMD_FIELD_DP)."""
+        return (value & ~self.mask) | ((x << self.shift) & self.mask)
+
+
+def bit_field(name: str, mask: int) -> BitField:
+    """The field a mask constant declares; a mask whose bits are not one run is refused."""
+    if mask <= 0:
+        raise ValueError(f"{name} = {mask:#x}: a field mask has at least one bit set")
+    shift = (mask & -mask).bit_length() - 1
+    length = (mask >> shift).bit_length()
+    if mask >> shift != (1 << length) - 1:
+        raise ValueError(f"{name} = {mask:#x}: not one contiguous run of bits, so no field")
+    return BitField(shift, length, mask)
+
+
+def read_fields(path: Path) -> Dict[str, BitField]:
+    """Every *Mask constant of constants.csv as a field, by its name without
+    `Mask` (PMDActivityProfileSegment -> BitField(13, 3, 0xE000))."""
+    return {name[:-len("Mask")]: bit_field(name, value)
+            for _group, name, value in read_constants(path) if name.endswith("Mask")}
+
+
 @dataclass(frozen=True)
 class Field:
     """One argument or reply value of a command, as C-Motion passes it.
 
     kind is u16/i16 (one word), u32/i32 (two words, high word first) or bits
-    (width bits at shift inside one word); fixed is the fixed-point format of a
-    32-bit value ("16.16" or "0.32"), which scripts may write as a decimal."""
+    (width bits at shift inside one word: the register field named by
+    register_field, a mask of constants.csv); fixed is the fixed-point format of
+    a 32-bit value ("16.16" or "0.32"), which scripts may write as a decimal."""
     name: str
     kind: str
     word: int
     shift: int = 0
     width: int = 16
     fixed: str = ""
+    register_field: str = ""    # bits: the field's name in constants.csv, without "Mask"
 
     @property
     def signed(self) -> bool:
         return self.kind in ("i16", "i32")
 
 
-def parse_fields(spec: str) -> Tuple[Tuple[Field, ...], int]:
+def parse_fields(spec: str, fields: Optional[Dict[str, BitField]] = None) -> Tuple[Tuple[Field, ...], int]:
     """Parses an args/reply cell: space-separated words, each `name:u16|i16|u32|i32`
     (a 32-bit one may add `:16.16` or `:0.32`) or a packed word
-    `name@shift:width|name@shift:width...`. Returns (fields, word count)."""
-    fields: List[Field] = []
+    `name@FIELD|name@FIELD...`, each FIELD a register field of `fields`
+    (read_fields). Returns (fields, word count)."""
+    out: List[Field] = []
     word = 0
     for token in spec.split():
         if "@" in token:
             used = 0
             for part in token.split("|"):
-                m = re.fullmatch(r"(\w+)@(\d+):(\d+)", part)
+                m = re.fullmatch(r"(\w+)@(\w+)", part)
                 if not m:
-                    raise ValueError(f"bad packed field {part!r}")
-                shift, width = int(m.group(2)), int(m.group(3))
-                bits = ((1 << width) - 1) << shift
-                if used & bits or shift + width > 16:
+                    raise ValueError(f"bad packed field {part!r}: name@FIELD")
+                if fields is None or m.group(2) not in fields:
+                    raise ValueError(f"packed field {part!r}: {m.group(2)}Mask is not a mask of constants.csv")
+                f = fields[m.group(2)]
+                if used & f.mask or f.mask > 0xFFFF:
                     raise ValueError(f"overlapping or oversized field {part!r}")
-                used |= bits
-                fields.append(Field(m.group(1), "bits", word, shift, width))
+                used |= f.mask
+                out.append(Field(m.group(1), "bits", word, f.shift, f.length, "", m.group(2)))
             word += 1
         else:
             name, kind, *fixed = token.split(":")
             if kind not in ("u16", "i16", "u32", "i32") or fixed not in ([], ["16.16"], ["0.32"]) or \
                     (fixed and not kind.endswith("32")):
                 raise ValueError(f"bad field type {token!r}")
-            fields.append(Field(name, kind, word, 0, 32 if kind.endswith("32") else 16, "".join(fixed)))
+            out.append(Field(name, kind, word, 0, 32 if kind.endswith("32") else 16, "".join(fixed)))
             word += 2 if kind.endswith("32") else 1
-    return tuple(fields), word
+    return tuple(out), word
 
 
 @dataclass(frozen=True)
@@ -149,12 +190,15 @@ class Command:
     summary: str
 
 
-def read_commands(path: Path) -> List[Command]:
+def read_commands(path: Path, constants: Optional[Path] = None) -> List[Command]:
+    """The rows of commands.csv; packed fields name the masks of constants.csv
+    (by default the one beside it)."""
+    fields = read_fields(constants or Path(path).parent / "constants.csv")
     out: List[Command] = []
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
-            args, nargs = parse_fields(row["args"])
-            reply, nreply = parse_fields(row["reply"])
+            args, nargs = parse_fields(row["args"], fields)
+            reply, nreply = parse_fields(row["reply"], fields)
             if row["scope"] not in ("axis", "chip"):
                 raise ValueError(f"{row['name']}: scope must be axis or chip")
             out.append(Command(int(row["opcode"], 16), row["name"], row["scope"], args, nargs,
