@@ -4,7 +4,20 @@
 #define PMD_CHIP_H
 
 #include "chip_types.h"
+#include "log_categories.h"     /* generated from modelDescription/log_categories.csv */
 #include "pmd_constants.h"
+
+typedef void (*PmdLogger)(void *context, PmdLogCategory category, const char *message);
+
+/* The chip: its state, its external memory and where it logs. */
+struct PmdChip {
+    PmdChipState s;
+    uint32_t *memory;
+    uint32_t memorySize;     /* in 32-bit words */
+    PmdLogger logger;
+    void *logContext;
+    unsigned logMask;        /* bit per PmdLogCategory: format messages only when someone listens */
+};
 
 /* Chip-wide life cycle. The memory belongs to the caller; Reset keeps its contents. */
 void pmd_chip_init(PmdChip *chip, uint32_t *memory, uint32_t memorySize);

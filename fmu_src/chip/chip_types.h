@@ -319,23 +319,8 @@ typedef struct {
     uint8_t loopback;        /* actual position := commanded position */
 } PmdChipState;
 
-/* Log categories, in the order of modelDescription/generate.py's LOG_CATEGORIES. */
-typedef enum {
-    PMD_LOG_ERRORS, PMD_LOG_WARNINGS, PMD_LOG_COMMANDS, PMD_LOG_BUFFERS, PMD_LOG_SEGMENTS, PMD_LOG_EVENTS,
-    PMD_LOG_CATEGORY_COUNT
-} PmdLogCategory;
-
-typedef void (*PmdLogger)(void *context, PmdLogCategory category, const char *message);
-
-/* The chip: its state, its external memory and where it logs. */
-typedef struct PmdChip {
-    PmdChipState s;
-    uint32_t *memory;
-    uint32_t memorySize;     /* in 32-bit words */
-    PmdLogger logger;
-    void *logContext;
-    unsigned logMask;        /* bit per PmdLogCategory: format messages only when someone listens */
-} PmdChip;
+/* The chip object (chip.h): this state, its external memory and where it logs. */
+typedef struct PmdChip PmdChip;
 
 /* Command table types (the table itself is generated from modelDescription/commands.csv). */
 typedef enum { PMD_U16, PMD_I16, PMD_U32, PMD_I32, PMD_BITS } PmdFieldKind;
@@ -350,7 +335,7 @@ typedef struct {
 
 /* A handler gets the decoded argument values, fills the reply values and
  * returns 0 or the host I/O error code; on error it has changed nothing. */
-typedef int (*PmdHandler)(struct PmdChip *chip, int axis, const int64_t *arg, int64_t *reply);
+typedef int (*PmdHandler)(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply);
 
 typedef struct {
     unsigned char opcode;

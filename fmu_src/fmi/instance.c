@@ -9,9 +9,6 @@
 
 #include "instance.h"
 
-const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT] = {
-    "errors", "warnings", "commands", "buffers", "segments", "events"};
-
 #define DEFAULT_CYCLE_TIME 1e-4
 #define DEFAULT_MEMORY_SIZE 0x4000     /* seed 000, 1.1: memory_size = 0x4000 (16Kx32) */
 

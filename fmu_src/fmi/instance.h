@@ -97,8 +97,6 @@ typedef struct {
 
 #define PMD_MAX_RECORD_CYCLES (1u << 24)
 
-extern const char *const pmd_log_category_names[PMD_LOG_CATEGORY_COUNT];
-
 PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment);
 void pmd_instance_free(PmdInstance *inst);
 void pmd_instance_reset(PmdInstance *inst);

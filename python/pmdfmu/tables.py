@@ -1,4 +1,4 @@
-"""The interface tables under modelDescription/: variables, commands, constants.
+"""The interface tables under modelDescription/: variables, commands, registers, constants.
 
 This module has no third-party imports: the build's code generator
 (modelDescription/generate.py) loads it by path, and the harness uses it to
@@ -206,6 +206,83 @@ def read_commands(path: Path, constants: Optional[Path] = None) -> List[Command]
     if len({c.opcode for c in out}) != len(out) or len({c.name for c in out}) != len(out):
         raise ValueError(f"{path}: duplicate opcode or name")
     return out
+
+
+@dataclass(frozen=True)
+class Register:
+    """A plain stored register: a row of registers.csv. Its Set and Get
+    commands (commands.csv, Set<name> and Get<name>) have no handler of their
+    own: Set checks the guard and the range and stores, Get reads back, Reset
+    writes the reset value (QEMU's RegisterAccessInfo with .reset and .ro)."""
+    name: str
+    storage: str        # the member: of PmdProfileRegisters (buffered "profile"), PmdChipState (a chip-wide
+                        # command) or PmdAxis
+    access: str         # "rw": Set<name> stores it; "ro": only Get<name> is the table's
+    reset: Optional[int]    # None: pmd_chip_reset derives it (e.g. the actual position from the input)
+    reset_text: str     # as written: a number or a constant's name
+    low: Optional[int]  # valid values low..high; None: every value the argument holds
+    high: Optional[int]
+    valid: str          # the valid values in words: "1..65535", "0 (PMDTraceOneTime) or 1 (PMDTraceRollingBuffer)"
+    error: str          # the host I/O error a value outside low..high answers, e.g. PMD_ERR_InvalidParameter
+    error_code: int
+    buffered: str       # "profile": double-buffered, Update copies it to the active set; "" not buffered
+    guard: str          # a C function (chip, command) that may refuse a Set first, e.g. pmd_trace_busy
+
+
+def read_registers(path: Path, constants: Optional[Path] = None) -> List[Register]:
+    """The rows of registers.csv. Values may be numbers or names of constants.csv
+    (by default the one beside it); a range is low..high or a group of
+    constants.csv, whose values must be contiguous."""
+    rows = read_constants(constants or Path(path).parent / "constants.csv")
+    value_of = {name: value for _group, name, value in rows}
+
+    def value(text: str, what: str) -> int:
+        try:
+            return value_of[text] if text in value_of else int(text, 0)
+        except ValueError:
+            raise ValueError(f"{path}: {what}: {text!r} is neither a number nor a constant") from None
+
+    out: List[Register] = []
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            name, text = row["register"], row["range"]
+            what = f"{name}: range"
+            if not text:
+                low = high = None
+                valid = ""
+            elif ".." in text:
+                lo_text, hi_text = text.split("..")
+                low, high = value(lo_text, what), value(hi_text, what)
+                valid = "..".join(t if t not in value_of else f"0x{value_of[t]:X}" for t in (lo_text, hi_text))
+            else:
+                group = {}
+                for g, n, v in rows:
+                    if g == text:
+                        group.setdefault(v, n)          # the first name of a value (PMDTrapezoidalProfile)
+                if not group or sorted(group) != list(range(min(group), max(group) + 1)):
+                    raise ValueError(f"{path}: {what}: {text!r} is no group of contiguous values in constants.csv")
+                low, high = min(group), max(group)
+                names = [f"{v} ({group[v]})" for v in sorted(group)]
+                valid = ", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]
+            if row["access"] not in ("rw", "ro") or row["buffered"] not in ("", "profile"):
+                raise ValueError(f"{path}: {name}: access is rw or ro, buffered is profile or empty")
+            if (low is None) != (row["error"] == ""):
+                raise ValueError(f"{path}: {name}: a range needs the error code that refuses it, and only a range")
+            if row["error"] and row["error"] not in value_of:
+                raise ValueError(f"{path}: {name}: error {row['error']!r} is not a constant")
+            out.append(Register(name, row["storage"], row["access"],
+                                value(row["reset"], f"{name}: reset") if row["reset"] else None, row["reset"],
+                                low, high, valid, row["error"], value_of.get(row["error"], 0), row["buffered"],
+                                row["guard"]))
+    if len({r.name for r in out}) != len(out):
+        raise ValueError(f"{path}: duplicate register")
+    return out
+
+
+def read_log_categories(path: Path) -> List[Tuple[str, str]]:
+    """(name, description) rows of log_categories.csv, in the order of the C enum PmdLogCategory."""
+    with open(path, newline="") as f:
+        return [(r["name"], r["description"]) for r in csv.DictReader(f)]
 
 
 def read_constants(path: Path) -> List[Tuple[str, str, int]]:
