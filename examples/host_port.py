@@ -1,12 +1,13 @@
 """The host port word by word, as a co-simulation master would drive it:
-instruction word (axis << 8) | opcode, then data words, 32-bit values high word first."""
+the instruction word (the axis in its PMDInstructionAxis field, bits 8-15, the opcode in
+PMDInstructionOpcode, bits 0-7), then data words, 32-bit values high word first."""
 import pmdfmu
 
 with pmdfmu.Chip() as chip:
     SetPosition, Update, GetCommandedPosition = (pmdfmu.COMMANDS[n].opcode
                                                  for n in ("SetPosition", "Update", "GetCommandedPosition"))
     SetVelocity, SetAcceleration = pmdfmu.COMMANDS["SetVelocity"].opcode, pmdfmu.COMMANDS["SetAcceleration"].opcode
-    axis2 = 1 << 8
+    axis2 = pmdfmu.field_dp(0, "PMDInstructionAxis", pmdfmu.PMDAxis2)
     error, reply = chip.batch([SetPosition | axis2, 0x0001, 0x86A0,      # 100000 counts
                                SetVelocity | axis2, 0x0004, 0x0000,      # 4.0 counts/cycle
                                SetAcceleration | axis2, 0x0000, 0x1000,  # 1/16 counts/cycle^2

@@ -24,7 +24,8 @@ def busy_chip(chip):
     ax.SetProfileMode(pmdfmu.PMDExternalProfile)
     ax.Update()
     ax.SetInterruptMask(pmdfmu.PMDEventBreakpoint1Mask)
-    ax.SetBreakpointValue(0, 0x20000000)
+    # a status breakpoint: select mask in the high word (the profile segment number's lowest bit), sense 0 low
+    ax.SetBreakpointValue(0, pmdfmu.field_dp(0, "PMDActivityProfileSegment", 1) << 16)
     ax.SetBreakpoint(0, 0, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointActivityStatus)
     a2 = chip.axis(1)
     a2.SetPosition(-30_000)

@@ -6,7 +6,7 @@ from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
 from fmpy.fmi3 import FMU3Slave
 
 import pmdfmu
-from pmdfmu.chip import COMMANDS, encode
+from pmdfmu.chip import COMMANDS, encode, instruction_word
 
 
 def snapshot(chip) -> bytes:
@@ -19,13 +19,14 @@ def snapshot(chip) -> bytes:
 
 
 def command(name, *args, axis=0):
+    """A command's host words, as Chip.command sends them (a chip-wide one with axis field 0)."""
     c = COMMANDS[name]
-    return [c.opcode | ((0 if c.scope == "chip" else axis) << 8)] + encode(c, args)
+    return [instruction_word(c.opcode, 0 if c.scope == "chip" else axis)] + encode(c, args)
 
 
 def op(name, axis=0):
     """The instruction word alone, with any axis number in its axis field (scope not applied)."""
-    return COMMANDS[name].opcode | (axis << 8)
+    return instruction_word(COMMANDS[name].opcode, axis)
 
 
 def vr(chip, name):

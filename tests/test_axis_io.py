@@ -3,11 +3,19 @@ signal sense and capture (pmd-reference 2.1-2.3, 4.5)."""
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDActivityAxisSettledMask, PMDActivityInNegativeLimitMask, PMDActivityInPositiveLimitMask,
-                    PMDActivityPositionCaptureMask, PMDActivityTrackingMask, PMDAutoStopEnabled,
+from pmdfmu import (PMDActivityAxisSettledMask, PMDActivityInMotionMask, PMDActivityInNegativeLimitMask,
+                    PMDActivityInPositiveLimitMask, PMDActivityMotorOnMask, PMDActivityPositionCaptureMask,
+                    PMDActivityTrackingMask, PMDAutoStopEnabled, PMDAxis1Mask, PMDAxis2Mask, PMDAxis3Mask,
                     PMDCaptureSourceHome, PMDError, PMDEventCaptureReceivedMask, PMDEventInNegativeLimitMask,
                     PMDEventInPositiveLimitMask, PMDEventMotionCompleteMask, PMDEventMotionErrorMask,
-                    PMDExternalProfile, PMDLimitDisabled, PMDMotionCompleteActualPosition, PMDVelocityContouringProfile)
+                    PMDExternalProfile, PMDLimitDisabled, PMDMotionCompleteActualPosition, PMDSignalEncoderAMask,
+                    PMDSignalEncoderBMask, PMDSignalEncoderHomeMask, PMDSignalEncoderIndexMask,
+                    PMDSignalNegativeLimitMask, PMDSignalPositiveLimitMask, PMDSignalSenseMask,
+                    PMDVelocityContouringProfile, field_ex)
+
+# GetSignalStatus with every input idle: the signals are active low, so all read high
+IDLE_SIGNALS = (PMDSignalEncoderAMask | PMDSignalEncoderBMask | PMDSignalEncoderIndexMask | PMDSignalEncoderHomeMask |
+                PMDSignalPositiveLimitMask | PMDSignalNegativeLimitMask)
 
 
 def move(ax, position, velocity=0x20000, acceleration=0x2000):
@@ -26,7 +34,7 @@ def test_entering_a_limit_sets_event_and_activity_bits_and_stops_the_axis(chip):
     held = ax.GetCommandedPosition()
     assert ax.GetEventStatus() & PMDEventInPositiveLimitMask
     assert ax.GetActivityStatus() & PMDActivityInPositiveLimitMask
-    assert ax.GetCommandedVelocity() == 0 and not ax.GetActivityStatus() & 0x0400
+    assert ax.GetCommandedVelocity() == 0 and not ax.GetActivityStatus() & PMDActivityInMotionMask
     chip.run(10)
     assert ax.GetCommandedPosition() == held
     # reference 4.5: 0x0D while the event is pending, 0x0E further into the limit, out of it is fine
@@ -34,7 +42,7 @@ def test_entering_a_limit_sets_event_and_activity_bits_and_stops_the_axis(chip):
     with pytest.raises(PMDError) as e:
         ax.Update()
     assert e.value.code == 0x0D
-    ax.ResetEventStatus(0xFFFF & ~PMDEventInPositiveLimitMask)
+    ax.ResetEventStatus(~PMDEventInPositiveLimitMask)
     with pytest.raises(PMDError) as e:
         ax.Update()
     assert e.value.code == 0x0E
@@ -57,7 +65,7 @@ def test_multiupdate_aborts_at_the_first_axis_moving_into_a_limit(chip):
         ax.SetVelocity(0x10000)
         ax.SetAcceleration(0x1000)
     with pytest.raises(PMDError) as e:
-        chip.axis(0).MultiUpdate(0b111)
+        chip.axis(0).MultiUpdate(PMDAxis1Mask | PMDAxis2Mask | PMDAxis3Mask)
     assert e.value.code == 0x0E
     chip.run(20)
     assert chip.axis(0).GetCommandedPosition() < 0          # axis 1 was updated
@@ -88,19 +96,20 @@ def test_an_external_profile_stops_on_a_limit(chip):
     chip.run(5)
     chip.set("axis1.negativeLimit", True)
     chip.run(1)
-    assert ax.GetActivityStatus() & 0xE000 == 0 and ax.GetEventStatus() & PMDEventInNegativeLimitMask
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
+    assert ax.GetEventStatus() & PMDEventInNegativeLimitMask
 
 
 def test_signal_status_is_active_low_and_sense_inverts_it(chip):
     ax = chip.axis(0)
-    assert ax.GetSignalStatus() == 0x003F                    # A, B, index, home, limits all idle (high)
+    assert ax.GetSignalStatus() == IDLE_SIGNALS              # A, B, index, home, limits all idle (high)
     chip.set("axis1.home", True)
-    assert ax.GetSignalStatus() == 0x0037
-    ax.SetSignalSense(0x0008)
-    assert ax.GetSignalStatus() == 0x003F
-    assert ax.GetSignalSense() == 0x0008
+    assert ax.GetSignalStatus() == IDLE_SIGNALS ^ PMDSignalEncoderHomeMask
+    ax.SetSignalSense(PMDSignalEncoderHomeMask)
+    assert ax.GetSignalStatus() == IDLE_SIGNALS
+    assert ax.GetSignalSense() == PMDSignalEncoderHomeMask
     with pytest.raises(PMDError):
-        ax.SetSignalSense(0x2000)
+        ax.SetSignalSense(PMDSignalSenseMask + 1)            # the bit above the sense mask
 
 
 def test_loopback_off_actual_position_error_and_motion_error_with_auto_stop():
@@ -123,7 +132,7 @@ def test_loopback_off_actual_position_error_and_motion_error_with_auto_stop():
         chip.set("axis1.actualPosition", 0)                            # the motor stalls
         chip.run(200)
         assert ax.GetEventStatus() & PMDEventMotionErrorMask
-        assert not ax.GetActivityStatus() & 0x0100                    # auto-stop: motor off
+        assert not ax.GetActivityStatus() & PMDActivityMotorOnMask    # auto-stop: motor off
         assert ax.GetCommandedVelocity() == 0
         assert abs(ax.GetPositionError()) > 100
 
@@ -162,7 +171,7 @@ def test_settled_and_motion_complete_in_actual_mode():
         ax.SetSettleTime(10)
         move(ax, 50, 0x40000, 0x10000)
         chip.run(100)
-        assert ax.GetCommandedPosition() == 50 and not ax.GetActivityStatus() & 0x0400
+        assert ax.GetCommandedPosition() == 50 and not ax.GetActivityStatus() & PMDActivityInMotionMask
         assert not ax.GetEventStatus() & PMDEventMotionCompleteMask       # the encoder is still at 0
         chip.set("axis1.actualPosition", 49)
         chip.run(10)
@@ -211,6 +220,6 @@ def test_an_external_profile_stops_on_a_motion_error_even_without_auto_stop():
         ax.Update()
         chip.run(40)
         assert ax.GetEventStatus() & PMDEventMotionErrorMask
-        assert ax.GetActivityStatus() & 0xE000 == 0
+        assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
         assert ax.GetCommandedPosition() == 52                 # stopped in the cycle the error passed 50
-        assert ax.GetActivityStatus() & 0x0100             # no auto-stop: the motor stays on
+        assert ax.GetActivityStatus() & PMDActivityMotorOnMask     # no auto-stop: the motor stays on

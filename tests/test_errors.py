@@ -9,7 +9,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave
 
 import pmdfmu
-from pmdfmu import PMDError
+from pmdfmu import PMDBreakpointActivityStatus, PMDError, field_dp
 from states import op
 
 
@@ -51,7 +51,7 @@ def test_unimplemented_opcodes_answer_invalid_instruction(chip, opcode):
 
 
 def test_bad_axis_answers_0x03_and_the_batch_goes_on(chip):
-    error, reply = chip.batch([op("SetPosition") | (4 << 8), 0, 5, op("GetTime")])
+    error, reply = chip.batch([op("SetPosition", axis=4), 0, 5, op("GetTime")])
     assert error == 0x03 and len(reply) == 2
     assert chip.axis(0).GetPosition() == 0
 
@@ -75,7 +75,7 @@ def test_replies_past_host_reply_64_are_refused_not_dropped(chip):
 def test_unused_bits_of_a_packed_word_are_refused(chip):
     error, _ = chip.batch([op("SetBreakpoint"), 0, 0x10000 - 1])   # trigger 0xFF
     assert error == 0x04
-    error, _ = chip.batch([op("SetBreakpoint"), 5, 0x0900])
+    error, _ = chip.batch([op("SetBreakpoint"), 5, field_dp(0, "PMDBreakpointTrigger", PMDBreakpointActivityStatus)])
     assert error == 0x04
 
 

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from pmdfmu import field_ex
 from pmdfmu.cli import main
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -53,7 +54,8 @@ def test_demo_writes_table_csv_and_png(tmp_path):
     for f in ("demo_table.csv", "demo.csv", "demo.png"):
         assert (tmp_path / f).stat().st_size > 1000
     rows = list(csv.DictReader(open(tmp_path / "demo.csv")))
-    assert int(rows[-1]["axis1.activityStatus"]) & 0xE000 == 0 and int(rows[-1]["axis2.activityStatus"]) & 0xE000 == 0
+    assert field_ex(int(rows[-1]["axis1.activityStatus"]), "PMDActivityProfileSegment") == 0
+    assert field_ex(int(rows[-1]["axis2.activityStatus"]), "PMDActivityProfileSegment") == 0
 
 
 def test_validate_and_info(capsys):

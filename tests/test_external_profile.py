@@ -6,8 +6,9 @@ from math import floor
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDAbruptStop, PMDBufferFunctionPosition, PMDBufferFunctionVelocity, PMDError,
-                    PMDEventMotionCompleteMask, PMDExternalProfile, PMDSmoothStop)
+from pmdfmu import (PMDAbruptStop, PMDActivityInMotionMask, PMDBufferFunctionPosition, PMDBufferFunctionVelocity,
+                    PMDError, PMDEventMotionCompleteMask, PMDExternalProfile, PMDSmoothStop, PMDTrapezoidalProfile,
+                    field_ex)
 from reference import ExternalProfile, wrap32
 
 OUTPUTS = ["axis{n}.commandedPosition", "axis{n}.commandedVelocity", "axis{n}.commandedAcceleration"]
@@ -77,7 +78,7 @@ def test_buffers_are_read_circularly_without_a_time_0_row(chip):
     assign(chip, 0, rows, range(5))
     start(chip, 0)
     assert record(chip, 200) == ExternalProfile(rows).run(200)
-    assert chip.axis(0).GetActivityStatus() & 0xE000 == 0x2000
+    assert field_ex(chip.axis(0).GetActivityStatus(), "PMDActivityProfileSegment") == 1
 
 
 def test_commanded_writebuffer_upload_equals_dual_port_upload():
@@ -99,10 +100,10 @@ def test_time_0_stops_holding_that_rows_position(chip):
     assert out[:4] == ExternalProfile(rows).run(4)
     assert out[4:] == [(1234, 0, 0)] * 6
     ax = chip.axis(0)
-    assert ax.GetActivityStatus() & 0xE000 == 0                     # profile segment 0: halted (seed 1.6)
-    assert ax.GetActivityStatus() & 0x0400 == 0                     # not in motion
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0     # halted (seed 1.6)
+    assert ax.GetActivityStatus() & PMDActivityInMotionMask == 0
     assert ax.GetEventStatus() & PMDEventMotionCompleteMask
-    assert ax.GetActivityStatus() & 0x38 == PMDExternalProfile << 3  # still in external mode
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == PMDExternalProfile   # still external
 
 
 def test_abrupt_stop_holds_position_and_smooth_stop_changes_nothing(chip):
@@ -122,7 +123,7 @@ def test_abrupt_stop_holds_position_and_smooth_stop_changes_nothing(chip):
     held = before[-1][0]
     assert held > 0
     assert record(chip, 5) == [(held, 0, 0)] * 5        # velocity zeroed at once, position held
-    assert ax.GetActivityStatus() & 0xE000 == 0
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
 
 
 def test_a_profile_with_jerk_keeps_its_exact_fraction(chip):
@@ -152,8 +153,8 @@ def test_start_is_refused_with_0x04_and_the_mode_unchanged(chip, case):
     with pytest.raises(PMDError) as e:
         ax.Update()
     assert e.value.code == 0x04
-    assert ax.GetActivityStatus() & 0x38 == 0          # active profile mode still trapezoidal
-    assert ax.GetActivityStatus() & 0xE000 == 0
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == PMDTrapezoidalProfile    # still active
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
     assert ax.GetEventStatus() & pmdfmu.PMDEventInstructionErrorMask
 
 

@@ -3,6 +3,7 @@ the result is bit-identical to stepping cycle by cycle (issue 5)."""
 import random
 
 import pmdfmu
+from pmdfmu import PMDActivityAxisSettledMask, PMDEventMotionCompleteMask, field_ex
 from pmdfmu.profile import load_external_profile, start_external_profile
 from reference import wrap32
 from scenarios import REAL, load_random_profiles
@@ -46,7 +47,7 @@ def test_a_billion_cycles_of_a_100_segment_table_take_one_coarse_step_and_stay_e
         assert ax.GetCommandedPosition() == wrap32(9_999_999 - 1)
         assert ax.GetTime() == 10 ** 9 - 2
         chip.run(2)
-        assert ax.GetCommandedPosition() == 7 and ax.GetActivityStatus() & 0xE000 == 0
+        assert ax.GetCommandedPosition() == 7 and field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
 
 
 def test_idle_axes_settle_at_the_same_cycle_in_coarse_steps():
@@ -66,10 +67,12 @@ def test_idle_axes_settle_at_the_same_cycle_in_coarse_steps():
                 bits = []
                 for _ in range(20):
                     chip.run(97)
-                    bits.append((ax.GetActivityStatus() & 0x80, ax.GetEventStatus() & 1))
+                    bits.append((ax.GetActivityStatus() & PMDActivityAxisSettledMask,
+                                 ax.GetEventStatus() & PMDEventMotionCompleteMask))
             else:
                 rec = chip.run(97 * 20, record=["axis1.activityStatus", "axis1.eventStatus"])
-                bits = [(int(a) & 0x80, int(e) & 1) for a, e in zip(rec["axis1.activityStatus"][96::97],
-                                                                    rec["axis1.eventStatus"][96::97])]
+                bits = [(int(a) & PMDActivityAxisSettledMask, int(e) & PMDEventMotionCompleteMask)
+                        for a, e in zip(rec["axis1.activityStatus"][96::97], rec["axis1.eventStatus"][96::97])]
             seen.append(bits)
-    assert seen[0] == seen[1] and (0x80, 1) in seen[0] and seen[0][0] == (0, 0)
+    assert seen[0] == seen[1] and (PMDActivityAxisSettledMask, PMDEventMotionCompleteMask) in seen[0]
+    assert seen[0][0] == (0, 0)

@@ -73,7 +73,8 @@ def test_outputs_after_initialization_are_the_reset_values(chip):
         assert chip.get(f"axis{n}.commandedPosition") == 0
         assert chip.get(f"axis{n}.velocity") == 0.0
         assert chip.get(f"axis{n}.eventStatus") == 0
-        assert chip.get(f"axis{n}.activityStatus") == 0x0104      # motor on, tracking; trapezoidal, at rest
+        # motor on, tracking; trapezoidal, at rest
+        assert chip.get(f"axis{n}.activityStatus") == pmdfmu.PMDActivityMotorOnMask | pmdfmu.PMDActivityTrackingMask
     assert (chip.get("host.error"), chip.get("host.replyCount"), chip.get("host.interrupt")) == (0, 0, False)
 
 
@@ -182,4 +183,4 @@ def test_fmpy_simulate_fmu_drives_a_move_through_the_host_port():
                           output=["axis1.commandedPosition", "axis1.activityStatus", "host.ack"])
     assert result["host.ack"][-1] == 1
     assert result["axis1.commandedPosition"][-1] == 1000
-    assert not result["axis1.activityStatus"][-1] & 0x0400
+    assert not result["axis1.activityStatus"][-1] & pmdfmu.PMDActivityInMotionMask

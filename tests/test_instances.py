@@ -11,15 +11,10 @@ import pytest
 from fmpy import read_model_description
 
 import pmdfmu
-from pmdfmu.chip import COMMANDS, encode
+from states import command
 
 SOURCE = Path(__file__).resolve().parent / "c" / "instances.c"
 HEADERS = Path(__import__("fmpy").__file__).parent / "c-code"
-
-
-def command(name, *args, axis=0):
-    c = COMMANDS[name]
-    return [c.opcode | ((0 if c.scope == "chip" else axis) << 8)] + encode(c, args)
 
 
 def scenario(path: Path, steps: int = 40, cycles: int = 25):

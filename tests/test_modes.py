@@ -3,9 +3,9 @@ stops in every mode (seed 001; pmd-reference 5)."""
 import numpy as np
 import pytest
 
-from pmdfmu import (PMDAbruptStop, PMDElectronicGearProfile, PMDError, PMDEventMotionCompleteMask,
-                    PMDPositionSourceActual, PMDPositionSourceCommanded, PMDSmoothStop, PMDTrapezoidal,
-                    PMDVelocityContouringProfile)
+from pmdfmu import (PMDAbruptStop, PMDActivityAtMaximumVelocityMask, PMDActivityInMotionMask,
+                    PMDElectronicGearProfile, PMDError, PMDEventMotionCompleteMask, PMDPositionSourceActual,
+                    PMDPositionSourceCommanded, PMDSmoothStop, PMDTrapezoidal, PMDVelocityContouringProfile, field_ex)
 
 V = ["axis{n}.commandedPosition", "axis{n}.commandedVelocity", "axis{n}.commandedAcceleration",
      "axis{n}.activityStatus"]
@@ -30,7 +30,7 @@ def test_velocity_contouring_ramps_holds_and_reverses(chip):
     v = r["axis1.commandedVelocity"]
     assert list(v[:3]) == [-0x1000, -0x2000, -0x3000]
     assert (v[47:] == -0x30000).all() and v[46] == -0x2F000
-    assert (r["axis1.activityStatus"][48:] & 0x2).all()          # at maximum velocity
+    assert (r["axis1.activityStatus"][48:] & PMDActivityAtMaximumVelocityMask).all()
     velocity_mode(ax, 0x10000, 0x1000, 0x2000)                 # reverse: decelerate at 0x2000 through 0
     r = rec(chip, 60, 0)
     v = r["axis1.commandedVelocity"]
@@ -46,11 +46,11 @@ def test_velocity_zero_ends_the_motion_with_motion_complete(chip):
     velocity_mode(ax, 0, 0x4000)
     chip.run(7)
     assert ax.GetCommandedVelocity() == 0x20000 - 7 * 0x4000
-    assert ax.GetActivityStatus() & 0x0400
+    assert ax.GetActivityStatus() & PMDActivityInMotionMask
     chip.run(20)
     assert ax.GetCommandedVelocity() == 0
     assert ax.GetEventStatus() & PMDEventMotionCompleteMask
-    assert not ax.GetActivityStatus() & 0x0400
+    assert not ax.GetActivityStatus() & PMDActivityInMotionMask
 
 
 @pytest.mark.parametrize("source", [PMDPositionSourceActual, PMDPositionSourceCommanded])
@@ -69,7 +69,8 @@ def test_gear_follows_the_master_times_the_ratio_exactly(chip, source):
     m, s = r["axis1.commandedPosition"], r["axis3.commandedPosition"]
     assert m[-1] == 1001
     assert list(s) == [int(np.floor(-1.5 * x)) for x in m]
-    assert slave.GetActivityStatus() & 0x0400 and slave.GetActivityStatus() & 0x38 == 3 << 3
+    assert slave.GetActivityStatus() & PMDActivityInMotionMask
+    assert field_ex(slave.GetActivityStatus(), "PMDActivityProfileMode") == PMDElectronicGearProfile
 
 
 def test_gear_smooth_stop_acts_as_abrupt(chip):

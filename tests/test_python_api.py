@@ -50,7 +50,7 @@ def test_docstrings_give_the_summary_the_formats_and_what_a_call_returns(chip):
     assert "0.32" in inspect.getdoc(ax.SetJerk) and "fixed_0_32" in inspect.getdoc(ax.SetJerk)
     assert "the 16.16 word SetVelocity takes" in " ".join(inspect.getdoc(ax.GetVelocity).split())
     trace = inspect.getdoc(ax.SetTraceStart)
-    assert "condition: packed field: bits 4..7 of word 1, 0 .. 15" in trace
+    assert "condition: packed field PMDTraceCondition: bits 4..7 of word 1, 0 .. 15" in trace
     version = inspect.getdoc(ax.GetVersion)
     assert "Returns the tuple (generation, motorType, numberAxes, special, custom, major, minor)" in version
     assert "16-bit unsigned integer" in inspect.getdoc(ax.SetProfileMode)
@@ -158,3 +158,43 @@ def test_no_module_of_the_package_parses_scripts_again():
         tree = ast.parse((PACKAGE / name).read_text())
         imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names}
         assert "re" not in imported, f"{name} imports re: ask the compiled script (script.axes, script.lastCycle)"
+
+
+# ---- register fields: declared once, in constants.csv (issue 12, item 3) ----
+
+def test_field_ex_reads_a_field_of_a_word_or_of_a_recorded_column(chip):
+    assert pmdfmu.field_ex(pmdfmu.PMDActivityProfileSegmentMask, "PMDActivityProfileSegment") == 7
+    assert pmdfmu.field_ex(pmdfmu.PMDActivityProfileModeMask, "PMDActivityProfileSegment") == 0
+    ax = chip.axis(0)
+    ax.SetProfileMode(pmdfmu.PMDVelocityContouringProfile)
+    ax.SetVelocity(pmdfmu.fixed_16_16(1))
+    ax.SetAcceleration(pmdfmu.fixed_16_16(1))
+    ax.Update()
+    rec = chip.run(3, record=["axis1.activityStatus"])
+    assert list(pmdfmu.field_ex(rec["axis1.activityStatus"], "PMDActivityProfileMode")) == \
+        [pmdfmu.PMDVelocityContouringProfile] * 3
+    assert pmdfmu.field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == pmdfmu.PMDVelocityContouringProfile
+
+
+def test_field_dp_puts_a_value_into_a_field_and_leaves_the_others():
+    word = pmdfmu.field_dp(pmdfmu.PMDActivityInMotionMask, "PMDActivityProfileMode", pmdfmu.PMDExternalProfile)
+    assert word & pmdfmu.PMDActivityInMotionMask
+    assert pmdfmu.field_ex(word, "PMDActivityProfileMode") == pmdfmu.PMDExternalProfile
+    assert pmdfmu.field_dp(word, "PMDActivityProfileMode", 0) == pmdfmu.PMDActivityInMotionMask
+
+
+def test_the_instruction_word_is_made_of_its_declared_fields(chip):
+    from pmdfmu.chip import instruction_word
+    set_position = COMMANDS["SetPosition"].opcode
+    word = instruction_word(set_position, pmdfmu.PMDAxis3)
+    assert pmdfmu.field_ex(word, "PMDInstructionOpcode") == set_position
+    assert pmdfmu.field_ex(word, "PMDInstructionAxis") == pmdfmu.PMDAxis3
+    assert chip.batch([word, 0, 5]) == (0, [])
+    assert chip.axis(pmdfmu.PMDAxis3).GetPosition() == 5
+
+
+def test_profile_keeps_no_status_constants_of_its_own():
+    tree = ast.parse((PACKAGE / "profile.py").read_text())
+    numbers = [t.id for node in tree.body if isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant)
+               and isinstance(node.value.value, int) for t in node.targets]
+    assert not numbers, f"profile.py defines {numbers}: use the constants and fields of constants.csv"

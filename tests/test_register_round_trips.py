@@ -5,14 +5,16 @@ import pytest
 import pmdfmu
 from pmdfmu import COMMANDS, PMDError
 
+# an interrupt mask of three event bits, the highest one among them
+EVENTS = pmdfmu.PMDEventBreakpoint2Mask | pmdfmu.PMDEventBreakpoint1Mask | pmdfmu.PMDEventMotionCompleteMask
 # Set command: (value written, reset value). Buffered registers read back the buffered value.
 ROUND_TRIPS = {
     "SetProfileMode": ((2,), 0), "SetPosition": ((-123456,), 0), "SetVelocity": ((0x12345,), 0),
     "SetAcceleration": ((0x7FFFFFFF,), 0), "SetDeceleration": ((77,), 0), "SetJerk": ((0x1234567,), 0),
-    "SetStopMode": ((2,), 0), "SetGearRatio": ((-0x18000,), 0), "SetInterruptMask": ((0x4005,), 0),
+    "SetStopMode": ((2,), 0), "SetGearRatio": ((-0x18000,), 0), "SetInterruptMask": ((EVENTS,), 0),
     "SetPositionErrorLimit": ((1000,), 0xFFFF), "SetAutoStopMode": ((1,), 0), "SetLimitSwitchMode": ((0,), 1),
     "SetMotionCompleteMode": ((1,), 0), "SetSettleTime": ((65535,), 0), "SetSettleWindow": ((9,), 0),
-    "SetTrackingWindow": ((10,), 0), "SetSignalSense": ((0x1FFF,), 0), "SetCaptureSource": ((1,), 0),
+    "SetTrackingWindow": ((10,), 0), "SetSignalSense": ((pmdfmu.PMDSignalSenseMask,), 0), "SetCaptureSource": ((1,), 0),
     "SetMotorMode": ((0,), 1), "SetGearMaster": ((3, 1), (0, 0)),
 }
 CHIP_ROUND_TRIPS = {"SetTraceMode": ((1,), 0), "SetTracePeriod": ((500,), 1), "SetSampleTime": ((333,), 100)}
@@ -50,7 +52,7 @@ def test_no_operation_and_clear_interrupt(chip):
     ax.SetAcceleration(0x10000)
     ax.Update()
     chip.run(10)
-    assert chip.get("host.interrupt") and ax.GetInterruptAxis() == 0b0001
+    assert chip.get("host.interrupt") and ax.GetInterruptAxis() == pmdfmu.PMDAxis1Mask
     ax.ClearInterrupt()
     assert chip.get("host.interrupt")             # the masked event bit is still set: it rises again
     ax.ResetEventStatus(0)

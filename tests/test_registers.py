@@ -7,7 +7,7 @@ from pmdfmu import (PMDBreakpoint1, PMDBreakpoint2, PMDBreakpointActionAbruptSto
                     PMDBreakpointEventStatus, PMDBreakpointGreaterOrEqualCommandedPosition,
                     PMDBreakpointLessOrEqualActualPosition, PMDBreakpointNoAction, PMDBreakpointSignalStatus,
                     PMDBreakpointTime, PMDEventBreakpoint1Mask, PMDEventBreakpoint2Mask,
-                    PMDEventMotionCompleteMask)
+                    PMDEventMotionCompleteMask, PMDSignalEncoderHomeMask)
 
 
 def start_move(ax, position=1_000_000, velocity=0x40000, acceleration=0x1000):
@@ -64,23 +64,25 @@ def test_smooth_stop_and_motor_off_actions(chip):
     rec = chip.run(200, record=["axis1.commandedVelocity", "axis1.activityStatus"])
     v = rec["axis1.commandedVelocity"]
     assert v[50] == 51 * 0x1000 and v[51] == 50 * 0x1000 and v[-1] == 0
-    assert rec["axis1.activityStatus"][59] & 0x100 and not rec["axis1.activityStatus"][60] & 0x100
+    motor_on = rec["axis1.activityStatus"] & pmdfmu.PMDActivityMotorOnMask
+    assert motor_on[59] and not motor_on[60]
 
 
 def test_status_breakpoints_use_select_and_sense_masks(chip):
     ax = chip.axis(0)
     ax.SetInterruptMask(PMDEventBreakpoint1Mask)
-    ax.SetBreakpointValue(PMDBreakpoint1, (0x0008 << 16) | 0x0000)   # home status bit 0: active (active low)
+    # a status breakpoint's value: the select mask in the high word, the sense mask in the low word
+    ax.SetBreakpointValue(PMDBreakpoint1, (PMDSignalEncoderHomeMask << 16) | 0)   # home reads 0: active (low)
     ax.SetBreakpoint(PMDBreakpoint1, 0, PMDBreakpointNoAction, PMDBreakpointSignalStatus)
     chip.run(10)
     assert not chip.get("host.interrupt")
     chip.set("axis1.home", True)
     chip.run(1)
     assert chip.get("host.interrupt") and ax.GetEventStatus() & PMDEventBreakpoint1Mask
-    ax.ResetEventStatus(0xFFFF & ~PMDEventBreakpoint1Mask)
+    ax.ResetEventStatus(~PMDEventBreakpoint1Mask)
     assert not chip.get("host.interrupt")
-    # event status: fire when motion complete (bit 0) is 1
-    ax.SetBreakpointValue(PMDBreakpoint2, 0x00010001)
+    # event status: fire when motion complete is 1
+    ax.SetBreakpointValue(PMDBreakpoint2, (PMDEventMotionCompleteMask << 16) | PMDEventMotionCompleteMask)
     ax.SetBreakpoint(PMDBreakpoint2, 0, PMDBreakpointNoAction, PMDBreakpointEventStatus)
     start_move(ax, position=10)
     chip.run(5)

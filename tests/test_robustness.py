@@ -85,7 +85,7 @@ def test_a_refused_chip_command_is_not_executed_and_the_other_instance_goes_on(p
     assert a.axis(0).GetHostIOError() == code
     assert a.axis(0).GetEventStatus() & pmdfmu.PMDEventInstructionErrorMask     # the chip's answer ...
     ra, rb = a.run(400, record=BUSY_OUTPUTS), b.run(400, record=BUSY_OUTPUTS)
-    ra["axis1.eventStatus"] &= 0xFFFF & ~pmdfmu.PMDEventInstructionErrorMask      # ... and all it changed (uint16)
+    ra["axis1.eventStatus"] &= ~np.uint16(pmdfmu.PMDEventInstructionErrorMask)     # ... and all it changed
     assert np.array_equal(ra, rb)
 
 

@@ -9,7 +9,7 @@ import pytest
 
 from pmdfmu import (PMDAbruptStop, PMDActivityInMotionMask, PMDAxis1, PMDAxis1Mask, PMDAxis2Mask, PMDAxis3Mask,
                     PMDBreakpoint1, PMDBreakpointActivityStatus, PMDBreakpointNoAction, PMDBufferFunctionPosition,
-                    PMDBufferFunctionTime, PMDEventBreakpoint1Mask, PMDExternalProfile, PMDTrapezoidal)
+                    PMDBufferFunctionTime, PMDEventBreakpoint1Mask, PMDExternalProfile, PMDTrapezoidal, field_ex)
 from reference import ExternalProfile
 
 num_variables = 5
@@ -135,6 +135,8 @@ def test_seed_sample_code_runs_as_the_chip_would(any_chip, num_axes):
     # 1.6: a breakpoint on the profile segment number raises the interrupt at completion
     axis = PMDAxis1
     hAxis[PMDAxis1].SetInterruptMask(PMDEventBreakpoint1Mask)
+    # the seed's own words: 0x2000 selects bit 13, the lowest bit of the profile segment number
+    # (PMDActivityProfileSegmentMask), with sense 0
     hAxis[PMDAxis1].SetBreakpointValue(PMDBreakpoint1, (0x2000 << 16) | 0x0000)
     hAxis[PMDAxis1].SetBreakpoint(PMDBreakpoint1, axis, PMDBreakpointNoAction, PMDBreakpointActivityStatus)
 
@@ -158,15 +160,15 @@ def test_seed_sample_code_runs_as_the_chip_would(any_chip, num_axes):
     assert rec["cycle"][0] == first_cycle
     for a in range(num_axes):
         first_time = expected_profile(a, memory, memory_start, buffer_length).rows[0][PMDBufferFunctionTime]
-        assert rec[f"axis{a + 1}.activityStatus"][0] & 0xE000 == (0x2000 if first_time else 0)
+        assert field_ex(rec[f"axis{a + 1}.activityStatus"][0], "PMDActivityProfileSegment") == (1 if first_time else 0)
 
     # completion of axis 1: segment number 0 and the interrupt in the same cycle, once
-    done = int(((rec["axis1.activityStatus"] & 0xE000) == 0).argmax())
+    done = int((field_ex(rec["axis1.activityStatus"], "PMDActivityProfileSegment") == 0).argmax())
     assert done > 0
     assert not rec["host.interrupt"][:done].any() and rec["host.interrupt"][done:].all()
     assert rec["axis1.eventStatus"][done] & PMDEventBreakpoint1Mask
     assert hAxis[PMDAxis1].GetBreakpoint(PMDBreakpoint1)[2] == 0      # trigger disarmed after firing
-    hAxis[PMDAxis1].ResetEventStatus(~PMDEventBreakpoint1Mask & 0xFFFF)
+    hAxis[PMDAxis1].ResetEventStatus(~PMDEventBreakpoint1Mask)
     chip.run(100)
     assert not chip.get("host.interrupt")                            # fired once: no new event
 
@@ -195,5 +197,5 @@ def test_seed_abrupt_stop_halts_all_axes_in_one_cycle(any_chip, num_axes):
         assert (rec[f"axis{a + 1}.commandedPosition"] == held[a]).all()
         assert (rec[f"axis{a + 1}.commandedVelocity"] == 0).all()
         assert (rec[f"axis{a + 1}.commandedAcceleration"] == 0).all()
-        assert (rec[f"axis{a + 1}.activityStatus"] & 0xE000 == 0).all()
+        assert (field_ex(rec[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0).all()
         assert hAxis[a].GetStopMode() == 0          # the stop mode resets itself after the Update

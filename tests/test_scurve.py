@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pmdfmu import PMDError, PMDSCurveProfile, PMDSmoothStop
+from pmdfmu import PMDActivityInMotionMask, PMDError, PMDSCurveProfile, PMDSmoothStop, field_ex
 
 NAMES = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration",
          "axis1.activityStatus", "axis1.position"]
@@ -25,7 +25,7 @@ def scurve(chip, position, velocity, acceleration, jerk, cycles):
 
 
 def moving(rec):
-    return (rec["axis1.activityStatus"] & 0x0400) != 0
+    return (rec["axis1.activityStatus"] & PMDActivityInMotionMask) != 0
 
 
 @pytest.mark.parametrize("seed", range(10))
@@ -53,10 +53,10 @@ def test_moves_land_exactly_and_respect_velocity_acceleration_and_jerk(chip, see
 def test_phases_i_to_vii_show_in_the_profile_segment_and_the_curve_is_symmetric(chip):
     rec = scurve(chip, 20_000, 0x40000, 0x400, 0x1000000, 20_000)
     run = rec[moving(rec)]
-    phases = (run["axis1.activityStatus"] >> 13) & 7
+    phases = field_ex(run["axis1.activityStatus"], "PMDActivityProfileSegment")
     assert list(dict.fromkeys(phases)) == [1, 2, 3, 4, 5, 6, 7]
     assert (np.diff(phases) >= 0).all()
-    assert (rec["axis1.activityStatus"][len(run):] >> 13 == 0).all()
+    assert (field_ex(rec["axis1.activityStatus"][len(run):], "PMDActivityProfileSegment") == 0).all()
     v = run["axis1.commandedVelocity"]                     # cycles 1 .. T-1; cycle T ends at rest
     assert np.array_equal(v, v[::-1])                      # V(k) = V(T - k)
     assert (run["axis1.commandedVelocity"][phases == 4] == run["axis1.commandedVelocity"][phases == 4][0]).all()
@@ -89,7 +89,7 @@ def test_parameters_may_not_change_during_the_move(chip):
 def test_smooth_stop_decelerates_jerk_limited_to_rest_short_of_the_destination(chip):
     rec = scurve(chip, 100_000, 0x40000, 0x400, 0x1000000, 2000)
     ax = chip.axis(0)
-    assert (ax.GetActivityStatus() >> 13) & 7 == 4
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 4
     ax.SetStopMode(PMDSmoothStop)
     ax.Update()
     rec = chip.run(2000, record=NAMES)

@@ -14,7 +14,7 @@ from fmpy.fmi1 import FMICallException
 
 import pmdfmu
 from pmdfmu import (PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer,
-                    PMDTraceTime)
+                    PMDTraceTime, field_dp)
 from pmdfmu.profile import load_external_profile, start_external_profile
 from states import InitializationChip, command, pend_batch, snapshot
 
@@ -190,12 +190,14 @@ def test_every_field_just_outside_its_range_is_refused_naming_it(rich, declared)
     assert tried > 500
 
 
+# a trace slot's word (SetTraceVariable): commanded position of axis 15, which the chip does not have
+TRACE_AXIS_15 = field_dp(field_dp(0, "PMDTraceVariableID", PMDTraceCommandedPosition), "PMDTraceVariableAxis", 15)
 FORGERIES = {                    # finding: the fields changed, and what the message must name
     "host word count 100000 with a batch pending": ({"hostWordCount": 100000, "hostStrobe": 12345}, "hostWordCount"),
     "gear master axis 60000": ({"chip.s.axis[2].gearMasterAxis": 60000}, "gearMasterAxis"),
     "a segment start near 2^32": ({"chip.s.axis[0].segmentStart[0]": 0xFFFFFFF0}, "segmentStart"),
     "a buffer leaving the memory": ({"chip.s.buffer[3].start": 0x3FF}, "chip.s.buffer[3]"),
-    "a trace variable of axis 15": ({"chip.s.trace.variable[1]": 0x020F}, "chip.s.trace.variable[1]"),
+    "a trace variable of axis 15": ({"chip.s.trace.variable[1]": TRACE_AXIS_15}, "chip.s.trace.variable[1]"),
     "a read index past its buffer": ({"chip.s.buffer[2].readIndex": 3}, "chip.s.buffer[2]"),
     "a plan that reads another buffer": ({"chip.s.axis[0].segmentStart[1]": 0x100}, "chip.s.axis[0].segment"),
 }

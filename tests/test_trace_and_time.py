@@ -2,9 +2,15 @@
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDError, PMDTraceActivityStatus, PMDTraceCommandedPosition, PMDTraceCommandedVelocity,
+from pmdfmu import (FIELDS, PMDError, PMDTraceActivityStatus, PMDTraceCommandedPosition, PMDTraceCommandedVelocity,
                     PMDTraceConditionActivityStatus, PMDTraceConditionImmediate, PMDTraceConditionUpdate,
-                    PMDTraceOneTime, PMDTraceRollingBuffer, PMDTraceTime)
+                    PMDTraceOneTime, PMDTraceRollingBuffer, PMDTraceStatusActivity, PMDTraceStatusDataWrap,
+                    PMDTraceStatusMode, PMDTraceTime, PMDTraceTriggerStateHigh, PMDTraceTriggerStateLow)
+
+
+def bit(field):
+    """A trace condition's bit number: where a one-bit status field lies."""
+    return FIELDS[field].shift
 
 
 def setup_trace(ax, length, mode=PMDTraceOneTime, period=1):
@@ -50,9 +56,10 @@ def test_rolling_trace_wraps_and_stops_on_an_activity_bit(chip):
     setup_trace(ax, 9, mode=PMDTraceRollingBuffer)
     ax.SetTraceVariable(3, 1, PMDTraceActivityStatus)
     ax.SetTraceVariable(3, 0, 0)                     # variable 0 ends the list: three slots
-    ax.SetTraceStop(1, PMDTraceConditionActivityStatus, 1, 1)   # axis 2 at maximum velocity
+    # stop when axis 2 is at maximum velocity
+    ax.SetTraceStop(1, PMDTraceConditionActivityStatus, bit("PMDActivityAtMaximumVelocity"), PMDTraceTriggerStateHigh)
     ax.SetTraceStart(0, PMDTraceConditionImmediate, 0, 0)
-    assert ax.GetTraceStatus() == 0b011
+    assert ax.GetTraceStatus() == PMDTraceStatusMode | PMDTraceStatusActivity
     start_axis2(ax2)
     with pytest.raises(PMDError) as e:
         ax.SetBufferLength(0, 3)                     # changing buffer 0 while tracing
@@ -60,7 +67,7 @@ def test_rolling_trace_wraps_and_stops_on_an_activity_bit(chip):
     with pytest.raises(PMDError):
         ax.SetTracePeriod(2)
     chip.run(10)
-    assert ax.GetTraceStatus() == 0b101              # rolling, stopped, wrapped
+    assert ax.GetTraceStatus() == PMDTraceStatusMode | PMDTraceStatusDataWrap       # rolling, stopped, wrapped
     assert ax.GetTraceCount() == 9
     assert ax.GetTraceStop() == (0, 0, 0, 0)
     # axis 2 reached 3 counts/cycle in cycle 2; the last three samples are cycles 0..2, wrapped in place
@@ -104,15 +111,16 @@ def test_set_sample_time_restarts_the_grid_with_the_new_cycle_time():
 def test_trace_starts_on_a_signal_bit_and_stops_on_an_event_bit(chip):
     ax = chip.axis(0)
     setup_trace(ax, 60)
-    ax.SetTraceStart(2, pmdfmu.PMDTraceConditionSignalStatus, 3, 0)     # axis 3 home active (reads 0)
-    ax.SetTraceStop(2, pmdfmu.PMDTraceConditionEventStatus, 2, 1)       # axis 3 breakpoint 1 event
+    # start when axis 3's home input is active (reads 0), stop at axis 3's breakpoint 1 event
+    ax.SetTraceStart(2, pmdfmu.PMDTraceConditionSignalStatus, bit("PMDSignalEncoderHome"), PMDTraceTriggerStateLow)
+    ax.SetTraceStop(2, pmdfmu.PMDTraceConditionEventStatus, bit("PMDEventBreakpoint1"), PMDTraceTriggerStateHigh)
     chip.axis(2).SetBreakpointValue(pmdfmu.PMDBreakpoint1, 20)
     chip.axis(2).SetBreakpoint(pmdfmu.PMDBreakpoint1, 2, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointTime)
     chip.run(5)
     assert ax.GetTraceStatus() == 0
     chip.set("axis3.home", True)
     chip.run(5)                                      # chip times 5..9: sampled from 5 on
-    assert ax.GetTraceStatus() == 0b010
+    assert ax.GetTraceStatus() == PMDTraceStatusActivity
     chip.run(20)                                     # the breakpoint fires at chip time 20
     assert ax.GetTraceStatus() == 0 and ax.GetTraceCount() == 3 * 16
     assert [s[0] for s in read_samples(ax, 48)] == list(range(5, 21))

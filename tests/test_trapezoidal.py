@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import pmdfmu
-from pmdfmu import PMDError, PMDEventMotionCompleteMask, PMDTrapezoidal
+from pmdfmu import (PMDActivityAtMaximumVelocityMask, PMDActivityInMotionMask, PMDError, PMDEventMotionCompleteMask,
+                    PMDTrapezoidal)
 
 NAMES = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration",
          "axis1.activityStatus", "axis1.position"]
@@ -23,7 +24,7 @@ def move(chip, position, velocity, acceleration, deceleration=0, max_cycles=200_
     while True:
         rec = chip.run(2000, record=NAMES)
         parts.append(rec)
-        if not rec["axis1.activityStatus"][-1] & 0x0400 or sum(map(len, parts)) > max_cycles:
+        if not rec["axis1.activityStatus"][-1] & PMDActivityInMotionMask or sum(map(len, parts)) > max_cycles:
             return np.concatenate(parts)
 
 
@@ -69,9 +70,9 @@ def test_deceleration_0_uses_the_acceleration():
 
 def test_a_short_move_never_reaches_maximum_velocity_and_a_long_one_cruises(chip):
     rec = move(chip, 100, 0x100000, 0x1000)
-    assert not (rec["axis1.activityStatus"] & 0x2).any()
+    assert not (rec["axis1.activityStatus"] & PMDActivityAtMaximumVelocityMask).any()
     rec = move(chip, 100_000, 0x20000, 0x1000)
-    at_max = (rec["axis1.activityStatus"] & 0x2) != 0
+    at_max = (rec["axis1.activityStatus"] & PMDActivityAtMaximumVelocityMask) != 0
     assert at_max.any()
     assert (rec["axis1.commandedVelocity"][at_max] == 0x20000).all()
 
@@ -81,7 +82,7 @@ def test_duration_is_close_to_the_continuous_optimum(chip):
     rec = move(chip, d, v, a)
     vc, ac = v / 65536, a / 65536
     optimum = d / vc + vc / ac
-    cycles = int(np.argmax((rec["axis1.activityStatus"] & 0x0400) == 0)) + 1    # InMotion clears
+    cycles = int(np.argmax((rec["axis1.activityStatus"] & PMDActivityInMotionMask) == 0)) + 1
     assert optimum <= cycles <= optimum + 3
 
 
@@ -95,7 +96,7 @@ def test_negative_velocity_in_trapezoidal_mode_is_refused_with_0x0b(chip):
         ax.Update()
     assert e.value.code == 0x0B
     chip.run(10)
-    assert ax.GetCommandedPosition() == 0 and not ax.GetActivityStatus() & 0x0400
+    assert ax.GetCommandedPosition() == 0 and not ax.GetActivityStatus() & PMDActivityInMotionMask
 
 
 def test_get_returns_the_buffered_register_until_update(chip):

@@ -8,7 +8,7 @@ def test_worked_table_comes_out_cycle_by_cycle(any_chip):
     assert got == WORKED_TABLE
     assert (rows["axis1.commandedAcceleration"] == 0).all()
     # ProfileSegment = 1 throughout: the second row (time 15) is still running at 11013
-    assert all(r & pmdfmu.PMDActivityProfileSegmentMask == 0x2000 for r in rows["axis1.activityStatus"])
+    assert all(pmdfmu.field_ex(r, "PMDActivityProfileSegment") == 1 for r in rows["axis1.activityStatus"])
 
 
 def test_velocity_1_0_is_10000h():

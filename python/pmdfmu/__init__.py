@@ -8,16 +8,19 @@ the way C-Motion drives the chip.
         ...
 
 Every C-Motion constant of modelDescription/constants.csv is a module
-attribute (PMDExternalProfile, PMDAbruptStop, PMDEventBreakpoint1Mask, ...).
+attribute (PMDExternalProfile, PMDAbruptStop, PMDEventBreakpoint1Mask, ...);
+each *Mask constant also declares a register field, read with field_ex:
+
+    pmdfmu.field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment")
 """
-from . import tables as _tables
-from .chip import COMMANDS, Axis, Chip, FMUError, LogMessage, PMDError, default_fmu, tables_dir
+from .chip import (COMMANDS, CONSTANTS, FIELDS, Axis, Chip, FMUError, LogMessage, PMDError, default_fmu, field_dp,
+                   field_ex, tables_dir)
 from .sweep import Case, SweepResult, read_cases, sweep
 from .fixed import fixed_0_32, fixed_16_16, fixed_32_0, from_fixed, signed, to_fixed
 
-CONSTANTS = {name: value for _group, name, value in _tables.read_constants(tables_dir() / "constants.csv")}
 globals().update(CONSTANTS)
 
 __version__ = "0.1.0"
-__all__ = ["Chip", "Axis", "PMDError", "FMUError", "LogMessage", "Case", "SweepResult", "read_cases", "sweep", "COMMANDS", "CONSTANTS", "default_fmu",
+__all__ = ["Chip", "Axis", "PMDError", "FMUError", "LogMessage", "Case", "SweepResult", "read_cases", "sweep",
+           "COMMANDS", "CONSTANTS", "FIELDS", "field_ex", "field_dp", "default_fmu",
            "to_fixed", "from_fixed", "signed", "fixed_16_16", "fixed_0_32", "fixed_32_0", *CONSTANTS]

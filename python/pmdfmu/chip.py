@@ -45,8 +45,31 @@ def default_fmu(fmi_version: int = 2) -> Path:
 
 
 COMMANDS: Dict[str, Command] = {c.name: c for c in tables.read_commands(tables_dir() / "commands.csv")}
-ERROR_NAMES: Dict[int, str] = {v: n for g, n, v in tables.read_constants(tables_dir() / "constants.csv")
-                               if g == "Error"}
+_CONSTANT_ROWS = tables.read_constants(tables_dir() / "constants.csv")
+# every C-Motion constant of constants.csv by name (pmdfmu exports them as module attributes)
+CONSTANTS: Dict[str, int] = {name: value for _group, name, value in _CONSTANT_ROWS}
+ERROR_NAMES: Dict[int, str] = {v: n for g, n, v in _CONSTANT_ROWS if g == "Error"}
+# PMDAxis1Mask .. PMDAxis4Mask: axis n's bit in MultiUpdate's mask, GetInterruptAxis and script.axes
+AXIS_MASKS: Tuple[int, ...] = tuple(v for g, _n, v in _CONSTANT_ROWS if g == "AxisMask")
+# the register fields: every *Mask constant as a field, by its name without "Mask" (QEMU's FIELD())
+FIELDS: Dict[str, tables.BitField] = tables.read_fields(tables_dir() / "constants.csv")
+
+
+def field_ex(value, field: str):
+    """The value of a register field in a word (QEMU's FIELD_EX, the C side's
+    PMD_FIELD_EX): field_ex(status, "PMDActivityProfileSegment") is the profile
+    segment number. value may be a numpy array of words (a recorded column)."""
+    return FIELDS[field].ex(value)
+
+
+def field_dp(value: int, field: str, x: int) -> int:
+    """value with a register field replaced by x (QEMU's FIELD_DP, PMD_FIELD_DP)."""
+    return FIELDS[field].dp(value, x)
+
+
+def instruction_word(opcode: int, axis: int) -> int:
+    """A host instruction word: the opcode and the axis field (pmd-reference 2.1)."""
+    return field_dp(field_dp(0, "PMDInstructionOpcode", opcode), "PMDInstructionAxis", axis)
 
 
 # run()'s columns have each register's own width (variables.csv's FMI 3 type), in FMI 2 as well;
@@ -97,7 +120,8 @@ def encode(command: Command, values: Sequence[int]) -> List[int]:
     16.16 or 0.32 argument takes the word (pmdfmu.fixed_16_16(2.75)), a count takes
     whole counts. A 16- or 32-bit argument takes -2^(w-1) .. 2^w-1, its signed or its
     unsigned reading of the same bits (SetVelocity(-1) and SetVelocity(0xFFFFFFFF)
-    send the same words); a packed field (`name@shift:width`) takes 0 .. 2^width-1.
+    send the same words); a packed field (a register field of constants.csv) takes
+    0 .. 2^width-1.
     Anything else raises ValueError naming the command, the argument and the range:
     nothing is masked."""
     if len(values) != len(command.args):
@@ -165,7 +189,8 @@ class Axis:
 
 
 def _bits_doc(f: Field, word: str) -> str:
-    return f"packed field: bits {f.shift}..{f.shift + f.width - 1} of {word} {f.word + 1}, 0 .. {(1 << f.width) - 1}"
+    return (f"packed field {f.register_field}: bits {f.shift}..{f.shift + f.width - 1} of {word} {f.word + 1}, "
+            f"0 .. {(1 << f.width) - 1}")
 
 
 def _field_doc(f: Field) -> str:
@@ -523,7 +548,7 @@ class Chip:
         if isinstance(command, str):
             command = COMMANDS[command]
         axis = axis_number(axis)
-        instruction = command.opcode | ((0 if command.scope == "chip" else axis) << 8)
+        instruction = instruction_word(command.opcode, 0 if command.scope == "chip" else axis)
         error, reply = self.batch([instruction] + encode(command, args))
         if error:
             raise PMDError(error, command.name)

@@ -9,14 +9,10 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .chip import Chip
+from .chip import AXIS_MASKS, CONSTANTS, Chip, field_ex
 
 FUNCTIONS = ("position", "velocity", "acceleration", "jerk", "time")
 Row = Tuple[int, int, int, int, int]
-PROFILE_SEGMENT = 0xE000
-IN_MOTION = 0x0400
-EXTERNAL_PROFILE = 4
-TRAPEZOIDAL = 0
 
 
 def read_segment_table(path: Path) -> Dict[int, List[Row]]:
@@ -81,13 +77,13 @@ def move_to(chip: Chip, positions: Dict[int, int], velocity: int, acceleration: 
     runs until all are at rest. Returns the cycles it took."""
     for axis, position in positions.items():
         ax = chip.axis(axis)
-        ax.SetProfileMode(TRAPEZOIDAL)
+        ax.SetProfileMode(CONSTANTS["PMDTrapezoidalProfile"])
         ax.SetVelocity(velocity)
         ax.SetAcceleration(acceleration)
         ax.SetPosition(position)
         ax.Update()
     start = chip.cycles
-    while any(chip.axis(a).GetActivityStatus() & IN_MOTION for a in positions):
+    while any(chip.axis(a).GetActivityStatus() & CONSTANTS["PMDActivityInMotionMask"] for a in positions):
         if chip.cycles - start > max_cycles:
             raise RuntimeError(f"initial move not complete after {max_cycles} cycles")
         chip.run(step)
@@ -99,8 +95,8 @@ def start_external_profile(chip: Chip, axes: Iterable[int]) -> None:
     a synchronized start (seed 000, 1.4)."""
     mask = 0
     for axis in axes:
-        chip.axis(axis).SetProfileMode(EXTERNAL_PROFILE)
-        mask |= 1 << axis
+        chip.axis(axis).SetProfileMode(CONSTANTS["PMDExternalProfile"])
+        mask |= AXIS_MASKS[axis]
     chip.axis(0).MultiUpdate(mask)
 
 
@@ -125,12 +121,12 @@ def run_until_halted(chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_00
         parts.append(part)
         total += len(part)
         last = part[-1]
-        if all(not (last[f"axis{a + 1}.activityStatus"] & PROFILE_SEGMENT) for a in axes):
+        if all(field_ex(last[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0 for a in axes):
             break
     out = np.concatenate(parts)
     done = np.ones(len(out), dtype=bool)
     for a in axes:
-        done &= (out[f"axis{a + 1}.activityStatus"] & PROFILE_SEGMENT) == 0
+        done &= field_ex(out[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0
     end = int(np.argmax(done)) + 1 if done.any() else len(out)
     return out[:end]
 
@@ -139,7 +135,7 @@ def script_axes(chip: Chip) -> List[int]:
     """The axes (0..3) the chip's compiled script addresses, as the FMU reports
     them (script.axes); axis 0 alone for a script that addresses none."""
     mask = chip.get("script.axes")
-    return [axis for axis in range(4) if mask >> axis & 1] or [0]
+    return [axis for axis, bit in enumerate(AXIS_MASKS) if mask & bit] or [0]
 
 
 def run_script(chip: Chip, axes: Optional[Sequence[int]] = None, max_cycles: int = 1_000_000,
@@ -155,8 +151,9 @@ def run_script(chip: Chip, axes: Optional[Sequence[int]] = None, max_cycles: int
         part = chip.run(min(chunk, max_cycles - total), record=names)
         parts.append(part)
         total += len(part)
-        if part["cycle"][-1] >= last and all(not (part[-1][f"axis{a + 1}.activityStatus"] & IN_MOTION)
-                                             for a in axes):
+        at_rest = all(not part[-1][f"axis{a + 1}.activityStatus"] & CONSTANTS["PMDActivityInMotionMask"]
+                      for a in axes)
+        if part["cycle"][-1] >= last and at_rest:
             break
     return np.concatenate(parts)
 
