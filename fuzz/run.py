@@ -25,7 +25,7 @@ def sources(target: str, gen: Path):
     chip = sorted(str(p) for p in (ROOT / "fmu_src" / "chip").glob("*.c"))
     fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "state.c", "state_fields.c")]
     script = [str(ROOT / "fmu_src" / "script" / "script.c")]
-    generated = [str(gen / n) for n in ("variables.c", "command_table.c", "pmd_constants.c", "log_categories.c")]
+    generated = [str(gen / n) for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")]
     extra = {"fmi": ["fmi2.c"], "sequence": ["fmi2.c", "fmi3.c"]}.get(target, [])
     extra = [str(ROOT / "fmu_src" / "fmi" / n) for n in extra]
     if target == "sequence":

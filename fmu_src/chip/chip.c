@@ -38,12 +38,9 @@ void pmd_chip_reset(PmdChip *chip)
     chip->s.loopback = loopback;
     chip->s.sampleTime = sampleTime;      /* the cycle grid is the FMU's: Reset keeps it */
     chip->s.hostIOError = PMD_ERR_ChipsetReset;   /* until read (reference 2.4) */
-    chip->s.trace.period = 1;
+    pmd_registers_reset(chip);            /* the register table's reset values (registers.csv) */
     for (n = 0; n < PMD_AXES; n++) {
         PmdAxis *ax = &chip->s.axis[n];
-        ax->motorOn = 1;
-        ax->limitSwitchMode = PMDLimitEnabled;       /* [L] reference 4.2: limits guard from reset */
-        ax->positionErrorLimit = 0xFFFF;
         for (f = 0; f < PMD_FUNCTIONS; f++)
             ax->bufferOfFunction[f] = PMDBufferFunctionNone;
         /* the plant's inputs are wires, not registers: a reset does not change them */

@@ -6,6 +6,7 @@
 #include "chip_types.h"
 #include "log_categories.h"     /* generated from modelDescription/log_categories.csv */
 #include "pmd_constants.h"
+#include "registers.h"
 
 typedef void (*PmdLogger)(void *context, PmdLogCategory category, const char *message);
 

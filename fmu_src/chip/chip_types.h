@@ -3,6 +3,7 @@
 #ifndef PMD_CHIP_TYPES_H
 #define PMD_CHIP_TYPES_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #define PMD_AXES 4
@@ -337,6 +338,32 @@ typedef struct {
  * returns 0 or the host I/O error code; on error it has changed nothing. */
 typedef int (*PmdHandler)(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply);
 
+/* Register table types (the table itself is generated from modelDescription/registers.csv):
+ * a plain stored register, whose Set and Get registers.c serves without a
+ * handler of its own, as QEMU's RegisterAccessInfo (.reset, .ro) describes one. */
+typedef enum {
+    PMD_NOT_BUFFERED,
+    PMD_BUFFERED_PROFILE     /* in PmdAxis.buffered; Update copies it to PmdAxis.active (reference 4.1) */
+} PmdBufferedGroup;
+
+/* Refuses a Set before anything else (e.g. pmd_trace_busy): 0 or the host I/O error code. */
+typedef int (*PmdGuard)(const PmdChip *chip, const char *command);
+
+typedef struct {
+    const char *name;          /* its commands are Set<name> and Get<name> */
+    unsigned char chipWide;    /* stored once in PmdChipState, else in every PmdAxis */
+    unsigned char buffered;    /* PmdBufferedGroup */
+    unsigned char readOnly;    /* the table serves only Get (a Set, if any, is a command with a handler) */
+    unsigned char isSigned;    /* Get returns it as a signed value */
+    unsigned char size;        /* of the member, in bytes: 1, 2 or 4 */
+    size_t offset;             /* of the member in PmdChipState, PmdAxis or (buffered) PmdProfileRegisters */
+    unsigned char hasReset;    /* else pmd_chip_reset derives the value (e.g. the actual position) */
+    int64_t reset, min, max;   /* reference 4.2's reset value; a Set outside min..max is refused */
+    unsigned char error;       /* with this host I/O error code */
+    const char *refusal;       /* and this reason in the log */
+    PmdGuard guard;            /* or NULL */
+} PmdRegister;
+
 typedef struct {
     unsigned char opcode;
     const char *name;
@@ -344,7 +371,8 @@ typedef struct {
     unsigned char argWords, replyWords, nArgs, nReply;
     PmdField args[PMD_MAX_FIELDS];
     PmdField reply[PMD_MAX_FIELDS];
-    PmdHandler handler;
+    PmdHandler handler;      /* NULL for a register's Set and Get: */
+    const PmdRegister *reg;  /* registers.c serves them by the register table */
 } PmdCommand;
 
 #endif

@@ -37,13 +37,6 @@ int cmd_GetVersion(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
     return 0;
 }
 
-int cmd_GetTime(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)axis; (void)arg;
-    reply[0] = chip->s.time;
-    return 0;
-}
-
 int cmd_GetHostIOError(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     (void)axis; (void)arg;
@@ -53,87 +46,6 @@ int cmd_GetHostIOError(PmdChip *chip, int axis, const int64_t *arg, int64_t *rep
 }
 
 /* ---- profile registers (buffered: reference 4.1) ---- */
-
-int cmd_SetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)reply;
-    if (arg[0] > PMDExternalProfile) {
-        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetProfileMode(%d): not 0 (trapezoidal), 1 (velocity contouring), "
-                "2 (S-curve), 3 (electronic gear) or 4 (external)", axis + 1, (int)arg[0]);
-        return PMD_ERR_InvalidParameter;
-    }
-    AXIS(axis)->buffered.profileMode = (uint16_t)arg[0];
-    return 0;
-}
-
-int cmd_GetProfileMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->buffered.profileMode;
-    return 0;
-}
-
-/* A buffered register: Set writes the buffered set, Get reads it back
- * (reference 4.1). check returns 0 or the error code that refuses a value. */
-#define PROFILE_REGISTER(name, field, type, check)                                          \
-    int cmd_Set##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
-    {                                                                                       \
-        int err = check(chip, axis, "Set" #name, arg[0]);                                   \
-        (void)reply;                                                                        \
-        if (!err)                                                                           \
-            AXIS(axis)->buffered.field = (type)arg[0];                                      \
-        return err;                                                                         \
-    }                                                                                       \
-    int cmd_Get##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
-    {                                                                                       \
-        (void)arg;                                                                          \
-        reply[0] = AXIS(axis)->buffered.field;                                              \
-        return 0;                                                                           \
-    }
-
-/* Acceleration, deceleration and jerk are 0 .. 2^31-1 in every profile mode
- * (reference 4.7): a word with the sign bit set is a negative value (0x0B). */
-static int unsigned_31(const PmdChip *chip, int axis, const char *name, int64_t value)
-{
-    if (value > INT32_MAX) {
-        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: %s(0x%08X): negative; the range is 0..0x7FFFFFFF", axis + 1, name,
-                (unsigned)value);
-        return PMD_ERR_InvalidNegativeValue;
-    }
-    return 0;
-}
-
-/* Position and velocity take any 32-bit value here; Update checks the velocity's sign per profile mode. */
-static int any_value(const PmdChip *chip, int axis, const char *name, int64_t value)
-{
-    (void)chip; (void)axis; (void)name; (void)value;
-    return 0;
-}
-
-PROFILE_REGISTER(Position, position, int32_t, any_value)
-PROFILE_REGISTER(Velocity, velocity, int32_t, any_value)
-PROFILE_REGISTER(Acceleration, acceleration, uint32_t, unsigned_31)
-PROFILE_REGISTER(Deceleration, deceleration, uint32_t, unsigned_31)
-PROFILE_REGISTER(Jerk, jerk, uint32_t, unsigned_31)
-PROFILE_REGISTER(GearRatio, gearRatio, int32_t, any_value)
-
-int cmd_SetStopMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)reply;
-    if (arg[0] > PMDSmoothStopMode) {
-        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: SetStopMode(%d): not 0, 1 or 2", axis + 1, (int)arg[0]);
-        return PMD_ERR_InvalidParameter;
-    }
-    AXIS(axis)->buffered.stopMode = (uint16_t)arg[0];
-    return 0;
-}
-
-int cmd_GetStopMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->buffered.stopMode;
-    return 0;
-}
 
 int cmd_Update(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
@@ -162,13 +74,6 @@ int cmd_MultiUpdate(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 
 /* ---- trajectory outputs ---- */
 
-int cmd_GetCommandedPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->trajectory.position;
-    return 0;
-}
-
 int cmd_GetCommandedVelocity(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     (void)arg;
@@ -180,13 +85,6 @@ int cmd_GetCommandedAcceleration(PmdChip *chip, int axis, const int64_t *arg, in
 {
     (void)arg;
     reply[0] = pmd_commanded_acceleration(&AXIS(axis)->trajectory);
-    return 0;
-}
-
-int cmd_GetActualPosition(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->actualPosition;
     return 0;
 }
 
@@ -258,27 +156,6 @@ int cmd_GetBreakpointValue(PmdChip *chip, int axis, const int64_t *arg, int64_t 
 }
 
 /* ---- status registers and interrupts ---- */
-
-int cmd_SetInterruptMask(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)reply;
-    AXIS(axis)->interruptMask = (uint16_t)arg[0];
-    return 0;
-}
-
-int cmd_GetInterruptMask(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->interruptMask;
-    return 0;
-}
-
-int cmd_GetEventStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)arg;
-    reply[0] = AXIS(axis)->eventStatus;
-    return 0;
-}
 
 int cmd_ResetEventStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
@@ -481,37 +358,6 @@ int cmd_GetBufferFunction(PmdChip *chip, int axis, const int64_t *arg, int64_t *
 }
 
 /* ---- axis registers that are not double-buffered (reference 4.1) ---- */
-
-/* Set writes the register at once if value <= max; Get reads it. */
-#define AXIS_REGISTER(name, field, type, max)                                               \
-    int cmd_Set##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
-    {                                                                                       \
-        (void)reply;                                                                        \
-        if (arg[0] > (int64_t)(max)) {                                                      \
-            pmd_log(chip, PMD_LOG_ERRORS, "axis %d: Set" #name "(%lld): above %lld", axis + 1, \
-                    (long long)arg[0], (long long)(max));                                   \
-            return PMD_ERR_InvalidParameter;                                                \
-        }                                                                                   \
-        AXIS(axis)->field = (type)arg[0];                                                   \
-        return 0;                                                                           \
-    }                                                                                       \
-    int cmd_Get##name(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)          \
-    {                                                                                       \
-        (void)arg;                                                                          \
-        reply[0] = AXIS(axis)->field;                                                       \
-        return 0;                                                                           \
-    }
-
-AXIS_REGISTER(PositionErrorLimit, positionErrorLimit, uint32_t, INT32_MAX)
-AXIS_REGISTER(AutoStopMode, autoStopMode, uint8_t, PMDAutoStopEnabled)
-AXIS_REGISTER(LimitSwitchMode, limitSwitchMode, uint8_t, PMDLimitEnabled)
-AXIS_REGISTER(MotionCompleteMode, motionCompleteMode, uint8_t, PMDMotionCompleteActualPosition)
-AXIS_REGISTER(SettleTime, settleTime, uint16_t, 0xFFFF)
-AXIS_REGISTER(SettleWindow, settleWindow, uint16_t, 0xFFFF)
-AXIS_REGISTER(TrackingWindow, trackingWindow, uint16_t, 0xFFFF)
-AXIS_REGISTER(SignalSense, signalSense, uint16_t, 0x1FFF)
-AXIS_REGISTER(CaptureSource, captureSource, uint8_t, PMDCaptureSourceHome)
-AXIS_REGISTER(MotorMode, motorOn, uint8_t, PMDMotorOn)
 
 int cmd_SetGearMaster(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {

@@ -117,7 +117,8 @@ int pmd_host_batch(PmdChip *chip, const uint16_t *words, int count, uint16_t *re
             if (PMD_LOGGING(chip, PMD_LOG_COMMANDS))
                 pmd_log(chip, PMD_LOG_COMMANDS, "axis %d: %s(%lld, %lld, %lld, %lld)", axis + 1, c->name,
                         (long long)arg[0], (long long)arg[1], (long long)arg[2], (long long)arg[3]);
-            err = c->handler(chip, c->chipWide ? 0 : axis, arg, value);
+            err = c->reg ? pmd_register_command(chip, c, c->chipWide ? 0 : axis, arg, value)
+                         : c->handler(chip, c->chipWide ? 0 : axis, arg, value);
             changed |= (err & PMD_GRID_CHANGED) != 0;
             err &= ~PMD_GRID_CHANGED;
         }

@@ -127,48 +127,6 @@ void pmd_trace_cycle(PmdChip *chip)
 
 /* ---- commands ---------------------------------------------------------------- */
 
-int cmd_SetTraceMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    int err = pmd_trace_busy(chip, "SetTraceMode");
-    (void)axis; (void)reply;
-    if (err)
-        return err;
-    if (arg[0] > PMDTraceRollingBuffer) {
-        pmd_log(chip, PMD_LOG_ERRORS, "SetTraceMode(%d): not 0 (one-time) or 1 (rolling)", (int)arg[0]);
-        return PMD_ERR_InvalidParameter;
-    }
-    TRACE->mode = (uint16_t)arg[0];
-    return 0;
-}
-
-int cmd_GetTraceMode(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)axis; (void)arg;
-    reply[0] = TRACE->mode;
-    return 0;
-}
-
-int cmd_SetTracePeriod(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    int err = pmd_trace_busy(chip, "SetTracePeriod");
-    (void)axis; (void)reply;
-    if (err)
-        return err;
-    if (arg[0] == 0) {
-        pmd_log(chip, PMD_LOG_ERRORS, "SetTracePeriod(0): the period is 1..65535 cycles");
-        return PMD_ERR_InvalidParameter;
-    }
-    TRACE->period = (uint16_t)arg[0];
-    return 0;
-}
-
-int cmd_GetTracePeriod(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)axis; (void)arg;
-    reply[0] = TRACE->period;
-    return 0;
-}
-
 int cmd_SetTraceVariable(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
 {
     int err = pmd_trace_busy(chip, "SetTraceVariable");
@@ -278,9 +236,3 @@ int cmd_GetTraceStatus(PmdChip *chip, int axis, const int64_t *arg, int64_t *rep
     return 0;
 }
 
-int cmd_GetTraceCount(PmdChip *chip, int axis, const int64_t *arg, int64_t *reply)
-{
-    (void)axis; (void)arg;
-    reply[0] = TRACE->count;
-    return 0;
-}

@@ -227,6 +227,7 @@ class Register:
     error_code: int
     buffered: str       # "profile": double-buffered, Update copies it to the active set; "" not buffered
     guard: str          # a C function (chip, command) that may refuse a Set first, e.g. pmd_trace_busy
+    note: str           # where the facts come from, what else to know
 
 
 def read_registers(path: Path, constants: Optional[Path] = None) -> List[Register]:
@@ -273,7 +274,7 @@ def read_registers(path: Path, constants: Optional[Path] = None) -> List[Registe
             out.append(Register(name, row["storage"], row["access"],
                                 value(row["reset"], f"{name}: reset") if row["reset"] else None, row["reset"],
                                 low, high, valid, row["error"], value_of.get(row["error"], 0), row["buffered"],
-                                row["guard"]))
+                                row["guard"], row["note"]))
     if len({r.name for r in out}) != len(out):
         raise ValueError(f"{path}: duplicate register")
     return out
