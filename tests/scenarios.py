@@ -1,8 +1,22 @@
 """Chip set-ups that several test files run (a helper module, not a test file:
 see conftest.py for where shared test code lives)."""
+import importlib.util
+from pathlib import Path
+
 import pmdfmu
-from pmdfmu import PMDBufferFunctionPosition, PMDBufferFunctionTime, PMDBufferFunctionVelocity
 from pmdfmu.profile import load_external_profile, start_external_profile
+
+
+def _example(name):
+    """A module of examples/, loaded by path (the examples are scripts, not a package)."""
+    path = Path(__file__).resolve().parent.parent / "examples" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"examples.{name}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+_worked_example = _example("worked_example")
 
 # ---- a busy chip: everything moving at once (FMU state tests) ---------------------
 
@@ -43,23 +57,10 @@ WORKED_TABLE = [(11003, 0, 0x10000), (11004, 1, 0x10000), (11005, 2, 0x10000), (
 
 
 def run_worked_example(chip):
-    """The seed's two rows, started so that the first is read at chip time 11003."""
-    ax = chip.axis(pmdfmu.PMDAxis1)
-    for buffer_id, function, address in ((2, PMDBufferFunctionPosition, 0x200),
-                                         (3, PMDBufferFunctionVelocity, 0x210),
-                                         (4, PMDBufferFunctionTime, 0x220)):
-        ax.SetBufferStart(buffer_id, address)
-        ax.SetBufferLength(buffer_id, 2)
-        ax.SetBufferFunction(function, buffer_id)
-    # "Initial set of values": position 0, velocity 10000h, time 10; then 10, 0, 15
-    for position, velocity, time in ((0, 0x10000, 10), (10, 0, 15)):
-        ax.WriteBuffer(2, position)
-        ax.WriteBuffer(3, velocity)
-        ax.WriteBuffer(4, time)
-    chip.run(11003)
-    assert ax.GetTime() == 11002
-    ax.SetProfileMode(pmdfmu.PMDExternalProfile)
-    ax.Update()
+    """The seed's two rows, started as examples/worked_example.py starts them (the
+    first read at chip time 11003), and the 11 cycles of the seed's table."""
+    _worked_example.start_worked_example(chip)
+    assert chip.axis(pmdfmu.PMDAxis1).GetTime() == 11002
     return chip.run(11, record=["axis1.commandedPosition", "axis1.commandedVelocity",
                                 "axis1.commandedAcceleration", "axis1.activityStatus"])
 
