@@ -1,22 +1,12 @@
-/* Chip life cycle, the per-cycle sequence, status registers and breakpoints. */
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
+/* Chip life cycle and the per-cycle sequence: every axis's trajectory, then
+ * limits, capture, the servo side, breakpoints and the trace. */
 #include <string.h>
 
 #include "chip.h"
-
-void pmd_log(const PmdChip *chip, PmdLogCategory category, const char *format, ...)
-{
-    char message[512];
-    va_list args;
-    if (!PMD_LOGGING(chip, category) || !chip->logger)
-        return;
-    va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
-    va_end(args);
-    chip->logger(chip->logContext, category, message);
-}
+#include "events.h"
+#include "profile.h"
+#include "status.h"
+#include "trace.h"
 
 void pmd_chip_init(PmdChip *chip, uint32_t *memory, uint32_t memorySize)
 {
@@ -50,106 +40,6 @@ void pmd_chip_reset(PmdChip *chip)
         ax->homeInput = inputs[n].homeInput;
         ax->actualPosition = loopback ? 0 : ax->actualPositionInput;
     }
-}
-
-void pmd_set_event(PmdChip *chip, int n, uint16_t mask)
-{
-    PmdAxis *ax = &chip->s.axis[n];
-    if ((ax->eventStatus & mask) != mask)
-        pmd_log(chip, PMD_LOG_EVENTS, "axis %d: event status |= 0x%04X", n + 1, (unsigned)mask);
-    ax->eventStatus |= mask;
-}
-
-static uint32_t abs32(int32_t x)
-{
-    return x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
-}
-
-int32_t pmd_position_error(const PmdAxis *ax)
-{
-    return pmd_int32((uint32_t)ax->actualPosition - (uint32_t)ax->trajectory.position);
-}
-
-/* GetActualVelocity: whole counts per cycle in 16.16 (the low word is 0). */
-int32_t pmd_actual_velocity(const PmdAxis *ax)
-{
-    return pmd_int32(((uint32_t)ax->actualPosition - (uint32_t)ax->previousActualPosition) << 16);
-}
-
-uint16_t pmd_activity_status(const PmdChip *chip, int n)
-{
-    const PmdAxis *ax = &chip->s.axis[n];
-    uint32_t s = PMD_FIELD_DP(0, PMDActivityProfileMode, ax->active.profileMode);
-    if (ax->atMaximumVelocity)
-        s |= PMDActivityAtMaximumVelocityMask;
-    if (abs32(pmd_position_error(ax)) <= ax->trackingWindow)
-        s |= PMDActivityTrackingMask;
-    if (ax->motion == PMD_MOTION_IDLE && ax->settleCount > ax->settleTime)
-        s |= PMDActivityAxisSettledMask;
-    if (ax->motorOn)
-        s |= PMDActivityMotorOnMask;
-    if (ax->captured)
-        s |= PMDActivityPositionCaptureMask;
-    if (ax->motion != PMD_MOTION_IDLE)
-        s |= PMDActivityInMotionMask;
-    if (ax->inPositiveLimit)
-        s |= PMDActivityInPositiveLimitMask;
-    if (ax->inNegativeLimit)
-        s |= PMDActivityInNegativeLimitMask;
-    /* Seed 000, 1.6: the profile segment number is 1 while an external profile runs, 0 once halted. */
-    if (ax->motion == PMD_MOTION_EXTERNAL)
-        s = PMD_FIELD_DP(s, PMDActivityProfileSegment, 1);
-    else if (ax->motion == PMD_MOTION_SCURVE)
-        s = PMD_FIELD_DP(s, PMDActivityProfileSegment, ax->scurvePhase);   /* reference 5: the S-curve phase 1..7 */
-    return (uint16_t)s;
-}
-
-/* Switches are wired active low, as on PMD boards: an active switch (input
- * true) reads 0 in the signal status, an idle one 1, and a sense bit of 1
- * inverts that (reference 2.3). The encoder A, B and index lines read 1. */
-uint16_t pmd_signal_status(const PmdChip *chip, int n)
-{
-    const PmdAxis *ax = &chip->s.axis[n];
-    uint16_t level = PMDSignalEncoderAMask | PMDSignalEncoderBMask | PMDSignalEncoderIndexMask;
-    if (!ax->homeInput)
-        level |= PMDSignalEncoderHomeMask;
-    if (!ax->positiveLimitInput)
-        level |= PMDSignalPositiveLimitMask;
-    if (!ax->negativeLimitInput)
-        level |= PMDSignalNegativeLimitMask;
-    return (uint16_t)((level ^ ax->signalSense) & PMDSignalStatusMask);
-}
-
-int pmd_host_interrupt(const PmdChip *chip)
-{
-    int n;
-    for (n = 0; n < PMD_AXES; n++)
-        if (chip->s.axis[n].eventStatus & chip->s.axis[n].interruptMask)
-            return 1;
-    return 0;
-}
-
-int pmd_memory_store(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data)
-{
-    if (address > chip->memorySize || count > chip->memorySize - address) {
-        pmd_log(chip, PMD_LOG_ERRORS, "internal error: %u words at 0x%X leave the %u-word memory: not written",
-                (unsigned)count, (unsigned)address, (unsigned)chip->memorySize);
-#ifdef PMD_CHECK_INVARIANTS
-        abort();
-#endif
-        return -1;
-    }
-    memcpy(chip->memory + address, data, count * sizeof *data);
-    return 0;
-}
-
-int pmd_memory_write(PmdChip *chip, uint32_t address, uint32_t count, const uint32_t *data)
-{
-    if (address > chip->memorySize || count > chip->memorySize - address)
-        return -1;               /* from outside: the caller says why */
-    pmd_memory_store(chip, address, count, data);
-    pmd_log(chip, PMD_LOG_BUFFERS, "dual-port memory: %u words written at 0x%X", (unsigned)count, (unsigned)address);
-    return 0;
 }
 
 /* Status triggers: the high word of the value selects bits, the low word
@@ -251,7 +141,7 @@ static void check_limits(PmdChip *chip, int n, uint16_t signals)
 static void check_position_error(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
-    uint32_t error = abs32(pmd_position_error(ax));
+    uint32_t error = pmd_abs32(pmd_position_error(ax));
     if (error > ax->positionErrorLimit && !(ax->eventStatus & PMDEventMotionErrorMask)) {
         pmd_set_event(chip, n, PMDEventMotionErrorMask);
         pmd_log(chip, PMD_LOG_EVENTS, "axis %d: motion error: position error %u beyond %u", n + 1,

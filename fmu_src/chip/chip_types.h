@@ -320,7 +320,7 @@ typedef struct {
     uint8_t loopback;        /* actual position := commanded position */
 } PmdChipState;
 
-/* The chip object (chip.h): this state, its external memory and where it logs. */
+/* The chip object (events.h): this state, its external memory and where it logs. */
 typedef struct PmdChip PmdChip;
 
 /* Command table types (the table itself is generated from modelDescription/commands.csv). */

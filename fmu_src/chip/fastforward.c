@@ -18,6 +18,7 @@
 #include <math.h>
 
 #include "chip.h"
+#include "status.h"
 
 #if defined(__SIZEOF_INT128__) && defined(__GNUC__) && !defined(PMD_PORTABLE_WIDE)
 __extension__ typedef __int128 i128;

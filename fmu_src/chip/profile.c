@@ -1,6 +1,8 @@
 /* The trajectory generator: external profile (seed 000), trapezoidal
  * point-to-point, stops and Update. All arithmetic is exact (chip_types.h). */
-#include "chip.h"
+#include "events.h"
+#include "profile.h"
+#include "scurve.h"
 
 /* ---- exact arithmetic (chip_types.h) --------------------------------------- */
 
@@ -359,7 +361,8 @@ void pmd_profile_cycle(PmdChip *chip, int n)
         velocity_cycle(chip, n);
         break;
     case PMD_MOTION_SCURVE:
-        pmd_scurve_cycle(chip, n);
+        if (pmd_scurve_cycle(chip, n))
+            pmd_halt(chip, n);
         break;
     case PMD_MOTION_GEAR:
         break;                 /* after the other axes: pmd_gear_cycle */

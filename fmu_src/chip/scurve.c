@@ -12,7 +12,7 @@
  * exactly against the limits, so those peaks never exceed them. */
 #include <math.h>
 
-#include "chip.h"
+#include "scurve.h"
 #include "wide.h"
 
 #define MAX_P6 ((int64_t)1 << 62)
@@ -166,15 +166,15 @@ static int64_t scaled_floor(int negative, uint64_t a, int64_t m, uint64_t c)
     return (int64_t)q;
 }
 
-static void finish(PmdChip *chip, int n)
+/* Arrived: at rest, no phase shown; the caller ends the motion (pmd_halt). */
+static int finish(PmdAxis *ax)
 {
-    PmdAxis *ax = &chip->s.axis[n];
     ax->trajectory.velocity = ax->trajectory.acceleration = PMD_FIXED_ZERO;
     ax->scurvePhase = 0;
-    pmd_halt(chip, n);
+    return 1;
 }
 
-void pmd_scurve_cycle(PmdChip *chip, int n)
+int pmd_scurve_cycle(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
     PmdSCurve *c = &ax->scurve;
@@ -183,10 +183,8 @@ void pmd_scurve_cycle(PmdChip *chip, int n)
     uint64_t d = (uint64_t)(negative ? -c->distance : c->distance), rem, q;
     int phase = phase_of(c, c->step), j = jerk_of_phase[phase];
 
-    if (c->p6Total == 0) {                       /* already there */
-        finish(chip, n);
-        return;
-    }
+    if (c->p6Total == 0)                         /* already there */
+        return finish(ax);
     c->p6 += 3 * c->v2 + 3 * c->a + j;
     c->v2 += 2 * c->a + j;
     c->a += j;
@@ -210,8 +208,9 @@ void pmd_scurve_cycle(PmdChip *chip, int n)
             t->position = pmd_int32((uint32_t)c->start + (uint32_t)c->distance);   /* exactly the destination */
             t->fraction = 0;
         }
-        finish(chip, n);
+        return finish(ax);
     }
+    return 0;
 }
 
 /* A smooth stop leaves out what is left of the cruise: the deceleration

@@ -2,8 +2,11 @@
  * `period` cycles at the end of the cycle into buffer 0, one 32-bit word per
  * slot, in slot order. One-time mode stops when the buffer is full; rolling
  * mode wraps and sets the data-wrap bit. */
-#include "chip.h"
 #include "command_table.h"
+#include "events.h"
+#include "memory.h"
+#include "status.h"
+#include "trace.h"
 
 #define TRACE (&chip->s.trace)
 
