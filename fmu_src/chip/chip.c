@@ -47,7 +47,7 @@ void pmd_chip_reset(PmdChip *chip)
  * (reference 2.5, seed 000 1.6). */
 static int status_reached(uint16_t status, int32_t value)
 {
-    uint16_t select = (uint16_t)((uint32_t)value >> 16), sense = (uint16_t)((uint32_t)value & 0xFFFFu);
+    uint16_t select = pmd_high_word((uint32_t)value), sense = pmd_low_word((uint32_t)value);
     return (uint16_t)(~(status ^ sense) & select) != 0;
 }
 

@@ -13,6 +13,13 @@
 #define PMD_MAX_FIELDS 8     /* argument or reply values of one command */
 #define PMD_BATCH_WORDS 64   /* host.word[1..64], host.reply[1..64] */
 
+/* A 32-bit value's two 16-bit words: the host port carries the high word
+ * first (reference 1.1); a status breakpoint's value is a select mask (high
+ * word) and a sense mask (low word) (reference 2.5). */
+static inline uint16_t pmd_high_word(uint32_t u) { return (uint16_t)(u >> 16); }
+static inline uint16_t pmd_low_word(uint32_t u) { return (uint16_t)(u & 0xFFFFu); }
+static inline uint32_t pmd_word_pair(uint16_t high, uint16_t low) { return ((uint32_t)high << 16) | low; }
+
 /* A 32-bit register read as a signed value (two's complement, portably). */
 static inline int32_t pmd_int32(uint32_t u)
 {

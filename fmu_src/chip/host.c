@@ -9,7 +9,6 @@
 #include "command_table.h"
 
 #define SIGN16(x) ((x) >= 0x8000 ? (int64_t)(x) - 0x10000 : (int64_t)(x))
-#define SIGN32(x) ((x) >= 0x80000000u ? (int64_t)(x) - 0x100000000LL : (int64_t)(x))
 
 /* Decodes one argument value from the command's data words. */
 static int64_t decode(const PmdField *f, const uint16_t *w)
@@ -17,26 +16,26 @@ static int64_t decode(const PmdField *f, const uint16_t *w)
     switch (f->kind) {
     case PMD_U16: return w[f->word];
     case PMD_I16: return SIGN16(w[f->word]);
-    case PMD_U32: return ((uint32_t)w[f->word] << 16) | w[f->word + 1];
-    case PMD_I32: return SIGN32(((uint32_t)w[f->word] << 16) | w[f->word + 1]);
+    case PMD_U32: return pmd_word_pair(w[f->word], w[f->word + 1]);
+    case PMD_I32: return pmd_int32(pmd_word_pair(w[f->word], w[f->word + 1]));
     default: return (w[f->word] >> f->shift) & ((1u << f->width) - 1u);
     }
 }
 
 void pmd_encode_field(const PmdField *f, int64_t value, uint16_t *w)
 {
-    uint32_t u = (uint32_t)((uint64_t)value & 0xFFFFFFFFu);
+    uint32_t u = (uint32_t)(uint64_t)value;        /* modulo 2^32 */
     switch (f->kind) {
     case PMD_U32:
     case PMD_I32:
-        w[f->word] = (uint16_t)(u >> 16);
-        w[f->word + 1] = (uint16_t)(u & 0xFFFFu);
+        w[f->word] = pmd_high_word(u);
+        w[f->word + 1] = pmd_low_word(u);
         break;
     case PMD_BITS:
         w[f->word] |= (uint16_t)((u & ((1u << f->width) - 1u)) << f->shift);
         break;
     default:
-        w[f->word] = (uint16_t)(u & 0xFFFFu);
+        w[f->word] = pmd_low_word(u);
         break;
     }
 }
