@@ -96,18 +96,22 @@ static int check_buffers(const PmdChipState *s, uint32_t memoryWords, char *why,
     return 0;
 }
 
-/* Trace words: variable slots axis | variable << 8, conditions axis | condition << 4 | bit << 8 | state << 12. */
+/* Trace words: variable slots hold the PMDTraceVariable{Axis,ID} fields,
+ * conditions the PMDTraceTrigger{Axis,Bit,State} and PMDTraceCondition fields. */
 static int check_trace(const PmdChipState *s, char *why, size_t whySize)
 {
     const PmdTrace *t = &s->trace;
     const uint16_t condition[2] = {t->start, t->stop};
     int k;
     for (k = 0; k < PMD_TRACE_SLOTS; k++)
-        if ((t->variable[k] & 0xF) >= PMD_AXES || (t->variable[k] & 0xF0) || (t->variable[k] >> 8) > PMDTraceSignalStatus)
+        if (PMD_FIELD_EX(t->variable[k], PMDTraceVariableAxis) >= PMD_AXES ||
+            (t->variable[k] & ~(PMDTraceVariableAxisMask | PMDTraceVariableIDMask)) ||
+            PMD_FIELD_EX(t->variable[k], PMDTraceVariableID) > PMDTraceSignalStatus)
             return WHY("chip.s.trace.variable[%d] = 0x%04X: not an axis 0..3 and a variable 0..14", k,
                        (unsigned)t->variable[k]);
     for (k = 0; k < 2; k++)
-        if (condition[k] && ((condition[k] & 0xF) >= PMD_AXES || ((condition[k] >> 4) & 0xF) > PMDTraceConditionSignalStatus))
+        if (condition[k] && (PMD_FIELD_EX(condition[k], PMDTraceTriggerAxis) >= PMD_AXES ||
+                             PMD_FIELD_EX(condition[k], PMDTraceCondition) > PMDTraceConditionSignalStatus))
             return WHY("chip.s.trace.%s = 0x%04X: not an axis 0..3 and a condition 0..4", k ? "stop" : "start",
                        (unsigned)condition[k]);
     /* A stopped trace's period and buffer 0 may change (only a running trace

@@ -32,7 +32,7 @@
 #define ANY_U32 0, UINT32_MAX
 #define ANY_I32 INT32_MIN, INT32_MAX
 #define ANY_I64 INT64_MIN, INT64_MAX
-#define UNSIGNED_31 0, INT32_MAX                   /* acceleration, deceleration, jerk (commands.c) */
+#define UNSIGNED_31 0, INT32_MAX                   /* acceleration, deceleration, jerk (registers.csv) */
 #define AXIS_NUMBER 0, PMD_AXES - 1
 
 static const PmdStateField profile_registers_fields[] = {
@@ -127,7 +127,7 @@ static const PmdStateField axis_fields[] = {
     UNSIGNED(PmdAxis, limitSwitchMode, PMDLimitDisabled, PMDLimitEnabled),
     UNSIGNED(PmdAxis, inPositiveLimit, BOOL),
     UNSIGNED(PmdAxis, inNegativeLimit, BOOL),
-    UNSIGNED(PmdAxis, signalSense, 0, 0x1FFF),
+    UNSIGNED(PmdAxis, signalSense, 0, PMDSignalSenseMask),
     UNSIGNED(PmdAxis, captureSource, PMDCaptureSourceIndex, PMDCaptureSourceHome),
     UNSIGNED(PmdAxis, homeWasActive, BOOL),
     UNSIGNED(PmdAxis, captured, BOOL),
@@ -149,14 +149,17 @@ static const PmdStateField buffer_fields[] = {
 };
 static const PmdStateStruct buffer = DESCRIBE(PmdBuffer, buffer_fields);
 
-/* Variable slots hold axis | variable << 8, conditions axis | condition << 4 |
- * bit << 8 | state << 12 (trace.c); state.c checks their parts. */
+/* Variable slots and conditions are packed words (the PMDTraceVariable* and
+ * PMDTraceTrigger* / PMDTraceCondition fields); state.c checks their parts. */
+#define TRACE_VARIABLE_MAX PMD_FIELD_DP(PMD_AXES - 1, PMDTraceVariableID, PMDTraceSignalStatus)
+#define TRACE_CONDITION_MAX PMD_FIELD_DP(PMDTraceTriggerAxisMask | PMDTraceConditionMask | PMDTraceTriggerBitMask, \
+                                         PMDTraceTriggerState, PMDTraceTriggerStateHigh)
 static const PmdStateField trace_fields[] = {
     UNSIGNED(PmdTrace, mode, PMDTraceOneTime, PMDTraceRollingBuffer),
     UNSIGNED(PmdTrace, period, 1, UINT16_MAX),
-    UNSIGNEDS(PmdTrace, variable, 0, (PMDTraceSignalStatus << 8) | (PMD_AXES - 1)),
-    UNSIGNED(PmdTrace, start, 0, 0x1FFF),
-    UNSIGNED(PmdTrace, stop, 0, 0x1FFF),
+    UNSIGNEDS(PmdTrace, variable, 0, TRACE_VARIABLE_MAX),
+    UNSIGNED(PmdTrace, start, 0, TRACE_CONDITION_MAX),
+    UNSIGNED(PmdTrace, stop, 0, TRACE_CONDITION_MAX),
     UNSIGNED(PmdTrace, active, BOOL),
     UNSIGNED(PmdTrace, wrapped, BOOL),
     UNSIGNED(PmdTrace, countdown, 0, UINT16_MAX - 1),

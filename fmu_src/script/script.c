@@ -282,7 +282,8 @@ static int add_command(PmdScript *s, const Where *w, int64_t cycle, const PmdCom
     int k;
     if (!step)
         return fail(w, "out of memory");
-    step->words[0] = (uint16_t)(c->opcode | (c->chipWide ? 0 : axis << 8));
+    step->words[0] = (uint16_t)PMD_FIELD_DP(PMD_FIELD_DP(0, PMDInstructionOpcode, c->opcode), PMDInstructionAxis,
+                                           c->chipWide ? 0 : axis);
     for (k = 0; k < c->nArgs; k++)
         pmd_encode_field(&c->args[k], values[k], step->words + 1);
     step->nWords = (uint16_t)(1 + c->argWords);
