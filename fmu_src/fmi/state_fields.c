@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "instance.h"
+#include "register_table.h"
 #include "state_fields.h"
 
 #define MEMBER(T, m) offsetof(T, m), sizeof(((T *)0)->m), 1
@@ -32,18 +33,17 @@
 #define ANY_U32 0, UINT32_MAX
 #define ANY_I32 INT32_MIN, INT32_MAX
 #define ANY_I64 INT64_MIN, INT64_MAX
-#define UNSIGNED_31 0, INT32_MAX                   /* acceleration, deceleration, jerk (registers.csv) */
 #define AXIS_NUMBER 0, PMD_AXES - 1
 
 static const PmdStateField profile_registers_fields[] = {
     SIGNED(PmdProfileRegisters, position, ANY_I32),
     SIGNED(PmdProfileRegisters, velocity, ANY_I32),
-    UNSIGNED(PmdProfileRegisters, acceleration, UNSIGNED_31),
-    UNSIGNED(PmdProfileRegisters, deceleration, UNSIGNED_31),
-    UNSIGNED(PmdProfileRegisters, jerk, UNSIGNED_31),
+    UNSIGNED(PmdProfileRegisters, acceleration, PMD_REG_Acceleration_RANGE),
+    UNSIGNED(PmdProfileRegisters, deceleration, PMD_REG_Deceleration_RANGE),
+    UNSIGNED(PmdProfileRegisters, jerk, PMD_REG_Jerk_RANGE),
     SIGNED(PmdProfileRegisters, gearRatio, ANY_I32),
-    UNSIGNED(PmdProfileRegisters, profileMode, PMDTrapezoidalProfile, PMDExternalProfile),
-    UNSIGNED(PmdProfileRegisters, stopMode, PMDNoStopMode, PMDSmoothStopMode),
+    UNSIGNED(PmdProfileRegisters, profileMode, PMD_REG_ProfileMode_RANGE),
+    UNSIGNED(PmdProfileRegisters, stopMode, PMD_REG_StopMode_RANGE),
     UNSIGNED(PmdProfileRegisters, clearPositionError, BOOL),
 };
 static const PmdStateStruct profile_registers = DESCRIBE(PmdProfileRegisters, profile_registers_fields);
@@ -97,7 +97,7 @@ static const PmdStateField axis_fields[] = {
     STRUCT(PmdAxis, trajectory, trajectory),
     UNSIGNED(PmdAxis, motion, PMD_MOTION_IDLE, PMD_MOTION_GEAR),
     UNSIGNED(PmdAxis, atMaximumVelocity, BOOL),
-    UNSIGNED(PmdAxis, motorOn, BOOL),
+    UNSIGNED(PmdAxis, motorOn, PMD_REG_MotorMode_RANGE),
     UNSIGNED(PmdAxis, underrunWarned, BOOL),
     UNSIGNED(PmdAxis, scurvePhase, 0, 7),
     UNSIGNED(PmdAxis, buffersChecked, ANY_U32),
@@ -116,19 +116,19 @@ static const PmdStateField axis_fields[] = {
     SIGNED(PmdAxis, actualPosition, ANY_I32),
     SIGNED(PmdAxis, previousActualPosition, ANY_I32),
     SIGNED(PmdAxis, actualOffset, ANY_I32),
-    UNSIGNED(PmdAxis, positionErrorLimit, 0, INT32_MAX),
+    UNSIGNED(PmdAxis, positionErrorLimit, PMD_REG_PositionErrorLimit_RANGE),
     UNSIGNED(PmdAxis, settleTime, ANY_U16),
     UNSIGNED(PmdAxis, settleWindow, ANY_U16),
     UNSIGNED(PmdAxis, trackingWindow, ANY_U16),
     UNSIGNED(PmdAxis, settleCount, ANY_U16),
-    UNSIGNED(PmdAxis, autoStopMode, PMDAutoStopDisabled, PMDAutoStopEnabled),
-    UNSIGNED(PmdAxis, motionCompleteMode, PMDMotionCompleteCommandedPosition, PMDMotionCompleteActualPosition),
+    UNSIGNED(PmdAxis, autoStopMode, PMD_REG_AutoStopMode_RANGE),
+    UNSIGNED(PmdAxis, motionCompleteMode, PMD_REG_MotionCompleteMode_RANGE),
     UNSIGNED(PmdAxis, motionCompletePending, BOOL),
-    UNSIGNED(PmdAxis, limitSwitchMode, PMDLimitDisabled, PMDLimitEnabled),
+    UNSIGNED(PmdAxis, limitSwitchMode, PMD_REG_LimitSwitchMode_RANGE),
     UNSIGNED(PmdAxis, inPositiveLimit, BOOL),
     UNSIGNED(PmdAxis, inNegativeLimit, BOOL),
-    UNSIGNED(PmdAxis, signalSense, 0, PMDSignalSenseMask),
-    UNSIGNED(PmdAxis, captureSource, PMDCaptureSourceIndex, PMDCaptureSourceHome),
+    UNSIGNED(PmdAxis, signalSense, PMD_REG_SignalSense_RANGE),
+    UNSIGNED(PmdAxis, captureSource, PMD_REG_CaptureSource_RANGE),
     UNSIGNED(PmdAxis, homeWasActive, BOOL),
     UNSIGNED(PmdAxis, captured, BOOL),
     SIGNED(PmdAxis, captureValue, ANY_I32),
@@ -155,8 +155,8 @@ static const PmdStateStruct buffer = DESCRIBE(PmdBuffer, buffer_fields);
 #define TRACE_CONDITION_MAX PMD_FIELD_DP(PMDTraceTriggerAxisMask | PMDTraceConditionMask | PMDTraceTriggerBitMask, \
                                          PMDTraceTriggerState, PMDTraceTriggerStateHigh)
 static const PmdStateField trace_fields[] = {
-    UNSIGNED(PmdTrace, mode, PMDTraceOneTime, PMDTraceRollingBuffer),
-    UNSIGNED(PmdTrace, period, 1, UINT16_MAX),
+    UNSIGNED(PmdTrace, mode, PMD_REG_TraceMode_RANGE),
+    UNSIGNED(PmdTrace, period, PMD_REG_TracePeriod_RANGE),
     UNSIGNEDS(PmdTrace, variable, 0, TRACE_VARIABLE_MAX),
     UNSIGNED(PmdTrace, start, 0, TRACE_CONDITION_MAX),
     UNSIGNED(PmdTrace, stop, 0, TRACE_CONDITION_MAX),
