@@ -60,7 +60,7 @@ int pmd_register_command(PmdChip *chip, const PmdCommand *c, int axis, const int
         return err;
     if (arg[0] < r->min || arg[0] > r->max) {
         if (PMD_LOGGING(chip, PMD_LOG_ERRORS)) {
-            char value[24], where[16] = "";
+            char value[24], where[24] = "";
             /* a "negative" 32-bit value shows as the word the host sent */
             if (r->error == PMD_ERR_InvalidNegativeValue)
                 snprintf(value, sizeof value, "0x%08llX", (unsigned long long)arg[0]);

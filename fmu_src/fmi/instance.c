@@ -31,7 +31,7 @@ void pmd_instance_log(const PmdInstance *inst, PmdStatus status, PmdLogCategory 
 static void chip_logger(void *context, PmdLogCategory category, const char *message)
 {
     const PmdInstance *inst = (const PmdInstance *)context;
-    PmdStatus status = category <= PMD_LOG_WARNINGS ? PMD_WARNING : PMD_OK;
+    PmdStatus status = category == PMD_LOG_ERRORS || category == PMD_LOG_WARNINGS ? PMD_WARNING : PMD_OK;
     if (inst->logger)
         inst->logger(inst->environment, inst->instanceName, status, pmd_log_category_names[category], message);
 }
