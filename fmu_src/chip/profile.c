@@ -455,7 +455,7 @@ int pmd_update(PmdChip *chip, int n)
         err = pmd_scurve_plan(chip, n, b, &plan);
     if (err)
         return err;
-    chip->s.updatedAxes |= (uint8_t)(1u << n);
+    chip->s.updatedAxes |= (uint8_t)(PMDAxis1Mask << n);
     if (b->clearPositionError) {
         /* reference 4.1: the commanded position becomes the actual position */
         ax->trajectory.position = ax->actualPosition;

@@ -47,7 +47,7 @@ static int condition_met(const PmdChip *chip, uint16_t word)
     unsigned state = PMD_FIELD_EX(word, PMDTraceTriggerState);
     uint16_t status;
     switch (PMD_FIELD_EX(word, PMDTraceCondition)) {
-    case PMDTraceConditionUpdate: return (chip->s.updatedAxes >> n) & 1;
+    case PMDTraceConditionUpdate: return (chip->s.updatedAxes & (PMDAxis1Mask << n)) != 0;
     case PMDTraceConditionEventStatus: status = chip->s.axis[n].eventStatus; break;
     case PMDTraceConditionActivityStatus: status = pmd_activity_status(chip, n); break;
     case PMDTraceConditionSignalStatus: status = pmd_signal_status(chip, n); break;

@@ -171,7 +171,7 @@ static const PmdStateField chip_state_fields[] = {
     STRUCTS(PmdChipState, axis, axis),
     STRUCTS(PmdChipState, buffer, buffer),
     STRUCT(PmdChipState, trace, trace),
-    UNSIGNED(PmdChipState, updatedAxes, 0, (1 << PMD_AXES) - 1),
+    UNSIGNED(PmdChipState, updatedAxes, 0, PMDAxis1Mask | PMDAxis2Mask | PMDAxis3Mask | PMDAxis4Mask),
     UNSIGNED(PmdChipState, bufferEpoch, ANY_U32),
     UNSIGNED(PmdChipState, sampleTime, ANY_U16),                          /* 0 until initialized */
     UNSIGNED(PmdChipState, time, ANY_U32),

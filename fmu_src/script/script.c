@@ -538,7 +538,7 @@ static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle
         return fail(w, "%s: the first argument is the axis", name);
     if (parse_axis(w, args[0], &axis))
         return -1;
-    s->axes |= (uint8_t)(1u << axis);
+    s->axes |= (uint8_t)(PMDAxis1Mask << axis);
     if (strcmp(name, "LoadSegmentTable") == 0) {
         char path[1024];
         size_t len = strlen(args[1 < nArgs ? 1 : 0]);
