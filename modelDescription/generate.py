@@ -287,7 +287,8 @@ def registers_c(registers, commands):
     for r in registers:
         get = by_name["Get" + r.name]
         chip_wide = get.scope == "chip"
-        struct = "PmdProfileRegisters" if r.buffered else "PmdChipState" if chip_wide else "PmdAxis"
+        struct = {"profile": "PmdProfileRegisters", "filter": "PmdFilterRegisters"}.get(
+            r.buffered, "PmdChipState" if chip_wide else "PmdAxis")
         value = by_name["Set" + r.name].args[0] if r.access == "rw" else get.reply[0]
         lo, hi = (r.low, r.high) if r.low is not None else FIELD_RANGE[value.kind]
         needed = max((max(hi, 0)).bit_length() + (lo < 0), (-lo - 1).bit_length() + 1 if lo < 0 else 0)
@@ -300,7 +301,7 @@ def registers_c(registers, commands):
         else:
             refusal = ""
         rows.append(
-            f'    {{"{r.name}", {int(chip_wide)}, {"PMD_BUFFERED_PROFILE" if r.buffered else "PMD_NOT_BUFFERED"}, '
+            f'    {{"{r.name}", {int(chip_wide)}, {"PMD_BUFFERED_" + r.buffered.upper() if r.buffered else "PMD_NOT_BUFFERED"}, '
             f'{int(r.access == "ro")}, {int(get.reply[0].signed)}, {member}, offsetof({struct}, {r.storage}), '
             f'{int(r.reset is not None)}, INT64_C({r.reset or 0}), INT64_C({lo}), INT64_C({hi}), '
             f'{r.error or 0}, "{refusal}", {r.guard or "NULL"}}},')

@@ -12,6 +12,8 @@
 #define PMD_FUNCTIONS 5      /* PMDBufferFunctionPosition .. PMDBufferFunctionTime */
 #define PMD_MAX_FIELDS 8     /* argument or reply values of one command */
 #define PMD_BATCH_WORDS 64   /* host.word[1..64], host.reply[1..64] */
+#define PMD_ANALOG_CHANNELS 8 /* ReadAnalog channels 0..7: the FMU inputs analog[1..8] */
+#define PMD_IO_PORTS 16      /* ReadIO/WriteIO addresses 0..15: io.input[1..16], io.output[1..16] */
 
 /* A 32-bit value's two 16-bit words: the host port carries the high word
  * first (reference 1.1); a status breakpoint's value is a select mask (high
@@ -219,6 +221,25 @@ typedef struct {
     uint8_t clearPositionError;   /* ClearPositionError: applied by the next Update */
 } PmdProfileRegisters;
 
+/* The double-buffered filter registers (reference 4.1, filter group): the
+ * host writes the buffered set, Update copies it to the active set. */
+typedef struct {
+    uint16_t kp, ki, kd, kvff, kaff, kout;
+    uint32_t integrationLimit;   /* counts * cycles */
+    uint16_t derivativeTime;     /* cycles between derivative samples */
+    int16_t motorCommand;        /* SetMotorCommand: the motor output in open loop (motor off) */
+} PmdFilterRegisters;
+
+/* The servo filter of one axis (servo.c): its registers and its state. */
+typedef struct {
+    PmdFilterRegisters buffered, active;
+    int32_t integral;            /* GetIntegral: sum of position errors, within the integration limit */
+    int32_t derivativeError;     /* the position error at the last derivative sample */
+    int16_t derivative;          /* GetDerivative: the error's change over the last derivative time */
+    uint16_t derivativeCount;    /* cycles since the last derivative sample */
+    int16_t output;              /* GetCurrentMotorCommand: the motor command of the last cycle */
+} PmdFilter;
+
 typedef struct {
     uint16_t sourceAxis;
     uint16_t action;
@@ -288,6 +309,20 @@ typedef struct {
     uint8_t captureSource, homeWasActive, captured;
     int32_t captureValue;
 
+    /* the servo filter and the motor output (servo.c) */
+    PmdFilter filter;
+    uint16_t motorLimit;          /* |motor command| limit, 0..32767 */
+    int16_t motorBias;
+    uint16_t outputMode;          /* DAC, PWM sign/magnitude, PWM 50/50: stored (docs/commands.md) */
+    uint32_t startVelocity;       /* stepper motor types only: stored */
+
+    /* hardware the FMU has no counterpart of: stored and read back (docs/commands.md) */
+    uint16_t axisMode, axisOutSource, encoderSource, encoderModulus, actualPositionUnits;
+    uint16_t encoderCounts, encoderSteps, stepRange;       /* SetEncoderToStepRatio, SetStepRange */
+    uint16_t commutationMode, numberPhases, phaseInitializeMode, phasePrescale, phaseCorrectionMode;
+    uint16_t phaseInitializeTime, phaseCounts, phaseOffset, phaseAngle;
+    uint8_t phasingInitialized;   /* InitializePhase: activity bit 0 */
+
     /* inputs from the plant; a switch input is true while the switch is active */
     int32_t actualPositionInput;
     uint8_t positiveLimitInput, negativeLimitInput, homeInput;
@@ -325,6 +360,12 @@ typedef struct {
     uint32_t nextTime;       /* chip time of the next cycle */
     uint16_t hostIOError;    /* first error since last read; 1 after reset */
     uint8_t loopback;        /* actual position := commanded position */
+    /* chip-wide hardware without a counterpart here: stored and read back */
+    uint16_t serialPortMode, diagnosticPortMode, synchronizationMode;
+    /* the peripheral bus (docs/decisions.md): inputs from the plant, WriteIO's latches */
+    uint16_t analogInput[PMD_ANALOG_CHANNELS];   /* ReadAnalog(channel) */
+    uint16_t ioInput[PMD_IO_PORTS];              /* ReadIO(address) */
+    uint16_t ioOutput[PMD_IO_PORTS];             /* WriteIO(address, data) */
 } PmdChipState;
 
 /* The chip object (events.h): this state, its external memory and where it logs. */
@@ -350,7 +391,8 @@ typedef int (*PmdHandler)(PmdChip *chip, int axis, const int64_t *arg, int64_t *
  * handler of its own, as QEMU's RegisterAccessInfo (.reset, .ro) describes one. */
 typedef enum {
     PMD_NOT_BUFFERED,
-    PMD_BUFFERED_PROFILE     /* in PmdAxis.buffered; Update copies it to PmdAxis.active (reference 4.1) */
+    PMD_BUFFERED_PROFILE,    /* in PmdAxis.buffered; Update copies it to PmdAxis.active (reference 4.1) */
+    PMD_BUFFERED_FILTER      /* in PmdAxis.filter.buffered; Update copies it to .filter.active */
 } PmdBufferedGroup;
 
 /* Refuses a Set before anything else (e.g. pmd_trace_busy): 0 or the host I/O error code. */
@@ -363,7 +405,7 @@ typedef struct {
     unsigned char readOnly;    /* the table serves only Get (a Set, if any, is a command with a handler) */
     unsigned char isSigned;    /* Get returns it as a signed value */
     unsigned char size;        /* of the member, in bytes: 1, 2 or 4 */
-    size_t offset;             /* of the member in PmdChipState, PmdAxis or (buffered) PmdProfileRegisters */
+    size_t offset;             /* of the member in PmdChipState, PmdAxis or (buffered) PmdProfileRegisters or PmdFilterRegisters */
     unsigned char hasReset;    /* else pmd_chip_reset derives the value (e.g. the actual position) */
     int64_t reset, min, max;   /* reference 4.2's reset value; a Set outside min..max is refused */
     unsigned char error;       /* with this host I/O error code */

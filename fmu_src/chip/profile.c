@@ -462,6 +462,7 @@ int pmd_update(PmdChip *chip, int n)
         ax->trajectory.fraction = 0;
     }
     ax->active = *b;
+    ax->filter.active = ax->filter.buffered;    /* reference 4.1: the filter group too */
     ax->active.stopMode = PMDNoStopMode;
     ax->active.clearPositionError = 0;
     ax->buffered.stopMode = PMDNoStopMode;      /* reference 4.1: the stop mode resets itself */

@@ -11,13 +11,19 @@
 #include "register_table.h"
 
 /* Where the register lives: in the chip state, in the axis, or in the axis's
- * buffered (host-written) or active profile registers. */
+ * buffered (host-written) or active profile or filter registers. */
 static unsigned char *storage(PmdChip *chip, const PmdRegister *r, int axis, int active)
 {
     PmdAxis *ax = &chip->s.axis[axis];
-    unsigned char *base = r->chipWide ? (unsigned char *)&chip->s
-                          : r->buffered == PMD_BUFFERED_PROFILE ? (unsigned char *)(active ? &ax->active : &ax->buffered)
-                                                                : (unsigned char *)ax;
+    unsigned char *base;
+    if (r->chipWide)
+        base = (unsigned char *)&chip->s;
+    else if (r->buffered == PMD_BUFFERED_PROFILE)
+        base = (unsigned char *)(active ? &ax->active : &ax->buffered);
+    else if (r->buffered == PMD_BUFFERED_FILTER)
+        base = (unsigned char *)(active ? &ax->filter.active : &ax->filter.buffered);
+    else
+        base = (unsigned char *)ax;
     return base + r->offset;
 }
 
@@ -89,7 +95,7 @@ void pmd_registers_reset(PmdChip *chip)
         }
         for (n = 0; n < PMD_AXES; n++) {
             store(storage(chip, r, n, 0), r, r->reset);
-            if (r->buffered == PMD_BUFFERED_PROFILE)
+            if (r->buffered != PMD_NOT_BUFFERED)
                 store(storage(chip, r, n, 1), r, r->reset);
         }
     }

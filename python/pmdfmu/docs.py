@@ -54,8 +54,8 @@ def commands_markdown() -> str:
               "| register | commands | stored in | reset | valid values | buffered | note |",
               "|---|---|---|---|---|---|---|"]
     for r in registers():
-        owner = "PmdProfileRegisters" if r.buffered else "PmdChipState" if COMMANDS["Get" + r.name].scope == "chip" \
-            else "PmdAxis"
+        owner = {"profile": "PmdProfileRegisters", "filter": "PmdFilterRegisters"}.get(r.buffered) or \
+            ("PmdChipState" if COMMANDS["Get" + r.name].scope == "chip" else "PmdAxis")
         reset = r.reset_text or "derived"
         if r.reset_text and r.reset_text[0].isalpha():       # a constant's name: show its value too
             reset += f" ({r.reset})"

@@ -215,8 +215,8 @@ class Register:
     own: Set checks the guard and the range and stores, Get reads back, Reset
     writes the reset value (QEMU's RegisterAccessInfo with .reset and .ro)."""
     name: str
-    storage: str        # the member: of PmdProfileRegisters (buffered "profile"), PmdChipState (a chip-wide
-                        # command) or PmdAxis
+    storage: str        # the member: of PmdProfileRegisters (buffered "profile"), PmdFilterRegisters
+                        # (buffered "filter"), PmdChipState (a chip-wide command) or PmdAxis
     access: str         # "rw": Set<name> stores it; "ro": only Get<name> is the table's
     reset: Optional[int]    # None: pmd_chip_reset derives it (e.g. the actual position from the input)
     reset_text: str     # as written: a number or a constant's name
@@ -225,7 +225,8 @@ class Register:
     valid: str          # the valid values in words: "1..65535", "0 (PMDTraceOneTime) or 1 (PMDTraceRollingBuffer)"
     error: str          # the host I/O error a value outside low..high answers, e.g. PMD_ERR_InvalidParameter
     error_code: int
-    buffered: str       # "profile": double-buffered, Update copies it to the active set; "" not buffered
+    buffered: str       # "profile", "filter": double-buffered, Update copies the group to its active set;
+                        # "" not buffered
     guard: str          # a C function (chip, command) that may refuse a Set first, e.g. pmd_trace_busy
     note: str           # where the facts come from, what else to know
 
@@ -265,8 +266,8 @@ def read_registers(path: Path, constants: Optional[Path] = None) -> List[Registe
                 low, high = min(group), max(group)
                 names = [f"{v} ({group[v]})" for v in sorted(group)]
                 valid = ", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]
-            if row["access"] not in ("rw", "ro") or row["buffered"] not in ("", "profile"):
-                raise ValueError(f"{path}: {name}: access is rw or ro, buffered is profile or empty")
+            if row["access"] not in ("rw", "ro") or row["buffered"] not in ("", "profile", "filter"):
+                raise ValueError(f"{path}: {name}: access is rw or ro, buffered is profile, filter or empty")
             if (low is None) != (row["error"] == ""):
                 raise ValueError(f"{path}: {name}: a range needs the error code that refuses it, and only a range")
             if row["error"] and row["error"] not in value_of:
