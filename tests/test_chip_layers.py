@@ -19,6 +19,7 @@ LAYERS = [
     ("memory",),                    # the external memory
     ("scurve",),                    # the S-curve generator
     ("profile",),                   # trajectory generators, stops, Update
+    ("servo",),                     # the servo filter and the motor output
     ("trace",),                     # the trace facility
     ("registers", "register_table"),   # the plain stored registers' Set, Get and reset values
     ("chip", "fastforward"),        # life cycle, the per-cycle sequence

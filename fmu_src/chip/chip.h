@@ -7,6 +7,7 @@
  *   memory     the external memory (memory.h)
  *   scurve     the S-curve generator (scurve.h)
  *   profile    the trajectory generators, stops, Update (profile.h)
+ *   servo      the servo filter and the motor output (servo.h)
  *   trace      the trace facility (trace.h)
  *   registers  the plain stored registers, served by their table (registers.h)
  *   chip       life cycle and the per-cycle sequence (this header), fast-forward
