@@ -23,8 +23,15 @@ void pmd_chip_reset(PmdChip *chip)
     PmdAxis inputs[PMD_AXES];
     int n, f;
 
+    uint16_t analogInput[PMD_ANALOG_CHANNELS], ioInput[PMD_IO_PORTS];
+
     memcpy(inputs, chip->s.axis, sizeof inputs);
+    memcpy(analogInput, chip->s.analogInput, sizeof analogInput);
+    memcpy(ioInput, chip->s.ioInput, sizeof ioInput);
     memset(&chip->s, 0, sizeof chip->s);
+    /* the plant's inputs are wires, not registers: a reset does not change them */
+    memcpy(chip->s.analogInput, analogInput, sizeof analogInput);
+    memcpy(chip->s.ioInput, ioInput, sizeof ioInput);
     chip->s.loopback = loopback;
     chip->s.sampleTime = sampleTime;      /* the cycle grid is the FMU's: Reset keeps it */
     chip->s.hostIOError = PMD_ERR_ChipsetReset;   /* until read (reference 2.4) */
