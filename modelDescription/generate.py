@@ -179,7 +179,7 @@ def variables3_c(variables3):
          "#ifndef PMD_VARIABLES3_H", "#define PMD_VARIABLES3_H", "",
          f"#define PMD_VR3_MAX {vr_max}", f"#define PMD_VARIABLE3_COUNT {len(variables3)}", "",
          "/* FMI 3 types, in the order of the fmi3 get/set functions that use them. */",
-         "typedef enum { PMD3_FLOAT64, PMD3_INT32, PMD3_UINT32, PMD3_UINT16, PMD3_BOOLEAN, PMD3_STRING, PMD3_BINARY }"
+         "typedef enum { PMD3_FLOAT64, PMD3_INT32, PMD3_UINT32, PMD3_UINT16, PMD3_BOOLEAN, PMD3_STRING, PMD3_BINARY, PMD3_INT16 }"
          " PmdType3;",
          "",
          "typedef struct {",
