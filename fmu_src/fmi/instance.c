@@ -601,6 +601,8 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
     case VAR_axis_acceleration:
         *value = pmd_commanded_acceleration_counts(&AXIS_OF(v)->trajectory) / (g.cycleTime * g.cycleTime);
         break;
+    /* full scale is the 16-bit command's 2^15 (GetCurrentMotorCommand: 100/2^15 % per count) */
+    case VAR_axis_motorOutput: *value = AXIS_OF(v)->filter.output / 32768.0; break;
     default: return unhandled(inst, fn, v, "Real getter");
     }
     return PMD_OK;
@@ -631,6 +633,9 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     case VAR_memory_count: *value = inst->s.memoryCount; break;
     case VAR_memory_strobe: *value = inst->s.memoryStrobe; break;
     case VAR_memory_data: *value = inst->s.memoryData[v->index]; break;
+    case VAR_analog: *value = inst->chip.s.analogInput[v->index]; break;
+    case VAR_io_input: *value = inst->chip.s.ioInput[v->index]; break;
+    case VAR_io_output: *value = inst->chip.s.ioOutput[v->index]; break;
     case VAR_record_capacity: *value = (int32_t)inst->recordCapacity; break;
     case VAR_script_axes: *value = inst->script.axes; break;
     default: return unhandled(inst, fn, v, "Integer getter");
@@ -736,6 +741,11 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
         if (value < INT32_MIN || value > UINT32_MAX)      /* FMI 2 Integer or FMI 3 UInt32: the word's 32 bits */
             return out_of_range(inst, fn, v, (double)value, "a 32-bit word");
         break;
+    case VAR_analog:
+    case VAR_io_input:                                      /* UInt16 wires: FMI 2 Integer can go beyond them */
+        if (value < 0 || value > UINT16_MAX)
+            return out_of_range(inst, fn, v, (double)value, "a 16-bit unsigned value, 0 .. 65535");
+        break;
     case VAR_axis_actualPosition:
     case VAR_host_strobe:
     case VAR_memory_strobe:                                 /* Int32 variables: FMI already bounds them */
@@ -765,6 +775,9 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
     case VAR_memory_count: inst->s.memoryCount = (int32_t)value; break;
     case VAR_memory_strobe: inst->s.memoryStrobe = (int32_t)value; break;
     case VAR_memory_data: inst->s.memoryData[v->index] = pmd_int32((uint32_t)value); break;
+    /* the plant's wires, read by ReadAnalog and ReadIO when a batch executes */
+    case VAR_analog: inst->chip.s.analogInput[v->index] = (uint16_t)value; break;
+    case VAR_io_input: inst->chip.s.ioInput[v->index] = (uint16_t)value; break;
     case VAR_record_capacity: inst->recordCapacity = (uint32_t)value; break;
     default: return unhandled(inst, fn, v, "Integer setter");   /* the check pass refused it already */
     }
