@@ -71,7 +71,7 @@ class InitializationChip:
             self.fmu = FMU3Slave(**kwargs)
             self.fmu.instantiate(logMessage=lambda env, status, cat, msg: record(status, msg))
             self.fmu.enterInitializationMode(startTime=0.0)
-            types = ("Float64", "Int32", "UInt32", "UInt16", "Boolean")
+            types = ("Float64", "Int32", "UInt32", "UInt16", "Int16", "Boolean")
         self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
         self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
 

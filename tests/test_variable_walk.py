@@ -17,7 +17,7 @@ from states import InitializationChip, snapshot
 
 CSV = Path(__file__).resolve().parent.parent / "modelDescription" / "variables.csv"
 FMI2_TYPES = ("Real", "Integer", "Boolean", "String")
-FMI3_TYPES = ("Float64", "Int32", "UInt32", "UInt16", "Boolean", "String", "Binary")
+FMI3_TYPES = ("Float64", "Int32", "UInt32", "UInt16", "Int16", "Boolean", "String", "Binary")
 
 
 def start(v):

@@ -18,7 +18,10 @@ typedef struct {
 } Component;
 
 static const fmi3Status status_of[] = {fmi3OK, fmi3Warning, fmi3Discard, fmi3Error, fmi3Fatal};
-static const char *const type_names[] = {"Float64", "Int32", "UInt32", "UInt16", "Boolean", "String", "Binary"};
+/* by PmdType3 (variables3.h): the FMI 3 type names the functions' messages use */
+static const char *const type_names[] = {
+    [PMD3_FLOAT64] = "Float64", [PMD3_INT32] = "Int32", [PMD3_UINT32] = "UInt32", [PMD3_UINT16] = "UInt16",
+    [PMD3_INT16] = "Int16", [PMD3_BOOLEAN] = "Boolean", [PMD3_STRING] = "String", [PMD3_BINARY] = "Binary"};
 
 static void log_to_environment(void *environment, const char *instanceName, PmdStatus status, const char *category,
                                const char *message)
@@ -241,6 +244,10 @@ static PmdStatus get_element(PmdInstance *inst, const char *fn, PmdType3 type, u
         s = pmd_get_integer(inst, fn, vr, &n);
         ((fmi3UInt16 *)values)[k] = (uint16_t)((uint32_t)n & 0xFFFFu);
         return s;
+    case PMD3_INT16:                                    /* a signed 16-bit register: its value fits */
+        s = pmd_get_integer(inst, fn, vr, &n);
+        ((fmi3Int16 *)values)[k] = (int16_t)n;
+        return s;
     default:
         return unhandled_type(inst, fn, type, vr);
     }
@@ -255,6 +262,7 @@ static PmdStatus set_element(PmdInstance *inst, const char *fn, PmdType3 type, u
     case PMD3_INT32: return pmd_set_integer(inst, fn, vr, ((const fmi3Int32 *)values)[k], apply);
     case PMD3_UINT32: return pmd_set_integer(inst, fn, vr, ((const fmi3UInt32 *)values)[k], apply);
     case PMD3_UINT16: return pmd_set_integer(inst, fn, vr, ((const fmi3UInt16 *)values)[k], apply);
+    case PMD3_INT16: return pmd_set_integer(inst, fn, vr, ((const fmi3Int16 *)values)[k], apply);
     default: return unhandled_type(inst, fn, type, vr);
     }
 }
@@ -321,6 +329,7 @@ GETSET(fmi3Float64, Float64, PMD3_FLOAT64)
 GETSET(fmi3Int32, Int32, PMD3_INT32)
 GETSET(fmi3UInt32, UInt32, PMD3_UINT32)
 GETSET(fmi3UInt16, UInt16, PMD3_UINT16)
+GETSET(fmi3Int16, Int16, PMD3_INT16)
 GETSET(fmi3Boolean, Boolean, PMD3_BOOLEAN)
 
 /* Types this FMU has no variables of: any value reference is an error. */
@@ -350,7 +359,6 @@ static fmi3Status no_such_type(fmi3Instance c, const char *fn, const char *type,
 NO_SUCH_TYPE(fmi3Float32, Float32)
 NO_SUCH_TYPE(fmi3Int8, Int8)
 NO_SUCH_TYPE(fmi3UInt8, UInt8)
-NO_SUCH_TYPE(fmi3Int16, Int16)
 NO_SUCH_TYPE(fmi3Int64, Int64)
 NO_SUCH_TYPE(fmi3UInt64, UInt64)
 

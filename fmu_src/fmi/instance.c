@@ -621,6 +621,7 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     case VAR_axis_commandedAcceleration: *value = pmd_commanded_acceleration(&AXIS_OF(v)->trajectory); break;
     case VAR_axis_activityStatus: *value = pmd_activity_status(&inst->chip, v->index); break;
     case VAR_axis_eventStatus: *value = AXIS_OF(v)->eventStatus; break;
+    case VAR_axis_motorCommand: *value = AXIS_OF(v)->filter.output; break;
     case VAR_axis_actualPosition: *value = AXIS_OF(v)->actualPositionInput; break;
     case VAR_host_word: *value = inst->s.hostWord[v->index]; break;
     case VAR_host_wordCount: *value = inst->s.hostWordCount; break;

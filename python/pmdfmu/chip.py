@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import inspect
 import os
+import re
 import shutil
 import textwrap
 from ctypes import POINTER, Array, c_double, c_int32, c_size_t, c_uint32, cast
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Dict, Iterable, List, Sequence, Tuple, Union
+from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from fmpy import extract, read_model_description
@@ -75,7 +76,8 @@ def instruction_word(opcode: int, axis: int) -> int:
 # run()'s columns have each register's own width (variables.csv's FMI 3 type), in FMI 2 as well;
 # `cycle` is the 32-bit chip time (GetTime)
 DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32": np.int32, "UInt32": np.uint32,
-                                                  "UInt16": np.uint16, "Boolean": np.bool_}[v.fmi3Type])
+                                                  "UInt16": np.uint16, "Int16": np.int16,
+                                                  "Boolean": np.bool_}[v.fmi3Type])
                                for v in tables.read_variables(tables_dir() / "variables.csv")
                                if v.fmi3Type not in ("String", "Binary")}
 CYCLE = ("cycle", np.uint32)
@@ -84,10 +86,37 @@ UNSIGNED = {n: (1 << 8 * t.itemsize) - 1 for n, t in DTYPES.items() if t.kind ==
 # the width of each integer variable's word (FMI 3 type), by FMI 2 name and by FMI 3 array name: set()
 # takes -2^(w-1) .. 2^w-1 for it, in both FMI versions
 WIDTHS: Dict[str, int] = {}
+SIGNED = set()          # of those, the signed ones (Int32, Int16): set() sends their bits as a signed value
 for _v in tables.read_variables(tables_dir() / "variables.csv"):
-    if _v.fmi3Type in ("Int32", "UInt32", "UInt16"):
-        WIDTHS[_v.name] = WIDTHS[_v.name.split("[")[0]] = 16 if _v.fmi3Type == "UInt16" else 32
+    if _v.fmi3Type in ("Int32", "UInt32", "UInt16", "Int16"):
+        WIDTHS[_v.name] = WIDTHS[_v.name.split("[")[0]] = 16 if _v.fmi3Type.endswith("Int16") else 32
+        if _v.fmi3Type.startswith("Int"):
+            SIGNED.update((_v.name, _v.name.split("[")[0]))
 del _v
+_ELEMENT = re.compile(r"(.+)\[(\d+)\]")
+
+
+def _array_element(variables, name: str) -> Optional[Tuple[str, int]]:
+    """FMI 3 keeps arrays whole: "analog[2]" there is element 1 of the array
+    "analog" (None for a name that is a variable, or no array's element)."""
+    m = _ELEMENT.fullmatch(name)
+    if name in variables or not m or m.group(1) not in variables:
+        return None
+    v, i = variables[m.group(1)], int(m.group(2))
+    size = int(v.dimensions[0].start) if getattr(v, "dimensions", None) else 1
+    return (m.group(1), i - 1) if 1 <= i <= size else None
+
+
+def _array_elements(variables, name: str) -> List[str]:
+    """FMI 2 has an array's elements only: "analog" there is analog[1] .. analog[8]
+    (empty for a name that is a variable, or no array)."""
+    if name in variables:
+        return []
+    out: List[str] = []
+    while f"{name}[{len(out) + 1}]" in variables:
+        out.append(f"{name}[{len(out) + 1}]")
+    return out
+
 # record.data's columns after the chip time (FMI 3 bulk recording)
 RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
             for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
@@ -316,7 +345,7 @@ class Chip:
         if log_categories and log_categories is not True:
             self.fmu.setDebugLogging(True, list(log_categories))
         types = (("Real", "Integer", "Boolean", "String") if fmi_version == 2 else
-                 ("Float64", "Int32", "UInt32", "UInt16", "Boolean", "String"))
+                 ("Float64", "Int32", "UInt32", "UInt16", "Int16", "Boolean", "String"))
         self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
         self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
         self._getters.pop("String")           # run() records numbers; get() reads the script path below
@@ -387,23 +416,47 @@ class Chip:
     def set(self, name: str, value) -> None:
         """Sets an FMU input or parameter by name (an FMI 3 array takes a list).
 
+        An array's element and a whole array have the same names in FMI 2 and FMI 3:
+        chip.set("analog[1]", 512) sets one element (in FMI 3, the array with that
+        element changed, in one call), chip.set("io.input", [...16 values...]) all of
+        them (in FMI 2, its elements in one call).
+
         An integer variable of w bits (variables.csv's FMI 3 type: Int32, UInt32,
         UInt16) takes an integer from -2^(w-1) to 2^w-1, its signed or unsigned
         reading of the same bits, through FMI 2 and FMI 3 alike; anything else (a
         value that does not fit, a float) raises ValueError before anything is set.
         The FMU then checks the value's meaning (memorySize, host.wordCount, ...)."""
-        v = self.variables[name]
-        values = list(value) if self._size(name) > 1 else [value]
+        element = _array_element(self.variables, name) if self.fmi_version == 3 else None
+        if element:
+            base, i = element
+            values = self.get(base)
+            values[i] = value
+            self.set(base, values)              # a bad value raises naming base[i + 1], i.e. `name`
+            return
+        elements = _array_elements(self.variables, name) if self.fmi_version == 2 else []
+        v = self.variables[elements[0] if elements else name]
+        values = list(value) if elements or self._size(name) > 1 else [value]
+        if elements and len(values) != len(elements):
+            raise ValueError(f"set: {name} has {len(elements)} elements, {len(values)} values given")
         if name in WIDTHS:
             bits = WIDTHS[name]
             values = [to_word(x, bits, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else ""))
                       for i, x in enumerate(values)]
-            if (self.fmi_version == 2 and bits == 32) or v.type == "Int32":     # int32: the same bits, signed
-                values = [x - (1 << 32) if x >> 31 else x for x in values]
-        self._setters[v.type]([v.valueReference], values)
+            if (self.fmi_version == 2 and bits == 32) or name in SIGNED:       # the same bits, signed
+                values = [x - (1 << bits) if x >> (bits - 1) else x for x in values]
+        vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
+        self._setters[v.type](vrs, values)
 
     def get(self, name: str):
-        """Reads an FMU variable by name (an FMI 3 array reads as a list)."""
+        """Reads an FMU variable by name (an array reads as a list, an element
+        such as "io.output[3]" as a number, in FMI 2 and FMI 3 alike)."""
+        element = _array_element(self.variables, name) if self.fmi_version == 3 else None
+        if element:
+            return self.get(element[0])[element[1]]
+        elements = _array_elements(self.variables, name) if self.fmi_version == 2 else []
+        if elements:
+            return list(self._getters[self.variables[elements[0]].type](
+                [self.variables[e].valueReference for e in elements]))
         v = self.variables[name]
         if v.type == "String":
             value = self.fmu.getString([v.valueReference])[0]
@@ -622,7 +675,9 @@ class Chip:
     def run(self, cycles: int, record: Sequence[str] = ()) -> np.ndarray:
         """Advances the chip by `cycles` cycles. With record, returns a structured
         array: row i holds the outputs as the i-th cycle left them, in a `cycle`
-        column (chip time) and one field per requested FMU variable."""
+        column (chip time) and one field per requested FMU variable, of its width
+        (variables.csv's FMI 3 type: axis1.motorCommand int16, io.output[3] uint16);
+        an array's element goes by its FMI 2 name ("io.output[3]") in FMI 3 too."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         if not record:
@@ -630,20 +685,37 @@ class Chip:
                 self._step(cycles)
             return np.zeros(0, dtype=[CYCLE])
         names = list(record)
+        # where each column is read: (variable, element); in FMI 3 an array's element ("io.output[3]")
+        # is read with its whole array
+        where = {}
         for name in names:
-            if name not in DTYPES or name not in self.variables:
+            element = _array_element(self.variables, name) if self.fmi_version == 3 else None
+            if name not in DTYPES or (name not in self.variables and not element):
                 raise ValueError(f"run: record={name!r} is not a variable of the FMU (pmdfmu info lists them)")
+            where[name] = element or (name, 0)
         if self.fmi_version == 3 and set(names) <= set(RECORDED):
             return self._run_recorded(cycles, names)
-        types = [self.variables[n].type for n in names]
         out = np.zeros(cycles, dtype=[CYCLE] + [(n, DTYPES[n]) for n in names])
-        groups = [(self._getters[t], [n for n, tt in zip(names, types) if tt == t]) for t in self._getters]
-        groups = [(get, ns, [self._vr[n] for n in ns]) for get, ns in groups if ns]
+        # one get per FMI type a cycle: the type's variables (each array once), and each column's
+        # place among the values it returns
+        groups = []
+        for t, get in self._getters.items():
+            ns = [n for n in names if self.variables[where[n][0]].type == t]
+            read = list(dict.fromkeys(where[n][0] for n in ns))
+            if not ns:
+                continue
+            offsets = np.cumsum([0] + [self._size(r) for r in read])
+            places = [int(offsets[read.index(where[n][0])]) + where[n][1] for n in ns]
+            vrs = [self._vr[r] for r in read]
+            if self.fmi_version == 3 and offsets[-1] != len(read):
+                get = (lambda g, total: lambda vrs: g(vrs, nValues=total))(get, int(offsets[-1]))
+            groups.append((get, ns, vrs, places))
         get_time, time_vr = self._getters[self.variables["chipTime"].type], [self._vr["chipTime"]]
         for i in range(cycles):
             self._step(1)
             out["cycle"][i] = get_time(time_vr)[0] & 0xFFFFFFFF      # FMI 2 Integer: the same 32 bits
-            for get, ns, vrs in groups:
-                for n, value in zip(ns, get(vrs)):
-                    out[n][i] = value & UNSIGNED[n] if n in UNSIGNED else value
+            for get, ns, vrs, places in groups:
+                values = get(vrs)
+                for n, p in zip(ns, places):
+                    out[n][i] = values[p] & UNSIGNED[n] if n in UNSIGNED else values[p]
         return out
