@@ -91,15 +91,17 @@ static void check_breakpoints(PmdChip *chip, int n)
             if (pmd_update(chip, n) != 0)
                 pmd_set_event(chip, n, PMDEventInstructionErrorMask);
             break;
+        /* A stop action is the stop an Update applies (pmd_stop), in every profile
+         * mode, without the Update: the registers, active and buffered, stay as
+         * they are (docs/decisions.md, breakpoint actions). */
         case PMDBreakpointActionAbruptStop:
-            pmd_abrupt_stop(chip, n);
+            pmd_stop(chip, n, PMDAbruptStopMode);
             break;
         case PMDBreakpointActionSmoothStop:
-            if (chip->s.axis[n].motion == PMD_MOTION_TRAPEZOIDAL)
-                chip->s.axis[n].motion = PMD_MOTION_SMOOTH_STOP;
+            pmd_stop(chip, n, PMDSmoothStopMode);
             break;
         case PMDBreakpointActionMotorOff:
-            chip->s.axis[n].motorOn = 0;
+            chip->s.axis[n].motorOn = PMDMotorOff;     /* what SetMotorMode(0) stores */
             break;
         default:
             break;

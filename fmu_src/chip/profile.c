@@ -373,6 +373,31 @@ void pmd_profile_cycle(PmdChip *chip, int n)
     }
 }
 
+/* ---- stops ------------------------------------------------------------------ */
+
+/* A stop in stop mode `stopMode` (PMDAbruptStopMode or PMDSmoothStopMode), in
+ * whatever profile the axis runs: what an Update does with a buffered stop mode,
+ * and what a breakpoint's stop action does (chip.c), so the two cannot differ.
+ * It touches no register, active or buffered: Update copies them itself.
+ * - abrupt (reference 5, stops): velocity zeroed at once, commanded position held;
+ * - smooth: trapezoidal and velocity contouring brake at the deceleration, an
+ *   S-curve runs its deceleration phases (scurve.c); a geared axis has no
+ *   deceleration, so it stops abruptly (reference 5, S2 p.136, p.191); an
+ *   external profile changes nothing (seed 000, 1.5: "If a SmoothStop is issued
+ *   no change in motion will occur"); an axis at rest stays at rest. */
+void pmd_stop(PmdChip *chip, int n, uint16_t stopMode)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    if (stopMode == PMDAbruptStopMode || (stopMode == PMDSmoothStopMode && ax->motion == PMD_MOTION_GEAR)) {
+        pmd_abrupt_stop(chip, n);
+    } else if (stopMode == PMDSmoothStopMode) {
+        if (ax->motion == PMD_MOTION_TRAPEZOIDAL || ax->motion == PMD_MOTION_VELOCITY)
+            ax->motion = PMD_MOTION_SMOOTH_STOP;
+        else if (ax->motion == PMD_MOTION_SCURVE)
+            pmd_scurve_smooth_stop(ax);
+    }
+}
+
 /* ---- Update ---------------------------------------------------------------- */
 
 /* The direction a move would start in: +1, -1, or 0 when it has none (no
@@ -468,14 +493,8 @@ int pmd_update(PmdChip *chip, int n)
     ax->buffered.stopMode = PMDNoStopMode;      /* reference 4.1: the stop mode resets itself */
     ax->buffered.clearPositionError = 0;
 
-    if (stop == PMDAbruptStopMode || (stop == PMDSmoothStopMode && ax->motion == PMD_MOTION_GEAR)) {
-        pmd_abrupt_stop(chip, n);               /* gear: a smooth stop acts as an abrupt one */
-    } else if (stop == PMDSmoothStopMode) {
-        /* Seed 000, 1.5: a smooth stop changes nothing in external mode. */
-        if (ax->motion == PMD_MOTION_TRAPEZOIDAL || ax->motion == PMD_MOTION_VELOCITY)
-            ax->motion = PMD_MOTION_SMOOTH_STOP;
-        else if (ax->motion == PMD_MOTION_SCURVE)
-            pmd_scurve_smooth_stop(ax);
+    if (stop != PMDNoStopMode) {
+        pmd_stop(chip, n, stop);
     } else {
         switch (b->profileMode) {
         case PMDExternalProfile:

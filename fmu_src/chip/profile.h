@@ -9,6 +9,9 @@ void pmd_profile_cycle(PmdChip *chip, int axis);
 void pmd_gear_cycle(PmdChip *chip, int axis);
 int pmd_update(PmdChip *chip, int axis);
 void pmd_abrupt_stop(PmdChip *chip, int axis);
+/* Stops the axis in stop mode PMDAbruptStopMode or PMDSmoothStopMode, in any
+ * profile mode, as Update does with a buffered stop mode; changes no register. */
+void pmd_stop(PmdChip *chip, int axis, uint16_t stopMode);
 void pmd_halt(PmdChip *chip, int axis);
 int pmd_segment_plan_valid(const PmdChip *chip, int n);
 
