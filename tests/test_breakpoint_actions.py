@@ -255,3 +255,35 @@ def test_a_stop_breakpoint_leaves_the_buffered_registers_alone(chip):
     ax.Update()                                   # the host's Update applies them now
     chip.run(100)
     assert ax.GetCommandedVelocity() == -0x30000
+
+
+def test_a_trace_on_the_next_update_starts_in_the_cycle_an_update_breakpoint_fires():
+    """The one difference: the trace's "next update" start condition, checked at the end of every
+    cycle, sees a breakpoint's update in the cycle it fires, and a host's Update sent after that
+    cycle in the next one (its next servo loop). The breakpoint's trace takes one more sample
+    first - the cycle it fired in - and then the same samples as the host's."""
+    samples = {}
+    for how in ("breakpoint", "host"):
+        with pmdfmu.Chip() as chip:
+            ax = chip.axis(0)
+            ax.SetBufferStart(0, 0x100)
+            ax.SetBufferLength(0, 30)
+            ax.SetTraceVariable(0, 0, pmdfmu.PMDTraceTime)
+            ax.SetTraceVariable(1, 0, pmdfmu.PMDTraceCommandedVelocity)
+            ax.SetTraceStart(0, pmdfmu.PMDTraceConditionUpdate, 0, 0)
+            ax.SetPosition(5_000)
+            ax.SetVelocity(0x10000)
+            ax.SetAcceleration(0x1000)
+            if how == "breakpoint":
+                ax.SetBreakpointValue(PMDBreakpoint1, 50)
+                ax.SetBreakpoint(PMDBreakpoint1, 0, PMDBreakpointActionUpdate, pmdfmu.PMDBreakpointTime)
+                chip.run(60)
+            else:
+                chip.run(51)
+                ax.Update()
+                chip.run(9)
+            words = [ax.ReadBuffer(0) for _ in range(ax.GetTraceCount())]
+            samples[how] = list(zip(words[::2], words[1::2]))
+    assert samples["breakpoint"][0] == (50, 0)
+    assert samples["breakpoint"][1:] == samples["host"]
+    assert samples["host"][0] == (51, 0x1000)                  # the new move's first cycle
