@@ -335,7 +335,7 @@ def commands_c(commands, registers):
         "extern const PmdCommand pmd_commands[];",
         f"#define PMD_COMMAND_COUNT {len(commands)}",
         "/* pmd_command_of_opcode[opcode] is the index into pmd_commands, or -1 (invalid instruction). */",
-        "extern const signed char pmd_command_of_opcode[256];", "",
+        "extern const short pmd_command_of_opcode[256];", "",
         "#endif", "",
     ]
     c = [
@@ -348,7 +348,7 @@ def commands_c(commands, registers):
         c.append(f'    {{0x{cmd.opcode:02X}, "{cmd.name}", {int(cmd.scope == "chip")}, {cmd.arg_words}, '
                  f'{cmd.reply_words}, {len(cmd.args)}, {len(cmd.reply)}, {fields(cmd.args)}, '
                  f'{fields(cmd.reply)}, {handler(cmd)}}},')
-    c += ["};", "", *index_array("const signed char pmd_command_of_opcode[256]", (c.opcode for c in commands), 256)]
+    c += ["};", "", *index_array("const short pmd_command_of_opcode[256]", (c.opcode for c in commands), 256)]
     return "\n".join(h), "\n".join(c)
 
 

@@ -45,7 +45,8 @@ def test_unknown_opcode_answers_0x02_and_ends_the_batch(chip):
     assert error == 0x02 and reply == []
 
 
-@pytest.mark.parametrize("opcode", [0x25, 0xE2, 0x8B, 0x72])   # filter, commutation, serial, phasing
+# Magellan only: SetMotorType, its SetSampleTime, SetPositionLoop, SetUpdateMask
+@pytest.mark.parametrize("opcode", [0x02, 0x3B, 0x67, 0xF9])
 def test_unimplemented_opcodes_answer_invalid_instruction(chip, opcode):
     assert chip.batch([opcode])[0] == 0x02
 

@@ -82,9 +82,23 @@ int pmd_register_command(PmdChip *chip, const PmdCommand *c, int axis, const int
     return 0;
 }
 
+/* The registers whose commands take packed or paired words, so that their
+ * handlers serve them (commands_hardware.c): their reset values other than 0. */
+static void reset_packed_registers(PmdChip *chip)
+{
+    int n;
+    /* 57600 baud, 8N1, point-to-point: the Magellan's reset value (reference 3.3); [L] for the Navigator */
+    chip->s.serialPortMode = (uint16_t)PMD_FIELD_DP(0, PMDSerialPortBaud, PMDSerialBaud57600);
+    for (n = 0; n < PMD_AXES; n++) {
+        chip->s.axis[n].encoderCounts = 1;          /* the ratio 0x00010001, 1:1 (reference 4.2) */
+        chip->s.axis[n].encoderSteps = 1;
+    }
+}
+
 void pmd_registers_reset(PmdChip *chip)
 {
     int i, n;
+    reset_packed_registers(chip);
     for (i = 0; i < PMD_REGISTER_COUNT; i++) {
         const PmdRegister *r = &pmd_registers[i];
         if (!r->hasReset)

@@ -9,7 +9,8 @@
  * handler does for any other command. */
 int pmd_register_command(PmdChip *chip, const PmdCommand *c, int axis, const int64_t *arg, int64_t *reply);
 
-/* Writes every register's reset value of the register table (reference 4.2). */
+/* Writes every register's reset value of the register table (reference 4.2),
+ * and those of the packed and paired registers that handlers serve. */
 void pmd_registers_reset(PmdChip *chip);
 
 #endif

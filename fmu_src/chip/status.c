@@ -18,6 +18,8 @@ uint16_t pmd_activity_status(const PmdChip *chip, int n)
 {
     const PmdAxis *ax = &chip->s.axis[n];
     uint32_t s = PMD_FIELD_DP(0, PMDActivityProfileMode, ax->active.profileMode);
+    if (ax->phasingInitialized)
+        s |= PMDActivityPhasingInitializedMask;      /* InitializePhase (commands_hardware.c) */
     if (ax->atMaximumVelocity)
         s |= PMDActivityAtMaximumVelocityMask;
     if (pmd_abs32(pmd_position_error(ax)) <= ax->trackingWindow)

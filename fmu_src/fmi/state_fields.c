@@ -31,6 +31,7 @@
 #define ANY_U8 0, UINT8_MAX
 #define ANY_U16 0, UINT16_MAX
 #define ANY_U32 0, UINT32_MAX
+#define ANY_I16 INT16_MIN, INT16_MAX
 #define ANY_I32 INT32_MIN, INT32_MAX
 #define ANY_I64 INT64_MIN, INT64_MAX
 #define AXIS_NUMBER 0, PMD_AXES - 1
@@ -82,6 +83,33 @@ static const PmdStateField trajectory_fields[] = {
 };
 static const PmdStateStruct trajectory = DESCRIBE(PmdTrajectory, trajectory_fields);
 
+/* The filter group (registers.csv, buffered "filter"): the host's set and the active set alike. */
+static const PmdStateField filter_registers_fields[] = {
+    UNSIGNED(PmdFilterRegisters, kp, ANY_U16),
+    UNSIGNED(PmdFilterRegisters, ki, ANY_U16),
+    UNSIGNED(PmdFilterRegisters, kd, ANY_U16),
+    UNSIGNED(PmdFilterRegisters, kvff, ANY_U16),
+    UNSIGNED(PmdFilterRegisters, kaff, ANY_U16),
+    UNSIGNED(PmdFilterRegisters, kout, ANY_U16),
+    UNSIGNED(PmdFilterRegisters, integrationLimit, PMD_REG_IntegrationLimit_RANGE),
+    UNSIGNED(PmdFilterRegisters, derivativeTime, PMD_REG_DerivativeTime_RANGE),
+    SIGNED(PmdFilterRegisters, motorCommand, ANY_I16),
+};
+static const PmdStateStruct filter_registers = DESCRIBE(PmdFilterRegisters, filter_registers_fields);
+
+/* The servo filter (servo.c): the integral stays within the integration limit
+ * (below 2^31), the derivative sample count below the derivative time. */
+static const PmdStateField filter_fields[] = {
+    STRUCT(PmdFilter, buffered, filter_registers),
+    STRUCT(PmdFilter, active, filter_registers),
+    SIGNED(PmdFilter, integral, -INT32_MAX, INT32_MAX),
+    SIGNED(PmdFilter, derivativeError, ANY_I32),
+    SIGNED(PmdFilter, derivative, ANY_I16),
+    UNSIGNED(PmdFilter, derivativeCount, 0, UINT16_MAX - 1),
+    SIGNED(PmdFilter, output, ANY_I16),
+};
+static const PmdStateStruct filter = DESCRIBE(PmdFilter, filter_fields);
+
 static const PmdStateField breakpoint_fields[] = {
     UNSIGNED(PmdBreakpoint, sourceAxis, AXIS_NUMBER),
     UNSIGNED(PmdBreakpoint, action, PMDBreakpointNoAction, PMDBreakpointActionMotorOff),
@@ -89,6 +117,15 @@ static const PmdStateField breakpoint_fields[] = {
     SIGNED(PmdBreakpoint, value, ANY_I32),
 };
 static const PmdStateStruct breakpoint = DESCRIBE(PmdBreakpoint, breakpoint_fields);
+
+/* Packed words (commands_hardware.c): the largest word whose fields SetAxisOutSource and
+ * SetSerialPortMode accept; the fields' values are stored and read back, never used as indexes. */
+#define AXIS_OUT_SOURCE_MAX PMD_FIELD_DP(PMD_FIELD_DP(PMDAxisOutSourceBitMask, PMDAxisOutSourceAxis, PMD_AXES - 1), \
+                                         PMDAxisOutSourceRegister, PMDAxisOutSourceSignalStatus)
+#define SERIAL_PORT_MODE_MAX \
+    PMD_FIELD_DP(PMD_FIELD_DP(PMDSerialPortStopBitsMask | PMDSerialPortProtocolMask | PMDSerialPortMultiDropIDMask, \
+                              PMDSerialPortBaud, PMDSerialBaud416667), \
+                 PMDSerialPortParity, PMDSerialParityEven)
 
 static const PmdStateField axis_fields[] = {
     STRUCT(PmdAxis, buffered, profile_registers),
@@ -132,6 +169,29 @@ static const PmdStateField axis_fields[] = {
     UNSIGNED(PmdAxis, homeWasActive, BOOL),
     UNSIGNED(PmdAxis, captured, BOOL),
     SIGNED(PmdAxis, captureValue, ANY_I32),
+    STRUCT(PmdAxis, filter, filter),
+    UNSIGNED(PmdAxis, motorLimit, PMD_REG_MotorLimit_RANGE),
+    SIGNED(PmdAxis, motorBias, ANY_I16),
+    UNSIGNED(PmdAxis, outputMode, PMD_REG_OutputMode_RANGE),
+    UNSIGNED(PmdAxis, startVelocity, ANY_U32),
+    UNSIGNED(PmdAxis, axisMode, PMD_REG_AxisMode_RANGE),
+    UNSIGNED(PmdAxis, axisOutSource, 0, AXIS_OUT_SOURCE_MAX),
+    UNSIGNED(PmdAxis, encoderSource, PMD_REG_EncoderSource_RANGE),
+    UNSIGNED(PmdAxis, encoderModulus, ANY_U16),
+    UNSIGNED(PmdAxis, actualPositionUnits, PMD_REG_ActualPositionUnits_RANGE),
+    UNSIGNED(PmdAxis, encoderCounts, ANY_U16),
+    UNSIGNED(PmdAxis, encoderSteps, ANY_U16),
+    UNSIGNED(PmdAxis, stepRange, ANY_U16),
+    UNSIGNED(PmdAxis, commutationMode, PMD_REG_CommutationMode_RANGE),
+    UNSIGNED(PmdAxis, numberPhases, PMD_REG_NumberPhases_RANGE),
+    UNSIGNED(PmdAxis, phaseInitializeMode, PMD_REG_PhaseInitializeMode_RANGE),
+    UNSIGNED(PmdAxis, phasePrescale, PMD_REG_PhasePrescale_RANGE),
+    UNSIGNED(PmdAxis, phaseCorrectionMode, PMD_REG_PhaseCorrectionMode_RANGE),
+    UNSIGNED(PmdAxis, phaseInitializeTime, ANY_U16),
+    UNSIGNED(PmdAxis, phaseCounts, ANY_U16),
+    UNSIGNED(PmdAxis, phaseOffset, ANY_U16),
+    UNSIGNED(PmdAxis, phaseAngle, ANY_U16),
+    UNSIGNED(PmdAxis, phasingInitialized, BOOL),
     SIGNED(PmdAxis, actualPositionInput, ANY_I32),
     UNSIGNED(PmdAxis, positiveLimitInput, BOOL),
     UNSIGNED(PmdAxis, negativeLimitInput, BOOL),
@@ -178,6 +238,12 @@ static const PmdStateField chip_state_fields[] = {
     UNSIGNED(PmdChipState, nextTime, ANY_U32),
     UNSIGNED(PmdChipState, hostIOError, ANY_U8),
     UNSIGNED(PmdChipState, loopback, BOOL),
+    UNSIGNED(PmdChipState, serialPortMode, 0, SERIAL_PORT_MODE_MAX),
+    UNSIGNED(PmdChipState, diagnosticPortMode, PMD_REG_DiagnosticPortMode_RANGE),
+    UNSIGNED(PmdChipState, synchronizationMode, PMD_REG_SynchronizationMode_RANGE),
+    UNSIGNEDS(PmdChipState, analogInput, ANY_U16),
+    UNSIGNEDS(PmdChipState, ioInput, ANY_U16),
+    UNSIGNEDS(PmdChipState, ioOutput, ANY_U16),
 };
 static const PmdStateStruct chip_state = DESCRIBE(PmdChipState, chip_state_fields);
 
