@@ -12,7 +12,7 @@
 #include "instance.h"
 
 /* Bumped whenever a field is added, removed or changes meaning. */
-#define PMD_STATE_VERSION 4u
+#define PMD_STATE_VERSION 5u
 
 /* The declared state as a snapshot holds it: the instance's, then the chip's.
  * Its fields are named as the instance reaches them (hostWordCount,
