@@ -552,7 +552,10 @@ static void read_outputs(Fuzz *f, Bytes *out, int record)
     for (i = 0; i < PMD_VARIABLE3_COUNT; i++) {
         const PmdVariable3 *v = &pmd_variables3[i];
         fmi3ValueReference ref = v->vr;
-        union { fmi3Float64 d[64]; fmi3Int32 i32[64]; fmi3UInt32 u32[64]; fmi3UInt16 u16[64]; fmi3Boolean b[64]; } u;
+        union {
+            fmi3Float64 d[64]; fmi3Int32 i32[64]; fmi3UInt32 u32[64]; fmi3UInt16 u16[64]; fmi3Int16 i16[64];
+            fmi3Boolean b[64];
+        } u;
         size_t size = 0;
         fmi3Binary binary = NULL;
         int s;
@@ -564,6 +567,7 @@ static void read_outputs(Fuzz *f, Bytes *out, int record)
         case PMD3_INT32: s = fmi3GetInt32(f->c, &ref, 1, u.i32, v->count); break;
         case PMD3_UINT32: s = fmi3GetUInt32(f->c, &ref, 1, u.u32, v->count); break;
         case PMD3_UINT16: s = fmi3GetUInt16(f->c, &ref, 1, u.u16, v->count); break;
+        case PMD3_INT16: s = fmi3GetInt16(f->c, &ref, 1, u.i16, v->count); break;
         case PMD3_BOOLEAN: s = fmi3GetBoolean(f->c, &ref, 1, u.b, v->count); break;
         default: s = fmi3GetBinary(f->c, &ref, 1, &size, &binary, 1); break;
         }

@@ -435,9 +435,10 @@ class Chip:
             return
         elements = _array_elements(self.variables, name) if self.fmi_version == 2 else []
         v = self.variables[elements[0] if elements else name]
-        values = list(value) if elements or self._size(name) > 1 else [value]
-        if elements and len(values) != len(elements):
-            raise ValueError(f"set: {name} has {len(elements)} elements, {len(values)} values given")
+        count = len(elements) or self._size(name)
+        values = list(value) if count > 1 else [value]
+        if len(values) != count:
+            raise ValueError(f"set: {name} has {count} elements, {len(values)} values given; nothing was set")
         if name in WIDTHS:
             bits = WIDTHS[name]
             values = [to_word(x, bits, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else ""))
