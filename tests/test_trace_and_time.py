@@ -127,7 +127,8 @@ def test_trace_starts_on_a_signal_bit_and_stops_on_an_event_bit(chip):
 
 
 def test_every_trajectory_side_trace_variable_samples_what_the_get_commands_read():
-    """Reference 2.6: IDs 1..14 (7, 10, 11 read 0: no servo loop), four per trace, one sample each."""
+    """Reference 2.6: IDs 1..14 (7, 10, 11: the servo filter's motor command, integral and derivative),
+    four per trace, one sample each."""
     with pmdfmu.Chip(loopback=False) as chip:
         ax, a2 = chip.axis(0), chip.axis(1)
         ax.SetBufferStart(0, 0x100)
@@ -151,7 +152,8 @@ def test_every_trajectory_side_trace_variable_samples_what_the_get_commands_read
             sampled = [pmdfmu.signed(ax.ReadBuffer(0)) for _ in group]
             reads = {1: a2.GetPositionError, 2: a2.GetCommandedPosition, 3: a2.GetCommandedVelocity,
                      4: a2.GetCommandedAcceleration, 5: a2.GetActualPosition, 6: a2.GetActualVelocity,
-                     7: lambda: 0, 8: a2.GetTime, 10: lambda: 0, 11: lambda: 0, 12: a2.GetEventStatus,
+                     7: a2.GetCurrentMotorCommand, 8: a2.GetTime, 10: a2.GetIntegral, 11: a2.GetDerivative,
+                     12: a2.GetEventStatus,
                      13: a2.GetActivityStatus, 14: a2.GetSignalStatus,
                      9: lambda: 77}               # the capture value (not read: reading re-arms it)
             assert sampled == [reads[v]() for v in group], group

@@ -1,10 +1,11 @@
 /* Chip life cycle and the per-cycle sequence: every axis's trajectory, then
- * limits, capture, the servo side, breakpoints and the trace. */
+ * limits, capture, the servo side, breakpoints, the servo filter and the trace. */
 #include <string.h>
 
 #include "chip.h"
 #include "events.h"
 #include "profile.h"
+#include "servo.h"
 #include "status.h"
 #include "trace.h"
 
@@ -226,17 +227,24 @@ static inline void check_servo(PmdChip *chip, int n, int ideal)
 }
 
 /* One chip cycle. In a quiet run (run_is_quiet) nothing couples the axes and
- * the checks that cannot fire are left out: each axis runs its cycle in turn. */
-static inline void cycle(PmdChip *chip, int quiet, int loopback)
+ * the checks that cannot fire are left out: each axis runs its cycle in turn.
+ * The servo filter runs once the cycle's events have acted on the axis (a
+ * motion error's auto-stop, a breakpoint's motor off or update): its output is
+ * the motor command the cycle ends with (docs/decisions.md). In a quiet run
+ * the filters of the axes in closedForm (bit n: axis n) are left to
+ * pmd_chip_run, which runs all their cycles at once at the end. */
+static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closedForm)
 {
     int n;
     chip->s.time = chip->s.nextTime++;
     /* geared axes last: they follow their master's position of this cycle */
     for (n = 0; n < PMD_AXES; n++) {
         pmd_profile_cycle(chip, n);
-        if (quiet)
+        if (quiet) {
             check_servo(chip, n, sample_actual(chip, n, loopback));
-        else if (chip->s.axis[n].motion != PMD_MOTION_GEAR)
+            if (!(closedForm & (1u << n)))
+                pmd_servo_cycle(chip, n);
+        } else if (chip->s.axis[n].motion != PMD_MOTION_GEAR)
             sample_actual(chip, n, loopback);
     }
     if (quiet) {
@@ -261,6 +269,8 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback)
     for (n = 0; n < PMD_AXES; n++)
         if (chip->s.axis[n].breakpoint[0].trigger | chip->s.axis[n].breakpoint[1].trigger)
             check_breakpoints(chip, n);
+    for (n = 0; n < PMD_AXES; n++)
+        pmd_servo_cycle(chip, n);
     pmd_trace_cycle(chip);
 }
 
@@ -281,13 +291,35 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
     }
 }
 
+/* The axes whose servo filter a run may leave to one closed-form step at its
+ * end (pmd_servo_advance): in a quiet run an ideal servo's axis (loopback,
+ * motor on) keeps its motor on - its position error, 0 every cycle, cannot
+ * raise a motion error, and no breakpoint or command can act - so its filter
+ * sees the error 0 throughout and its output depends only on the last
+ * cycle's commanded velocity and acceleration. */
+static unsigned closed_form_axes(const PmdChip *chip, int quiet, int loopback)
+{
+    unsigned axes = 0;
+    int n;
+    if (quiet && loopback)
+        for (n = 0; n < PMD_AXES; n++)
+            if (chip->s.axis[n].motorOn)
+                axes |= 1u << n;
+    return axes;
+}
+
 void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
 {
-    int quiet = run_is_quiet(chip), loopback = chip->s.loopback;
+    int quiet = run_is_quiet(chip), loopback = chip->s.loopback, n;
+    unsigned closedForm = closed_form_axes(chip, quiet, loopback);
     int64_t k;
     for (k = 0; k < cycles; k++) {
-        cycle(chip, quiet, loopback);
+        cycle(chip, quiet, loopback, closedForm);
         if (record)
             pmd_chip_record(chip, record + k * PMD_RECORD_WORDS);
     }
+    if (cycles > 0)
+        for (n = 0; n < PMD_AXES; n++)
+            if (closedForm & (1u << n))
+                pmd_servo_advance(chip, n, cycles);
 }

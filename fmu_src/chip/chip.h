@@ -23,6 +23,7 @@
 #include "profile.h"
 #include "registers.h"
 #include "scurve.h"
+#include "servo.h"
 #include "status.h"
 #include "trace.h"
 

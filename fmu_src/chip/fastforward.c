@@ -10,14 +10,17 @@
  * So a run of cycles in which every axis is idle or integrating inside a
  * segment, no breakpoint is armed, no trace runs and the servo is ideal (the
  * position error stays 0) costs a few multiplications per axis instead of one
- * step per cycle. Anything else - a segment read, a velocity coming to rest
- * (an event), a state beyond the bounds below - is left to the ordinary cycle.
+ * step per cycle. The servo filter then sees a constant position error (0, or
+ * an idle axis's), which it also runs in closed form (servo.c). Anything
+ * else - a segment read, a velocity coming to rest (an event), a state beyond
+ * the bounds below - is left to the ordinary cycle.
  *
  * It needs 128-bit integers; without them it skips nothing, which is the
  * portable fallback: the same results, cycle by cycle. */
 #include <math.h>
 
 #include "chip.h"
+#include "servo.h"
 #include "status.h"
 
 #if defined(__SIZEOF_INT128__) && defined(__GNUC__) && !defined(PMD_PORTABLE_WIDE)
@@ -191,6 +194,9 @@ int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
                 ax->settleCount = (uint16_t)(ax->settleCount + k > 0xFFFF ? 0xFFFF : ax->settleCount + k);
             ax->trajectory.acceleration = PMD_FIXED_ZERO;
         }
+        /* either way the position error stayed what the last cycle left: the
+         * filter's closed form, its output from the last cycle's trajectory */
+        pmd_servo_advance(chip, n, k);
     }
     chip->s.nextTime += (uint32_t)k;
     chip->s.time = chip->s.nextTime - 1;

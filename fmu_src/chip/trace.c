@@ -17,8 +17,8 @@ int pmd_trace_busy(const PmdChip *chip, const char *command)
     return PMD_ERR_TraceRunning;
 }
 
-/* Trajectory-side variable IDs (reference 2.6); 7 (motor command), 10 and 11
- * (integral, derivative: not on the MC2400) read 0 here: there is no servo. */
+/* Variable IDs (reference 2.6); 7, 10 and 11 read the servo filter (servo.c)
+ * as the cycle left it: the motor command, the integral, the derivative. */
 static int32_t trace_value(const PmdChip *chip, uint16_t slot)
 {
     int n = (int)PMD_FIELD_EX(slot, PMDTraceVariableAxis);
@@ -30,8 +30,11 @@ static int32_t trace_value(const PmdChip *chip, uint16_t slot)
     case 4: return pmd_commanded_acceleration(&ax->trajectory);
     case 5: return ax->actualPosition;
     case 6: return pmd_actual_velocity(ax);
+    case 7: return ax->filter.output;
     case 8: return pmd_int32(chip->s.time);
     case 9: return ax->captureValue;
+    case 10: return ax->filter.integral;
+    case 11: return ax->filter.derivative;
     case 12: return ax->eventStatus;
     case 13: return pmd_activity_status(chip, n);
     case 14: return pmd_signal_status(chip, n);
