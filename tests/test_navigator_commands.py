@@ -142,6 +142,47 @@ def test_a_hardware_register_keeps_every_value_of_its_range_on_every_axis(chip, 
             assert getattr(chip.axis(n), "Get" + name)() == value, (name, n, value)
 
 
+# Set, Get, a value other than the reset value, and the reset value (registers.csv's decisions, [L] where
+# reference 4.2 gives none)
+HARDWARE_ROUND_TRIPS = [
+    ("SetOutputMode", "GetOutputMode", pmdfmu.PMDMotorOutputPWM5050Magnitude, pmdfmu.PMDMotorOutputDAC),
+    ("SetStartVelocity", "GetStartVelocity", 0x18000, 0),
+    ("SetAxisMode", "GetAxisMode", pmdfmu.PMDAxisOff, pmdfmu.PMDAxisOn),
+    ("SetEncoderSource", "GetEncoderSource", pmdfmu.PMDEncoderSourceParallel, pmdfmu.PMDEncoderSourceIncremental),
+    ("SetEncoderModulus", "GetEncoderModulus", 360, 0),
+    ("SetActualPositionUnits", "GetActualPositionUnits", pmdfmu.PMDSteps, pmdfmu.PMDCounts),
+    ("SetStepRange", "GetStepRange", 4, 1),
+    ("SetCommutationMode", "GetCommutationMode", pmdfmu.PMDCommutationModeHallBased,
+     pmdfmu.PMDCommutationModeSinusoidal),
+    ("SetNumberPhases", "GetNumberPhases", 2, 3),
+    ("SetPhaseInitializeMode", "GetPhaseInitializeMode", pmdfmu.PMDPhaseInitHallBased, pmdfmu.PMDPhaseInitAlgorithmic),
+    ("SetPhaseInitializeTime", "GetPhaseInitializeTime", 1000, 0),
+    ("SetPhasePrescale", "GetPhasePrescale", pmdfmu.PMDPhasePrescaleOn, pmdfmu.PMDPhasePrescaleOff),
+    ("SetPhaseCorrectionMode", "GetPhaseCorrectionMode", pmdfmu.PMDPhaseCorrectionEnabled,
+     pmdfmu.PMDPhaseCorrectionDisabled),
+    ("SetPhaseCounts", "GetPhaseCounts", 2000, 0),
+    ("SetPhaseOffset", "GetPhaseOffset", 500, 0),
+    ("SetPhaseAngle", "GetPhaseAngle", 1234, 0),
+    ("SetDiagnosticPortMode", "GetDiagnosticPortMode", pmdfmu.PMDDiagnosticPortModeFull,
+     pmdfmu.PMDDiagnosticPortModeLimited),
+    ("SetSynchronizationMode", "GetSynchronizationMode", pmdfmu.PMDSynchSlaveNode, pmdfmu.PMDSynchDisabled),
+]
+
+
+def test_the_round_trips_name_every_hardware_register():
+    assert sorted(setter for setter, *_ in HARDWARE_ROUND_TRIPS) == sorted("Set" + n for n in HARDWARE_REGISTERS)
+
+
+@pytest.mark.parametrize("setter,getter,value,reset", HARDWARE_ROUND_TRIPS)
+def test_a_hardware_register_reads_back_and_resets_to_its_decided_value(any_chip, setter, getter, value, reset):
+    ax = any_chip.axis(3)
+    assert getattr(ax, getter)() == reset
+    getattr(ax, setter)(value)
+    assert getattr(ax, getter)() == value
+    ax.Reset()
+    assert getattr(ax, getter)() == reset
+
+
 def refused(call, *args, code=PMD_ERR_InvalidParameter):
     with pytest.raises(PMDError) as e:
         call(*args)
