@@ -1,12 +1,13 @@
 /* The chip's hardware interfaces (reference 1.2, "Miscellaneous" and the
- * commutation commands) whose words are packed or paired, so that no row of
- * registers.csv can serve them: the AxisOut pin, the serial port, the
- * encoder-to-step ratio, the peripheral I/O bus, the analog inputs, the
- * firmware checksum and the phasing of the commutator. The FMU has no serial
- * port, AxisOut pin, step output or commutator: those commands store what the
- * host sets and read it back, and otherwise the chip acts as one whose
- * hardware is idle (modelDescription/hardware.csv says what each does here).
- * The I/O bus and the analog inputs are FMU variables (docs/decisions.md). */
+ * commutation commands) that no row of registers.csv can serve (a packed or
+ * paired word, an address or channel, a reply of their own): the AxisOut pin,
+ * the serial port, the encoder-to-step ratio, the peripheral I/O bus, the
+ * analog inputs, the firmware checksum and the phasing of the commutator. The
+ * FMU has no serial port, AxisOut pin, step output or commutator: those
+ * commands store what the host sets and read it back, and otherwise the chip
+ * acts as one whose hardware is idle. The I/O bus and the analog inputs are
+ * FMU variables a plant model drives. modelDescription/hardware.csv says what
+ * each command does here (docs/commands.md shows it). */
 #include "commands.h"
 
 /* GetChecksum: the MC2440 application's self-test expects 0x12345678, "as the
