@@ -1,8 +1,9 @@
-"""An exact reference model of seed 000's external profile, written
-independently of the C core: Python Fractions in counts, the seed's pseudo
-code line by line."""
+"""Exact reference models written independently of the C core: seed 000's
+external profile (Python Fractions in counts, the seed's pseudo code line by
+line) and the servo filter (docs/decisions.md's formula in Python integers)."""
 from __future__ import annotations
 
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from math import floor
 from typing import List, Optional, Sequence, Tuple
@@ -65,3 +66,72 @@ class ExternalProfile:
 
     def run(self, n: int) -> List[Tuple[int, int, int]]:
         return [self.cycle() for _ in range(n)]
+
+
+# ---- the servo filter (docs/decisions.md, "Servo filter and motor output") ----
+
+def _clamp(x: int, low: int, high: int) -> int:
+    return max(low, min(high, x))
+
+
+@dataclass
+class FilterRegisters:
+    """The filter group (reference 4.1), reset values of reference 4.2."""
+    kp: int = 0
+    ki: int = 0
+    kd: int = 0
+    kvff: int = 0
+    kaff: int = 0
+    kout: int = 0xFFFF
+    integration_limit: int = 0
+    derivative_time: int = 1
+    motor_command: int = 0
+
+
+@dataclass
+class ServoFilter:
+    """One axis's servo filter, written from docs/decisions.md's formula in
+    Python integers (// floors toward minus infinity, as the page says).
+
+    The test sets `buffered` as the host's Set commands do and calls update()
+    where Update applies it; motor_bias and motor_limit act at once."""
+    buffered: FilterRegisters = field(default_factory=FilterRegisters)
+    active: FilterRegisters = field(default_factory=FilterRegisters)
+    motor_bias: int = 0
+    motor_limit: int = 32767
+    integral: int = 0
+    derivative: int = 0
+    previous_error: int = 0          # E at the last derivative sample
+    count: int = 0                   # cycles since the last derivative sample
+    output: int = 0
+
+    def update(self) -> None:
+        self.active = replace(self.buffered)
+
+    def cycle(self, commanded: int, actual: int, velocity: int, acceleration: int, motor_on: bool) -> int:
+        """One cycle, given the registers as the cycle left them: commanded and
+        actual position, commanded velocity and acceleration (16.16 registers)."""
+        r = self.active
+        e = wrap32(commanded - actual)
+        if not motor_on:
+            self.integral = self.derivative = self.count = 0
+            self.previous_error = e
+            self.output = wrap16(r.motor_command)
+            return self.output
+        self.integral = _clamp(self.integral + e, -r.integration_limit, r.integration_limit)
+        self.count += 1
+        if self.count >= r.derivative_time:
+            self.derivative = _clamp(e - self.previous_error, -32768, 32767)
+            self.previous_error = e
+            self.count = 0
+        s = (r.kp * e + r.kd * self.derivative + (r.ki * self.integral) // 256 + (r.kvff * velocity) // 65536 +
+             (r.kaff * acceleration) // 65536)
+        s = _clamp(s, -2 ** 31, 2 ** 31 - 1)
+        u = (r.kout * s) // 65536 + self.motor_bias
+        self.output = _clamp(u, -self.motor_limit, self.motor_limit)
+        return self.output
+
+
+def wrap16(x: int) -> int:
+    x &= 0xFFFF
+    return x - (1 << 16) if x >= (1 << 15) else x
