@@ -279,6 +279,9 @@ void pmd_chip_cycle(PmdChip *chip)
     pmd_chip_run(chip, 1, NULL);
 }
 
+/* A row holds trajectory registers only: within a quiet run an ideal servo's
+ * filter is brought up to date at the run's end (closed_form_axes), so its
+ * output is not a column a row could show cycle by cycle. */
 void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
 {
     int n;
