@@ -497,3 +497,30 @@ def test_a_c_motion_initialization_runs_as_raw_host_words(any_chip):
     assert pmdfmu.field_ex(replies[1], "PMDVersionGeneration") == 2
     assert replies[3] << 16 | replies[4] == CHECKSUM
     check_initialized(any_chip)
+
+
+def test_the_filter_update_and_the_moves_update_in_one_batch(any_chip):
+    """C-Motion set-ups often apply the gains with their own Update and then start the move with another,
+    with no cycle between: the first Update leaves a trapezoidal 'move' standing on its destination, which is
+    at rest, so the second may change the acceleration (seed 001 refuses that only in motion)."""
+    ax = any_chip.axis(0)
+    assert ax.GetHostIOError() == pmdfmu.PMD_ERR_ChipsetReset
+    ax.SetKp(200)
+    ax.SetKd(800)
+    ax.Update()
+    ax.SetPosition(1000)
+    ax.SetVelocity(0x100000)
+    ax.SetAcceleration(0x4000)
+    ax.Update()
+    assert ax.GetHostIOError() == 0 and ax.GetKp() == 200
+    any_chip.run(600)
+    assert ax.GetCommandedPosition() == 1000
+    # in motion, the acceleration still may not change (seed 001): only the destination is applied
+    ax.SetPosition(5000)
+    ax.Update()
+    any_chip.run(5)
+    ax.SetAcceleration(0x8000)
+    ax.SetPosition(6000)
+    with pytest.raises(PMDError) as refusal:
+        ax.Update()
+    assert refusal.value.code == pmdfmu.PMD_ERR_InvalidParameterChange

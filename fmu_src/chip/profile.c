@@ -415,6 +415,15 @@ static int move_direction(const PmdAxis *ax, const PmdProfileRegisters *b)
     }
 }
 
+/* A trapezoidal "move" that has not moved: still at rest on its destination
+ * (e.g. the Update of a host's set-up, before the next cycle ends it). Seed
+ * 001's rule is about changes in motion, so such an axis is at rest. */
+static int trapezoidal_at_rest(const PmdAxis *ax)
+{
+    const PmdTrajectory *t = &ax->trajectory;
+    return pmd_fixed_is_zero(t->velocity) && t->fraction == 0 && t->position == ax->active.position;
+}
+
 /* The checks an Update makes before it changes anything. */
 static int update_refused(PmdChip *chip, int n)
 {
@@ -430,7 +439,7 @@ static int update_refused(PmdChip *chip, int n)
                 b->velocity, b->profileMode);
         return PMD_ERR_InvalidNegativeValue;
     }
-    if (ax->motion == PMD_MOTION_TRAPEZOIDAL && b->profileMode == PMDTrapezoidalProfile &&
+    if (ax->motion == PMD_MOTION_TRAPEZOIDAL && !trapezoidal_at_rest(ax) && b->profileMode == PMDTrapezoidalProfile &&
         (b->acceleration != ax->active.acceleration || b->deceleration != ax->active.deceleration)) {
         /* Seed 001: the acceleration may change only at rest; the update is
          * ignored except for the position. */
