@@ -80,7 +80,7 @@ def test_trace_errors(chip):
         ax.SetTraceStart(0, PMDTraceConditionImmediate, 0, 0)
     assert e.value.code == 0x08                      # zero-length buffer 0
     for call, args in (("SetTracePeriod", (0,)), ("SetTraceMode", (2,)), ("SetTraceVariable", (4, 0, 2)),
-                       ("SetTraceVariable", (0, 0, 15)), ("SetTraceStart", (0, 5, 0, 0))):
+                       ("SetTraceVariable", (0, 0, 28)), ("SetTraceStart", (0, 5, 0, 0))):
         with pytest.raises(PMDError) as e:
             getattr(ax, call)(*args)
         assert e.value.code == 0x04, call
@@ -127,7 +127,8 @@ def test_trace_starts_on_a_signal_bit_and_stops_on_an_event_bit(chip):
 
 
 def test_every_trajectory_side_trace_variable_samples_what_the_get_commands_read():
-    """Reference 2.6: IDs 1..14 (7, 10, 11: the servo filter's motor command, integral and derivative),
+    """Reference 2.6: IDs 1..27 (7, 10, 11: the servo filter's motor command, integral and derivative;
+    15..19 the commutator's phase angle, offset and phase commands; 20..27 the analog inputs 1..8),
     four per trace, one sample each."""
     with pmdfmu.Chip(loopback=False) as chip:
         ax, a2 = chip.axis(0), chip.axis(1)
@@ -140,8 +141,15 @@ def test_every_trajectory_side_trace_variable_samples_what_the_get_commands_read
         a2.SetVelocity(-0x28000)
         a2.SetAcceleration(0x8000)
         a2.Update()
+        a2.SetPhaseAngle(0x1234)
+        a2.SetPhaseOffset(0x0321)
+        a2.SetMotorMode(pmdfmu.PMDMotorOff)            # phase A carries the open-loop motor command
+        a2.SetMotorCommand(-2345)
+        a2.Update()                                    # the motor command is in the filter group
+        chip.set("analog", [100 * (i + 1) + i for i in range(8)])
         chip.run(3)
-        ids = list(range(1, 15))
+        ids = list(range(1, 28))
+        seen = {}
         for first in range(0, len(ids), 4):
             group = ids[first:first + 4]
             for slot in range(4):
@@ -155,5 +163,10 @@ def test_every_trajectory_side_trace_variable_samples_what_the_get_commands_read
                      7: a2.GetCurrentMotorCommand, 8: a2.GetTime, 10: a2.GetIntegral, 11: a2.GetDerivative,
                      12: a2.GetEventStatus,
                      13: a2.GetActivityStatus, 14: a2.GetSignalStatus,
+                     15: a2.GetPhaseAngle, 16: a2.GetPhaseOffset,
+                     **{17 + p: (lambda p=p: a2.GetPhaseCommand(p)) for p in range(3)},
+                     **{20 + i: (lambda i=i: chip.get(f"analog[{i + 1}]")) for i in range(8)},
                      9: lambda: 77}               # the capture value (not read: reading re-arms it)
             assert sampled == [reads[v]() for v in group], group
+            seen.update(zip(group, sampled))
+        assert (seen[15], seen[16], seen[17], seen[18], seen[20], seen[27]) == (0x1234, 0x0321, -2345, 0, 100, 807)

@@ -165,6 +165,6 @@ int cmd_GetPhaseCommand(PmdChip *chip, int axis, const int64_t *arg, int64_t *re
                 (long long)arg[0]);
         return PMD_ERR_InvalidParameter;
     }
-    reply[0] = arg[0] == PMDPhaseA ? AXIS(axis)->filter.output : 0;
+    reply[0] = pmd_phase_command(AXIS(axis), (int)arg[0]);
     return 0;
 }

@@ -11,8 +11,8 @@ int cmd_SetTraceVariable(PmdChip *chip, int axis, const int64_t *arg, int64_t *r
     (void)axis; (void)reply;
     if (err)
         return err;
-    if (arg[0] >= PMD_TRACE_SLOTS || arg[1] >= PMD_AXES || arg[2] > PMDTraceSignalStatus) {
-        pmd_log(chip, PMD_LOG_ERRORS, "SetTraceVariable: slot %d (0..3), axis %d (0..3) or variable %d (0..14) "
+    if (arg[0] >= PMD_TRACE_SLOTS || arg[1] >= PMD_AXES || arg[2] > PMDTraceAnalogInput8) {
+        pmd_log(chip, PMD_LOG_ERRORS, "SetTraceVariable: slot %d (0..3), axis %d (0..3) or variable %d (0..27) "
                 "out of range", (int)arg[0], (int)arg[1], (int)arg[2]);
         return PMD_ERR_InvalidParameter;
     }

@@ -15,6 +15,12 @@ uint16_t pmd_signal_status(const PmdChip *chip, int axis);
 int pmd_host_interrupt(const PmdChip *chip);
 int32_t pmd_position_error(const PmdAxis *ax);
 int32_t pmd_actual_velocity(const PmdAxis *ax);
+/* GetPhaseCommand of phase 0..2 on the FMU's idle commutator: a brushed DAC axis
+ * (GetVersion's motor type) drives phase A with the motor command; B and C read 0. */
+static inline int16_t pmd_phase_command(const PmdAxis *ax, int phase)
+{
+    return phase == PMDPhaseA ? ax->filter.output : 0;
+}
 #define pmd_commanded_velocity(t) pmd_fixed_register_1616((t)->velocity)
 #define pmd_commanded_acceleration(t) pmd_fixed_register_1616((t)->acceleration)
 /* The exact values as doubles, fraction kept: counts, counts/cycle, counts/cycle^2. */

@@ -17,8 +17,10 @@ int pmd_trace_busy(const PmdChip *chip, const char *command)
     return PMD_ERR_TraceRunning;
 }
 
-/* Variable IDs (reference 2.6); 7, 10 and 11 read the servo filter (servo.c)
- * as the cycle left it: the motor command, the integral, the derivative. */
+/* Variable IDs (reference 2.6), 1..27 (SetTraceVariable refuses others); 7,
+ * 10 and 11 read the servo filter (servo.c) as the cycle left it: the motor
+ * command, the integral, the derivative; 15..19 the idle commutator's
+ * registers as GetPhaseAngle, GetPhaseOffset and GetPhaseCommand read them. */
 static int32_t trace_value(const PmdChip *chip, uint16_t slot)
 {
     int n = (int)PMD_FIELD_EX(slot, PMDTraceVariableAxis);
@@ -38,7 +40,13 @@ static int32_t trace_value(const PmdChip *chip, uint16_t slot)
     case 12: return ax->eventStatus;
     case 13: return pmd_activity_status(chip, n);
     case 14: return pmd_signal_status(chip, n);
-    default: return 0;
+    case 15: return ax->phaseAngle;
+    case 16: return ax->phaseOffset;
+    case 17: return pmd_phase_command(ax, PMDPhaseA);
+    case 18: return pmd_phase_command(ax, PMDPhaseB);
+    case 19: return pmd_phase_command(ax, PMDPhaseC);
+    default:                   /* 20..27: the analog inputs 1..8 (chip-wide: the slot's axis does not matter) */
+        return chip->s.analogInput[PMD_FIELD_EX(slot, PMDTraceVariableID) - PMDTraceAnalogInput1];
     }
 }
 

@@ -106,8 +106,8 @@ static int check_trace(const PmdChipState *s, char *why, size_t whySize)
     for (k = 0; k < PMD_TRACE_SLOTS; k++)
         if (PMD_FIELD_EX(t->variable[k], PMDTraceVariableAxis) >= PMD_AXES ||
             (t->variable[k] & ~(PMDTraceVariableAxisMask | PMDTraceVariableIDMask)) ||
-            PMD_FIELD_EX(t->variable[k], PMDTraceVariableID) > PMDTraceSignalStatus)
-            return WHY("chip.s.trace.variable[%d] = 0x%04X: not an axis 0..3 and a variable 0..14", k,
+            PMD_FIELD_EX(t->variable[k], PMDTraceVariableID) > PMDTraceAnalogInput8)
+            return WHY("chip.s.trace.variable[%d] = 0x%04X: not an axis 0..3 and a variable 0..27", k,
                        (unsigned)t->variable[k]);
     for (k = 0; k < 2; k++)
         if (condition[k] && (PMD_FIELD_EX(condition[k], PMDTraceTriggerAxis) >= PMD_AXES ||

@@ -211,7 +211,7 @@ static const PmdStateStruct buffer = DESCRIBE(PmdBuffer, buffer_fields);
 
 /* Variable slots and conditions are packed words (the PMDTraceVariable* and
  * PMDTraceTrigger* / PMDTraceCondition fields); state.c checks their parts. */
-#define TRACE_VARIABLE_MAX PMD_FIELD_DP(PMD_AXES - 1, PMDTraceVariableID, PMDTraceSignalStatus)
+#define TRACE_VARIABLE_MAX PMD_FIELD_DP(PMD_AXES - 1, PMDTraceVariableID, PMDTraceAnalogInput8)
 #define TRACE_CONDITION_MAX PMD_FIELD_DP(PMDTraceTriggerAxisMask | PMDTraceConditionMask | PMDTraceTriggerBitMask, \
                                          PMDTraceTriggerState, PMDTraceTriggerStateHigh)
 static const PmdStateField trace_fields[] = {
