@@ -524,3 +524,40 @@ def test_the_filter_update_and_the_moves_update_in_one_batch(any_chip):
     with pytest.raises(PMDError) as refusal:
         ax.Update()
     assert refusal.value.code == pmdfmu.PMD_ERR_InvalidParameterChange
+
+
+def test_the_axis_out_level_follows_its_source_bit_in_the_signal_status(chip):
+    """SetAxisOutSource(axis, bit, register): GetSignalStatus's AxisOut bit is the chosen status bit, so a
+    breakpoint or a trace can key on it; source none reads low; the sense bit inverts it."""
+    ax, mover = chip.axis(0), chip.axis(1)
+    axis_out = lambda: bool(ax.GetSignalStatus() & pmdfmu.PMDSignalAxisOutMask)
+    assert not axis_out()                                       # reset: source none
+    in_motion = pmdfmu.PMDActivityInMotionMask.bit_length() - 1
+    ax.SetAxisOutSource(1, in_motion, pmdfmu.PMDAxisOutSourceActivityStatus)
+    assert not axis_out()
+    mover.SetPosition(500)
+    mover.SetVelocity(0x10000)
+    mover.SetAcceleration(0x1000)
+    mover.Update()
+    assert axis_out()                                           # axis 2 in motion
+    ax.SetSignalSense(pmdfmu.PMDSignalAxisOutMask)
+    assert not axis_out()
+    ax.SetSignalSense(0)
+    chip.run(2000)
+    assert mover.GetCommandedPosition() == 500 and not axis_out()
+    # an event bit: axis 2's motion complete, until reset
+    ax.SetAxisOutSource(1, 0, pmdfmu.PMDAxisOutSourceEventStatus)
+    assert axis_out()
+    mover.ResetEventStatus(0)
+    assert not axis_out()
+    # a signal bit of its own status (the home input), read without AxisOut bits: no circle
+    home = pmdfmu.PMDSignalEncoderHomeMask.bit_length() - 1
+    ax.SetAxisOutSource(0, home, pmdfmu.PMDAxisOutSourceSignalStatus)
+    assert axis_out()                                           # home idle: reads 1
+    chip.set("axis1.home", True)
+    assert not axis_out()
+    axis_out_bit = pmdfmu.PMDSignalAxisOutMask.bit_length() - 1
+    ax.SetAxisOutSource(0, axis_out_bit, pmdfmu.PMDAxisOutSourceSignalStatus)
+    assert not axis_out()
+    ax.SetAxisOutSource(0, 0, pmdfmu.PMDAxisOutSourceNone)
+    assert not axis_out()

@@ -506,3 +506,26 @@ def test_coarse_steps_of_idle_axes_with_errors_equal_cycle_by_cycle(seed):
                 chip.axis(3).SetMotorMode(PMDMotorOn)
 
         run_twins([fine, coarse], [rng.randrange(1, 50_000) for _ in range(12)], between)
+
+
+def test_a_refused_update_applies_no_filter_register():
+    """A refused Update changes nothing (the contract), the filter group included: the trapezoid's
+    acceleration changed in motion (0x0C) applies only the destination (seed 001), not the motor
+    command written with it; the host's next accepted Update applies it."""
+    with pmdfmu.Chip() as chip:
+        ax = chip.axis(0)
+        ax.SetMotorMode(PMDMotorOff)
+        start_trapezoid(ax, 10_000, 0x40000, 0x1000)
+        ax.Update()
+        chip.run(20)
+        ax.SetAcceleration(0x2000)
+        ax.SetMotorCommand(-3000)
+        with pytest.raises(pmdfmu.PMDError) as refusal:
+            ax.Update()
+        assert refusal.value.code == pmdfmu.PMD_ERR_InvalidParameterChange
+        chip.run(1)
+        assert ax.GetCurrentMotorCommand() == 0 and ax.GetMotorCommand() == -3000
+        chip.run(5000)                                               # at rest: the same Update is accepted
+        ax.Update()
+        chip.run(1)
+        assert ax.GetCurrentMotorCommand() == -3000

@@ -362,7 +362,7 @@ typedef struct {
     uint8_t loopback;        /* actual position := commanded position */
     /* chip-wide hardware without a counterpart here: stored and read back */
     uint16_t serialPortMode, diagnosticPortMode, synchronizationMode;
-    /* the peripheral bus (docs/decisions.md): inputs from the plant, WriteIO's latches */
+    /* the peripheral bus (modelDescription/hardware.csv): inputs from the plant, WriteIO's latches */
     uint16_t analogInput[PMD_ANALOG_CHANNELS];   /* ReadAnalog(channel) */
     uint16_t ioInput[PMD_IO_PORTS];              /* ReadIO(address) */
     uint16_t ioOutput[PMD_IO_PORTS];             /* WriteIO(address, data) */

@@ -44,12 +44,11 @@ uint16_t pmd_activity_status(const PmdChip *chip, int n)
     return (uint16_t)s;
 }
 
-/* Switches are wired active low, as on PMD boards: an active switch (input
- * true) reads 0 in the signal status, an idle one 1, and a sense bit of 1
- * inverts that (reference 2.3). The encoder A, B and index lines read 1. */
-uint16_t pmd_signal_status(const PmdChip *chip, int n)
+/* The input levels of the signal status, AxisOut aside. Switches are wired
+ * active low, as on PMD boards: an active switch (input true) reads 0, an idle
+ * one 1. The encoder A, B and index lines read 1. */
+static uint16_t input_levels(const PmdAxis *ax)
 {
-    const PmdAxis *ax = &chip->s.axis[n];
     uint16_t level = PMDSignalEncoderAMask | PMDSignalEncoderBMask | PMDSignalEncoderIndexMask;
     if (!ax->homeInput)
         level |= PMDSignalEncoderHomeMask;
@@ -57,6 +56,37 @@ uint16_t pmd_signal_status(const PmdChip *chip, int n)
         level |= PMDSignalPositiveLimitMask;
     if (!ax->negativeLimitInput)
         level |= PMDSignalNegativeLimitMask;
+    return level;
+}
+
+/* The AxisOut pin (SetAxisOutSource): the chosen bit of the chosen axis's
+ * event, activity or signal status register, low with source "none". A pin
+ * fed by a signal status reads it without AxisOut bits, so that pins cannot
+ * feed each other in a circle. */
+static int axis_out_level(const PmdChip *chip, const PmdAxis *ax)
+{
+    int src = (int)PMD_FIELD_EX(ax->axisOutSource, PMDAxisOutSourceAxis);
+    unsigned bit = PMD_FIELD_EX(ax->axisOutSource, PMDAxisOutSourceBit);
+    uint16_t status;
+    switch (PMD_FIELD_EX(ax->axisOutSource, PMDAxisOutSourceRegister)) {
+    case PMDAxisOutSourceEventStatus: status = chip->s.axis[src].eventStatus; break;
+    case PMDAxisOutSourceActivityStatus: status = pmd_activity_status(chip, src); break;
+    case PMDAxisOutSourceSignalStatus:
+        status = (uint16_t)((input_levels(&chip->s.axis[src]) ^ chip->s.axis[src].signalSense) &
+                            PMDSignalStatusMask & ~PMDSignalAxisOutMask);
+        break;
+    default: return 0;
+    }
+    return (status >> bit) & 1u;
+}
+
+/* GetSignalStatus: the levels, each inverted where its sense bit is 1 (reference 2.3). */
+uint16_t pmd_signal_status(const PmdChip *chip, int n)
+{
+    const PmdAxis *ax = &chip->s.axis[n];
+    uint16_t level = input_levels(ax);
+    if (axis_out_level(chip, ax))
+        level |= PMDSignalAxisOutMask;
     return (uint16_t)((level ^ ax->signalSense) & PMDSignalStatusMask);
 }
 
