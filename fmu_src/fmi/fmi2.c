@@ -24,7 +24,7 @@ static void log_to_environment(void *environment, const char *instanceName, PmdS
                                const char *message)
 {
     const Component *comp = (const Component *)environment;
-    char escaped[2048];
+    char escaped[16384];
     size_t i = 0;
     for (; *message && i + 2 < sizeof escaped; message++) {
         if (*message == '%')
@@ -67,12 +67,64 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
                 : fmi2Error;
 }
 
+/* The resources folder of fmuResourceLocation, a file URI (RFC 8089; FMI 2.0.4
+ * section 2.1.6: "file:///C:/temp/MyFMU/resources", older importers
+ * "file:/C:/..."): percent-decoded, ending in '/'. NULL with why in *why if
+ * it is none, not a file URI, on another host, or not decodable. */
+static char *resources_of(const char *uri, const char **why)
+{
+    const char *p = uri, *end;
+    char *folder, *out;
+    if (!uri || !*uri)
+        return *why = "the importer gave no fmuResourceLocation", NULL;
+    if (strncmp(p, "file:", 5) != 0 && strncmp(p, "FILE:", 5) != 0)
+        return *why = "fmuResourceLocation is not a file: URI", NULL;
+    p += 5;
+    if (p[0] == '/' && p[1] == '/') {             /* an authority: empty or localhost is this machine */
+        p += 2;
+        end = strchr(p, '/');
+        if (!end)
+            return *why = "fmuResourceLocation names no folder", NULL;
+        if (end != p && !(end - p == 9 && strncmp(p, "localhost", 9) == 0))
+            return *why = "fmuResourceLocation names another host", NULL;
+        p = end;
+    }
+    if (*p != '/')
+        return *why = "fmuResourceLocation's path is not absolute", NULL;
+#ifdef _WIN32
+    if (((p[1] >= 'A' && p[1] <= 'Z') || (p[1] >= 'a' && p[1] <= 'z')) && (p[2] == ':' || p[2] == '|'))
+        p++;                                       /* /C:/x is C:/x */
+#endif
+    if (!(folder = out = (char *)malloc(strlen(p) + 2)))
+        return *why = "out of host memory", NULL;
+    for (; *p && *p != '?' && *p != '#'; p++) {
+        if (*p == '%') {
+            static const char hex[] = "0123456789abcdef0123456789ABCDEF";
+            const char *hi = p[1] ? strchr(hex, p[1]) : NULL, *lo = hi && p[2] ? strchr(hex, p[2]) : NULL;
+            int byte = lo ? (int)((hi - hex) % 16 * 16 + (lo - hex) % 16) : 0;
+            if (!byte) {                          /* a bad escape, or %00, which no path holds */
+                free(folder);
+                return *why = "fmuResourceLocation has a bad percent-encoding", NULL;
+            }
+            *out++ = (char)byte;
+            p += 2;
+        } else {
+            *out++ = *p;
+        }
+    }
+    if (out[-1] != '/')
+        *out++ = '/';
+    *out = '\0';
+    return folder;
+}
+
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
                               fmi2String fmuResourceLocation, const fmi2CallbackFunctions *functions,
                               fmi2Boolean visible, fmi2Boolean loggingOn)
 {
     Component *comp;
-    (void)fmuResourceLocation;
+    const char *noResources = NULL;
+    char *resources;
     (void)visible;
     if (!functions || !functions->logger)
         return NULL;
@@ -101,6 +153,11 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         return NULL;
     }
     pmd_set_debug_logging(comp->inst, "fmi2Instantiate", loggingOn, 0, NULL);
+    resources = resources_of(fmuResourceLocation, &noResources);
+    if (pmd_instance_resources(comp->inst, "fmi2Instantiate", resources, noResources) != PMD_OK) {
+        fmi2FreeInstance(comp);
+        return NULL;
+    }
     return comp;
 }
 

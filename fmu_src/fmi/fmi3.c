@@ -64,6 +64,17 @@ static void refuse_instance(fmi3InstanceEnvironment environment, fmi3LogMessageC
         logMessage(environment, fmi3Error, "errors", why);
 }
 
+/* A copy of resourcePath (FMI 3.0 section 2.3.1: the absolute path of the
+ * resources folder, with a trailing separator, or NULL), or NULL. */
+static char *resources_of(const char *resourcePath)
+{
+    char *folder;
+    if (!resourcePath || !*resourcePath || !(folder = (char *)malloc(strlen(resourcePath) + 1)))
+        return NULL;
+    strcpy(folder, resourcePath);
+    return folder;
+}
+
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken,
                                          fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
                                          fmi3Boolean eventModeUsed, fmi3Boolean earlyReturnAllowed,
@@ -74,7 +85,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                          fmi3IntermediateUpdateCallback intermediateUpdate)
 {
     Component *comp;
-    (void)resourcePath; (void)visible; (void)earlyReturnAllowed; (void)requiredIntermediateVariables;
+    (void)visible; (void)earlyReturnAllowed; (void)requiredIntermediateVariables;
     (void)nRequiredIntermediateVariables; (void)intermediateUpdate;
     if (!instanceName) {
         refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateCoSimulation: instanceName is NULL");
@@ -101,6 +112,12 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         return NULL;
     }
     pmd_set_debug_logging(comp->inst, "fmi3InstantiateCoSimulation", loggingOn, 0, NULL);
+    if (pmd_instance_resources(comp->inst, "fmi3InstantiateCoSimulation", resources_of(resourcePath),
+                               resourcePath ? "the importer gave an empty resourcePath"
+                                            : "the importer gave no resourcePath (NULL)") != PMD_OK) {
+        fmi3FreeInstance(comp);
+        return NULL;
+    }
     return comp;
 }
 

@@ -14,7 +14,7 @@
 
 void pmd_instance_log(const PmdInstance *inst, PmdStatus status, PmdLogCategory category, const char *format, ...)
 {
-    char message[1024];
+    char message[8192];              /* a refused script names the places it was looked for */
     va_list args;
     /* errors are always logged; the rest as SetDebugLogging says */
     if (!inst->logger || (status < PMD_ERROR && !(inst->loggingOn && (inst->categories & (1u << category)))))
@@ -91,10 +91,29 @@ void pmd_instance_free(PmdInstance *inst)
     free(inst->chip.memory);
     free(inst->instanceName);
     free(inst->scriptPath);
+    free(inst->scriptStart);
+    free(inst->resources);
     pmd_script_free(&inst->script);
     free(inst->record);
     free(inst->staged.memory);
     free(inst);
+}
+
+PmdStatus pmd_instance_resources(PmdInstance *inst, const char *fn, char *resources, const char *noResources)
+{
+    char error[1024];
+    inst->resources = resources;
+    inst->noResources = noResources;
+    if (resources && pmd_script_read_start(resources, &inst->scriptStart, error, sizeof error) < 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: the script parameter's start value: %s", fn, error);
+        return PMD_ERROR;
+    }
+    return PMD_OK;
+}
+
+const char *pmd_script_value(const PmdInstance *inst)
+{
+    return inst->scriptPath ? inst->scriptPath : inst->scriptStart ? inst->scriptStart : "";
 }
 
 void pmd_instance_reset(PmdInstance *inst)
@@ -250,11 +269,11 @@ static int run_script(PmdInstance *inst)
             changed |= stepChanged;
             if (err)
                 pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s:%d: the chip refused the command: host "
-                                 "I/O error 0x%02X", inst->scriptPath, step->line, err);
+                                 "I/O error 0x%02X", inst->script.name, step->line, err);
         } else if (pmd_memory_write(&inst->chip, step->address, step->count, inst->script.pool + step->first)) {
             /* compiled for this memory size, but a restored FMU state may have brought another */
             pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s:%d: the table's %u words at 0x%X leave the "
-                             "%d-word memory: not written", inst->scriptPath, step->line, (unsigned)step->count,
+                             "%d-word memory: not written", inst->script.name, step->line, (unsigned)step->count,
                              (unsigned)step->address, inst->s.memorySize);
         }
     }
@@ -331,14 +350,19 @@ PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
 {
     PmdScript script;
+    const char *value = pmd_script_value(inst);
     PmdStatus status = on_the_grid(inst, fn, inst->s.time, 0, inst->s.cycleTime);
+    size_t i;
 
     if (status != PMD_OK)
         return status;
     memset(&script, 0, sizeof script);
-    if (inst->scriptPath && *inst->scriptPath) {
-        char error[1024];
-        if (pmd_script_load(inst->scriptPath, (uint32_t)inst->s.memorySize, &script, error, sizeof error)) {
+    if (*value) {
+        char error[8192];
+        PmdScriptPlaces places;
+        places.resources = inst->resources;
+        places.noResources = inst->noResources;
+        if (pmd_script_compile(value, &places, (uint32_t)inst->s.memorySize, &script, error, sizeof error)) {
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: script refused: %s", fn, error);
             return PMD_ERROR;
         }
@@ -347,10 +371,18 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         pmd_script_free(&script);
         return PMD_ERROR;
     }
-    if (inst->scriptPath && *inst->scriptPath) {
+    if (*value) {
         pmd_script_free(&inst->script);
         inst->script = script;
         inst->s.scriptNext = 0;
+        /* which files it read (pmdfmu pack copies them into the FMU it writes) */
+        if (pmd_script_is_text(value))
+            pmd_instance_log(inst, PMD_OK, PMD_LOG_BUFFERS, "%s: script given as text", fn);
+        else
+            pmd_instance_log(inst, PMD_OK, PMD_LOG_BUFFERS, "%s: script read from %s", fn, script.name);
+        for (i = 0; i < script.tableCount; i++)
+            pmd_instance_log(inst, PMD_OK, PMD_LOG_BUFFERS, "%s: %s:%d: segment table \"%s\" read from %s", fn,
+                             script.name, script.tables[i].line, script.tables[i].name, script.tables[i].path);
     }
     inst->s.scriptDigest = pmd_script_digest(&inst->script);
     if (!inst->s.recordEnabled) {                     /* an instance that does not record carries no buffer */
@@ -813,7 +845,7 @@ PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const c
     if (!v)
         return PMD_ERROR;
     switch (v->family) {
-    case VAR_script: *value = inst->scriptPath ? inst->scriptPath : ""; break;
+    case VAR_script: *value = pmd_script_value(inst); break;
     default: return unhandled(inst, fn, v, "String getter");
     }
     return PMD_OK;

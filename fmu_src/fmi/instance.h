@@ -74,9 +74,16 @@ typedef struct {
     int loggingOn;
     unsigned categories;             /* bit per PmdLogCategory enabled by SetDebugLogging */
 
-    /* the script parameter, compiled at the end of initialization */
+    /* the script parameter, compiled at the end of initialization: a path or the
+     * script's text (README, "Scripts"); NULL: its start value, scriptStart (a
+     * packed FMU's, read from its resources at instantiation) or "" */
     char *scriptPath;
+    char *scriptStart;
     PmdScript script;
+    /* where relative paths are looked for: the FMU's resources folder, as the
+     * importer named it at instantiation (ending in a separator), or NULL and why */
+    char *resources;
+    const char *noResources;
 
     /* bulk recording (FMI 3 record.data): PMD_RECORD_WORDS int32 per cycle of the
      * last doStep. The buffer and its size are this process's: a restored state
@@ -99,6 +106,12 @@ typedef struct {
 
 PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment);
 void pmd_instance_free(PmdInstance *inst);
+/* Instantiation: the FMU's resources folder (allocated, taken over; NULL with
+ * why if the importer named none that is a local folder), and the start value
+ * a packed FMU keeps there. PMD_ERROR if that cannot be read. */
+PmdStatus pmd_instance_resources(PmdInstance *inst, const char *fn, char *resources, const char *noResources);
+/* The `script` parameter's value: as set, or its start value. */
+const char *pmd_script_value(const PmdInstance *inst);
 void pmd_instance_reset(PmdInstance *inst);
 /* nCategories = 0: all categories; an unknown category is an error and changes nothing. */
 PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,

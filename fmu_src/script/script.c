@@ -9,9 +9,11 @@
  *     SetProfileMode(Axis1, PMDExternalProfile);
  *     LoadSegmentTable(Axis1, "table.csv", 0x200, 2);
  *
- * LoadSegmentTable reads a CSV segment table (relative paths from the
- * script's folder) into buffers firstBuffer.. at address, one per column,
- * and assigns them to the columns' trajectory variables. */
+ * LoadSegmentTable reads a CSV segment table into buffers firstBuffer.. at
+ * address, one per column, and assigns them to the columns' trajectory
+ * variables. The script is a file or, given as text, a string in memory
+ * (issue 14: a profile that travels inside the FMU or its parameter set);
+ * relative paths are looked for in a fixed order of places (pmd_script_compile). */
 #if !defined(_WIN32) && !defined(_POSIX_C_SOURCE)
 #define _POSIX_C_SOURCE 200809L      /* open, fstat, fdopen, O_CLOEXEC: the build is strict C99 */
 #endif
@@ -23,7 +25,10 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
-#ifndef _WIN32
+#ifdef _WIN32
+#include <direct.h>                  /* _getcwd */
+#define getcwd _getcwd
+#else
 #include <fcntl.h>
 #include <unistd.h>
 #endif
@@ -37,6 +42,7 @@
 #define MAX_FILE (1L << 30)          /* bytes in a script or table; also keeps line numbers within an int */
 #define TOO_LARGE "larger than 1 GiB, the limit for a script or table"
 #define MAX_ARGS 8
+#define MAX_PATH 1024                /* a path as looked for, its NUL included */
 
 typedef struct {
     const char *file;
@@ -47,7 +53,7 @@ typedef struct {
 
 static int fail(const Where *w, const char *format, ...)
 {
-    char reason[512];
+    char reason[6144];               /* a file not found names each place looked in (locate) */
     va_list args;
     va_start(args, format);
     vsnprintf(reason, sizeof reason, format, args);
@@ -95,12 +101,22 @@ static int pool_grow(PmdScript *s, size_t n)
 
 /* ---- reading: scripts and tables alike ---- */
 
-/* A script or table being read line by line; w.line is the line last read. */
+/* A script or table being read line by line, from a file or (a script given
+ * as text) from memory; w.line is the line last read. */
 typedef struct {
     FILE *file;
     Where w;
     long bytes;
+    const char *text;                /* without a file: the text, its length and where reading stands */
+    size_t length, at;
 } Reader;
+
+static int next_char(Reader *r)
+{
+    if (r->file)
+        return getc(r->file);
+    return r->at < r->length ? (unsigned char)r->text[r->at++] : EOF;
+}
 
 /* Opens a regular file of at most MAX_FILE bytes, or returns NULL with the
  * reason in why: a FIFO, a device or a directory would block or never end. */
@@ -148,14 +164,14 @@ static int read_line(Reader *r, char *line)
     size_t n = 0;
     int c;
     r->w.line++;
-    while ((c = getc(r->file)) != EOF && c != '\n') {
+    while ((c = next_char(r)) != EOF && c != '\n') {
         if (c == '\0')
             return fail(&r->w, "NUL byte in the line (a script or table is text)");
         if (n == MAX_LINE - 1)
             return fail(&r->w, "line longer than %d characters", MAX_LINE - 1);
         line[n++] = (char)c;
     }
-    if (ferror(r->file))
+    if (r->file && ferror(r->file))
         return fail(&r->w, "cannot read: %s", strerror(errno));
     if (c == EOF && n == 0) {
         r->w.line--;
@@ -392,7 +408,7 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
     int columnOf[PMD_FUNCTIONS], nColumns = 0, present = 0, units = -1, header, got, f, k;
     size_t rows = 0, row, base = s->poolCount;
     const char *why = "";
-    Reader in = {NULL, {path, 0, at->error, at->errorSize}, 0};
+    Reader in = {NULL, {path, 0, at->error, at->errorSize}, 0, NULL, 0, 0};
 
     if (!(in.file = open_text(path, &why)))
         return fail(at, "cannot open segment table %s: %s", path, why);
@@ -498,21 +514,158 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
     return 0;
 }
 
-/* A path relative to the script's folder; -1 if it does not fit out. */
-static int resolve(const char *script, const char *path, char *out, size_t size)
+/* ---- where files are: relative paths are looked for in places, in order ---- */
+
+#ifdef _WIN32
+#define IS_SEPARATOR(c) ((c) == '/' || (c) == '\\')
+#else
+#define IS_SEPARATOR(c) ((c) == '/')
+#endif
+
+int pmd_script_is_text(const char *value)
 {
-    const char *slash = strrchr(script, '/');
+    return strchr(value, '\n') != NULL;
+}
+
+static int is_absolute(const char *path)
+{
+#ifdef _WIN32
+    if (isalpha((unsigned char)path[0]) && path[1] == ':')
+        return 1;                                   /* C:\x, and C:x, which names its drive too */
+#endif
+    return IS_SEPARATOR(path[0]);
+}
+
+/* A folder a relative path is looked for in: the first length bytes of folder,
+ * or the working directory (folder NULL); missing says why it is unknown. */
+typedef struct {
+    const char *label;
+    const char *folder;
+    size_t length;
+    const char *missing;
+} Place;
+
+#define MAX_PLACES 2
+
+typedef struct {
+    Place place[MAX_PLACES];
+    int count;
+} Places;
+
+static void add_place(Places *p, const char *label, const char *folder, size_t length, const char *missing)
+{
+    Place *place = &p->place[p->count++];
+    place->label = label;
+    place->folder = folder;
+    place->length = length;
+    place->missing = missing;
+}
+
+/* The FMU's resources folder as a place, if there is one to speak of. */
+static void add_resources(Places *p, const PmdScriptPlaces *places)
+{
+    if (places->resources)
+        add_place(p, "the FMU's resources folder", places->resources, strlen(places->resources), NULL);
+    else if (places->noResources)
+        add_place(p, "the FMU's resources folder", NULL, 0, places->noResources);
+}
+
+/* path in place into out[MAX_PATH]; -1 if it does not fit. */
+static int join(const Place *place, const char *path, char *out)
+{
     int n;
-    if (path[0] == '/' || !slash)
-        n = snprintf(out, size, "%s", path);
+    if (!place->folder)
+        n = snprintf(out, MAX_PATH, "%s", path);
+    else if (place->length && IS_SEPARATOR(place->folder[place->length - 1]))
+        n = snprintf(out, MAX_PATH, "%.*s%s", (int)place->length, place->folder, path);
     else
-        n = snprintf(out, size, "%.*s/%s", (int)(slash - script), script, path);
-    return n < 0 || (size_t)n >= size ? -1 : 0;
+        n = snprintf(out, MAX_PATH, "%.*s/%s", (int)place->length, place->folder, path);
+    return n < 0 || n >= MAX_PATH ? -1 : 0;
+}
+
+static int exists(const char *path)
+{
+#ifdef _WIN32
+    struct _stat st;
+    return _stat(path, &st) == 0;
+#else
+    struct stat st;
+    return stat(path, &st) == 0;
+#endif
+}
+
+/* Puts path into out[MAX_PATH]: absolute as it is, relative joined to the first
+ * place where it exists. Else -1 with, in why, each place looked in: the path
+ * looked for there and why it is not (the working directory by its name). */
+static int locate(const char *path, const Places *places, char *out, char *why, size_t whySize)
+{
+    size_t used = 0;
+    int i;
+    why[0] = '\0';
+    if (is_absolute(path)) {
+        if (strlen(path) < MAX_PATH) {
+            strcpy(out, path);
+            return 0;
+        }
+        snprintf(why, whySize, "the path is longer than %d characters", MAX_PATH - 1);
+        return -1;
+    }
+    for (i = 0; i < places->count; i++) {
+        const Place *place = &places->place[i];
+        char cwd[MAX_PATH];
+        const char *reason, *folder = "", *separator = "";
+        int n;
+        if (place->missing) {
+            n = snprintf(why + used, whySize - used, "%s%s (none: %s)", i ? " nor in " : "not found in ", place->label,
+                         place->missing);
+        } else {
+            if (join(place, path, out))
+                reason = "the path is too long";
+            else if (exists(out))
+                return 0;
+            else
+                reason = strerror(errno);
+            if (!place->folder && getcwd(cwd, sizeof cwd)) {
+                folder = cwd;
+                separator = "/";
+            }
+            n = snprintf(why + used, whySize - used, "%s%s (%s%s%s: %s)", i ? " nor in " : "not found in ",
+                         place->label, folder, separator, place->folder ? out : path, reason);
+        }
+        if (n < 0 || (size_t)n >= whySize - used)
+            break;                                  /* the message is cut short, nothing else */
+        used += (size_t)n;
+    }
+    return -1;
+}
+
+/* Notes a table the script loads (pack and the log name them). */
+static int note_table(PmdScript *s, int line, const char *name, const char *path)
+{
+    PmdScriptTable *grown = (PmdScriptTable *)realloc(s->tables, (s->tableCount + 1) * sizeof *grown);
+    PmdScriptTable *t;
+    if (!grown)
+        return -1;
+    s->tables = grown;
+    t = &s->tables[s->tableCount];
+    t->line = line;
+    t->name = (char *)malloc(strlen(name) + 1);
+    t->path = (char *)malloc(strlen(path) + 1);
+    if (!t->name || !t->path) {
+        free(t->name);
+        free(t->path);
+        return -1;
+    }
+    strcpy(t->name, name);
+    strcpy(t->path, path);
+    s->tableCount++;
+    return 0;
 }
 
 /* ---- the script ---- */
 
-static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle, uint32_t memoryWords)
+static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle, uint32_t memoryWords,
+                        const Places *tables)
 {
     char *name = NULL, *args[MAX_ARGS] = {NULL};
     int nArgs = 0, axis = 0, k;
@@ -540,18 +693,23 @@ static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle
         return -1;
     s->axes |= (uint8_t)(PMDAxis1Mask << axis);
     if (strcmp(name, "LoadSegmentTable") == 0) {
-        char path[1024];
+        char path[MAX_PATH], why[4 * MAX_PATH];
+        const char *table = args[1] + 1;
         size_t len = strlen(args[1 < nArgs ? 1 : 0]);
         int64_t address, first;
         if (nArgs != 4 || args[1][0] != '"' || len < 2 || args[1][len - 1] != '"')
             return fail(w, "LoadSegmentTable(Axis, \"file.csv\", address, firstBuffer)");
         args[1][len - 1] = '\0';
-        if (strchr(args[1] + 1, '"'))
+        if (strchr(table, '"'))
             return fail(w, "LoadSegmentTable: a quote inside the file name %s\"", args[1]);
-        if (resolve(w->file, args[1] + 1, path, sizeof path))
-            return fail(w, "LoadSegmentTable: the table's path is longer than %d characters", (int)sizeof path - 1);
+        if (strlen(table) >= MAX_PATH)
+            return fail(w, "LoadSegmentTable: the table's path is longer than %d characters", MAX_PATH - 1);
         if (parse_value(w, args[2], 0, &address) || parse_value(w, args[3], 0, &first))
             return -1;
+        if (locate(table, tables, path, why, sizeof why))
+            return fail(w, "cannot open segment table %s: %s", table, why);
+        if (note_table(s, w->line, table, path))
+            return fail(w, "out of memory");
         return load_table(s, w, *cycle, axis, path, address, first, memoryWords);
     }
     if (!(c = find_command(name)))
@@ -565,21 +723,13 @@ static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle
     return add_command(s, w, *cycle, c, axis, values);
 }
 
-int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, char *error, size_t errorSize)
+/* Compiles what in reads, line by line; 0, or -1 with the reason in in->w.error. */
+static int compile(PmdScript *script, Reader *in, uint32_t memoryWords, const Places *tables)
 {
     char line[MAX_LINE];
     int64_t cycle = 0;
     int got;
-    const char *why = "";
-    Reader in = {NULL, {path, 0, error, errorSize}, 0};
-
-    memset(script, 0, sizeof *script);
-    error[0] = '\0';
-    if (!(in.file = open_text(path, &why))) {
-        snprintf(error, errorSize, "%s: cannot open the script: %s", path, why);
-        return -1;
-    }
-    while ((got = read_line(&in, line)) == 1) {
+    while ((got = read_line(in, line)) == 1) {
         char *text, *comment;
         int quoted = 0;
         for (comment = line; *comment; comment++) {      /* '#' or '//' outside quotes */
@@ -591,19 +741,145 @@ int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, c
             }
         }
         text = trim(line);
-        if (*text && compile_line(script, &in.w, text, &cycle, memoryWords))
-            break;
+        if (*text && compile_line(script, &in->w, text, &cycle, memoryWords, tables))
+            return -1;
     }
-    fclose(in.file);
-    if (got != 0) {
+    return got;
+}
+
+/* The script's value: text, or a file found in places; its tables are looked for in the places that
+ * follow from where the script is. */
+static int compile_value(const char *value, int isText, const PmdScriptPlaces *places, uint32_t memoryWords,
+                         PmdScript *script, char *error, size_t errorSize)
+{
+    char path[MAX_PATH], why[4 * MAX_PATH];
+    const char *name = PMD_SCRIPT_TEXT_NAME, *folderEnd = NULL, *p;
+    Places scripts, tables;
+    Reader in;
+    int result;
+
+    memset(script, 0, sizeof *script);
+    memset(&in, 0, sizeof in);
+    memset(&scripts, 0, sizeof scripts);
+    memset(&tables, 0, sizeof tables);
+    error[0] = '\0';
+    if (isText) {
+        if (strlen(value) > (size_t)MAX_FILE) {
+            snprintf(error, errorSize, "%s: " TOO_LARGE, name);
+            return -1;
+        }
+        in.text = value;
+        in.length = strlen(value);
+        add_resources(&tables, places);
+        add_place(&tables, "the working directory", NULL, 0, NULL);
+    } else {
+        const char *reason = "";
+        add_resources(&scripts, places);
+        add_place(&scripts, "the working directory", NULL, 0, NULL);
+        if (locate(value, &scripts, path, why, sizeof why)) {
+            snprintf(error, errorSize, "%s: cannot open the script: %s", value, why);
+            return -1;
+        }
+        if (!(in.file = open_text(path, &reason))) {
+            snprintf(error, errorSize, "%s: cannot open the script: %s", path, reason);
+            return -1;
+        }
+        name = path;
+        for (p = path; *p; p++)
+            if (IS_SEPARATOR(*p))
+                folderEnd = p;
+        if (folderEnd)
+            add_place(&tables, "the script's folder", path, (size_t)(folderEnd - path), NULL);
+        else
+            add_place(&tables, "the script's folder", NULL, 0, NULL);
+        add_resources(&tables, places);
+    }
+    if (!(script->name = (char *)malloc(strlen(name) + 1))) {
+        if (in.file)
+            fclose(in.file);
+        snprintf(error, errorSize, "%s: out of memory", name);
+        return -1;
+    }
+    strcpy(script->name, name);
+    in.w.file = script->name;
+    in.w.error = error;
+    in.w.errorSize = errorSize;
+    /* a table in the script's folder is looked for from the name kept, which outlives path */
+    if (!isText && tables.place[0].folder)
+        tables.place[0].folder = script->name;
+    result = compile(script, &in, memoryWords, &tables);
+    if (in.file)
+        fclose(in.file);
+    if (result != 0) {
         pmd_script_free(script);
         return -1;
     }
     return 0;
 }
 
+int pmd_script_compile(const char *value, const PmdScriptPlaces *places, uint32_t memoryWords, PmdScript *script,
+                       char *error, size_t errorSize)
+{
+    return compile_value(value, pmd_script_is_text(value), places, memoryWords, script, error, errorSize);
+}
+
+int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, char *error, size_t errorSize)
+{
+    static const PmdScriptPlaces nowhere = {NULL, NULL};
+    return compile_value(path, 0, &nowhere, memoryWords, script, error, errorSize);
+}
+
+int pmd_script_read_start(const char *resources, char **value, char *error, size_t errorSize)
+{
+    char path[MAX_PATH];
+    const char *why = "";
+    FILE *file;
+    long n = 0;
+    int c;
+    *value = NULL;
+    error[0] = '\0';
+    if (snprintf(path, sizeof path, "%s%s" PMD_SCRIPT_START, resources,
+                 *resources && IS_SEPARATOR(resources[strlen(resources) - 1]) ? "" : "/") >= (int)sizeof path) {
+        snprintf(error, errorSize, "%s" PMD_SCRIPT_START ": the path is longer than %d characters", resources,
+                 MAX_PATH - 1);
+        return -1;
+    }
+    if (!exists(path))
+        return 0;
+    if (!(file = open_text(path, &why))) {
+        snprintf(error, errorSize, "%s: cannot open: %s", path, why);
+        return -1;
+    }
+    while ((c = getc(file)) != EOF && c != '\0')
+        n++;
+    if (c == '\0' || ferror(file) || n > MAX_FILE || !(*value = (char *)malloc((size_t)n + 1))) {
+        snprintf(error, errorSize, "%s: %s", path, c == '\0' ? "NUL byte (a String value is text)"
+                                                   : ferror(file) ? strerror(errno) : "out of memory");
+        fclose(file);
+        return -1;
+    }
+    rewind(file);
+    if (fread(*value, 1, (size_t)n, file) != (size_t)n) {
+        snprintf(error, errorSize, "%s: the file changed while being read", path);
+        free(*value);
+        *value = NULL;
+        fclose(file);
+        return -1;
+    }
+    (*value)[n] = '\0';
+    fclose(file);
+    return 1;
+}
+
 void pmd_script_free(PmdScript *script)
 {
+    size_t i;
+    for (i = 0; i < script->tableCount; i++) {
+        free(script->tables[i].name);
+        free(script->tables[i].path);
+    }
+    free(script->tables);
+    free(script->name);
     free(script->steps);
     free(script->pool);
     memset(script, 0, sizeof *script);

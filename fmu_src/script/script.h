@@ -19,6 +19,12 @@ typedef struct {
     size_t first;
 } PmdScriptStep;
 
+/* A segment table the script loaded: the name its line gives and the file read. */
+typedef struct {
+    int line;
+    char *name, *path;
+} PmdScriptTable;
+
 typedef struct {
     PmdScriptStep *steps;
     size_t count, capacity;
@@ -27,11 +33,45 @@ typedef struct {
     /* what a master may ask about the script without parsing it again */
     uint8_t axes;                    /* the axes its calls address: bit n for axis n + 1 */
     int64_t lastCycle;               /* the time of its last @ line (0: none), 0 .. 10^18 - 1 */
+    /* what it read: messages name the script by name ("file:line: reason") */
+    char *name;                      /* the path it was read from, or PMD_SCRIPT_TEXT_NAME */
+    PmdScriptTable *tables;          /* every LoadSegmentTable, in script order */
+    size_t tableCount;
 } PmdScript;
 
-/* Compiles the script at path for a memory of memoryWords words. Returns 0,
- * or -1 with "file:line: reason" in error (and nothing allocated). */
+/* The `script` parameter's value is the script's text itself when it holds a
+ * line feed, else the path of a script file (README, "Scripts"): a path never
+ * holds one, and a one-line script is that line and its line feed. */
+int pmd_script_is_text(const char *value);
+#define PMD_SCRIPT_TEXT_NAME "(script text)"
+
+/* Where relative paths are looked for besides the script's own folder: the
+ * FMU's resources folder (ending in a separator), or NULL with why (NULL too:
+ * no resources folder to speak of, as for a script compiled outside an FMU). */
+typedef struct {
+    const char *resources;
+    const char *noResources;
+} PmdScriptPlaces;
+
+/* Compiles the `script` parameter's value for a memory of memoryWords words.
+ * A path: absolute as is; relative, the first that exists of the resources
+ * folder's and the working directory's. Its tables (LoadSegmentTable): absolute
+ * as is; relative, from the script's folder, else the resources folder; for a
+ * script given as text, the resources folder, else the working directory.
+ * Returns 0, or -1 with "file:line: reason" in error (and nothing allocated);
+ * a file not found names each place it was looked for. */
+int pmd_script_compile(const char *value, const PmdScriptPlaces *places, uint32_t memoryWords, PmdScript *script,
+                       char *error, size_t errorSize);
+/* Compiles the script file at path (relative: from the working directory), its
+ * tables relative to its folder: pmd_script_compile without a resources folder. */
 int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, char *error, size_t errorSize);
+/* A packed FMU (pmdfmu pack) carries the `script` parameter's start value, as
+ * its modelDescription.xml gives it, byte for byte in this file of its
+ * resources folder: the start value an importer that sets no start values
+ * runs with. Reads it: 1 with *value allocated, 0 if the FMU has none, -1 with
+ * the reason in error. */
+#define PMD_SCRIPT_START "script.start"
+int pmd_script_read_start(const char *resources, char **value, char *error, size_t errorSize);
 void pmd_script_free(PmdScript *script);
 /* The 64-bit FNV-1a hash of n bytes, continuing from h (start: PMD_FNV1A_BASIS):
  * the script digest and the FMU state checksum. */

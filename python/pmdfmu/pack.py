@@ -1,0 +1,239 @@
+"""pmdfmu pack: a copy of the FMU that runs a script profile with no parameter set.
+
+The copy carries the script and every segment table it loads under
+resources/profile/, in their relative layout, and the `script` parameter starts
+at the script's path there (README, "Scripts"): modelDescription.xml's start
+value says so, and resources/script.start holds the same value for the binary,
+which reads it at instantiation (fmu_src/script/script.h, PMD_SCRIPT_START), so
+an importer that sets no start values runs the profile too. Everything else in
+the FMU is copied byte for byte; the variables, and so the instantiation token,
+are unchanged.
+
+Which tables a script loads is the FMU's answer, not a second parser's: pack
+compiles the script in the FMU and reads the files it names in its log.
+"""
+from __future__ import annotations
+
+import os
+import re
+import xml.etree.ElementTree as ET
+import xml.parsers.expat
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path, PurePosixPath
+from typing import List, Optional, Tuple, Union
+
+from .chip import Chip, FMUError, default_fmu
+
+PROFILE = "profile"                  # resources/profile/: the script and its tables
+START_FILE = "script.start"          # resources/script.start: PMD_SCRIPT_START in fmu_src/script/script.h
+MODEL_DESCRIPTION = "modelDescription.xml"
+
+# what the FMU logs (category "buffers") at the end of initialization about the files it read (instance.c)
+_SCRIPT_READ = re.compile(r"ExitInitializationMode: script read from (.*)$")
+_TABLE_READ = re.compile(r"ExitInitializationMode: .*:(\d+): segment table \"([^\"]*)\" read from (.*)$")
+
+
+class PackError(ValueError):
+    """The script cannot be packed (a table named by an absolute path, a packed base FMU...)."""
+
+
+@dataclass
+class Packed:
+    """What pack wrote: the FMU, the `script` start value and the files under resources/."""
+    fmu: Path
+    start: str
+    files: List[str]
+
+
+@dataclass
+class _Read:
+    script: Path
+    tables: List[Tuple[int, str, Path]]      # (line, name as the script gives it, file read)
+    state: bytes                             # the FMU state right after initialization
+    axes: int
+    last_cycle: float
+
+
+def _compile(fmi_version: int, fmu: Path, script: Optional[Path]) -> Tuple[_Read, Path]:
+    """Initializes the FMU (with the script, or with its own start value) and reads what it compiled;
+    also returns the folder the FMU was unpacked in, as the FMU saw it, while it existed."""
+    parameters = {"script": script} if script is not None else {}
+    with Chip(fmi_version, fmu, log_categories=["buffers"], **parameters) as chip:
+        read_from, tables = None, []
+        for m in chip.messages:
+            if (found := _SCRIPT_READ.search(m.message)):
+                read_from = Path(found.group(1))
+            elif (found := _TABLE_READ.search(m.message)):
+                tables.append((int(found.group(1)), found.group(2), Path(found.group(3))))
+        if read_from is None:
+            raise PackError(f"{fmu}: the FMU compiled no script file (script = {chip.get('script')!r})")
+        read = _Read(read_from, tables, chip.get_state(), chip.get("script.axes"), chip.get("script.lastCycle"))
+        return read, Path(chip._unzipdir)
+
+
+def _escape_attribute(value: str) -> str:
+    """value as an XML attribute between double quotes; line feeds and tabs as references,
+    which attribute-value normalization keeps."""
+    if any(ord(c) < 0x20 and c not in "\t\n\r" for c in value):
+        raise PackError(f"{value!r}: a control character XML 1.0 cannot carry")
+    for plain, escaped in (("&", "&amp;"), ("<", "&lt;"), (">", "&gt;"), ('"', "&quot;"),
+                           ("\n", "&#10;"), ("\r", "&#13;"), ("\t", "&#9;")):
+        value = value.replace(plain, escaped)
+    return value
+
+
+def _start_tag(xml_bytes: bytes) -> Tuple[int, str, str]:
+    """Where the element holding the `script` start value begins (byte offset), its tag and the
+    attribute: FMI 2 <ScalarVariable name="script"><String start=...>, FMI 3 <String name="script">
+    <Start value=...>. Found by an XML parser, not by a pattern."""
+    parser = xml.parsers.expat.ParserCreate()
+    stack: List[Tuple[str, dict]] = []
+    found: List[Tuple[int, str, str]] = []
+
+    def start(tag, attributes):
+        parent = stack[-1] if stack else ("", {})
+        if tag == "String" and parent[0] == "ScalarVariable" and parent[1].get("name") == "script":
+            found.append((parser.CurrentByteIndex, tag, "start"))
+        elif tag == "Start" and parent[0] == "String" and parent[1].get("name") == "script":
+            found.append((parser.CurrentByteIndex, tag, "value"))
+        stack.append((tag, attributes))
+
+    parser.StartElementHandler = start
+    parser.EndElementHandler = lambda tag: stack.pop()
+    parser.Parse(xml_bytes, True)
+    if len(found) != 1:
+        raise PackError(f"{MODEL_DESCRIPTION}: {len(found)} start elements of the script variable, not 1")
+    return found[0]
+
+
+_ATTRIBUTE = r"""\s+([\w:.-]+)\s*=\s*("[^"]*"|'[^']*')"""
+
+
+def set_script_start(xml_bytes: bytes, value: str) -> bytes:
+    """modelDescription.xml (FMI 2 or 3) with the `script` variable's start value set to value,
+    every other byte as it was; checked by parsing both and comparing them element by element."""
+    offset, tag, name = _start_tag(xml_bytes)
+    text = xml_bytes.decode("utf-8")
+    at = len(xml_bytes[:offset].decode("utf-8"))
+    element = re.compile(rf"<{tag}((?:{_ATTRIBUTE})*)\s*/?>").match(text, at)
+    if not element:
+        raise PackError(f"{MODEL_DESCRIPTION}: cannot read the <{tag}> element at byte {offset}")
+    new_attribute = f'{name}="{_escape_attribute(value)}"'
+    attributes = element.group(1)
+    existing = [m for m in re.finditer(_ATTRIBUTE, attributes) if m.group(1) == name]
+    if existing:
+        m = existing[0]
+        attributes = attributes[:m.start()] + m.group(0)[:m.start(1) - m.start()] + new_attribute + attributes[m.end():]
+    else:
+        attributes += " " + new_attribute
+    start = element.start(1)
+    result = (text[:start] + attributes + text[element.end(1):]).encode("utf-8")
+    _check_only_the_start_changed(xml_bytes, result, tag, name, value)
+    return result
+
+
+def _check_only_the_start_changed(before: bytes, after: bytes, tag: str, name: str, value: str) -> None:
+    old, new = list(ET.fromstring(before).iter()), list(ET.fromstring(after).iter())
+    changed = 0
+    assert len(old) == len(new), "the edit changed the elements"
+    for a, b in zip(old, new):
+        assert (a.tag, a.text, a.tail) == (b.tag, b.text, b.tail), f"the edit changed <{a.tag}>"
+        if a.attrib != b.attrib:
+            assert b.tag == tag and b.attrib.get(name) == value and \
+                {k: v for k, v in a.attrib.items() if k != name} == {k: v for k, v in b.attrib.items() if k != name}, \
+                f"the edit changed <{a.tag}> {a.attrib}"
+            changed += 1
+    assert changed <= 1
+
+
+def _layout(read: _Read, unzipdir: Path) -> Tuple[Path, List[Tuple[Path, str]]]:
+    """The folder the packed files are relative to, and each file to pack with its path under it."""
+    folder = read.script.parent
+    files = [read.script]
+    inside = unzipdir / "resources"
+    for line, name, path in read.tables:
+        if os.path.isabs(name):
+            raise PackError(f"{read.script}:{line}: the table {name} is named by an absolute path: a packed FMU "
+                            "must find it inside itself; name it relative to the script's folder")
+        if Path(os.path.normpath(path)).is_relative_to(inside):
+            continue                         # in the base FMU's resources folder: packed already
+        files.append(Path(os.path.normpath(path)))
+    root = Path(os.path.commonpath([folder] + [f.parent for f in files]))
+    return root, [(f, PurePosixPath(*f.relative_to(root).parts).as_posix()) for f in files]
+
+
+def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
+         fmu: Union[str, Path, None] = None) -> Packed:
+    """Writes out: a copy of fmu (default: the built FMU of fmi_version) with script and every
+    table it loads under resources/profile/ and `script` starting at it; then initializes the
+    copy without parameters and checks that it compiled the same script from inside itself."""
+    script, out = Path(script).resolve(), Path(out)
+    base = Path(fmu) if fmu else default_fmu(fmi_version)
+    if out.resolve() == base.resolve():
+        raise PackError(f"{out}: the packed FMU must not overwrite the FMU it copies")
+    with zipfile.ZipFile(base) as z:
+        names = z.namelist()
+    if f"resources/{START_FILE}" in names:
+        raise PackError(f"{base} is a packed FMU already: pack onto the built FMU")
+    try:
+        read, unzipdir = _compile(fmi_version, base, script)
+    except FMUError as e:
+        raise PackError(f"{script}: the FMU refuses the script: {e}") from None
+    root, files = _layout(read, unzipdir)
+    start = f"{PROFILE}/{files[0][1]}"
+
+    out.parent.mkdir(parents=True, exist_ok=True)
+    partial = out.with_name(out.name + ".partial")
+    with zipfile.ZipFile(base) as zin, zipfile.ZipFile(partial, "w") as zout:
+        for info in zin.infolist():
+            data = zin.read(info)
+            if info.filename == MODEL_DESCRIPTION:
+                data = set_script_start(data, start)
+            zout.writestr(info, data)
+        added = []
+        for path, relative in files:
+            name = f"resources/{PROFILE}/{relative}"
+            zout.write(path, name, compress_type=zipfile.ZIP_DEFLATED)
+            added.append(name)
+        zout.writestr(zipfile.ZipInfo(f"resources/{START_FILE}", date_time=(1980, 1, 1, 0, 0, 0)),
+                      start.encode("utf-8"), compress_type=zipfile.ZIP_DEFLATED)
+        added.append(f"resources/{START_FILE}")
+    try:
+        _verify(partial, fmi_version, start, read)
+    except BaseException:
+        partial.unlink()
+        raise
+    os.replace(partial, out)
+    return Packed(out, start, added)
+
+
+def _verify(packed: Path, fmi_version: int, start: str, original: _Read) -> None:
+    """The packed FMU, initialized with no parameter: its script is the start value, read from
+    inside it, its tables too, and it compiled what the script by path compiles (same FMU state)."""
+    try:
+        read, unzipdir = _compile(fmi_version, packed, None)
+    except FMUError as e:
+        raise PackError(f"the packed FMU refuses its own profile: {e}") from None
+    inside = unzipdir / "resources"
+    for path in [read.script] + [p for _, _, p in read.tables]:
+        if not Path(os.path.normpath(path)).is_relative_to(inside):
+            raise PackError(f"the packed FMU reads {path}, outside itself")
+    if (read.state, read.axes, read.last_cycle) != (original.state, original.axes, original.last_cycle):
+        raise PackError("the packed FMU compiles another script than the script by path")
+    md = ET.fromstring(zipfile.ZipFile(packed).read(MODEL_DESCRIPTION))
+    starts = [e.get("start", e.get("value")) for v in md.iter() if v.get("name") == "script"
+              for e in v if e.tag in ("String", "Start")]
+    if starts != [start]:
+        raise PackError(f"{MODEL_DESCRIPTION} gives the script the start value {starts}, not {start!r}")
+
+
+def main_pack(script: str, out: str, fmi_version: int, fmu: Optional[str]) -> int:
+    packed = pack(script, out, fmi_version, fmu)
+    print(f"wrote {packed.fmu}: script starts at {packed.start!r}")
+    for name in packed.files:
+        print(f"  {name}")
+    return 0
+
+
+__all__ = ["pack", "Packed", "PackError", "set_script_start", "PROFILE", "START_FILE"]
