@@ -313,13 +313,18 @@ def _string_starts_as_elements(fmu: Path) -> None:
             z.writestr(name, data)
 
 
-def run_container(fmu: Path) -> np.ndarray:
-    """(b) in FMPy, as one FMU."""
+def run_container(fmu: Path, log=None) -> np.ndarray:
+    """(b) in FMPy, as one FMU. `log(instance, status, message)` receives the
+    container's log messages (its components' among them)."""
     from fmpy import simulate_fmu
 
     system = read_system()
+    logger = None
+    if log:
+        def logger(env, status, category, message):
+            log("container", status, message.decode(errors="replace"))
     out = simulate_fmu(str(fmu), stop_time=system.stop_time, output_interval=system.step_size,
-                       output=[c.path for c in system.outputs])
+                       output=[c.path for c in system.outputs], logger=logger)
     rows = [{c.path: out[c.path][k].item() for c in system.outputs} for k in range(1, len(out))]  # row 0: start
     return result_table(system, rows[:system.steps])
 
