@@ -4,6 +4,7 @@
   pmdfmu demo       run the bundled 2-axis external profile; write CSV and PNG
   pmdfmu run FILE   run a script or a segment table; write CSV and PNG
   pmdfmu sweep CASES  run a table of cases on Dask; write a summary table and plot
+  pmdfmu pack SCRIPT  write a copy of the FMU that runs the script with no parameter set
   pmdfmu validate   check the FMU with fmpy.validation
   pmdfmu info       the FMU's variables and the chip's commands
 """
@@ -92,6 +93,20 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+def cmd_pack(args) -> int:
+    """The script and its tables inside a copy of the FMU, `script` starting at it (pack.py)."""
+    from .pack import PackError, pack
+    try:
+        packed = pack(args.script, args.out, args.fmi_version, args.fmu)
+    except PackError as e:
+        print(f"pmdfmu pack: {e}", file=sys.stderr)
+        return 1
+    print(f"wrote {packed.fmu} (FMI {args.fmi_version}): script starts at {packed.start!r}")
+    for name in packed.files:
+        print(f"  {name}")
+    return 0
+
+
 def cmd_validate(args) -> int:
     """fmpy.validation on the given FMU, or on both built ones."""
     from fmpy.validation import validate_fmu
@@ -156,6 +171,14 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'serial' (default: a local cluster)")
     p.add_argument("--workers", type=int, default=2, help="local cluster processes (default 2)")
     p.set_defaults(func=cmd_sweep)
+
+    p = sub.add_parser("pack", help="write an FMU that runs a script profile with no parameter set")
+    p.add_argument("script", help="the script; the segment tables it loads go with it")
+    p.add_argument("--out", required=True, help="the FMU to write, e.g. my-profile.fmu")
+    p.add_argument("--fmi", "--fmi-version", dest="fmi_version", type=int, choices=(2, 3), default=2,
+                   help="FMI version (default 2)")
+    p.add_argument("--fmu", help="the FMU to copy (default: the built one of that FMI version)")
+    p.set_defaults(func=cmd_pack)
 
     for name, func, help_ in (("validate", cmd_validate, "validate the FMU"),
                               ("info", cmd_info, "list variables and commands")):

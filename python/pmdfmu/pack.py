@@ -158,7 +158,8 @@ def _layout(read: _Read, unzipdir: Path) -> Tuple[Path, List[Tuple[Path, str]]]:
                             "must find it inside itself; name it relative to the script's folder")
         if Path(os.path.normpath(path)).is_relative_to(inside):
             continue                         # in the base FMU's resources folder: packed already
-        files.append(Path(os.path.normpath(path)))
+        if (file := Path(os.path.normpath(path))) not in files:     # a table loaded twice is packed once
+            files.append(file)
     root = Path(os.path.commonpath([folder] + [f.parent for f in files]))
     return root, [(f, PurePosixPath(*f.relative_to(root).parts).as_posix()) for f in files]
 
@@ -226,14 +227,6 @@ def _verify(packed: Path, fmi_version: int, start: str, original: _Read) -> None
               for e in v if e.tag in ("String", "Start")]
     if starts != [start]:
         raise PackError(f"{MODEL_DESCRIPTION} gives the script the start value {starts}, not {start!r}")
-
-
-def main_pack(script: str, out: str, fmi_version: int, fmu: Optional[str]) -> int:
-    packed = pack(script, out, fmi_version, fmu)
-    print(f"wrote {packed.fmu}: script starts at {packed.start!r}")
-    for name in packed.files:
-        print(f"  {name}")
-    return 0
 
 
 __all__ = ["pack", "Packed", "PackError", "set_script_start", "PROFILE", "START_FILE"]
