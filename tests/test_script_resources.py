@@ -11,7 +11,10 @@ writes a copy of the FMU with the script and its tables inside and `script`
 starting at it. Most tests here run the FMU below the harness, as a tool does:
 FMPy's simulate_fmu, or FMPy's classes with the resource location a tool gives."""
 import os
+import re
 import shutil
+import subprocess
+import sys
 import xml.etree.ElementTree as ET
 import zipfile
 from ctypes import byref
@@ -28,7 +31,8 @@ import pmdfmu
 from pmdfmu.cli import main
 from pmdfmu.pack import PackError, pack, set_script_start
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+REPO = Path(__file__).resolve().parent.parent
+EXAMPLES = REPO / "examples"
 SCRIPT = EXAMPLES / "two_axis.script"
 TABLE = EXAMPLES / "two_axis_table.csv"
 VERSIONS = pytest.mark.parametrize("version", [2, 3])
@@ -521,3 +525,24 @@ def test_a_start_value_holding_text_survives_the_xml(built, version):
     starts = [e.get("start", e.get("value")) for v in root.iter() if v.get("name") == "script" for e in v]
     assert starts == [text]
     assert set_script_start(edited, "") == xml
+
+
+def test_the_readmes_pack_example_runs_as_written(tmp_path):
+    text = (REPO / "README.md").read_text()
+    section = text[text.index("**A profile inside the FMU: `pmdfmu pack`.**"):]
+    block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
+    commands = [line for line in block.splitlines() if line and not line.startswith("#")]
+    expected = [line[len("# -> "):] for line in block.splitlines() if line.startswith("# -> ")]
+    assert commands[0].startswith("pmdfmu pack examples/") and expected
+    for example in ("two_axis.script", "two_axis_table.csv"):           # the repository's examples, from elsewhere
+        (tmp_path / "examples").mkdir(exist_ok=True)
+        shutil.copy(EXAMPLES / example, tmp_path / "examples")
+    out = []
+    for command in commands:
+        if command.startswith("pmdfmu "):
+            command = f"{sys.executable} -m pmdfmu.cli " + command[len("pmdfmu "):]
+        elif command.startswith("python "):
+            command = sys.executable + command[len("python"):]
+        out.append(subprocess.run(command, shell=True, cwd=tmp_path, capture_output=True, text=True,
+                                  check=True).stdout)
+    assert out[-1].splitlines() == expected
