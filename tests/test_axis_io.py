@@ -223,3 +223,19 @@ def test_an_external_profile_stops_on_a_motion_error_even_without_auto_stop():
         assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
         assert ax.GetCommandedPosition() == 52                 # stopped in the cycle the error passed 50
         assert ax.GetActivityStatus() & PMDActivityMotorOnMask     # no auto-stop: the motor stays on
+
+
+def test_reset_keeps_the_encoder_count_the_last_cycle_sampled_not_the_live_input():
+    """Without loopback the actual position is the encoder input sampled by a cycle: a Reset (offset gone)
+    reads the count the last cycle sampled, not an input set since, so no output of a batch depends on
+    axisN.actualPosition without a step (no feedthrough from a plant); the next cycle samples the input."""
+    with pmdfmu.Chip(loopback=False) as chip:
+        ax = chip.axis(0)
+        chip.set("axis1.actualPosition", 500)
+        chip.run(1)
+        ax.SetActualPosition(100)                      # offset -400
+        chip.set("axis1.actualPosition", 700)          # not sampled yet
+        ax.Reset()
+        assert ax.GetActualPosition() == 500 and ax.GetActualVelocity() == 0
+        chip.run(1)
+        assert ax.GetActualPosition() == 700

@@ -46,7 +46,11 @@ void pmd_chip_reset(PmdChip *chip)
         ax->positiveLimitInput = inputs[n].positiveLimitInput;
         ax->negativeLimitInput = inputs[n].negativeLimitInput;
         ax->homeInput = inputs[n].homeInput;
-        ax->actualPosition = loopback ? 0 : ax->actualPositionInput;
+        /* the encoder count as the last cycle sampled it (its offset gone), not the live input:
+         * a command reads the plant only through a cycle (docs/decisions.md) */
+        ax->actualPosition = loopback ? 0
+                                      : pmd_int32((uint32_t)inputs[n].actualPosition - (uint32_t)inputs[n].actualOffset);
+        ax->previousActualPosition = ax->actualPosition;
     }
 }
 

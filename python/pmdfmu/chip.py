@@ -365,10 +365,23 @@ class Chip:
 
     # ---- life cycle ----
 
+    def _script_value(self, value) -> str:
+        """What the `script` parameter gets: a script's text (a value holding a line feed) as it is; a
+        relative path the FMU holds in its resources folder as it is (the FMU looks there first); any
+        other path resolved from the user's working directory, so that it means the same file whatever
+        directory the FMU or a sweep's worker runs in."""
+        text = str(value) if value else ""
+        if not text or "\n" in text:
+            return text
+        path = Path(text)
+        if not path.is_absolute() and not Path(self._unzipdir, "resources", text).exists():
+            return str(path.resolve())
+        return text
+
     def _initialize(self, parameters) -> None:
         for name, value in parameters.items():
-            if name == "script":              # a path: relative to where the user is, not the FMU
-                value = str(Path(value).resolve()) if value else ""
+            if name == "script":
+                value = self._script_value(value)
             self.set(name, value)
         try:
             if self.fmi_version == 2:
