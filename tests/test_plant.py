@@ -5,6 +5,7 @@ the outputs that change only in doStep, FMU states and the refusals of bad
 calls with a message."""
 import csv
 import math
+import re
 import shutil
 import xml.etree.ElementTree as ET
 import zipfile
@@ -437,3 +438,35 @@ def test_reset_brings_back_the_start_values(plants, fmi_version):
     p.enter()
     assert p.get("loadInertia") == START["loadInertia"] and p.get("motorCommand") == 0
     assert (p.get("angle"), p.get("speed")) == (0.0, 0.0)
+
+
+# ---- docs/systems.md -------------------------------------------------------------------------
+
+DOC = TABLE.parent.parent / "docs" / "systems.md"
+
+
+def test_the_docs_variable_table_is_plant_csv():
+    rows = re.findall(r"^\| `(\w+)` \| (\w+) \|([^|]*)\|([^|]*)\|", DOC.read_text(), re.M)
+    documented = {name: (causality, unit.strip(), start.strip()) for name, causality, unit, start in rows}
+    assert documented == {r["name"]: (r["causality"], r["unit"], r["start"])
+                          for r in ROWS if r["causality"] != "independent"}
+
+
+def test_the_docs_counts_and_cycles_follow_from_the_start_values():
+    """docs/systems.md's table of the start values in the chip's counts and 1e-4 s cycles."""
+    J, c, k_over_R, counts_per_rad = motor()
+    cycle = 1e-4
+    acceleration = k_over_R * START["supplyVoltage"] / J
+    no_load = (k_over_R * START["supplyVoltage"] - START["coulombFriction"]) / c
+    text = DOC.read_text()
+    for fact in (f"{acceleration:.0f} rad/s², a_full = {acceleration * counts_per_rad * cycle ** 2:.3f} counts/cycle²",
+                 f"{J / c:.4f} s, tau = {J / c / cycle:.0f} cycles",
+                 f"{no_load:.0f} rad/s ({no_load * 60 / (2 * math.pi):.0f} rpm), "
+                 f"{no_load * counts_per_rad * cycle:.0f} counts/cycle",
+                 f"{START['coulombFriction'] / (k_over_R * START['supplyVoltage']) * FULL_SCALE:.0f} counts",
+                 f"{10 / counts_per_rad / cycle:.1f} rad/s ({10 / counts_per_rad / cycle * 60 / (2 * math.pi):.0f} rpm)",
+                 f"Kvff = 32768 / (a_full tau) = "
+                 f"{32768 / (acceleration * counts_per_rad * cycle ** 2 * J / c / cycle):.0f}",
+                 f"Kaff = 32768 / a_full = {32768 / (acceleration * counts_per_rad * cycle ** 2):.0f}",
+                 f"4 Kd a_full / 32768 = {4 * 4000 * acceleration * counts_per_rad * cycle ** 2 / 32768:.2f}"):
+        assert fact in text, fact

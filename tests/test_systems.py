@@ -232,3 +232,16 @@ def test_the_example_runs_as_a_user_would(tmp_path):
     out = subprocess.run([sys.executable, str(ROOT / "examples" / "systems" / "systems.py"), "ssp", "--out",
                           str(tmp_path / "servoLoop.ssp")], env=env, capture_output=True, text=True, check=True)
     assert zipfile.ZipFile(tmp_path / "servoLoop.ssp").namelist()[0] == "SystemStructure.ssd"
+
+
+def test_with_the_example_motors_acceleration_only_gauss_seidel_settles(runs):
+    """Why the plant's load inertia is what it is (docs/systems.md): with loadInertia 7.2e-6
+    the plant accelerates about 1 count/cycle^2 at full scale, as examples/closed_loop.py's
+    motor; the suggested gains' derivative loop is then near its edge, and a Jacobi master's
+    extra cycle of delay makes the loop hunt at full scale and never complete the motion."""
+    values = {**systems.parameters(), "plant": {"loadInertia": 7.2e-6}}
+    gs = systems.run_master("gauss-seidel", values=values)
+    jacobi = systems.run_master("jacobi", values=values)
+    assert systems.motion_complete(gs) == 1530
+    assert systems.motion_complete(jacobi) is None
+    assert np.abs(jacobi["chip.axis1.motorCommand"][-500:]).max() == 32767

@@ -380,14 +380,15 @@ class _Instance:
         shutil.rmtree(self.unzipdir, ignore_errors=True)
 
 
-def run_master(algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None) -> np.ndarray:
+def run_master(algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None, values=None) -> np.ndarray:
     """(c) a plain master: one communication step per chip cycle, communication
     points n * step. "gauss-seidel" steps the components in the .ssd's order
     and sets each one's inputs just before its step (the plant integrates the
     cycle with the command the chip computed in it, as examples/closed_loop.py
     does); "jacobi" sets every input from the outputs of the step before, then
     steps all (the plant's command is one cycle older). `log(instance, status,
-    message)` receives the FMUs' log messages."""
+    message)` receives the FMUs' log messages; `values` replaces parameters()
+    (component -> parameter -> value)."""
     if algorithm not in ("gauss-seidel", "jacobi"):
         raise ValueError(f"algorithm: gauss-seidel or jacobi, not {algorithm!r}")
     system = read_system()
@@ -396,8 +397,8 @@ def run_master(algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None) 
     try:
         for name, source in system.components.items():
             instances[name] = _Instance(name, fmu_of(source, fmi_version), fmi_version, log)
-        for name, values in parameters().items():
-            for key, value in values.items():
+        for name, given in (parameters() if values is None else values).items():
+            for key, value in given.items():
                 instances[name].set(key, value)
         for instance in instances.values():
             instance.initialize()
