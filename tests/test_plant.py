@@ -419,6 +419,16 @@ def test_parameters_out_of_range_are_refused_before_initialization(plants, fmi_v
     assert p.get("speed") == 0.0
 
 
+def test_a_step_that_would_leave_doubles_range_is_refused_and_changes_nothing(plants, fmi_version):
+    p = plants(fmi_version, {"initialSpeed": 1.7e308, "loadTorque": 1e300, "rotorInertia": 1e-12,
+                             "loadInertia": 0.0, "torqueConstant": 0.0, "viscousFriction": 0.0})
+    before = p.outputs()
+    with pytest.raises(FMICallException):
+        p.fmu.doStep(0.0, 1e-4)
+    assert any("leaves the motor's state not finite" in m for m in p.messages), p.messages
+    assert p.outputs() == before
+
+
 def test_calls_out_of_their_state_are_refused(plants, fmi_version):
     p = plants(fmi_version, initialize=False)
     with pytest.raises(FMICallException):

@@ -15,6 +15,8 @@
 int32_t plant_encoder_count(const PlantModel *m)
 {
     double counts = fmod(floor(m->angle * (4.0 * m->encoderLines) / TWO_PI), TWO_POW_32);
+    if (!isfinite(counts))                      /* an angle out of doubles' range: doStep refuses it */
+        return 0;
     if (counts >= TWO_POW_32 / 2)
         counts -= TWO_POW_32;
     else if (counts < -TWO_POW_32 / 2)

@@ -138,7 +138,7 @@ PlantStatus plant_exit_initialization(PlantInstance *inst)
 
 PlantStatus plant_do_step(PlantInstance *inst, const char *fn, double t, double h)
 {
-    PlantModel *m = &inst->s.m;
+    PlantModel *m = &inst->s.m, before;
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
         plant_log(inst, PLANT_ERROR, "%s: communication point %g, step size %g: the step size must be finite and > 0",
                   fn, t, h);
@@ -154,7 +154,14 @@ PlantStatus plant_do_step(PlantInstance *inst, const char *fn, double t, double 
                   MAX_INTERNAL_STEPS, m->internalStep);
         return PLANT_ERROR;
     }
+    before = *m;
     plant_advance(m, h);
+    if (!isfinite(m->angle) || !isfinite(m->speed) || !isfinite(m->current)) {
+        plant_log(inst, PLANT_ERROR, "%s: the step from %.17g s leaves the motor's state not finite (angle %g, "
+                  "speed %g): not run", fn, t, m->angle, m->speed);
+        *m = before;
+        return PLANT_ERROR;
+    }
     m->time = t + h;
     return PLANT_OK;
 }
@@ -211,11 +218,13 @@ double plant_get(const PlantInstance *inst, const PlantVariable *v)
 void plant_set(PlantInstance *inst, const PlantVariable *v, double value)
 {
     char *member = (char *)&inst->s.m + v->offset;
-    int32_t n = (int32_t)value;
-    if (is_real(v))
+    int32_t n;
+    if (is_real(v)) {
         memcpy(member, &value, sizeof value);
-    else
+    } else {
+        n = (int32_t)value;                         /* plant_check: a whole number in the variable's range */
         memcpy(member, &n, sizeof n);
+    }
 }
 
 /* Parameters (variability fixed) before the end of initialization, inputs
