@@ -5,8 +5,11 @@ the outputs that change only in doStep, FMU states and the refusals of bad
 calls with a message."""
 import csv
 import math
+import os
 import re
 import shutil
+import subprocess
+import sys
 import xml.etree.ElementTree as ET
 import zipfile
 from pathlib import Path
@@ -165,6 +168,24 @@ def test_both_model_descriptions_validate_and_declare_the_table(fmi_version):
         assert float(md.coSimulation.fixedInternalStepSize) == START["internalStep"]
     units = {u.name for u in md.unitDefinitions}
     assert {r["unit"] for r in ROWS if r["unit"]} <= units
+
+
+def test_fmu_manipulation_toolboxs_checker_passes(fmi_version):
+    """fmutool -check (fmu-manipulation-toolbox, pyproject's test extra): outside CI a missing
+    package skips, in CI it fails."""
+    try:
+        import fmu_manipulation_toolbox  # noqa: F401
+    except ImportError as e:
+        if os.environ.get("CI"):
+            raise
+        pytest.skip(f"fmu-manipulation-toolbox not installed ({e}): pip install '.[test]'")
+    out = subprocess.run([sys.executable, "-m", "fmu_manipulation_toolbox", "-input", str(plant_fmu(fmi_version)),
+                          "-check"], capture_output=True, text=True, timeout=120)
+    log = out.stdout + out.stderr
+    assert out.returncode == 0, log
+    assert f"This FMU seems to be compliant with FMI-{fmi_version}.0." in log
+    assert f"No semantic error against the FMI-{fmi_version} standard." in log
+    assert not re.search(r"^(ERROR|WARNING)", log, re.M), log
 
 
 def test_no_output_depends_on_an_input_without_a_step(fmi_version):
