@@ -336,8 +336,6 @@ def test_text_and_file_compile_to_the_same_script(tmp_path, monkeypatch, built, 
     assert states[0] == states[1]
 
 
-@pytest.mark.xfail(strict=False, reason="python/pmdfmu/chip.py resolves every script value as a path "
-                                        "(requested of its owner in /work/notes/requests.md)")
 def test_the_harness_passes_text_and_paths_inside_the_fmu(tmp_path, monkeypatch, by_path):
     monkeypatch.chdir(EXAMPLES)
     with pmdfmu.Chip(script=SCRIPT.read_text()) as chip:

@@ -135,16 +135,17 @@ def set_script_start(xml_bytes: bytes, value: str) -> bytes:
 
 def _check_only_the_start_changed(before: bytes, after: bytes, tag: str, name: str, value: str) -> None:
     old, new = list(ET.fromstring(before).iter()), list(ET.fromstring(after).iter())
+    if len(old) != len(new):
+        raise PackError(f"{MODEL_DESCRIPTION}: the edit changed the elements")
     changed = 0
-    assert len(old) == len(new), "the edit changed the elements"
     for a, b in zip(old, new):
-        assert (a.tag, a.text, a.tail) == (b.tag, b.text, b.tail), f"the edit changed <{a.tag}>"
-        if a.attrib != b.attrib:
-            assert b.tag == tag and b.attrib.get(name) == value and \
-                {k: v for k, v in a.attrib.items() if k != name} == {k: v for k, v in b.attrib.items() if k != name}, \
-                f"the edit changed <{a.tag}> {a.attrib}"
-            changed += 1
-    assert changed <= 1
+        others = [{k: v for k, v in e.attrib.items() if k != name} for e in (a, b)]
+        if (a.tag, a.text, a.tail) != (b.tag, b.text, b.tail) or \
+                (a.attrib != b.attrib and (b.tag != tag or b.attrib.get(name) != value or others[0] != others[1])):
+            raise PackError(f"{MODEL_DESCRIPTION}: the edit changed <{a.tag}> {a.attrib}")
+        changed += a.attrib != b.attrib
+    if changed > 1:
+        raise PackError(f"{MODEL_DESCRIPTION}: the edit changed {changed} elements")
 
 
 def _layout(read: _Read, unzipdir: Path) -> Tuple[Path, List[Tuple[Path, str]]]:
