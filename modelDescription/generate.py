@@ -16,10 +16,12 @@
 
 Usage: generate.py OUTDIR [C source file names of the FMUs' sources/ ...]
 """
+import csv
 import hashlib
 import importlib.util
 import sys
 import uuid
+from fnmatch import fnmatchcase
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -79,7 +81,88 @@ def index_array(declaration: str, keys, size: int):
     return lines + ["};", ""]
 
 
-def fmi2_xml(variables, token: str, sources=()) -> str:
+# ---- dependencies: which knowns each output depends on without a step ----------------------------
+#
+# variables.csv's `dependencies` column, on each output row (inputs and parameters leave it empty):
+# what the output's value can change with when the master sets it and gets the output, no doStep
+# between (a get executes a pending host batch and memory write: instance.c, pmd_commit_ports).
+# "-" means nothing; otherwise knowns separated by spaces, each the name of a row (an array's name
+# without its size, a pattern with * such as `host.*` or `axis*.home`, or `axis{axis}.x`: the
+# output's own axis), with an optional mode:
+#   step:NAME  at communication points only (the Outputs / <Output> lists)
+#   init:NAME  in Initialization Mode only (the InitialUnknowns / <InitialUnknown> lists)
+#   NAME       in both
+# A known is an input, a parameter or the independent variable `time`. At communication points only
+# the inputs can change: the parameters are fixed after initialization and time moves only by a
+# doStep. So the Outputs list inputs, and the parameters and the start time count in Initialization
+# Mode only (FMI 2.0.5, 2.2.8: the knowns there are the inputs, the variables with initial="exact"
+# and the independent variable; FMI 3.0, 2.4.8 the same): they are written `init:NAME`.
+# Every dependency is written with dependenciesKind "dependent": a batch is no linear factor, and
+# FMI allows the other kinds for floating-point unknowns only (and not "fixed", "tunable" or
+# "discrete" in InitialUnknowns).
+
+KNOWN_CAUSALITIES = ("input", "parameter", "independent")
+DEPENDENCY_MODES = ("", "step", "init")
+
+
+def read_dependencies(path: Path):
+    """{family: (row name, dependencies cell)} of every row of a variable table, checked: an
+    output says what it depends on (at least "-"), no other row says anything."""
+    rows = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            cell = (row.get("dependencies") or "").strip()
+            if row["causality"] == "output" and not cell:
+                sys.exit(f"{path.name}: {row['name']}: an output says what it depends on (\"-\" for nothing)")
+            if row["causality"] != "output" and cell:
+                sys.exit(f"{path.name}: {row['name']}: only outputs have dependencies")
+            rows[tables._family(row["name"])] = (row["name"], cell)
+    return rows
+
+
+def resolve_dependencies(variables, rows):
+    """{output name: (knowns at communication points, knowns in Initialization Mode)} for the
+    variables of one FMI version (FMI 2's expanded scalars or FMI 3's whole arrays), each list of
+    known variables in the order of `variables`, from read_dependencies' rows."""
+    knowns = [k for k in variables if k.causality in KNOWN_CAUSALITIES]
+    fixed = {k.name for k in knowns if k.causality != "input"}      # parameters and time
+    out = {}
+    for v in variables:
+        if v.causality != "output":
+            continue
+        row, cell = rows[v.family]
+        step, init = set(), set()
+        for item in ([] if cell == "-" else cell.split()):
+            mode, _, name = item.rpartition(":")
+            if mode not in DEPENDENCY_MODES:
+                sys.exit(f"variables.csv: {row}: {item}: the mode is step: or init:")
+            if "{axis}" in name:
+                if "{axis}" not in row:
+                    sys.exit(f"variables.csv: {row}: {item}: {{axis}} names the output's own axis; it has none")
+                name = name.replace("{axis}", str(v.index + 1))
+            matched = {k.name for k in knowns if fnmatchcase(k.name.split("[")[0], name)}
+            if not matched:
+                sys.exit(f"variables.csv: {row}: {item} names no input, parameter or independent variable")
+            if mode != "init" and matched & fixed:
+                sys.exit(f"variables.csv: {row}: {item}: a parameter or time changes in Initialization Mode "
+                         "only: init:NAME")
+            if mode != "init":
+                step |= matched
+            if mode != "step":
+                init |= matched
+        out[v.name] = ([k for k in knowns if k.name in step], [k for k in knowns if k.name in init])
+    return out
+
+
+def dependency_attributes(references) -> str:
+    """The dependencies and dependenciesKind attributes of one unknown (sorted references)."""
+    if not references:
+        return ' dependencies=""'
+    return (f' dependencies="{" ".join(str(r) for r in references)}"'
+            f' dependenciesKind="{" ".join(["dependent"] * len(references))}"')
+
+
+def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
     lines = [
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{token}"',
@@ -109,10 +192,17 @@ def fmi2_xml(variables, token: str, sources=()) -> str:
         lines.append("    </ScalarVariable>")
         if v.causality == "output":
             outputs.append(i)
+    index = {v.name: i for i, v in enumerate(variables, start=1)}
+
+    def unknown(i, mode):
+        if dependencies is None:
+            return f'      <Unknown index="{i}"/>'
+        knowns = dependencies[variables[i - 1].name][mode]
+        return f'      <Unknown index="{i}"{dependency_attributes(sorted(index[k.name] for k in knowns))}/>'
     lines += ["  </ModelVariables>", "  <ModelStructure>", "    <Outputs>"]
-    lines += [f'      <Unknown index="{i}"/>' for i in outputs]
+    lines += [unknown(i, 0) for i in outputs]
     lines += ["    </Outputs>", "    <InitialUnknowns>"]
-    lines += [f'      <Unknown index="{i}"/>' for i in outputs]
+    lines += [unknown(i, 1) for i in outputs]
     lines += ["    </InitialUnknowns>", "  </ModelStructure>", "</fmiModelDescription>", ""]
     return "\n".join(lines)
 
@@ -130,7 +220,7 @@ def build_description(sources) -> str:
         "</fmiBuildDescription>", ""])
 
 
-def fmi3_xml(variables3, token: str) -> str:
+def fmi3_xml(variables3, token: str, dependencies=None) -> str:
     """FMI 3.0 Co-Simulation: native types, arrays kept whole, the same names
     and value references as FMI 2 (an array's is that of its first element)."""
     lines = [
@@ -158,10 +248,16 @@ def fmi3_xml(variables3, token: str) -> str:
             lines += [head + ">", f'      <Dimension start="{v.count}"/>', f"    </{v.type}>"]
         else:
             lines.append(head + "/>")
-    outputs = [v.vr for v in variables3 if v.causality == "output"]
+    outputs = [v for v in variables3 if v.causality == "output"]
+
+    def unknown(tag, v, mode):
+        if dependencies is None:
+            return f'    <{tag} valueReference="{v.vr}"/>'
+        refs = sorted(k.vr for k in dependencies[v.name][mode])
+        return f'    <{tag} valueReference="{v.vr}"{dependency_attributes(refs)}/>'
     lines += ["  </ModelVariables>", "  <ModelStructure>"]
-    lines += [f'    <Output valueReference="{vr}"/>' for vr in outputs]
-    lines += [f'    <InitialUnknown valueReference="{vr}"/>' for vr in outputs]
+    lines += [unknown("Output", v, 0) for v in outputs]
+    lines += [unknown("InitialUnknown", v, 1) for v in outputs]
     lines += ["  </ModelStructure>", "</fmiModelDescription>", ""]
     return "\n".join(lines)
 
@@ -406,10 +502,12 @@ def main(outdir: Path, sources) -> None:
         fields = tables.read_fields(HERE / "constants.csv")      # refuses a mask that is no field
     except ValueError as e:
         sys.exit(f"constants.csv: {e}")
+    dependency_rows = read_dependencies(HERE / "variables.csv")
     token = instantiation_token()
     files = {
-        "fmi2/modelDescription.xml": fmi2_xml(variables, token, [n for n in sources if n not in FMI3_ONLY]),
-        "fmi3/modelDescription.xml": fmi3_xml(variables3, token),
+        "fmi2/modelDescription.xml": fmi2_xml(variables, token, [n for n in sources if n not in FMI3_ONLY],
+                                              resolve_dependencies(variables, dependency_rows)),
+        "fmi3/modelDescription.xml": fmi3_xml(variables3, token, resolve_dependencies(variables3, dependency_rows)),
         "fmi3/buildDescription.xml": build_description([n for n in sources if n not in FMI2_ONLY]),
         "pmd_constants.h": constants_h(constants, fields),
         "pmd_constants.c": constants_c(constants),
