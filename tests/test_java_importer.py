@@ -1,5 +1,6 @@
 """A second, independent importer: FMI4j (Java, from Maven Central) runs the
-FMI 2.0 FMU with the example script; its CSV equals FMPy's (issue 4)."""
+FMI 2.0 FMU with the example script; its CSV equals FMPy's (issue 4), with the script as the
+parameter or packed inside the FMU with no parameter set (issue 14)."""
 import csv
 import os
 import shutil
@@ -9,6 +10,7 @@ from pathlib import Path
 import pytest
 
 import pmdfmu
+from pmdfmu.pack import pack
 
 ROOT = Path(__file__).resolve().parent.parent
 PROJECT = ROOT / "importers" / "fmi4j"
@@ -22,17 +24,23 @@ needs_java = pytest.mark.skipif(not (shutil.which("java") and shutil.which("mvn"
 
 
 @needs_java
-def test_fmi4j_runs_the_scripted_profile_and_its_csv_equals_fmpys(tmp_path):
+@pytest.mark.parametrize("packed", [False, True], ids=["parameter", "packed"])
+def test_fmi4j_runs_the_scripted_profile_and_its_csv_equals_fmpys(tmp_path, packed):
+    """The script as the `script` parameter, or packed into the FMU (`pmdfmu pack`, README
+    "Scripts") with no parameter set: the same run."""
     subprocess.run(["mvn", "-q", "-B", "-f", str(PROJECT / "pom.xml"), "package", "-DskipTests"], check=True,
                    timeout=900)
     fmu = pmdfmu.default_fmu(2)
     with pmdfmu.Chip(script=SCRIPT) as chip:
         vrs = {n: chip.variables[n].valueReference for n in NAMES}
         fmpy_rows = chip.run(CYCLES, record=NAMES)
+    if packed:
+        fmu = tmp_path / "two_axis.fmu"
+        pack(SCRIPT, fmu)
     out = tmp_path / "fmi4j.csv"
     classpath = f"{PROJECT / 'target' / 'fmi4j-run-1.0.jar'}{os.pathsep}{PROJECT / 'target' / 'lib' / '*'}"
-    subprocess.run(["java", "-cp", classpath, "pmdfmu.Fmi4jRun", str(fmu), str(SCRIPT), "1e-4", str(CYCLES),
-                    str(out)] + [f"{n}={vrs[n]}" for n in NAMES], check=True, timeout=600)
+    subprocess.run(["java", "-cp", classpath, "pmdfmu.Fmi4jRun", str(fmu), "-" if packed else str(SCRIPT), "1e-4",
+                    str(CYCLES), str(out)] + [f"{n}={vrs[n]}" for n in NAMES], check=True, timeout=600)
     rows = list(csv.reader(open(out)))
     assert rows[0] == ["cycle"] + NAMES
     fmi4j = [[int(x) for x in r] for r in rows[1:]]

@@ -11,6 +11,7 @@ import no.ntnu.ihb.fmi4j.importer.fmi2.Fmu;
  * chip cycle: the cycle, then the Integer outputs named on the command line.
  *
  * Usage: Fmi4jRun FMU SCRIPT CYCLE_TIME CYCLES OUT.csv name=valueReference...
+ * SCRIPT "-" sets no script: the FMU runs the profile it holds (pmdfmu pack), if any.
  */
 public final class Fmi4jRun {
     public static void main(String[] args) throws Exception {
@@ -32,7 +33,8 @@ public final class Fmi4jRun {
              PrintWriter csv = new PrintWriter(out)) {
             check(slave.setupExperiment(0.0, 0.0, 0.0), "setupExperiment");
             check(slave.enterInitializationMode(), "enterInitializationMode");
-            check(slave.writeString(new long[] {4}, new String[] {script}).name().equals("OK"), "script");
+            if (!script.equals("-"))
+                check(slave.writeString(new long[] {4}, new String[] {script}).name().equals("OK"), "script");
             check(slave.exitInitializationMode(), "exitInitializationMode");
             csv.println("cycle," + String.join(",", names));
             for (int k = 0; k < cycles; k++) {
