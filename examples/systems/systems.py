@@ -276,7 +276,11 @@ def build_container(out: Path) -> Path:
         model_variables.append(v)
         mappings[v] = [(components[c.component], inner)]
         outputs.append(v)
-    md = ModelDescription(fmiVersion="3.0", modelName="servoLoop", instantiationToken=f"{{{uuid.uuid4()}}}",
+    # the same system, FMUs and parameter values make the same token
+    identity = "\n".join([SSD.read_text(), repr(parameters())] +
+                         [components[n].modelDescription.instantiationToken for n in components])
+    md = ModelDescription(fmiVersion="3.0", modelName="servoLoop",
+                          instantiationToken=f"{{{uuid.uuid5(uuid.NAMESPACE_URL, identity)}}}",
                           description="PMD motion processor (axis 1) and a DC motor with encoder, "
                                       "examples/systems/SystemStructure.ssd",
                           defaultExperiment=DefaultExperiment(startTime="0", stopTime=str(system.stop_time),
