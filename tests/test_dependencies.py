@@ -102,10 +102,6 @@ class Probe:
         base, index = re.fullmatch(r"(.*)\[(\d+)\]", element).groups()
         return self.by_name[base], int(index) - 1
 
-    def value(self, element):
-        v, i = self.variable_of(element)
-        return self.values[v.name] if i is None else self.values[v.name][i]
-
     def write(self, sets):
         """Sets elements (FMI 2 or FMI 3 names alike) with one raw call per variable."""
         changed = {}
@@ -186,7 +182,7 @@ class Probe:
             return [16]
         if name == "script":
             return ["no-such.script"]
-        if name == "axis{axis}.actualPosition":              # 0: where a Reset puts the commanded position
+        if name == "axis{axis}.actualPosition":              # 0: where a Reset puts the commanded position too
             return [x for x in (now + 1000, 0) if x != now]
         return [now + 1000]                                  # memory.address
 
