@@ -194,7 +194,7 @@ def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
             outputs.append(i)
     index = {v.name: i for i, v in enumerate(variables, start=1)}
 
-    def unknown(i, mode):
+    def unknown(i, mode):               # mode 0: Outputs, 1: InitialUnknowns (resolve_dependencies' pair)
         if dependencies is None:
             return f'      <Unknown index="{i}"/>'
         knowns = dependencies[variables[i - 1].name][mode]
@@ -250,7 +250,7 @@ def fmi3_xml(variables3, token: str, dependencies=None) -> str:
             lines.append(head + "/>")
     outputs = [v for v in variables3 if v.causality == "output"]
 
-    def unknown(tag, v, mode):
+    def unknown(tag, v, mode):          # mode 0: <Output>, 1: <InitialUnknown> (resolve_dependencies' pair)
         if dependencies is None:
             return f'    <{tag} valueReference="{v.vr}"/>'
         refs = sorted(k.vr for k in dependencies[v.name][mode])
