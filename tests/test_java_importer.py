@@ -23,13 +23,18 @@ needs_java = pytest.mark.skipif(not (shutil.which("java") and shutil.which("mvn"
                                 reason="java and mvn not installed (CI installs them)")
 
 
-@needs_java
-@pytest.mark.parametrize("packed", [False, True], ids=["parameter", "packed"])
-def test_fmi4j_runs_the_scripted_profile_and_its_csv_equals_fmpys(tmp_path, packed):
-    """The script as the `script` parameter, or packed into the FMU (`pmdfmu pack`, README
-    "Scripts") with no parameter set: the same run."""
+@pytest.fixture(scope="module")
+def fmi4j_run():
+    """importers/fmi4j built once for the module"""
     subprocess.run(["mvn", "-q", "-B", "-f", str(PROJECT / "pom.xml"), "package", "-DskipTests"], check=True,
                    timeout=900)
+
+
+@needs_java
+@pytest.mark.parametrize("packed", [False, True], ids=["parameter", "packed"])
+def test_fmi4j_runs_the_scripted_profile_and_its_csv_equals_fmpys(tmp_path, packed, fmi4j_run):
+    """The script as the `script` parameter, or packed into the FMU (`pmdfmu pack`, README
+    "Scripts") with no parameter set: the same run."""
     fmu = pmdfmu.default_fmu(2)
     with pmdfmu.Chip(script=SCRIPT) as chip:
         vrs = {n: chip.variables[n].valueReference for n in NAMES}
