@@ -289,9 +289,6 @@ def maestro_run(fmi_version, names, tmp_path, packed):
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
 def test_maestro_runs_the_fmu_with_the_script_as_fmpy_does(fmi_version, tmp_path, packed):
-    types = {v.name: v.type for v in fmpy.read_model_description(str(pmdfmu.default_fmu(fmi_version))).modelVariables}
-    if types["memorySize"] == "UInt32":      # until helper deps's Int32 parameters land (requests.md)
-        pytest.xfail("Maestro 3.1.1's FMI 3 initializer knows no UInt32 parameter: 'Not known type'")
     for how, (times, values) in maestro_run(fmi_version, INTEGERS + REALS, tmp_path, packed).items():
         # Maestro's first row is the outputs after initialization, at time 0, as FMPy's
         assert_equals_fmpy(fmi_version, times, values, first_row=0)
