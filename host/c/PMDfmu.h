@@ -1,0 +1,109 @@
+/* The C-Motion library's transport: a chip is an instance of the PMDMotionProcessor FMI 2 FMU,
+   loaded with dlopen and driven through its host port (host.word/wordCount/strobe in,
+   host.ack/error/replyCount/reply out) and its dual-port memory port (memory.*), the path any
+   co-simulation tool takes. Chip time passes as the host talks: each command takes the time its
+   transfer takes on the host interface (host/c/PMDhosttime.h), and the chip runs every cycle of
+   its time grid that falls due meanwhile, so an unchanged polling loop ends.
+
+   POSIX only (dlopen; a .fmu file is unpacked with unzip). Not thread-safe: one thread per chip. */
+#ifndef PMD_FMU_H
+#define PMD_FMU_H
+
+#include <stdint.h>
+#include "PMDtypes.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct PMDHostInterface;    /* host/c/PMDhosttime.h */
+
+/* A message of the FMU's logger: its category ("events", "warnings" ...), its FMI status
+   (0 OK .. 4 Fatal) and its text. */
+typedef void (*PMDFMULogCallback)(void *context, const char *category, int status, const char *message);
+
+/* Called after every chip cycle the transport runs (then it steps the FMU one cycle at a time),
+   with a handle of the chip (axis 1). It may read the chip's outputs (PMDFMU_GetInteger,
+   PMDFMU_GetReal) but send no command. */
+typedef void (*PMDFMUCycleCallback)(void *context, PMDAxisInterface chip);
+
+typedef struct {
+    const char *fmu;            /* the FMI 2 FMU: a .fmu file or its unpacked directory; NULL: the
+                                   environment's PMDFMU_FMU, else the build tree's (PMD_FMU_DEFAULT) */
+    double cycleTime;           /* the FMU parameter cycleTime, s; 0: its default (100 us) */
+    PMDint32 memorySize;        /* the FMU parameter memorySize, 32-bit words; 0: its default (16384) */
+    int loopback;               /* the FMU parameter loopback: actual position = commanded (default 1) */
+    const char *script;         /* the FMU parameter script; NULL: none */
+    PMDFMULogCallback log;      /* NULL: no FMU logging; errors still make a call fail */
+    void *logContext;
+    PMDFMUCycleCallback cycle;  /* NULL: none (whole runs of cycles in one doStep) */
+    void *cycleContext;
+    const struct PMDHostInterface *hostInterface;   /* NULL: the default, parallel16 */
+} PMDFMUOptions;
+
+/* The defaults above; a NULL options pointer means the same. */
+void PMDFMUOptionsInit(PMDFMUOptions *options);
+
+/* Opens a new chip (FMU instance, initialized at time 0) and sets up axis_handle on its axis
+   axisNumber (PMDAxis1 .. PMDAxis4). PMD_ERR_OpeningPort if the FMU cannot be found, unpacked,
+   loaded or instantiated; PMD_ERR_Driver if initialization fails (a bad parameter: the log
+   callback gets the FMU's message). */
+PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const PMDFMUOptions *options);
+
+/* C-Motion's: another axis of the same chip. */
+PMDresult PMDCopyAxisInterface(PMDAxisHandle *dest_handle, const PMDAxisHandle *src_handle, PMDAxis axis);
+
+/* Releases the handle; the chip (FMU instance) is freed with its last handle. */
+PMDresult PMDCloseAxisInterface(PMDAxisHandle *axis_handle);
+
+/* One command through the host port: the instruction word (opcode | axis << 8, axis 0 for a
+   chip-wide command), then args; nreply words come back into reply. The generated calls of
+   c-motion.h use it. */
+PMDresult PMDFMU_Command(PMDAxisInterface axis_intf, PMDuint8 opcode, int chipWide, const PMDuint16 *args,
+                         int nargs, PMDuint16 *reply, int nreply);
+
+/* The dual-port upload (seed 000, 1.3): count 32-bit words at word address offset of the external
+   memory, written through the FMU's memory port and bypassing the processor (no chip time passes:
+   the host writes the RAM itself). transport is the address of a handle's transport_data. */
+PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 count, const PMDuint32 *data);
+
+/* The seed's spelling, PMDPCI_WriteDPRAM(transport, offset, count, data[axis][variable][0]): the
+   fourth argument is the first word of the block itself (an lvalue), whose address the PCI
+   Developer's Kit call takes; the macro passes it, so the seed's line compiles as printed. */
+#define PMDPCI_WriteDPRAM(transport, offset, count, first) \
+    PMDFMU_WriteDPRAM((transport), (offset), (count), &(first))
+
+/* Host time passes without a command (a host program's sleep): the chip runs the cycles due. */
+PMDresult PMDFMU_Wait(PMDAxisInterface axis_intf, PMDuint32 microseconds);
+
+/* C-Motion's sleep, for every open chip. */
+void PMDTaskWait(PMDuint32 milliseconds);
+
+/* Runs the next `cycles` cycles of the chip's grid now (the harness's chip.run); the host clock
+   moves to the time of the last of them if it was behind. */
+PMDresult PMDFMU_RunCycles(PMDAxisInterface axis_intf, PMDuint32 cycles);
+
+/* The host clock, ns since the chip's time 0. */
+PMDresult PMDFMU_GetHostTime(PMDAxisInterface axis_intf, uint64_t *nanoseconds);
+
+/* An FMU variable by its FMI 2 name (variables.csv: "axis1.commandedPosition", "chipTime",
+   "host.interrupt"); Integer and Boolean variables through GetInteger, Real through GetReal.
+   PMD_ERR_InvalidAddress for an unknown name or the wrong type. */
+PMDresult PMDFMU_GetInteger(PMDAxisInterface axis_intf, const char *name, PMDint32 *value);
+PMDresult PMDFMU_GetReal(PMDAxisInterface axis_intf, const char *name, double *value);
+
+/* Two's complement readings of reply words (no implementation-defined conversion). */
+static inline PMDint32 PMDFMU_Int32(PMDuint32 x)
+{
+    return x < 0x80000000u ? (PMDint32)x : (PMDint32)(x - 0x80000000u) - 0x7FFFFFFF - 1;
+}
+static inline PMDint16 PMDFMU_Int16(PMDuint16 x)
+{
+    return (PMDint16)(x < 0x8000u ? (int)x : (int)x - 0x10000);
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
