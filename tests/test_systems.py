@@ -222,7 +222,7 @@ def test_the_loop_initializes_and_runs_without_a_warning_in_libcosim(runs, capfd
 
 
 def test_the_example_runs_as_a_user_would(tmp_path):
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
+    env = dict(os.environ)             # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR)
     out = subprocess.run([sys.executable, str(ROOT / "examples" / "systems" / "systems.py"), "run", "gauss-seidel",
                           "--csv", str(tmp_path / "run.csv")], env=env, capture_output=True, text=True, check=True)
     assert out.stdout == ("gauss-seidel: 3000 cycles; motion complete after cycle 1530; encoder 10000 counts "
