@@ -3,13 +3,22 @@
 for a while (issue 6). A crash leaves its input in fuzz/findings/; copy it into
 fuzz/regressions/TARGET/ and the test suite replays it from then on.
 
-    python fuzz/run.py [--seconds 60] [target ...]      targets: host fmi script sequence
+    python fuzz/run.py [--seconds 60] [--out DIR] [target ...]
+                       targets: host fmi script sequence script_text resource_uri
 
 sequence (fuzz_sequence.c, issue 11) decodes its input as a sequence of legal
 operations through FMI 2 or 3 and checks properties after every call (see the
 head of that file: the input format, the properties, FUZZ_SEQUENCE_TRACE=1 to
 print a crash file's calls); fuzz/sequence_inputs.py writes its hand-built
 seeds and regression inputs.
+
+script_text (fuzz_script_text.c, issue 14) compiles a script given as text
+(the script parameter's value holding a line feed) with a resources folder,
+and checks it against the same bytes compiled as a file there; resource_uri
+(fuzz_resource_uri.c) decodes FMI 2's fmuResourceLocation against a reference
+reading of file URIs and follows a URI of its own folder through
+fmi2Instantiate to the script and tables found there. The head of each file
+gives its input format and properties.
 """
 import argparse
 import subprocess
@@ -18,7 +27,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-TARGETS = ("host", "fmi", "script", "sequence")
+TARGETS = ("host", "fmi", "script", "sequence", "script_text", "resource_uri")
 
 
 def sources(target: str, gen: Path):
@@ -26,6 +35,7 @@ def sources(target: str, gen: Path):
     fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "state.c", "state_fields.c")]
     script = [str(ROOT / "fmu_src" / "script" / "script.c")]
     generated = [str(gen / n) for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")]
+    # fuzz_resource_uri.c includes fmi2.c itself (its URI decoder is static there)
     extra = {"fmi": ["fmi2.c"], "sequence": ["fmi2.c", "fmi3.c"]}.get(target, [])
     extra = [str(ROOT / "fmu_src" / "fmi" / n) for n in extra]
     if target == "sequence":
@@ -38,9 +48,8 @@ def include_flags(gen: Path):
     return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "fmi")] + [f"-I{gen}", f"-I{headers}"]
 
 
-def generated() -> Path:
+def generated(gen: Path = ROOT / "build" / "fuzz" / "generated") -> Path:
     """The generated C files, in a folder of the fuzzer's own (never the CMake build's)."""
-    gen = ROOT / "build" / "fuzz" / "generated"
     subprocess.run([sys.executable, str(ROOT / "modelDescription" / "generate.py"), str(gen)], check=True)
     return gen
 
@@ -66,8 +75,8 @@ def main() -> int:
                         help="where the targets and their growing corpora go (default: build/fuzz)")
     parser.add_argument("targets", nargs="*", default=list(TARGETS))
     args = parser.parse_args()
-    gen = generated()
     out = args.out.resolve()
+    gen = generated(out / "generated")
     out.mkdir(parents=True, exist_ok=True)
     failed = []
     for target in args.targets:
