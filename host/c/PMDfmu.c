@@ -138,9 +138,13 @@ static PMDresult run_due(PMDFMUDevice *d)
         if (!read_grid(d, &g))
             return PMD_ERR_Driver;
         next = to_ns(g.next), cycle = to_ns(g.cycle);
-        if (cycle == 0 || d->hostNs < next)
+#ifdef PMD_HAVE_HOSTTIME
+        due = PMDHostCyclesDue(d->hostNs, next, cycle);
+#else
+        due = cycle == 0 || d->hostNs < next ? 0 : (d->hostNs - next) / cycle + 1;
+#endif
+        if (due == 0)
             return PMD_ERR_OK;
-        due = (d->hostNs - next) / cycle + 1;
         /* with a cycle callback, one cycle per doStep; a script's SetSampleTime may move the grid
            within a longer step, so the loop reads it again and runs what is still due */
         r = step(d, &g, d->options.cycle ? 1 : due);
