@@ -9,6 +9,7 @@ import shutil
 import textwrap
 from ctypes import POINTER, Array, c_double, c_int32, c_size_t, c_uint32, cast
 from dataclasses import dataclass
+from fractions import Fraction
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
@@ -17,8 +18,9 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2ValueReference
 from fmpy.fmi3 import FMU3Slave, fmi3Binary, fmi3ValueReference
 
-from . import tables
+from . import hosttime, tables
 from .fixed import integer, to_word
+from .hosttime import HostInterface
 from .tables import Command, Field
 
 PACKAGE = Path(__file__).resolve().parent
@@ -81,6 +83,8 @@ DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32":
                                for v in tables.read_variables(tables_dir() / "variables.csv")
                                if v.fmi3Type not in ("String", "Binary")}
 CYCLE = ("cycle", np.uint32)
+# the commands by opcode: a timed batch is split into its commands as the FMU's dispatcher splits it
+OPCODES: Dict[int, Command] = {c.opcode: c for c in COMMANDS.values()}
 # FMI 2 reads unsigned registers as signed Integers: these masks give back their bits
 UNSIGNED = {n: (1 << 8 * t.itemsize) - 1 for n, t in DTYPES.items() if t.kind == "u"}
 # the width of each integer variable's word (FMI 3 type), by FMI 2 name and by FMI 3 array name: set()
@@ -312,12 +316,21 @@ class Chip:
 
     parameters are the FMU's (cycleTime, memorySize, loopback, script). log_categories
     enables FMU logging (True for all, or a list such as ["warnings", "events"]);
-    messages collect in chip.messages, errors always."""
+    messages collect in chip.messages, errors always.
+
+    host_interface turns on host time (README "Host time"): None (the default, the
+    kind "none") sends commands in no chip time, as before; a kind's name
+    ("parallel16", "parallel8", "serial", "spi", "fixed", with the defaults of
+    modelDescription/host_interfaces.csv) or a pmdfmu.HostInterface makes each
+    command take its transfer time, the chip running the cycles that fall due."""
 
     def __init__(self, fmi_version: int = 2, fmu: Union[str, Path, None] = None, *,
-                 log_categories: Union[bool, Iterable[str]] = False, **parameters):
+                 log_categories: Union[bool, Iterable[str]] = False,
+                 host_interface: Union[None, str, HostInterface] = None, **parameters):
         if fmi_version not in (2, 3):
             raise ValueError(f"fmi_version is 2 or 3, not {fmi_version}")
+        self.host_interface = hosttime.host_interface(host_interface)
+        self._host_ns = 0           # the host clock, whole ns since the chip's time 0
         self.fmi_version = fmi_version
         self.path = Path(fmu) if fmu else default_fmu(fmi_version)
         self.model_description = read_model_description(str(self.path))
@@ -398,6 +411,7 @@ class Chip:
         initialization (a sweep reuses one instance per worker this way)."""
         self.fmu.reset()
         self.messages.clear()
+        self._host_ns = 0
         if self.fmi_version == 2:
             self.fmu.setupExperiment(startTime=0.0)
         self._initialize(parameters)
@@ -527,6 +541,8 @@ class Chip:
             self.fmu.setFMUState(state)
         finally:
             self.fmu.freeFMUState(state)
+        # the host clock is the harness's, not in the bytes: it goes to the restored chip's last cycle
+        self._host_ns = self._last_cycle_ns() if self.cycles else 0
 
     # ---- host port ----
 
@@ -548,6 +564,12 @@ class Chip:
             words = [to_word(w, 16, f"batch: word {i}") for i, w in enumerate(words)]
         except ValueError as e:
             raise ValueError(f"{e}; nothing was sent") from None
+        if self.host_interface.kind != "none":
+            return self._timed_batch(words)
+        return self._send(words)
+
+    def _send(self, words: List[int]) -> Tuple[int, List[int]]:
+        """One batch through the host port, executed now (checked words)."""
         # a new strobe value, whoever set the last one
         strobe = (self.get("host.strobe") + 1) & 0x7FFFFFFF
         if self.fmi_version == 2:
@@ -684,6 +706,103 @@ class Chip:
             self.fmu.fmi3SetUInt32(self.fmu.component, vrs, 2, words.ctypes.data_as(POINTER(c_uint32)), BATCH_WORDS + 1)
             self.fmu.setInt32([vr["memory.count"], vr["memory.strobe"]], [n, strobe])
 
+    # ---- host time (README "Host time", docs/decisions.md "Host time") ----
+
+    def _grid_ns(self) -> Tuple[int, int]:
+        """(the next cycle's time, the cycle time) in whole ns. The grid's times are whole
+        microseconds (the sample time register is, and the grid starts at 0 and restarts
+        only at its own cycles), so rounding the FMU's doubles to the microsecond is exact."""
+        if self.fmi_version == 2:
+            self.fmu.fmi2GetReal(self.fmu.component, self._grid_vrs, 3, self._grid)
+        else:
+            self.fmu.fmi3GetFloat64(self.fmu.component, self._grid_vrs, 3, self._grid, 3)
+        return round(self._grid[1] * 1e6) * 1000, round(self._grid[2] * 1e6) * 1000
+
+    def _last_cycle_ns(self) -> int:
+        """The time of the last cycle run: the next one's less a cycle."""
+        next_ns, cycle_ns = self._grid_ns()
+        return max(next_ns - cycle_ns, 0)
+
+    def _run_due(self) -> None:
+        """Runs every cycle of the grid whose time is at or before the host clock."""
+        while True:
+            due = hosttime.cycles_due(self._host_ns, *self._grid_ns())
+            if not due:
+                return
+            # one step; if a script's SetSampleTime moved the grid inside it, the loop runs what is still due
+            self._step(due)
+
+    def _timed_batch(self, words: List[int]) -> Tuple[int, List[int]]:
+        """batch() with host time: each command of the batch is a transfer of its own, split as the
+        FMU's dispatcher splits a batch (an unknown opcode, or a command short of data words, ends it
+        with the words after it). Per command: the request's time passes, the cycles due run, the
+        command executes, the reply's time passes. Returns the first error and the replies, as the
+        batch would."""
+        parts, i = [], 0
+        while i < len(words):
+            c = OPCODES.get(field_ex(words[i], "PMDInstructionOpcode"))
+            end = len(words) if c is None or len(words) - i - 1 < c.arg_words else i + 1 + c.arg_words
+            parts.append((words[i:end], c))
+            i = end
+        room = sum(c.reply_words for _w, c in parts if c)
+        if room > BATCH_WORDS:
+            raise ValueError(f"a timed batch's replies may pass host.reply[{BATCH_WORDS}] ({room} words): each "
+                             "command is its own transfer, so the FMU cannot refuse the one that passes; split the "
+                             "batch; nothing was sent")
+        first, replies = 0, []
+        for part, _c in parts:
+            self._host_ns += self.host_interface.request_ns(len(part))
+            self._run_due()
+            error, reply = self._send(part)
+            self._host_ns += self.host_interface.reply_ns(len(reply), error != 0)
+            first = first or error
+            replies += reply
+        return first, replies
+
+    @property
+    def host_time_ns(self) -> int:
+        """The host clock: whole ns since the chip's time 0. Commands (with a host interface
+        other than none), wait() and run() move it."""
+        return self._host_ns
+
+    @property
+    def host_time(self) -> float:
+        """The host clock in s (host_time_ns / 1e9, for printing: the clock itself is whole ns)."""
+        return self._host_ns / hosttime.NS_PER_S
+
+    def wait(self, seconds) -> None:
+        """Host time passes without a command (a host program's sleep): the host clock moves on
+        by `seconds` (an int, float or Fraction; rounded to the nearest ns) and the chip runs
+        every cycle now due. Works with every host interface, none included."""
+        ns = round(Fraction(seconds) * hosttime.NS_PER_S)
+        if ns < 0:
+            raise ValueError(f"wait: {seconds} s is negative")
+        self.wait_ns(ns)
+
+    def wait_ns(self, nanoseconds: int) -> None:
+        """wait() in whole ns."""
+        ns = integer(nanoseconds, "wait_ns: nanoseconds")
+        if ns < 0:
+            raise ValueError(f"wait_ns: {ns} ns is negative")
+        self._host_ns += ns
+        self._run_due()
+
+    def wait_for_interrupt(self, timeout=None) -> bool:
+        """Waits for the host interrupt line (host.interrupt), as a host's interrupt handler
+        would: the chip runs cycle by cycle until one raises it, and the host clock moves to
+        that cycle's time (the host sees the line at once). True at once if it is already
+        high; False if `timeout` s (None: no limit) of host time pass first."""
+        limit = None if timeout is None else self._host_ns + round(Fraction(timeout) * hosttime.NS_PER_S)
+        while not self.get("host.interrupt"):
+            next_ns, _cycle_ns = self._grid_ns()
+            if limit is not None and next_ns > limit:
+                self._host_ns = max(self._host_ns, limit)
+                self._run_due()
+                return False
+            self._step(1)
+            self._host_ns = max(self._host_ns, next_ns)
+        return True
+
     # ---- time ----
 
     def run(self, cycles: int, record: Sequence[str] = ()) -> np.ndarray:
@@ -694,6 +813,13 @@ class Chip:
         an array's element goes by its FMI 2 name ("io.output[3]") in FMI 3 too."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
+        try:
+            return self._run(cycles, record)
+        finally:
+            if cycles:                  # the host clock moves up to the last cycle run
+                self._host_ns = max(self._host_ns, self._last_cycle_ns())
+
+    def _run(self, cycles: int, record: Sequence[str]) -> np.ndarray:
         if not record:
             if cycles:
                 self._step(cycles)
