@@ -381,3 +381,14 @@ def test_set_state_and_reinitialize_put_the_host_clock_at_the_chip():
         assert chip.host_time_ns == (chip.cycles - 1) * CYCLE_NS
         chip.reinitialize()
         assert chip.host_time_ns == 0 and chip.cycles == 0
+
+
+def test_readme_example_prints_what_it_says(capsys):
+    """README "Host time": its example runs and prints the values its comments give."""
+    text = (REPO / "README.md").read_text()
+    section = text.split("## Host time\n", 1)[1].split("\n## ", 1)[0]
+    code = section.split("```python\n", 1)[1].split("```", 1)[0]
+    exec(compile(code, "README.md (Host time)", "exec"), {})
+    printed = capsys.readouterr().out.split("\n")
+    said = [line.split("# -> ", 1)[1].strip() for line in code.split("\n") if "# -> " in line]
+    assert printed[:len(said)] == said
