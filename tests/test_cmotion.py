@@ -340,3 +340,31 @@ def test_the_example_host_program_runs_to_completion(programs):
                          env=dict(os.environ, PMDFMU_FMU=str(pmdfmu.default_fmu(2))))
     assert out.returncode == 0, out.stdout + out.stderr
     assert "profile complete" in out.stdout
+
+
+@pytest.mark.parametrize("host", ["parallel16", "serial"])
+def test_seed_1_5_under_host_time_runs_as_the_python_harness_with_the_same_interface(programs, host):
+    """With host time, the C library and the Python harness (Chip(host_interface=...)) run the
+    same cycles between the same commands: the same lines, cycle by cycle."""
+    cycles, results, errors = run_c(programs, "seed_1_5", "multi", host=host)
+    assert not errors
+    with pmdfmu.Chip(host_interface=host) as chip:
+        t = Transcription(chip)
+        t.setup_buffers(3)
+        t.populate(3)
+        t.initial_moves(range(3))
+        t.wait_at_rest(3)
+        t.start_external(3)
+        t.run(300)
+        for axis in range(3):
+            t.hAxis[axis].SetStopMode(pmdfmu.PMDAbruptStop)
+        t.hAxis[0].MultiUpdate(PMDAxis1Mask + PMDAxis2Mask + PMDAxis3Mask)
+        t.run(50)
+        t.results += [["stopmode", str(a), str(t.hAxis[a].GetStopMode())] for a in range(3)]
+        last = chip.get("chipTime")
+    # the cycles the commands ran are printed by C, not recorded by Python's run(): compare C's
+    # lines at the cycles Python recorded, and the chip time at the end
+    by_cycle = {c[0]: c for c in cycles}
+    assert all(by_cycle[c[0]] == c for c in t.cycles)
+    assert results == t.results
+    assert cycles[-1][0] == last
