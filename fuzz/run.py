@@ -76,7 +76,7 @@ def main() -> int:
     parser.add_argument("targets", nargs="*", default=list(TARGETS))
     args = parser.parse_args()
     out = args.out.resolve()
-    gen = generated(out / "generated")
+    gen = generated(out / "generated-fuzz")     # not generated/: --out may be a CMake build folder, whose differs
     out.mkdir(parents=True, exist_ok=True)
     failed = []
     for target in args.targets:
