@@ -694,11 +694,15 @@ static int compile_line(PmdScript *s, const Where *w, char *text, int64_t *cycle
     s->axes |= (uint8_t)(PMDAxis1Mask << axis);
     if (strcmp(name, "LoadSegmentTable") == 0) {
         char path[MAX_PATH], why[4 * MAX_PATH];
-        const char *table = args[1] + 1;
-        size_t len = strlen(args[1 < nArgs ? 1 : 0]);
+        const char *table;
+        size_t len;
         int64_t address, first;
-        if (nArgs != 4 || args[1][0] != '"' || len < 2 || args[1][len - 1] != '"')
+        if (nArgs != 4)
             return fail(w, "LoadSegmentTable(Axis, \"file.csv\", address, firstBuffer)");
+        len = strlen(args[1]);
+        if (args[1][0] != '"' || len < 2 || args[1][len - 1] != '"')
+            return fail(w, "LoadSegmentTable(Axis, \"file.csv\", address, firstBuffer)");
+        table = args[1] + 1;                 /* only now: args[1] exists */
         args[1][len - 1] = '\0';
         if (strchr(table, '"'))
             return fail(w, "LoadSegmentTable: a quote inside the file name %s\"", args[1]);
