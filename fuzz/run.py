@@ -36,8 +36,10 @@ def sources(target: str, gen: Path):
     script = [str(ROOT / "fmu_src" / "script" / "script.c")]
     generated = [str(gen / n) for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")]
     # fuzz_resource_uri.c includes fmi2.c itself (its URI decoder is static there)
-    extra = {"fmi": ["fmi2.c"], "sequence": ["fmi2.c", "fmi3.c"]}.get(target, [])
-    extra = [str(ROOT / "fmu_src" / "fmi" / n) for n in extra]
+    extra = {"fmi": ["fmi/fmi2.c", "fmi_common/fmi2_not_provided.c"],
+             "sequence": ["fmi/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/fmi3.c",
+                          "fmi_common/fmi3_not_provided.c"]}.get(target, [])
+    extra = [str(ROOT / "fmu_src" / n) for n in extra]
     if target == "sequence":
         generated.append(str(gen / "variables3.c"))
     return [str(ROOT / "fuzz" / f"fuzz_{target}.c"), *chip, *script, *fmi, *extra, *generated]
@@ -45,7 +47,7 @@ def sources(target: str, gen: Path):
 
 def include_flags(gen: Path):
     headers = Path(__import__("fmpy").__file__).parent / "c-code"
-    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "fmi")] + [f"-I{gen}", f"-I{headers}"]
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "fmi", "fmi_common")] + [f"-I{gen}", f"-I{headers}"]
 
 
 def generated(gen: Path = ROOT / "build" / "fuzz" / "generated") -> Path:

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fmi3Functions.h"
+#include "fmi3_not_provided.h"
 #include "instance.h"
 #include "state.h"
 #include "variables3.h"
@@ -37,7 +38,8 @@ static PmdInstance *begin(fmi3Instance c, const char *fn, unsigned states)
     return c ? pmd_begin(((Component *)c)->inst, fn, states) : NULL;
 }
 
-static fmi3Status unsupported(fmi3Instance c, const char *fn, const char *why)
+/* The refusal of every function this FMU does not provide (fmi3_not_provided.c). */
+fmi3Status pmd_fmi3_unsupported(fmi3Instance c, const char *fn, const char *why)
 {
     PmdInstance *inst = begin(c, fn, PMD_ANY_STATE);
     if (inst)
@@ -55,13 +57,6 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCa
     PmdInstance *inst = begin(c, "fmi3SetDebugLogging", PMD_ANY_STATE);
     return inst ? status_of[pmd_set_debug_logging(inst, "fmi3SetDebugLogging", loggingOn, nCategories, categories)]
                 : fmi3Error;
-}
-
-static void refuse_instance(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage,
-                            const char *why)
-{
-    if (logMessage)
-        logMessage(environment, fmi3Error, "errors", why);
 }
 
 /* A copy of resourcePath (FMI 3.0 section 2.3.1: the absolute path of the
@@ -88,17 +83,18 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     (void)visible; (void)earlyReturnAllowed; (void)requiredIntermediateVariables;
     (void)nRequiredIntermediateVariables; (void)intermediateUpdate;
     if (!instanceName) {
-        refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateCoSimulation: instanceName is NULL");
+        pmd_fmi3_refuse_instance(instanceEnvironment, logMessage,
+                                 "fmi3InstantiateCoSimulation: instanceName is NULL");
         return NULL;
     }
     if (!instantiationToken || strcmp(instantiationToken, PMD_INSTANTIATION_TOKEN) != 0) {
-        refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateCoSimulation: the instantiation token "
-                        "does not match this binary's " PMD_INSTANTIATION_TOKEN);
+        pmd_fmi3_refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateCoSimulation: the "
+                                 "instantiation token does not match this binary's " PMD_INSTANTIATION_TOKEN);
         return NULL;
     }
     if (eventModeUsed) {
-        refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateCoSimulation: this FMU has no event "
-                        "mode (hasEventMode is false)");
+        pmd_fmi3_refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateCoSimulation: this FMU "
+                                 "has no event mode (hasEventMode is false)");
         return NULL;
     }
     comp = (Component *)calloc(1, sizeof *comp);
@@ -119,30 +115,6 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         return NULL;
     }
     return comp;
-}
-
-fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String instantiationToken,
-                                          fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
-                                          fmi3InstanceEnvironment instanceEnvironment,
-                                          fmi3LogMessageCallback logMessage)
-{
-    (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
-    refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateModelExchange: Co-Simulation only");
-    return NULL;
-}
-
-fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3String instantiationToken,
-                                               fmi3String resourcePath, fmi3Boolean visible,
-                                               fmi3Boolean loggingOn, fmi3InstanceEnvironment instanceEnvironment,
-                                               fmi3LogMessageCallback logMessage,
-                                               fmi3ClockUpdateCallback clockUpdate,
-                                               fmi3LockPreemptionCallback lockPreemption,
-                                               fmi3UnlockPreemptionCallback unlockPreemption)
-{
-    (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
-    (void)clockUpdate; (void)lockPreemption; (void)unlockPreemption;
-    refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateScheduledExecution: Co-Simulation only");
-    return NULL;
 }
 
 void fmi3FreeInstance(fmi3Instance c)
@@ -475,30 +447,6 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint, fmi
     return status_of[status];
 }
 
-fmi3Status fmi3EnterStepMode(fmi3Instance c)
-{
-    return unsupported(c, "fmi3EnterStepMode", "there is no event mode: initialization leads to step mode");
-}
-
-fmi3Status fmi3EnterEventMode(fmi3Instance c)
-{
-    return unsupported(c, "fmi3EnterEventMode", "hasEventMode is false");
-}
-
-fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
-                                    const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues)
-{
-    (void)vrs; (void)nvr; (void)orders; (void)values; (void)nValues;
-    return unsupported(c, "fmi3GetOutputDerivatives", "maxOutputDerivativeOrder is 0");
-}
-
-fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference clockReference,
-                                      fmi3Float64 activationTime)
-{
-    (void)clockReference; (void)activationTime;
-    return unsupported(c, "fmi3ActivateModelPartition", "Co-Simulation only");
-}
-
 /* ---- FMU state (state.c) ---- */
 
 fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *state)
@@ -539,156 +487,4 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedStat
     return inst ? status_of[pmd_fmu_state_deserialize(inst, "fmi3DeserializeFMUState", serializedState, size,
                                                       state)]
                 : fmi3Error;
-}
-
-/* ---- what this FMU does not provide ---- */
-
-fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance c, fmi3ValueReference valueReference,
-                                               size_t *nDependencies)
-{
-    (void)valueReference; (void)nDependencies;
-    return unsupported(c, "fmi3GetNumberOfVariableDependencies", "dependencies are not declared");
-}
-
-fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference dependent,
-                                       size_t elementIndicesOfDependent[], fmi3ValueReference independents[],
-                                       size_t elementIndicesOfIndependents[], fmi3DependencyKind dependencyKinds[],
-                                       size_t nDependencies)
-{
-    (void)dependent; (void)elementIndicesOfDependent; (void)independents; (void)elementIndicesOfIndependents;
-    (void)dependencyKinds; (void)nDependencies;
-    return unsupported(c, "fmi3GetVariableDependencies", "dependencies are not declared");
-}
-
-#define NO_DERIVATIVE(fn)                                                                                   \
-    fmi3Status fn(fmi3Instance c, const fmi3ValueReference unknowns[], size_t nUnknowns,                    \
-                  const fmi3ValueReference knowns[], size_t nKnowns, const fmi3Float64 seed[], size_t nSeed, \
-                  fmi3Float64 sensitivity[], size_t nSensitivity)                                           \
-    {                                                                                                       \
-        (void)unknowns; (void)nUnknowns; (void)knowns; (void)nKnowns; (void)seed; (void)nSeed;              \
-        (void)sensitivity; (void)nSensitivity;                                                              \
-        return unsupported(c, #fn, "the chip is discrete: no partial derivatives");                         \
-    }
-
-NO_DERIVATIVE(fmi3GetDirectionalDerivative)
-NO_DERIVATIVE(fmi3GetAdjointDerivative)
-
-#define NO_ARGUMENTS(fn, why)                   \
-    fmi3Status fn(fmi3Instance c)               \
-    {                                           \
-        return unsupported(c, #fn, why);        \
-    }
-
-NO_ARGUMENTS(fmi3EnterConfigurationMode, "there are no structural parameters")
-NO_ARGUMENTS(fmi3ExitConfigurationMode, "there are no structural parameters")
-NO_ARGUMENTS(fmi3EvaluateDiscreteStates, "there is no event mode")
-NO_ARGUMENTS(fmi3EnterContinuousTimeMode, "Co-Simulation only")
-
-#define NO_CLOCKS "there are no clocks"
-
-fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
-                                  fmi3Float64 intervals[], fmi3IntervalQualifier qualifiers[])
-{
-    (void)vrs; (void)nvr; (void)intervals; (void)qualifiers;
-    return unsupported(c, "fmi3GetIntervalDecimal", NO_CLOCKS);
-}
-
-fmi3Status fmi3GetIntervalFraction(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
-                                   fmi3UInt64 counters[], fmi3UInt64 resolutions[],
-                                   fmi3IntervalQualifier qualifiers[])
-{
-    (void)vrs; (void)nvr; (void)counters; (void)resolutions; (void)qualifiers;
-    return unsupported(c, "fmi3GetIntervalFraction", NO_CLOCKS);
-}
-
-fmi3Status fmi3GetShiftDecimal(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, fmi3Float64 shifts[])
-{
-    (void)vrs; (void)nvr; (void)shifts;
-    return unsupported(c, "fmi3GetShiftDecimal", NO_CLOCKS);
-}
-
-fmi3Status fmi3GetShiftFraction(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, fmi3UInt64 counters[],
-                                fmi3UInt64 resolutions[])
-{
-    (void)vrs; (void)nvr; (void)counters; (void)resolutions;
-    return unsupported(c, "fmi3GetShiftFraction", NO_CLOCKS);
-}
-
-fmi3Status fmi3SetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
-                                  const fmi3Float64 intervals[])
-{
-    (void)vrs; (void)nvr; (void)intervals;
-    return unsupported(c, "fmi3SetIntervalDecimal", NO_CLOCKS);
-}
-
-fmi3Status fmi3SetIntervalFraction(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
-                                   const fmi3UInt64 counters[], const fmi3UInt64 resolutions[])
-{
-    (void)vrs; (void)nvr; (void)counters; (void)resolutions;
-    return unsupported(c, "fmi3SetIntervalFraction", NO_CLOCKS);
-}
-
-fmi3Status fmi3SetShiftDecimal(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
-                               const fmi3Float64 shifts[])
-{
-    (void)vrs; (void)nvr; (void)shifts;
-    return unsupported(c, "fmi3SetShiftDecimal", NO_CLOCKS);
-}
-
-fmi3Status fmi3SetShiftFraction(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr,
-                                const fmi3UInt64 counters[], const fmi3UInt64 resolutions[])
-{
-    (void)vrs; (void)nvr; (void)counters; (void)resolutions;
-    return unsupported(c, "fmi3SetShiftFraction", NO_CLOCKS);
-}
-
-fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *discreteStatesNeedUpdate,
-                                    fmi3Boolean *terminateSimulation, fmi3Boolean *nominalsOfContinuousStatesChanged,
-                                    fmi3Boolean *valuesOfContinuousStatesChanged, fmi3Boolean *nextEventTimeDefined,
-                                    fmi3Float64 *nextEventTime)
-{
-    (void)discreteStatesNeedUpdate; (void)terminateSimulation; (void)nominalsOfContinuousStatesChanged;
-    (void)valuesOfContinuousStatesChanged; (void)nextEventTimeDefined; (void)nextEventTime;
-    return unsupported(c, "fmi3UpdateDiscreteStates", "there is no event mode");
-}
-
-/* Model Exchange functions: this FMU is Co-Simulation only. */
-#define ME_ONLY "Co-Simulation only"
-
-fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSetFMUStatePriorToCurrentPoint,
-                                       fmi3Boolean *enterEventMode, fmi3Boolean *terminateSimulation)
-{
-    (void)noSetFMUStatePriorToCurrentPoint; (void)enterEventMode; (void)terminateSimulation;
-    return unsupported(c, "fmi3CompletedIntegratorStep", ME_ONLY);
-}
-
-fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 time)
-{
-    (void)time;
-    return unsupported(c, "fmi3SetTime", ME_ONLY);
-}
-
-#define STATE_VECTOR(fn, T)                                              \
-    fmi3Status fn(fmi3Instance c, T values[], size_t n)                  \
-    {                                                                    \
-        (void)values; (void)n;                                           \
-        return unsupported(c, #fn, ME_ONLY);                             \
-    }
-
-STATE_VECTOR(fmi3SetContinuousStates, const fmi3Float64)
-STATE_VECTOR(fmi3GetContinuousStateDerivatives, fmi3Float64)
-STATE_VECTOR(fmi3GetEventIndicators, fmi3Float64)
-STATE_VECTOR(fmi3GetContinuousStates, fmi3Float64)
-STATE_VECTOR(fmi3GetNominalsOfContinuousStates, fmi3Float64)
-
-fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *nEventIndicators)
-{
-    (void)nEventIndicators;
-    return unsupported(c, "fmi3GetNumberOfEventIndicators", ME_ONLY);
-}
-
-fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *nContinuousStates)
-{
-    (void)nContinuousStates;
-    return unsupported(c, "fmi3GetNumberOfContinuousStates", ME_ONLY);
 }

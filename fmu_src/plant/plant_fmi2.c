@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
+#include "fmi2_not_provided.h"
 #include "plant_fmu.h"
 
 typedef struct {
@@ -36,7 +37,8 @@ static PlantInstance *begin(fmi2Component c, const char *fn, unsigned states)
     return c ? plant_begin(((Component *)c)->inst, fn, states) : NULL;
 }
 
-static fmi2Status unsupported(fmi2Component c, const char *fn, const char *why)
+/* The refusal of every function this FMU does not provide (fmi2_not_provided.c). */
+fmi2Status pmd_fmi2_unsupported(fmi2Component c, const char *fn, const char *why)
 {
     PlantInstance *inst = begin(c, fn, PLANT_ANY_STATE);
     if (inst)
@@ -228,46 +230,6 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
     (void)noSetFMUStatePriorToCurrentPoint;
     return inst ? status_of[plant_do_step(inst, "fmi2DoStep", currentCommunicationPoint, communicationStepSize)]
                 : fmi2Error;
-}
-
-fmi2Status fmi2CancelStep(fmi2Component c)
-{
-    return unsupported(c, "fmi2CancelStep", "doStep never runs asynchronously");
-}
-
-#define STATUS_FUNCTION(fn, T)                                                   \
-    fmi2Status fn(fmi2Component c, const fmi2StatusKind s, T *value)            \
-    {                                                                            \
-        (void)s; (void)value;                                                    \
-        return unsupported(c, #fn, "doStep never returns fmi2Pending");          \
-    }
-
-STATUS_FUNCTION(fmi2GetStatus, fmi2Status)
-STATUS_FUNCTION(fmi2GetRealStatus, fmi2Real)
-STATUS_FUNCTION(fmi2GetIntegerStatus, fmi2Integer)
-STATUS_FUNCTION(fmi2GetBooleanStatus, fmi2Boolean)
-STATUS_FUNCTION(fmi2GetStringStatus, fmi2String)
-
-fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                                       const fmi2Integer order[], const fmi2Real value[])
-{
-    (void)vr; (void)nvr; (void)order; (void)value;
-    return unsupported(c, "fmi2SetRealInputDerivatives", "canInterpolateInputs is false");
-}
-
-fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                                        const fmi2Integer order[], fmi2Real value[])
-{
-    (void)vr; (void)nvr; (void)order; (void)value;
-    return unsupported(c, "fmi2GetRealOutputDerivatives", "maxOutputDerivativeOrder is 0");
-}
-
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
-                                        const fmi2ValueReference vKnown_ref[], size_t nKnown,
-                                        const fmi2Real dvKnown[], fmi2Real dvUnknown[])
-{
-    (void)vUnknown_ref; (void)nUnknown; (void)vKnown_ref; (void)nKnown; (void)dvKnown; (void)dvUnknown;
-    return unsupported(c, "fmi2GetDirectionalDerivative", "providesDirectionalDerivative is false");
 }
 
 /* ---- FMU state ---- */
