@@ -207,12 +207,13 @@ def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
     return "\n".join(lines)
 
 
-def build_description(sources) -> str:
-    """FMI 3.0 source FMU: sources/ is flat and holds every header it needs."""
+def build_description(sources, model_identifier: str = MODEL_IDENTIFIER) -> str:
+    """FMI 3.0 source FMU: sources/ is flat and holds every header it needs (also the plant's:
+    generate_plant.py)."""
     return "\n".join([
         '<?xml version="1.0" encoding="UTF-8"?>',
         '<fmiBuildDescription fmiVersion="3.0">',
-        f'  <BuildConfiguration modelIdentifier="{MODEL_IDENTIFIER}">',
+        f'  <BuildConfiguration modelIdentifier="{model_identifier}">',
         '    <SourceFileSet language="C99">',
         *(f'      <SourceFile name="{name}"/>' for name in sources),
         "    </SourceFileSet>",

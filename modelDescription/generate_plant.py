@@ -26,6 +26,8 @@ import uuid
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
+from generate import build_description     # the chip's generator, beside this one
+
 HERE = Path(__file__).resolve().parent
 MODEL_IDENTIFIER = "pmdplant"
 DESCRIPTION = ("DC motor with amplifier, armature resistance, back-EMF, inertia, viscous and Coulomb friction, "
@@ -172,18 +174,6 @@ def fmi3_xml(variables, units, token: str) -> str:
     return "\n".join(lines)
 
 
-def build_description(sources) -> str:
-    return "\n".join([
-        '<?xml version="1.0" encoding="UTF-8"?>',
-        '<fmiBuildDescription fmiVersion="3.0">',
-        f'  <BuildConfiguration modelIdentifier="{MODEL_IDENTIFIER}">',
-        '    <SourceFileSet language="C99">',
-        *(f'      <SourceFile name="{name}"/>' for name in sources),
-        "    </SourceFileSet>",
-        "  </BuildConfiguration>",
-        "</fmiBuildDescription>", ""])
-
-
 def c_double(text: str, default: str) -> str:
     return repr(float(text)) if text else default
 
@@ -250,7 +240,7 @@ def main(outdir: Path, sources) -> None:
     files = {
         "fmi2/modelDescription.xml": fmi2_xml(variables, units, token, [n for n in sources if n not in FMI3_ONLY]),
         "fmi3/modelDescription.xml": fmi3_xml(variables, units, token),
-        "fmi3/buildDescription.xml": build_description([n for n in sources if n not in FMI2_ONLY]),
+        "fmi3/buildDescription.xml": build_description([n for n in sources if n not in FMI2_ONLY], MODEL_IDENTIFIER),
     }
     files["plant_variables.h"], files["plant_variables.c"] = variables_c(variables, token)
     for name, text in files.items():
