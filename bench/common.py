@@ -1,0 +1,53 @@
+"""What every benchmark module shares (issue 16): runs repeated, figures as
+min / median, a report table. Benchmarks, not tests: nothing asserts a time.
+
+A benchmark module (bench/<topic>.py) defines benchmarks(tmp: Path) -> None,
+which measures and calls report(); bench/run.py runs them all."""
+from __future__ import annotations
+
+import statistics
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, List, Tuple
+
+REPO = Path(__file__).resolve().parent.parent
+RUNS = 5                     # every figure: min and median of at least this many runs
+
+rows: List[Tuple[str, ...]] = []
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A time measured RUNS times or more: the least (best) and the median."""
+    min: float
+    median: float
+
+    def per(self, n: float) -> "Figure":
+        """time per item"""
+        return Figure(self.min / n, self.median / n)
+
+    def rate(self, n: float) -> "Figure":
+        """n items over the time: items per second, the best run's first"""
+        return Figure(n / self.min, n / self.median)
+
+    def text(self, scale: float, unit: str, fmt: str = ".2f") -> str:
+        """'best / median unit', each value times scale (1e9: ns, 1e-6: M/s ...)"""
+        return f"{self.min * scale:{fmt}} / {self.median * scale:{fmt}} {unit}"
+
+
+def repeat(f: Callable[[], float], runs: int = RUNS) -> Figure:
+    """f() returns a time in seconds; it runs `runs` times."""
+    values = sorted(f() for _ in range(runs))
+    return Figure(values[0], statistics.median(values))
+
+
+def timed(f: Callable[[], object]) -> float:
+    start = time.perf_counter()
+    f()
+    return time.perf_counter() - start
+
+
+def report(name: str, figure: str, baseline: str, ratio: float, target: str, met: bool) -> None:
+    """One row of the table; ratio from medians (figure / baseline unless the row says otherwise)."""
+    rows.append((name, figure, baseline, f"{ratio:.2f}", target, "yes" if met else "NO"))
