@@ -1,0 +1,126 @@
+/* Chip.run(cycles, record=names) in C (record.h): the loop the harness ran in
+ * Python (a grid read, a doStep of one cycle, one get per FMI type, every
+ * cycle), over the same FMI functions of the FMU with the same arguments, so
+ * that the rows and the FMU's log are the same, at the cost of the FMU's own
+ * calls alone. */
+#include <string.h>
+
+#include "fmi2FunctionTypes.h"
+#include "fmi3FunctionTypes.h"
+#include "record.h"
+
+/* FMPy raises for any status above Warning (Discard, Error, Fatal, Pending) */
+#define FAILED(status) ((status) > 1)
+
+static int get_fmi2(const PmdRecordGroup *g, void *instance)
+{
+    switch (g->type) {
+    case PMD_RECORD_DOUBLE: return ((fmi2GetRealTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
+    case PMD_RECORD_INT32: return ((fmi2GetIntegerTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
+    default: return ((fmi2GetBooleanTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
+    }
+}
+
+static int get_fmi3(const PmdRecordGroup *g, void *instance)
+{
+    switch (g->type) {
+    case PMD_RECORD_DOUBLE:
+        return ((fmi3GetFloat64TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    case PMD_RECORD_INT32: return ((fmi3GetInt32TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    case PMD_RECORD_UINT32:
+        return ((fmi3GetUInt32TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    case PMD_RECORD_UINT16:
+        return ((fmi3GetUInt16TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    case PMD_RECORD_INT16: return ((fmi3GetInt16TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    default: return ((fmi3GetBooleanTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    }
+}
+
+/* The low bytes of a wider integer are its first ones (little-endian: every platform the FMU is built for) */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "record.c copies an integer's low bytes as its first ones: little-endian only"
+#endif
+
+/* A field of a packed row (numpy's structured arrays align nothing): memcpy of a fixed size. */
+static void store(unsigned char *row, const PmdRecordColumn *c)
+{
+    unsigned char *field = row + c->offset;
+    if (c->truth) {
+        int v;
+        memcpy(&v, c->source, sizeof v);
+        *field = v != 0;
+        return;
+    }
+    switch (c->size) {
+    case 8: memcpy(field, c->source, 8); break;
+    case 4: memcpy(field, c->source, 4); break;
+    case 2: memcpy(field, c->source, 2); break;
+    default: memcpy(field, c->source, 1); break;
+    }
+}
+
+static int do_step(int fmi3, PmdRecordFunction fn, void *instance, double now, double step)
+{
+    if (fmi3) {
+        /* FMPy's doStep passes these and ignores what they return; so did the harness */
+        fmi3Boolean event_handling_needed, terminate_simulation, early_return;
+        fmi3Float64 last_successful_time;
+        return ((fmi3DoStepTYPE *)fn)(instance, now, step, fmi3True, &event_handling_needed,
+                                      &terminate_simulation, &early_return, &last_successful_time);
+    }
+    return ((fmi2DoStepTYPE *)fn)(instance, now, step, fmi2True);
+}
+
+static int stopped(PmdRecordStop *stop, size_t cycles, int call, int status)
+{
+    stop->cycles = cycles;
+    stop->call = call;
+    stop->status = status;
+    return 1;
+}
+
+static inline int record(int fmi3, PmdRecordFunction do_step_fn, void *instance, const PmdRecordGroup *groups, size_t n_groups,
+                         size_t grid_group, size_t grid_place, const PmdRecordColumn *columns, size_t n_columns,
+                         void *rows, size_t row_bytes, size_t cycles, PmdRecordStop *stop)
+{
+    const double *grid = (const double *)groups[grid_group].values + grid_place;
+    unsigned char *row = rows;
+    size_t i, g, c;
+    int status;
+    if (cycles == 0)
+        return 0;
+    status = fmi3 ? get_fmi3(&groups[grid_group], instance) : get_fmi2(&groups[grid_group], instance);
+    if (FAILED(status))
+        return stopped(stop, 0, (int)grid_group, status);
+    for (i = 0; i < cycles; i++, row += row_bytes) {
+        /* Chip._step(1): from the last communication point to the end of the next cycle; the
+         * expression as Python evaluated it, (next - now) + 1 * cycleTime */
+        status = do_step(fmi3, do_step_fn, instance, grid[0], (grid[1] - grid[0]) + grid[2]);
+        if (FAILED(status))
+            return stopped(stop, i, -1, status);
+        for (g = 0; g < n_groups; g++) {
+            status = fmi3 ? get_fmi3(&groups[g], instance) : get_fmi2(&groups[g], instance);
+            if (FAILED(status))
+                return stopped(stop, i, (int)g, status);
+        }
+        for (c = 0; c < n_columns; c++)
+            store(row, &columns[c]);
+    }
+    return 0;
+}
+
+int pmd_record_fmi2(PmdRecordFunction do_step_fn, void *instance, const PmdRecordGroup *groups, size_t n_groups,
+                    size_t grid_group, size_t grid_place, const PmdRecordColumn *columns, size_t n_columns,
+                    void *rows, size_t row_bytes, size_t cycles, PmdRecordStop *stop)
+{
+    return record(0, do_step_fn, instance, groups, n_groups, grid_group, grid_place, columns, n_columns, rows,
+                  row_bytes, cycles, stop);
+}
+
+int pmd_record_fmi3(PmdRecordFunction do_step_fn, void *instance, const PmdRecordGroup *groups, size_t n_groups,
+                    size_t grid_group, size_t grid_place, const PmdRecordColumn *columns, size_t n_columns,
+                    void *rows, size_t row_bytes, size_t cycles, PmdRecordStop *stop)
+{
+    return record(1, do_step_fn, instance, groups, n_groups, grid_group, grid_place, columns, n_columns, rows,
+                  row_bytes, cycles, stop);
+}

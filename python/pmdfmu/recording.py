@@ -1,0 +1,103 @@
+"""Chip.run(cycles, record=names) cycle by cycle in the harness's native library
+(native/record.c): per cycle one doStep to the next cycle of the FMU's grid and
+one get per FMI type, through the FMU's own FMI functions with the arguments the
+harness's Python loop passed (Chip._run_stepwise, kept as the reference), the
+columns converted as that loop converted them."""
+from __future__ import annotations
+
+from ctypes import POINTER, Structure, c_int, c_size_t, c_uint32, c_void_p
+from typing import Dict, List, Sequence, Tuple
+
+import numpy as np
+from fmpy.fmi1 import FMICallException
+
+from . import native
+
+# record.h's PmdRecordType, by the FMU's type (FMI 2 and FMI 3 names) and by a row's numpy type
+DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
+SOURCE = {2: {"Real": DOUBLE, "Integer": INT32, "Boolean": INT},
+          3: {"Float64": DOUBLE, "Int32": INT32, "UInt32": UINT32, "UInt16": UINT16, "Int16": INT16,
+              "Boolean": BOOL}}
+CTYPE = {DOUBLE: np.float64, INT32: np.int32, UINT32: np.uint32, UINT16: np.uint16, INT16: np.int16,
+         INT: np.intc, BOOL: np.bool_}
+GRID = ("time", "nextCycleTime", "activeCycleTime")
+
+
+class Group(Structure):
+    _fields_ = [("get", c_void_p), ("vrs", POINTER(c_uint32)), ("n_vrs", c_size_t), ("n_values", c_size_t),
+                ("type", c_int), ("values", c_void_p)]
+
+
+class Column(Structure):
+    _fields_ = [("source", c_void_p), ("offset", c_size_t), ("size", c_size_t), ("truth", c_int)]
+
+
+class Stop(Structure):
+    _fields_ = [("cycles", c_size_t), ("call", c_int), ("status", c_int)]
+
+
+def _function(fmu, name: str):
+    """The ctypes function of the FMU's FMI function `name` that FMPy's own wrapper calls."""
+    return fmu._functions[name]
+
+
+class Plan:
+    """What run(record=names) reads each cycle: one get per FMI type in the harness's order (its
+    getters'), each of its variables once (an FMI 3 array whole), the grid (time, nextCycleTime,
+    activeCycleTime) first among the Reals, the chip time among its type's; and where each row field
+    comes from. Built once per run call; holds the buffers the native loop uses."""
+
+    def __init__(self, chip, where: Dict[str, Tuple[str, int]], dtype: np.dtype):
+        version = chip.fmi_version
+        self.version = version
+        variables = chip.variables
+        wanted = [("cycle", ("chipTime", 0))] + list(where.items())
+        real = "Real" if version == 2 else "Float64"
+        self.names: List[str] = []
+        self._keep = []
+        groups, columns = [], []
+        for t in chip._getters:
+            fields = [(f, w) for f, w in wanted if variables[w[0]].type == t]
+            read = ([*GRID] if t == real else []) + [w[0] for _f, w in fields]
+            if not fields and t != real:
+                continue
+            read = list(dict.fromkeys(read))
+            sizes = [chip._size(r) if version == 3 else 1 for r in read]
+            offsets = np.cumsum([0] + sizes)
+            vrs = (c_uint32 * len(read))(*[chip._vr[r] for r in read])
+            values = np.zeros(int(offsets[-1]), dtype=CTYPE[SOURCE[version][t]])
+            self._keep += [vrs, values]
+            name = f"fmi{version}Get{t}"
+            if t == real:
+                self.grid_group = len(groups)
+            for f, (var, element) in fields:
+                # the field's bytes: a float64 of a Real; the low bytes of an integer as wide or wider (the
+                # Python loop's masks: FMI 2 reads UInt32 and UInt16 as signed Integers); a bool of a bool,
+                # or of an fmi2Boolean (an int: the field is value != 0)
+                field_type, offset = dtype.fields[f][:2]
+                assert field_type.itemsize <= values.itemsize and (field_type.kind == "b") == (values.dtype.kind
+                                                                                               in "b" or t == "Boolean")
+                source = values.ctypes.data + values.itemsize * (int(offsets[read.index(var)]) + element)
+                columns.append(Column(source, offset, field_type.itemsize,
+                                      int(values.dtype != field_type and field_type.kind == "b")))
+            groups.append(Group(native.address(_function(chip.fmu, name)), vrs, len(read), int(offsets[-1]),
+                                SOURCE[version][t], values.ctypes.data))
+            self.names.append(name)
+        self.groups = (Group * len(groups))(*groups)
+        self.columns = (Column * len(columns))(*columns)
+        self.do_step = f"fmi{version}DoStep"
+
+
+def record(chip, plan: Plan, out: np.ndarray) -> None:
+    """Runs len(out) cycles, each one's row into out; raises as FMPy would for a call that failed
+    (FMICallException naming it: the FMU's messages are in chip.messages), the rows before it lost
+    with the array, as in the Python loop."""
+    lib = native.library()
+    fn = lib.pmd_record_fmi2 if plan.version == 2 else lib.pmd_record_fmi3
+    fn.restype = c_int
+    fn.argtypes = [c_void_p, c_void_p, POINTER(Group), c_size_t, c_size_t, c_size_t, POINTER(Column), c_size_t,
+                   c_void_p, c_size_t, c_size_t, POINTER(Stop)]
+    stop = Stop()
+    if fn(native.address(_function(chip.fmu, plan.do_step)), chip.fmu.component, plan.groups, len(plan.groups),
+          plan.grid_group, 0, plan.columns, len(plan.columns), out.ctypes.data, out.dtype.itemsize, len(out), stop):
+        raise FMICallException(function=plan.do_step if stop.call < 0 else plan.names[stop.call], status=stop.status)
