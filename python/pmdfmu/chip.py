@@ -2,11 +2,14 @@
 on axis handles, and cycle-exact runs recorded into numpy arrays."""
 from __future__ import annotations
 
+import atexit
 import inspect
 import os
 import re
 import shutil
+import tempfile
 import textwrap
+import threading
 from ctypes import POINTER, Array, c_double, c_int32, c_size_t, c_uint32, cast
 from dataclasses import dataclass
 from fractions import Fraction
@@ -311,6 +314,100 @@ for _command in COMMANDS.values():
 del _command
 
 
+# ---- an FMU file, unpacked once per process (issue 16): every Chip of the file shares it ----
+
+class _SharedPrototypes:
+    """FMPy's slave classes with the FMI functions' ctypes prototypes taken from the FMU file's
+    _Unpacked.prototypes: FMPy declares them in every constructor by introspecting each of its
+    fmi* methods, which costs about as much as all the rest of a Chip()."""
+
+    def __init__(self, functions: dict, **kwargs):
+        self._shared_functions = functions
+        super().__init__(**kwargs)
+
+    def _loadFunctions(self) -> None:
+        self._functions = self._shared_functions
+
+
+class _Slave2(_SharedPrototypes, FMU2Slave):
+    pass
+
+
+class _Slave3(_SharedPrototypes, FMU3Slave):
+    pass
+
+
+@dataclass
+class _Unpacked:
+    """What every instance of one FMU file shares, made by its first: the folder the file is
+    extracted to (removed when the interpreter exits, never by an instance: the FMU only reads
+    its resources), the model description, the variables by name and their value references,
+    and per FMI version an FMPy slave never instantiated whose library stays loaded for the
+    process, with the FMI functions' prototypes declared on it (an instance's own dlopen and
+    dlclose keep their count, so these function pointers stay valid; the FMU's library holds
+    no mutable static data: every instance's state is its own allocation)."""
+    unzipdir: str
+    model_description: object
+    variables: Dict[str, object]
+    vr: Dict[str, int]
+    prototypes: Dict[int, object]
+
+
+_UNPACKED: Dict[tuple, _Unpacked] = {}       # by the FMU file's identity (_identity)
+_UNPACKED_LOCK = threading.Lock()            # sweeps may make Chips in several threads
+_unpack_root: List[str] = []                 # this process's folder of extracted FMU files, once made
+
+
+def _identity(path: Path) -> tuple:
+    """An FMU file as the cache knows it: a file rewritten in place or replaced (pmdfmu pack
+    writes FMUs) is another file, extracted anew."""
+    resolved = path.resolve()
+    st = resolved.stat()
+    return str(resolved), st.st_size, st.st_mtime_ns, st.st_ino, st.st_dev
+
+
+def _remove_unpack_root(pid: int) -> None:
+    if os.getpid() == pid and _unpack_root:          # not from a forked child: the folder is its parent's
+        shutil.rmtree(_unpack_root[0], ignore_errors=True)
+
+
+def _forget_unpacked() -> None:
+    """A forked child starts its own cache (its parent removes the parent's folder at exit)."""
+    global _UNPACKED_LOCK
+    _UNPACKED.clear()
+    _unpack_root.clear()
+    _UNPACKED_LOCK = threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_unpacked)
+
+
+def _unpack(path: Path, fmi_version: int) -> Tuple[_Unpacked, dict]:
+    """The FMU file's shared part, extracted and read at its first use in this process, and the
+    FMI functions' prototypes for fmi_version."""
+    key = _identity(path)
+    with _UNPACKED_LOCK:
+        unpacked = _UNPACKED.get(key)
+        if unpacked is None:
+            if not _unpack_root:
+                _unpack_root.append(tempfile.mkdtemp(prefix="pmdfmu-fmus-"))
+                atexit.register(_remove_unpack_root, os.getpid())
+            for old in [k for k in _UNPACKED if k[0] == key[0]]:
+                del _UNPACKED[old]          # the file was rewritten; its folder stays until exit (instances use it)
+            description = read_model_description(key[0])
+            unzipdir = extract(key[0], tempfile.mkdtemp(prefix=Path(key[0]).stem + "-", dir=_unpack_root[0]))
+            variables = {v.name: v for v in description.modelVariables}
+            unpacked = _UNPACKED[key] = _Unpacked(str(unzipdir), description, variables,
+                                                  {name: v.valueReference for name, v in variables.items()}, {})
+        prototype = unpacked.prototypes.get(fmi_version)
+        if prototype is None:
+            prototype = unpacked.prototypes[fmi_version] = (FMU2Slave if fmi_version == 2 else FMU3Slave)(
+                guid=unpacked.model_description.guid, unzipDirectory=unpacked.unzipdir,
+                modelIdentifier=unpacked.model_description.coSimulation.modelIdentifier, instanceName="pmd")
+    return unpacked, prototype._functions
+
+
 class Chip:
     """A motion processor in an FMU instance: Chip(fmi_version=2, fmu=None, **parameters).
 
@@ -333,14 +430,17 @@ class Chip:
         self._host_ns = 0           # the host clock, whole ns since the chip's time 0
         self.fmi_version = fmi_version
         self.path = Path(fmu) if fmu else default_fmu(fmi_version)
-        self.model_description = read_model_description(str(self.path))
-        self.variables = {v.name: v for v in self.model_description.modelVariables}
+        # shared by every Chip of this FMU file in the process: read-only
+        unpacked, functions = _unpack(self.path, fmi_version)
+        self.model_description = unpacked.model_description
+        self.variables = unpacked.variables
+        self._vr = unpacked.vr
         self.messages: List[LogMessage] = []
-        self._unzipdir = extract(str(self.path))
-        kwargs = dict(guid=self.model_description.guid, unzipDirectory=self._unzipdir,
+        self._unzipdir = unpacked.unzipdir
+        kwargs = dict(functions=functions, guid=self.model_description.guid, unzipDirectory=self._unzipdir,
                       modelIdentifier=self.model_description.coSimulation.modelIdentifier, instanceName="pmd")
         if fmi_version == 2:
-            self.fmu = FMU2Slave(**kwargs)
+            self.fmu = _Slave2(**kwargs)
             self._callbacks = fmi2CallbackFunctions()
             # Not FMPy's logger proxy: it keeps one process-wide pointer to the last
             # logger, which would dangle once this Chip is gone. The FMU passes no
@@ -351,7 +451,7 @@ class Chip:
             self.fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
             self.fmu.setupExperiment(startTime=0.0)
         else:
-            self.fmu = FMU3Slave(**kwargs)
+            self.fmu = _Slave3(**kwargs)
             self.fmu.instantiate(loggingOn=bool(log_categories),
                                  logMessage=lambda env, status, category, message:
                                  self._record(status, category, message.decode(errors="replace")))
@@ -366,10 +466,8 @@ class Chip:
             self._initialize(parameters)
         except FMUError:
             self.fmu.freeInstance()
-            shutil.rmtree(self._unzipdir, ignore_errors=True)
             self.fmu = None
             raise
-        self._vr = {name: v.valueReference for name, v in self.variables.items()}
         # where the FMU's grid stands, read before every doStep (once a cycle while recording): its last
         # communication point, the next cycle's time and the cycle time, into arrays made once
         self._grid_vrs = (c_uint32 * 3)(*[self._vr[n] for n in ("time", "nextCycleTime", "activeCycleTime")])
@@ -421,7 +519,6 @@ class Chip:
             self.fmu.terminate()
             self.fmu.freeInstance()
             self.fmu = None
-            shutil.rmtree(self._unzipdir, ignore_errors=True)
 
     def __enter__(self) -> "Chip":
         return self
