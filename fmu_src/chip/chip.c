@@ -230,26 +230,71 @@ static inline void check_servo(PmdChip *chip, int n, int ideal)
         check_position_error(chip, n);
 }
 
-/* One chip cycle. In a quiet run (run_is_quiet) nothing couples the axes and
- * the checks that cannot fire are left out: each axis runs its cycle in turn.
- * The servo filter runs once the cycle's events have acted on the axis (a
- * motion error's auto-stop, a breakpoint's motor off or update): its output is
- * the motor command the cycle ends with (docs/decisions.md). In a quiet run
- * the filters of the axes in closedForm (bit n: axis n) are left to
- * pmd_chip_run, which runs all their cycles at once at the end. */
-static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closedForm)
+/* Axis n's columns of a record row: its commanded position, velocity and
+ * acceleration registers. The values are read before any is stored (the
+ * row's int32 words could alias the state's for all the compiler knows). */
+static inline void record_axis(const PmdChip *chip, int n, int32_t *row)
+{
+    const PmdTrajectory *t = &chip->s.axis[n].trajectory;
+    int32_t position = t->position, velocity = pmd_commanded_velocity(t);
+    int32_t acceleration = pmd_commanded_acceleration(t);
+    row[1 + 3 * n] = position;
+    row[2 + 3 * n] = velocity;
+    row[3 + 3 * n] = acceleration;
+}
+
+/* A row holds trajectory registers only: within a quiet run an ideal servo's
+ * filter is brought up to date at the run's end (closed_form_axes), so its
+ * output is not a column a row could show cycle by cycle. */
+void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
+{
+    int n;
+    row[0] = pmd_int32(chip->s.time);
+    for (n = 0; n < PMD_AXES; n++)
+        record_axis(chip, n, row);
+}
+
+/* One chip cycle; with row, the cycle's record row (pmd_chip_record). In a
+ * quiet run (run_is_quiet) nothing couples the axes and the checks that cannot
+ * fire are left out: each axis runs its cycle in turn, and its columns of the
+ * row are final once it has (stored while its registers are at hand). The
+ * servo filter runs once the cycle's events have acted on the axis (a motion
+ * error's auto-stop, a breakpoint's motor off or update): its output is the
+ * motor command the cycle ends with (docs/decisions.md). In a quiet run the
+ * filters of the axes in closedForm (bit n: axis n) are left to pmd_chip_run,
+ * which runs all their cycles at once at the end; so is the sampling of the
+ * axes in unsampled (a subset of closedForm, see pmd_chip_run): an ideal
+ * servo's actual position is its commanded one, and within a quiet run only
+ * its own settle check at rest reads it, which samples first. */
+static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closedForm, unsigned unsampled,
+                         int32_t *row)
 {
     int n;
     chip->s.time = chip->s.nextTime++;
+    if (quiet && row)
+        row[0] = pmd_int32(chip->s.time);
     /* geared axes last: they follow their master's position of this cycle */
     for (n = 0; n < PMD_AXES; n++) {
-        pmd_profile_cycle(chip, n);
-        if (quiet) {
+        pmd_profile_cycle(chip, n);            /* one call site: inlined into the loop */
+        if (unsampled & (1u << n)) {
+            PmdAxis *ax = &chip->s.axis[n];
+            /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only
+             * resets its settle count (check_position_error) */
+            if (ax->motion != PMD_MOTION_IDLE) {
+                ax->settleCount = 0;
+            } else {
+                sample_actual(chip, n, loopback);
+                check_position_error(chip, n);
+            }
+        } else if (quiet) {
             check_servo(chip, n, sample_actual(chip, n, loopback));
             if (!(closedForm & (1u << n)))
                 pmd_servo_cycle(chip, n);
-        } else if (chip->s.axis[n].motion != PMD_MOTION_GEAR)
+        } else if (chip->s.axis[n].motion != PMD_MOTION_GEAR) {
             sample_actual(chip, n, loopback);
+        }
+        if (quiet && row)
+            record_axis(chip, n, row);
     }
     if (quiet) {
         chip->s.updatedAxes = 0;           /* what pmd_trace_cycle does with no trace armed */
@@ -276,26 +321,13 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
     for (n = 0; n < PMD_AXES; n++)
         pmd_servo_cycle(chip, n);
     pmd_trace_cycle(chip);
+    if (row)
+        pmd_chip_record(chip, row);
 }
 
 void pmd_chip_cycle(PmdChip *chip)
 {
     pmd_chip_run(chip, 1, NULL);
-}
-
-/* A row holds trajectory registers only: within a quiet run an ideal servo's
- * filter is brought up to date at the run's end (closed_form_axes), so its
- * output is not a column a row could show cycle by cycle. */
-void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
-{
-    int n;
-    row[0] = pmd_int32(chip->s.time);
-    for (n = 0; n < PMD_AXES; n++) {
-        const PmdTrajectory *t = &chip->s.axis[n].trajectory;
-        row[1 + 3 * n] = t->position;
-        row[2 + 3 * n] = pmd_commanded_velocity(t);
-        row[3 + 3 * n] = pmd_commanded_acceleration(t);
-    }
 }
 
 /* The axes whose servo filter a run may leave to one closed-form step at its
@@ -315,18 +347,24 @@ static unsigned closed_form_axes(const PmdChip *chip, int quiet, int loopback)
     return axes;
 }
 
+/* Cycles of a quiet run leave an ideal servo's actual position (closedForm
+ * axes) unsampled but for its last two: no one else reads it within the run
+ * (cycle()), and its last cycle then sets the previous actual position
+ * (GetActualVelocity) and the actual position as every cycle would have. */
 void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
 {
     int quiet = run_is_quiet(chip), loopback = chip->s.loopback, n;
     unsigned closedForm = closed_form_axes(chip, quiet, loopback);
     int64_t k;
-    for (k = 0; k < cycles; k++) {
-        cycle(chip, quiet, loopback, closedForm);
-        if (record)
-            pmd_chip_record(chip, record + k * PMD_RECORD_WORDS);
-    }
-    if (cycles > 0)
-        for (n = 0; n < PMD_AXES; n++)
-            if (closedForm & (1u << n))
-                pmd_servo_advance(chip, n, cycles);
+    for (k = 0; k < cycles - 1; k++)
+        cycle(chip, quiet, loopback, closedForm, closedForm, record ? record + k * PMD_RECORD_WORDS : NULL);
+    if (cycles <= 0)
+        return;
+    for (n = 0; n < PMD_AXES; n++)
+        if ((closedForm & (1u << n)) && cycles > 1)
+            chip->s.axis[n].actualPosition = chip->s.axis[n].trajectory.position;   /* sampled by cycle cycles - 2 */
+    cycle(chip, quiet, loopback, closedForm, 0, record ? record + k * PMD_RECORD_WORDS : NULL);
+    for (n = 0; n < PMD_AXES; n++)
+        if (closedForm & (1u << n))
+            pmd_servo_advance(chip, n, cycles);
 }
