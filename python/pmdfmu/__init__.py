@@ -17,11 +17,13 @@ from .chip import (COMMANDS, CONSTANTS, FIELDS, Axis, Chip, FMUError, LogMessage
                    field_ex, tables_dir)
 from .hosttime import HostInterface
 from .sweep import Case, SweepResult, read_cases, sweep
+from .verify import VerifyResult, verify, verify_cases
 from .fixed import fixed_0_32, fixed_16_16, fixed_32_0, from_fixed, signed, to_fixed
 
 globals().update(CONSTANTS)
 
 __version__ = "0.1.0"
 __all__ = ["Chip", "Axis", "HostInterface", "PMDError", "FMUError", "LogMessage", "Case", "SweepResult", "read_cases", "sweep",
+           "verify", "verify_cases", "VerifyResult",
            "COMMANDS", "CONSTANTS", "FIELDS", "field_ex", "field_dp", "default_fmu",
            "to_fixed", "from_fixed", "signed", "fixed_16_16", "fixed_0_32", "fixed_32_0", *CONSTANTS]

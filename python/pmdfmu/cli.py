@@ -4,6 +4,8 @@
   pmdfmu demo       run the bundled 2-axis external profile; write CSV and PNG
   pmdfmu run FILE   run a script or a segment table; write CSV and PNG
   pmdfmu sweep CASES  run a table of cases on Dask; write a summary table and plot
+  pmdfmu verify FILE  run a script or table and check it against a golden trace and assertions
+                      (exit 0 pass, 1 fail, 2 malformed input; JUnit XML, Markdown, diff plots)
   pmdfmu pack SCRIPT  write a copy of the FMU that runs the script with no parameter set
   pmdfmu validate   check the FMU with fmpy.validation
   pmdfmu info       the FMU's variables and the chip's commands
@@ -17,20 +19,28 @@ from pathlib import Path
 from typing import List, Optional
 
 from . import profile
-from .chip import COMMANDS, REPO, Chip, default_fmu
+from .chip import COMMANDS, REPO, default_fmu
+
+
+def _write_run(run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Optional[Path], title: str) -> None:
+    """`pmdfmu run`'s outputs: the recording (CSV, or compressed numpy for a .npz name: either is a golden
+    trace for `pmdfmu verify --against`) and the plot."""
+    from .verify import write_recording
+    rec = run.recording
+    if csv_path:
+        write_recording(csv_path, rec)
+        print(f"wrote {csv_path} ({len(rec)} cycles)")
+    if plot_path:
+        profile.plot(plot_path, rec, run.cycle_time, title=title)
+        print(f"wrote {plot_path}")
 
 
 def _run_table(tables, fmu: Optional[str], cycle_time: float, upload: str, max_cycles: int,
-               csv_path: Optional[Path], plot_path: Optional[Path], title: str) -> None:
-    with Chip(fmu=fmu, cycleTime=cycle_time) as chip:
-        rec = profile.run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles)
-    if csv_path:
-        profile.write_csv(csv_path, rec)
-        print(f"wrote {csv_path} ({len(rec)} cycles)")
-    if plot_path:
-        profile.plot(plot_path, rec, cycle_time, title=title)
-        print(f"wrote {plot_path}")
-    for axis in sorted(tables):
+               csv_path: Optional[Path], plot_path: Optional[Path], title: str, fmi_version: int = 2) -> None:
+    run = profile.run_profile(tables, fmu, fmi_version, cycle_time, upload, max_cycles)
+    _write_run(run, csv_path, plot_path, title)
+    rec = run.recording
+    for axis in run.axes:
         n = axis + 1
         print(f"axis {n}: ended at position {int(rec[f'axis{n}.commandedPosition'][-1])} "
               f"after {len(rec)} cycles")
@@ -59,25 +69,19 @@ def cmd_demo(args) -> int:
 
 
 def cmd_run(args) -> int:
-    """A .csv file is a segment table; anything else is a script (README, "Scripts")."""
+    """A .csv file is a segment table; anything else is a script (README, "Scripts"). profile.run_profile
+    runs either, as `pmdfmu verify` does."""
     path = Path(args.file)
     csv_path, plot_path = (Path(args.csv) if args.csv else None), (Path(args.plot) if args.plot else None)
-    if path.suffix.lower() == ".csv":
+    title = f"pmdfmu run {args.file}"
+    if profile.is_segment_table(path):
         _run_table(profile.read_segment_table(path), args.fmu, args.cycle_time, args.upload, args.max_cycles,
-                   csv_path, plot_path, f"pmdfmu run {args.file}")
+                   csv_path, plot_path, title, args.fmi_version)
         return 0
-    with Chip(fmi_version=args.fmi_version, fmu=args.fmu, cycleTime=args.cycle_time, script=path,
-              log_categories=["warnings"]) as chip:
-        rec = profile.run_script(chip, max_cycles=args.max_cycles)
-        for m in chip.messages:
-            print(f"{m.status}: {m.message}", file=sys.stderr)
-        cycle_time = chip.cycle_time
-    if csv_path:
-        profile.write_csv(csv_path, rec)
-        print(f"wrote {csv_path} ({len(rec)} cycles)")
-    if plot_path:
-        profile.plot(plot_path, rec, cycle_time, title=f"pmdfmu run {args.file}")
-        print(f"wrote {plot_path}")
+    run = profile.run_profile(path, args.fmu, args.fmi_version, args.cycle_time, args.upload, args.max_cycles)
+    for m in run.messages:
+        print(f"{m.status}: {m.message}", file=sys.stderr)
+    _write_run(run, csv_path, plot_path, title)
     return 0
 
 
@@ -91,6 +95,94 @@ def cmd_sweep(args) -> int:
     for r in failed:
         print(f"failed: {r['name']}: {r['reason']}")
     return 0
+
+
+# --limit flags of pmdfmu verify: flag -> (assertion key(s), how AXIS=VALUE's value reads)
+LIMIT_FLAGS = {"max_velocity": ("max_velocity",), "max_acceleration": ("max_acceleration",),
+               "max_jerk": ("max_jerk",), "position_window": ("position_min", "position_max"),
+               "final_position": ("final_position",), "complete_by": ("complete_by",)}
+
+
+def _limit_flags(args) -> dict:
+    """The command line's limits in the assertion file's shape (verify.parse_assertions checks them)."""
+    from .verify import InputError
+
+    def table(axis: str) -> str:
+        axis = axis.strip().lower()
+        if axis in ("all", "all_axes"):
+            return "all_axes"
+        name = axis if axis.startswith("axis") else f"axis{axis}"
+        if name not in ("axis1", "axis2", "axis3", "axis4"):
+            raise InputError(f"command line: {axis!r} is not an axis (1..4, axis1..axis4 or all)")
+        return name
+
+    def number(text: str, flag: str):
+        try:
+            return float(text) if any(c in text for c in ".eE") and not text.lower().startswith("0x") \
+                else int(text, 0)
+        except ValueError:
+            raise InputError(f"command line: --{flag.replace('_', '-')}: {text!r} is not a number") from None
+
+    data: dict = {}
+    for flag, keys in LIMIT_FLAGS.items():
+        for item in getattr(args, flag) or ():
+            axis, sep, value = item.partition("=")
+            if not sep:
+                raise InputError(f"command line: --{flag.replace('_', '-')} {item!r}: expected AXIS=VALUE")
+            values = value.split(":") if len(keys) == 2 else [value]
+            if len(values) != len(keys):
+                raise InputError(f"command line: --{flag.replace('_', '-')} {item!r}: expected AXIS=MIN:MAX")
+            data.setdefault(table(axis), {}).update({k: number(v, flag) for k, v in zip(keys, values)})
+    for axis in args.no_events or ():
+        data.setdefault(table(axis), {})["no_events"] = True
+    if args.no_host_errors:
+        data["no_host_errors"] = True
+    if args.units:
+        data["units"] = args.units
+    for item in args.tolerance or ():
+        column, sep, value = item.partition("=")
+        if not sep:
+            raise InputError(f"command line: --tolerance {item!r}: expected COLUMN=TOLERANCE")
+        data.setdefault("tolerance", {})[column.strip()] = number(value, "tolerance")
+    return data
+
+
+def cmd_verify(args) -> int:
+    """Exit status 0: every case passed; 1: a case failed (or did not run); 2: malformed input of verify's
+    own (golden, assertion file, case table, flags) -- docs/verify.md."""
+    from . import verify as _  # noqa: F401  (pmdfmu.verify is the function; the module is in sys.modules)
+    v = sys.modules[__package__ + ".verify"]
+    try:
+        extra = _limit_flags(args)
+        if bool(args.file) == bool(args.cases):
+            raise v.InputError("command line: give a script or segment table, or --cases CASES.csv")
+        if args.cases:
+            if args.against:
+                raise v.InputError("command line: --against names one golden; a case table has a golden column")
+            result = v.verify_cases(args.cases, scheduler=args.scheduler, workers=args.workers,
+                                    assertions=args.assertions, extra=extra, out=args.out)
+        else:
+            if not (args.against or args.assertions or extra.keys() - {"units", "tolerance"}):
+                raise v.InputError("command line: nothing to verify: give --against GOLDEN, --assertions FILE "
+                                   "or a limit (--max-velocity, ...)")
+            result = v.verify(args.file, args.against, v.load_assertions(args.assertions, extra), fmu=args.fmu,
+                              fmi_version=args.fmi_version, cycle_time=args.cycle_time, upload=args.upload,
+                              max_cycles=args.max_cycles, out=args.out)
+    except v.InputError as e:
+        print(f"pmdfmu verify: {e}", file=sys.stderr)
+        return v.EXIT_INPUT
+    print(result.report(), end="")
+    if args.junit:
+        Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.junit).write_text(result.to_junit())
+        print(f"wrote {args.junit}")
+    if args.summary == "-":
+        print(result.to_markdown(), end="")
+    elif args.summary:
+        with open(args.summary, "a") as f:        # GITHUB_STEP_SUMMARY is appended to
+            f.write(result.to_markdown())
+        print(f"wrote {args.summary}")
+    return result.exit_status
 
 
 def cmd_pack(args) -> int:
@@ -159,7 +251,8 @@ def main(argv: Optional[List[str]] = None) -> int:
             p.add_argument("file", help="a script, or a CSV segment table (axis,position,velocity,acceleration,"
                                         "jerk,time in raw units)")
             p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
-            p.add_argument("--csv", help="write the recorded outputs here")
+            p.add_argument("--csv", help="write the recorded outputs here (a golden trace for pmdfmu verify; "
+                                         "a .npz name writes compressed numpy)")
             p.add_argument("--plot", help="write a PNG plot here")
             p.add_argument("--upload", choices=("memory", "command"), default="memory",
                            help="fill the buffers through the dual-port memory or with WriteBuffer")
@@ -171,6 +264,38 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'serial' (default: a local cluster)")
     p.add_argument("--workers", type=int, default=2, help="local cluster processes (default 2)")
     p.set_defaults(func=cmd_sweep)
+
+    p = sub.add_parser("verify", help="check a run against a golden trace and assertions (CI)",
+                       description="Runs a script or segment table as `pmdfmu run` does (or a case table on Dask) "
+                                   "and checks it; exit status 0 pass, 1 fail, 2 malformed input. docs/verify.md.")
+    p.add_argument("file", nargs="?", help="a script, or a CSV segment table (as pmdfmu run)")
+    p.add_argument("--against", metavar="GOLDEN", help="golden trace: `pmdfmu run --csv` output, .csv or .npz")
+    p.add_argument("--assertions", metavar="FILE", help="limits on the trajectory, TOML (docs/verify.md)")
+    p.add_argument("--tolerance", action="append", metavar="COLUMN=TOL",
+                   help="absolute tolerance of a column (default: exact), e.g. axis1.velocity=1e-9")
+    for flag, keys in LIMIT_FLAGS.items():
+        p.add_argument("--" + flag.replace("_", "-"), action="append",
+                       metavar="AXIS=MIN:MAX" if len(keys) == 2 else "AXIS=VALUE",
+                       help=f"AXIS is 1..4 or all; the assertion file's {' and '.join(keys)}")
+    p.add_argument("--no-events", action="append", metavar="AXIS",
+                   help="no motion error or limit event on AXIS (1..4 or all)")
+    p.add_argument("--no-host-errors", action="store_true", help="no command refused with a host I/O error")
+    p.add_argument("--units", choices=("counts", "raw"), help="units of velocity/acceleration/jerk limits "
+                                                               "(default counts: counts/s, counts/s^2, counts/s^3)")
+    p.add_argument("--cases", help="a case table (pmdfmu sweep's, with golden and assertions columns)")
+    p.add_argument("--scheduler", help="with --cases: a Dask scheduler address, or 'serial'")
+    p.add_argument("--workers", type=int, default=2, help="with --cases: local cluster processes (default 2)")
+    p.add_argument("--junit", metavar="FILE", help="write JUnit XML here")
+    p.add_argument("--summary", metavar="FILE", help="append a Markdown summary here ('-': print it), e.g. "
+                                                     "$GITHUB_STEP_SUMMARY")
+    p.add_argument("--out", default="verify-out", help="where a failure's diff plot and recording go "
+                                                       "(default verify-out)")
+    p.add_argument("--fmu", help="FMU to use (default: the built one)")
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
+    p.add_argument("--cycle-time", type=float, default=1e-4, help="chip cycle time in s (default 1e-4)")
+    p.add_argument("--upload", choices=("memory", "command"), default="memory")
+    p.add_argument("--max-cycles", type=int, default=1_000_000)
+    p.set_defaults(func=cmd_verify)
 
     p = sub.add_parser("pack", help="write an FMU that runs a script profile with no parameter set")
     p.add_argument("script", help="the script; the segment tables it loads go with it")

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import csv
 from pathlib import Path
-from typing import Dict, Iterable, List, Optional, Sequence, Tuple
+from dataclasses import dataclass
+from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -109,11 +110,17 @@ def record_outputs(axes: Iterable[int]) -> List[str]:
     return names
 
 
-def run_until_halted(chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_000,
-                     chunk: int = 1000) -> np.ndarray:
-    """Runs and records every cycle until every axis's profile segment number
-    is 0 (seed 000, 1.6), or max_cycles."""
+def _names(axes: Iterable[int], record: Sequence[str]) -> List[str]:
     names = record_outputs(axes)
+    return names + [n for n in dict.fromkeys(record) if n not in names]
+
+
+def run_until_halted(chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_000,
+                     chunk: int = 1000, record: Sequence[str] = ()) -> np.ndarray:
+    """Runs and records every cycle until every axis's profile segment number
+    is 0 (seed 000, 1.6), or max_cycles. record: outputs recorded besides
+    record_outputs(axes) (pmdfmu verify's event status)."""
+    names = _names(axes, record)
     parts = []
     total = 0
     while total < max_cycles:
@@ -139,13 +146,14 @@ def script_axes(chip: Chip) -> List[int]:
 
 
 def run_script(chip: Chip, axes: Optional[Sequence[int]] = None, max_cycles: int = 1_000_000,
-               chunk: int = 1000) -> np.ndarray:
+               chunk: int = 1000, record: Sequence[str] = ()) -> np.ndarray:
     """Records a script's run (the chip was made with script=...): until the time
     of its last @ line has passed (script.lastCycle) and every axis is at rest, or
-    max_cycles. axes: those to record, by default script_axes(chip)."""
+    max_cycles. axes: those to record, by default script_axes(chip); record:
+    outputs recorded besides record_outputs(axes)."""
     axes = script_axes(chip) if axes is None else axes
     last = chip.get("script.lastCycle")
-    names = record_outputs(axes)
+    names = _names(axes, record)
     parts, total = [], 0
     while total < max_cycles:
         part = chip.run(min(chunk, max_cycles - total), record=names)
@@ -160,15 +168,15 @@ def run_script(chip: Chip, axes: Optional[Sequence[int]] = None, max_cycles: int
 
 def run_segment_table(chip: Chip, tables: Dict[int, Sequence[Row]], velocity: int = 0x40000,
                       acceleration: int = 0x1000, upload: str = "memory",
-                      max_cycles: int = 1_000_000) -> np.ndarray:
+                      max_cycles: int = 1_000_000, record: Sequence[str] = ()) -> np.ndarray:
     """The whole of seed 000 for a table: load, move each axis to its first
     position, start all axes together, run to completion. Returns the recorded
-    cycles of the external profile."""
+    cycles of the external profile (record: outputs besides record_outputs)."""
     axes = sorted(tables)
     load_external_profile(chip, tables, upload=upload)
     move_to(chip, {a: tables[a][0][0] for a in axes}, velocity, acceleration)
     start_external_profile(chip, axes)
-    return run_until_halted(chip, axes, max_cycles=max_cycles)
+    return run_until_halted(chip, axes, max_cycles=max_cycles, record=record)
 
 
 def write_csv(path: Path, recorded: np.ndarray) -> None:
@@ -209,3 +217,47 @@ def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "Exte
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
+
+
+# ---- what `pmdfmu run FILE` runs (pmdfmu verify runs the same) ----------------------
+
+@dataclass
+class ProfileRun:
+    """A run of run_profile: the recording, the axes recorded (0..3), the chip's
+    cycle time (s) and the FMU's log messages (warnings: refused script commands)."""
+    recording: np.ndarray
+    axes: List[int]
+    cycle_time: float
+    messages: list
+
+
+def is_segment_table(path: Union[str, Path]) -> bool:
+    """`pmdfmu run`'s rule: a .csv file is a segment table; anything else is a script."""
+    return Path(path).suffix.lower() == ".csv"
+
+
+def run_profile(source: Union[str, Path, Dict[int, Sequence[Row]]], fmu: Optional[str] = None,
+                fmi_version: int = 2, cycle_time: float = 1e-4, upload: str = "memory",
+                max_cycles: int = 1_000_000, record: Sequence[str] = (),
+                parameters: Optional[dict] = None, inspect: Optional[Callable[[Chip], None]] = None) -> ProfileRun:
+    """Runs a script file, a segment table file (is_segment_table) or tables
+    read already, as `pmdfmu run` does: a table on a chip with no script
+    (run_segment_table), a script with script=... (run_script); the FMU's
+    warnings are logged. parameters: further FMU parameters (memorySize, ...);
+    inspect(chip) is called after the run, before the chip closes. The first n
+    rows of a run with max_cycles=n are those of any longer run."""
+    params = dict(parameters or {})
+    params.setdefault("cycleTime", cycle_time)
+    table = not isinstance(source, (str, Path)) or is_segment_table(source)
+    tables = (source if not isinstance(source, (str, Path)) else read_segment_table(Path(source))) if table else None
+    params["script"] = "" if table else str(source)
+    with Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip:
+        if table:
+            axes = sorted(tables)
+            rec = run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles, record=record)
+        else:
+            axes = script_axes(chip)
+            rec = run_script(chip, axes, max_cycles=max_cycles, record=record)
+        if inspect is not None:
+            inspect(chip)
+        return ProfileRun(rec, list(axes), chip.cycle_time, list(chip.messages))

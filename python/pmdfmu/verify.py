@@ -1,0 +1,773 @@
+"""`pmdfmu verify` (issue 17): run a profile as `pmdfmu run` does and check it
+against a golden trace and declarative assertions, with reports a CI pipeline
+acts on (exit status, JUnit XML, Markdown, diff plots). docs/verify.md has the
+formats, units and exit statuses.
+
+    result = pmdfmu.verify("examples/two_axis.script", against="examples/ci/two_axis.golden.npz",
+                           assertions="examples/ci/two_axis.toml")
+    result.passed, result.failures              # Failure: check, axis, column, cycle, values, limit
+    print(result.report()); result.to_junit(); result.to_markdown()
+
+    result = pmdfmu.verify_cases("cases.csv")   # a sweep's case table + golden, assertions columns, on Dask
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import re
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import profile
+from .chip import CONSTANTS, DTYPES, field_ex
+
+EXIT_PASS, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
+NPZ_KEY = "recording"           # the one array of a .npz golden: the structured array `pmdfmu run` records
+PathLike = Union[str, Path]
+
+
+class InputError(ValueError):
+    """A malformed input of verify's own -- a golden trace, an assertion file, a case table, a flag --
+    named with its file and line (exit status 2). The profile under test failing is a failure, not this."""
+
+
+# ---- recordings: CSV (profile.write_csv) and compressed numpy ------------------------------------
+
+def write_recording(path: PathLike, recording: np.ndarray) -> None:
+    """A recording as a golden trace: a .npz name writes np.savez_compressed (the structured array, its
+    column types kept), any other name profile.write_csv's CSV."""
+    path = Path(path)
+    if path.suffix.lower() == ".npz":
+        np.savez_compressed(path, **{NPZ_KEY: recording})
+    else:
+        profile.write_csv(path, recording)
+
+
+def read_recording(path: PathLike) -> np.ndarray:
+    """A golden trace written by write_recording (or `pmdfmu run --csv`): a structured array with a `cycle`
+    column. Raises InputError naming the file, line and column of what it cannot read."""
+    path = Path(path)
+    if path.suffix.lower() == ".npz":
+        return _read_npz(path)
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: cannot read the golden trace: {e}") from None
+    if not rows or not rows[0]:
+        raise InputError(f"{path}:1: no header: a golden trace is `pmdfmu run ... --csv` output")
+    header = [h.strip() for h in rows[0]]
+    _check_columns(path, header)
+    columns: List[list] = [[] for _ in header]
+    for line, row in enumerate(rows[1:], start=2):
+        if len(row) != len(header):
+            raise InputError(f"{path}:{line}: {len(row)} values, the header names {len(header)} columns")
+        for i, cell in enumerate(row):
+            text = cell.strip()
+            try:
+                value = int(text)
+            except ValueError:
+                try:
+                    value = float(text)
+                except ValueError:
+                    raise InputError(f"{path}:{line}: column {i + 1} ({header[i]}): {cell!r} is not a number") \
+                        from None
+            columns[i].append(value)
+    dtype = []
+    for name, values in zip(header, columns):
+        integer = all(isinstance(v, int) for v in values)
+        dtype.append((name, np.int64 if integer else np.float64))
+    out = np.zeros(len(rows) - 1, dtype=dtype)
+    for name, values in zip(header, columns):
+        out[name] = values
+    return out
+
+
+def _read_npz(path: Path) -> np.ndarray:
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            if NPZ_KEY not in data.files:
+                raise InputError(f"{path}: no array {NPZ_KEY!r} (it holds {', '.join(data.files) or 'none'}): "
+                                 "write goldens with `pmdfmu run ... --csv NAME.npz`")
+            rec = data[NPZ_KEY]
+    except InputError:
+        raise
+    except Exception as e:                  # a missing file, not a zip, a damaged member, a pickled array
+        raise InputError(f"{path}: cannot read the golden trace: {e}") from None
+    if rec.dtype.names is None or rec.ndim != 1:
+        raise InputError(f"{path}: {NPZ_KEY!r} is not a recording (a 1-d structured array)")
+    _check_columns(path, list(rec.dtype.names))
+    return rec
+
+
+def _check_columns(path: Path, header: Sequence[str]) -> None:
+    if "cycle" not in header:
+        raise InputError(f"{path}:1: no 'cycle' column: a golden trace is `pmdfmu run ... --csv` output")
+    seen = set()
+    for i, name in enumerate(header, start=1):
+        if name in seen:
+            raise InputError(f"{path}:1: column {i}: {name!r} named twice")
+        seen.add(name)
+        if name != "cycle" and name not in DTYPES:
+            raise InputError(f"{path}:1: column {i}: {name!r} is not an output of the FMU (pmdfmu info lists them)")
+
+
+# ---- assertions ---------------------------------------------------------------------------------
+
+EVENTS = {name[len("PMDEvent"):-len("Mask")]: value for name, value in CONSTANTS.items()
+          if name.startswith("PMDEvent") and name.endswith("Mask")}
+DEFAULT_EVENTS = ("MotionError", "InPositiveLimit", "InNegativeLimit")
+IN_MOTION = CONSTANTS["PMDActivityInMotionMask"]
+INSTRUCTION_ERROR = CONSTANTS["PMDEventInstructionErrorMask"]
+UNITS = ("counts", "raw")
+# per axis: key -> (type, words for messages); the order is the order of the checks
+AXIS_KEYS = {"max_velocity": (float, "max |velocity|"), "max_acceleration": (float, "max |acceleration|"),
+             "max_jerk": (float, "max |jerk|"), "position_min": (int, "position >="),
+             "position_max": (int, "position <="), "final_position": (int, "final position"),
+             "complete_by": (int, "motion complete by cycle"), "no_events": (object, "no events")}
+TOP_KEYS = ("units", "no_host_errors", "tolerance", "all_axes", "axis1", "axis2", "axis3", "axis4")
+# the quantity each limit reads, in each unit: (column, scale of its per-cycle difference, unit text)
+QUANTITIES = {
+    ("velocity", "counts"): ("velocity", None, "counts/s"),
+    ("acceleration", "counts"): ("acceleration", None, "counts/s^2"),
+    ("jerk", "counts"): ("acceleration", "per_s", "counts/s^3"),
+    ("velocity", "raw"): ("commandedVelocity", None, "raw 16.16 counts/cycle"),
+    ("acceleration", "raw"): ("commandedAcceleration", None, "raw 16.16 counts/cycle^2"),
+    ("jerk", "raw"): ("commandedAcceleration", 65536, "raw 0.32 counts/cycle^3"),
+}
+
+
+@dataclass
+class Assertions:
+    """Limits on a trajectory (docs/verify.md): units "counts" or "raw"; axes maps 0..3, or None for every
+    recorded axis (the file's [all_axes]), to {key of AXIS_KEYS: value}; tolerance: column -> absolute
+    tolerance of the golden comparison."""
+    units: str = "counts"
+    no_host_errors: bool = False
+    tolerance: Dict[str, float] = field(default_factory=dict)
+    axes: Dict[Optional[int], Dict[str, object]] = field(default_factory=dict)
+
+    @property
+    def empty(self) -> bool:
+        return not (self.no_host_errors or any(self.axes.values()))
+
+    def for_axes(self, recorded: Sequence[int]) -> Dict[int, Dict[str, object]]:
+        """Each axis's limits: [all_axes] for every recorded axis, an axis's own table over it."""
+        out: Dict[int, Dict[str, object]] = {}
+        for axis in sorted(set(recorded) | {a for a in self.axes if a is not None}):
+            limits = dict(self.axes.get(None, {})) if axis in recorded else {}
+            limits.update(self.axes.get(axis, {}))
+            if limits:
+                out[axis] = limits
+        return out
+
+    def columns(self) -> List[str]:
+        """Outputs these assertions read besides a profile's own: the event status, of every axis."""
+        if self.no_host_errors or any("no_events" in limits for limits in self.axes.values()):
+            return [f"axis{n}.eventStatus" for n in range(1, 5)]
+        return []
+
+
+def _toml():
+    try:
+        import tomllib                      # Python >= 3.11
+    except ImportError:                     # pragma: no cover - Python 3.9/3.10: pyproject's tomli
+        try:
+            import tomli as tomllib
+        except ImportError:
+            raise InputError("assertion files are TOML: Python 3.11+ reads them, or install tomli") from None
+    return tomllib
+
+
+def read_assertions(path: PathLike) -> Assertions:
+    """An assertion file (TOML, docs/verify.md); InputError with the file and line of what is wrong."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: cannot read the assertion file: {e}") from None
+    tomllib = _toml()
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:    # its message ends "(at line L, column C)"
+        raise InputError(f"{path}: not TOML: {e}") from None
+    return parse_assertions(data, str(path), text)
+
+
+def _line_of(text: Optional[str], key: str) -> str:
+    """':L' of the line that first names key (as a key or a [table]) in text, for messages."""
+    if text:
+        pattern = re.compile(r'^\s*(\[\s*)?["\']?' + re.escape(key) + r'["\']?\s*(=|\])')
+        for n, line in enumerate(text.splitlines(), start=1):
+            if pattern.match(line):
+                return f":{n}"
+    return ""
+
+
+def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[str] = None) -> Assertions:
+    """Assertions from the TOML file's shape (a dict); where/text name the source in messages."""
+    def bad(key, message):
+        return InputError(f"{where}{_line_of(text, key.split('.')[-1])}: {key}: {message}")
+
+    result = Assertions()
+    for key, value in data.items():
+        if key not in TOP_KEYS:
+            raise bad(key, f"unknown key (known: {', '.join(TOP_KEYS)})")
+    units = data.get("units", "counts")
+    if units not in UNITS:
+        raise bad("units", f"{units!r} is not one of {', '.join(UNITS)}")
+    result.units = units
+    if not isinstance(data.get("no_host_errors", False), bool):
+        raise bad("no_host_errors", "is true or false")
+    result.no_host_errors = data.get("no_host_errors", False)
+    tolerance = data.get("tolerance", {})
+    if not isinstance(tolerance, Mapping):
+        raise bad("tolerance", 'is a table of column = tolerance ("axis1.velocity" = 1e-9)')
+    for column, value in tolerance.items():
+        if column != "cycle" and column not in DTYPES:
+            raise bad(column, "unknown column: not an output of the FMU (pmdfmu info lists them)")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or value < 0:
+            raise bad(column, f"the tolerance {value!r} is not a number >= 0")
+        result.tolerance[column] = float(value)
+    for name in ("all_axes", "axis1", "axis2", "axis3", "axis4"):
+        if name not in data:
+            continue
+        table = data[name]
+        if not isinstance(table, Mapping):
+            raise bad(name, "is a table ([" + name + "])")
+        axis = None if name == "all_axes" else int(name[4]) - 1
+        limits = {}
+        for key, value in table.items():
+            if key not in AXIS_KEYS:
+                raise bad(f"{name}.{key}", f"unknown limit (known: {', '.join(AXIS_KEYS)})")
+            kind = AXIS_KEYS[key][0]
+            if key == "no_events":
+                if value is True:
+                    value = list(DEFAULT_EVENTS)
+                elif value is False:
+                    continue
+                if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+                    raise bad(f"{name}.{key}", "is true or a list of event names such as [\"MotionError\"]")
+                unknown = [v for v in value if v not in EVENTS]
+                if unknown:
+                    raise bad(f"{name}.{key}", f"unknown event {unknown[0]!r} (known: {', '.join(EVENTS)})")
+            elif isinstance(value, bool) or not isinstance(value, (int, float)) or \
+                    (kind is int and not float(value).is_integer()):
+                raise bad(f"{name}.{key}", f"{value!r} is not {'a whole number' if kind is int else 'a number'}")
+            else:
+                value = kind(value)
+            limits[key] = value
+        if "position_min" in limits and "position_max" in limits and limits["position_min"] > limits["position_max"]:
+            raise bad(f"{name}.position_min", "is above position_max")
+        result.axes[axis] = limits
+    return result
+
+
+def _assertion_data(assertions: Union[None, PathLike, Mapping]) -> Tuple[dict, str, Optional[str]]:
+    """(the file's shape, where it came from, its text) of a file or a dict; a file's own errors raised."""
+    if assertions is None:
+        return {}, "command line", None
+    if isinstance(assertions, Mapping):
+        parse_assertions(assertions)
+        return dict(assertions), "assertions", None
+    path = Path(assertions)
+    read_assertions(path)
+    text = path.read_text()
+    return _toml().loads(text), str(path), text
+
+
+def _merge(base: Mapping, over: Mapping) -> dict:
+    """over's keys over base's; tables merge key by key."""
+    out = dict(base)
+    for key, value in over.items():
+        out[key] = {**out[key], **value} if isinstance(value, Mapping) and isinstance(out.get(key), Mapping) \
+            else value
+    return out
+
+
+def load_assertions(assertions: Union[None, PathLike, Mapping, Assertions],
+                    extra: Optional[Mapping] = None) -> Assertions:
+    """A file, a dict of the file's shape or Assertions, with `extra` (the command line's limits, the
+    file's shape) over it."""
+    if isinstance(assertions, Assertions):
+        if extra:
+            raise TypeError("give an assertion file or a dict to merge limits into")
+        return assertions
+    data, where, text = _assertion_data(assertions)
+    if not extra:
+        return parse_assertions(data, where, text)
+    return parse_assertions(_merge(data, extra), f"{where} with the command line's limits", text)
+
+
+# ---- results -------------------------------------------------------------------------------------
+
+@dataclass
+class Failure:
+    """One violation: what check, where (axis 1..4, column, chip cycle, row of the recording), the values
+    (expected/actual for a golden, value/limit for a limit), and where the profile was (segment number,
+    position buffer and its read index) when the check is a golden's."""
+    check: str
+    message: str
+    axis: Optional[int] = None
+    column: Optional[str] = None
+    cycle: Optional[int] = None
+    row: Optional[int] = None
+    expected: object = None
+    actual: object = None
+    value: object = None
+    limit: object = None
+    segment: Optional[int] = None
+    buffer: Optional[int] = None
+    read_index: Optional[int] = None
+
+
+@dataclass
+class Check:
+    """One JUnit test case: the golden comparison, or one assertion of one axis."""
+    name: str
+    failures: List[Failure] = field(default_factory=list)
+    skipped: Optional[str] = None
+
+    @property
+    def passed(self) -> bool:
+        return not self.failures
+
+
+@dataclass
+class CaseResult:
+    """One script, table or case: its checks; error is why the profile did not run (a failure too)."""
+    name: str
+    source: str
+    cycles: int = 0
+    checks: List[Check] = field(default_factory=list)
+    error: Optional[str] = None
+    plot: Optional[Path] = None
+    actual: Optional[Path] = None
+    seconds: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        return self.error is None and all(c.passed for c in self.checks)
+
+    @property
+    def failures(self) -> List[Failure]:
+        run = [Failure("run", self.error)] if self.error is not None else []
+        return run + [f for c in self.checks for f in c.failures]
+
+
+@dataclass
+class VerifyResult:
+    """What verify() and verify_cases() return: passed, failures, and the reports (verify_report.py)."""
+    cases: List[CaseResult]
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.cases)
+
+    @property
+    def failures(self) -> List[Failure]:
+        return [f for c in self.cases for f in c.failures]
+
+    @property
+    def exit_status(self) -> int:
+        return EXIT_PASS if self.passed else EXIT_FAIL
+
+    def report(self) -> str:
+        from .verify_report import text_report
+        return text_report(self)
+
+    def to_junit(self) -> str:
+        from .verify_report import junit_xml
+        return junit_xml(self)
+
+    def to_markdown(self) -> str:
+        from .verify_report import markdown
+        return markdown(self)
+
+    def __bool__(self) -> bool:
+        return self.passed
+
+
+# ---- the golden comparison ------------------------------------------------------------------------
+
+def _axis_of(column: str) -> Optional[int]:
+    m = re.match(r"axis([1-4])\.", column)
+    return int(m.group(1)) if m else None
+
+
+def _number(value):
+    return float(value) if isinstance(value, (float, np.floating)) else int(value)
+
+
+def _segment(rec: np.ndarray, axis: int, row: int) -> Optional[int]:
+    column = f"axis{axis}.activityStatus"
+    if rec is None or column not in (rec.dtype.names or ()) or row >= len(rec):
+        return None
+    return int(field_ex(int(rec[column][row]), "PMDActivityProfileSegment"))
+
+
+def compare(expected: np.ndarray, actual: np.ndarray, required: Sequence[str] = (),
+            tolerance: Optional[Mapping[str, float]] = None) -> List[Failure]:
+    """The golden comparison, cycle by cycle: every column of the golden (integer columns bit-exact; Reals
+    exact unless tolerance names them: |actual - expected| <= tolerance); required: the columns the run
+    records that the golden must hold; different lengths fail. At most one failure each for columns,
+    values (the first diverging row) and length."""
+    tolerance = tolerance or {}
+    failures = []
+    e_names, a_names = expected.dtype.names, actual.dtype.names
+    lacking = [c for c in required if c not in e_names]
+    if lacking:
+        failures.append(Failure("golden", f"the run records {', '.join(lacking)}, which the golden trace does "
+                                          "not hold (does the profile address other axes now?)",
+                                column=lacking[0], axis=_axis_of(lacking[0])))
+    unrecorded = [c for c in e_names if c not in a_names]
+    if unrecorded:
+        failures.append(Failure("golden", f"the golden trace holds {', '.join(unrecorded)}, which the run did not "
+                                          "record (does the profile address other axes now?)",
+                                column=unrecorded[0], axis=_axis_of(unrecorded[0])))
+    n = min(len(expected), len(actual))
+    first: Dict[str, Tuple[int, int]] = {}
+    for c in e_names:
+        if c not in a_names:
+            continue
+        e, a = expected[c][:n], actual[c][:n]
+        if c in tolerance:
+            bad = ~(np.abs(a.astype(np.float64) - e.astype(np.float64)) <= tolerance[c])
+        elif e.dtype.kind == "f" or a.dtype.kind == "f":
+            e64, a64 = e.astype(np.float64), a.astype(np.float64)
+            bad = (e64 != a64) & ~(np.isnan(e64) & np.isnan(a64))
+        else:
+            bad = e.astype(np.int64) != a.astype(np.int64)
+        if bad.any():
+            first[c] = (int(np.argmax(bad)), int(bad.sum()))
+    if first:
+        row = min(i for i, _ in first.values())
+        at = [c for c in e_names if c in first and first[c][0] == row]
+        column = at[0]
+        e, a = _number(expected[column][row]), _number(actual[column][row])
+        axis = _axis_of(column)
+        text = (f"first difference at cycle {int(actual['cycle'][row])} (row {row}): {column} expected {e!r}, "
+                f"actual {a!r} (difference {a - e:+g})")
+        if len(at) > 1:
+            text += f"; at that cycle also {', '.join(at[1:])}"
+        axes = [axis] if axis else sorted({x for x in map(_axis_of, a_names) if x})
+        where = []
+        for x in axes:
+            seg, golden_seg = _segment(actual, x, row), _segment(expected, x, row)
+            if seg is not None:
+                where.append(f"axis {x} in profile segment {seg}" +
+                             (f" (golden: {golden_seg})" if golden_seg is not None and golden_seg != seg else ""))
+        if where:
+            text += "; " + ", ".join(where)
+        text += f". {column} differs in {first[column][1]} of {n} rows"
+        failures.append(Failure("golden", text, axis=axis, column=column, cycle=int(actual["cycle"][row]), row=row,
+                                expected=e, actual=a, segment=_segment(actual, axis, row) if axis else None))
+    if len(expected) != len(actual):
+        def end(rec):
+            return f"cycle {int(rec['cycle'][-1])}" if len(rec) else "no cycle"
+        failures.append(Failure("length", f"the run recorded {len(actual)} cycles (to {end(actual)}), the golden "
+                                          f"trace {len(expected)} (to {end(expected)})",
+                                cycle=int(actual["cycle"][n - 1]) if n else None, row=n,
+                                expected=len(expected), actual=len(actual)))
+    return failures
+
+
+# ---- the assertions -------------------------------------------------------------------------------
+
+def _limit_check(key: str, axis: int, limit, rec: np.ndarray, units: str, cycle_time: float) -> List[Failure]:
+    n = axis + 1
+    if key in ("max_velocity", "max_acceleration", "max_jerk"):
+        quantity = key[4:]
+        column, scale, unit = QUANTITIES[(quantity, units)]
+        values = rec[f"axis{n}.{column}"].astype(np.float64 if scale != 65536 else np.int64)
+        offset = 0
+        if scale is not None:               # jerk: the recorded acceleration's difference from cycle to cycle
+            values = np.diff(values) * (65536 if scale == 65536 else 1 / cycle_time)
+            offset = 1
+        bad = np.abs(values) > limit
+        if not bad.any():
+            return []
+        i, peak = int(np.argmax(bad)), int(np.argmax(np.abs(values)))
+        return [Failure(key, f"axis {n}: |{quantity}| {abs(_number(values[i])):g} {unit} > {limit:g} at cycle "
+                             f"{int(rec['cycle'][i + offset])} (peak {abs(_number(values[peak])):g} at cycle "
+                             f"{int(rec['cycle'][peak + offset])})",
+                        axis=n, column=f"axis{n}.{column}", cycle=int(rec["cycle"][i + offset]), row=i + offset,
+                        value=_number(values[i]), limit=limit)]
+    position = rec[f"axis{n}.commandedPosition"].astype(np.int64)
+    column = f"axis{n}.commandedPosition"
+    if key in ("position_min", "position_max"):
+        bad = position < limit if key == "position_min" else position > limit
+        if not bad.any():
+            return []
+        i = int(np.argmax(bad))
+        side = "below" if key == "position_min" else "above"
+        return [Failure(key, f"axis {n}: position {int(position[i])} counts {side} the window's "
+                             f"{'minimum' if side == 'below' else 'maximum'} {limit} at cycle {int(rec['cycle'][i])}",
+                        axis=n, column=column, cycle=int(rec["cycle"][i]), row=i, value=int(position[i]), limit=limit)]
+    if key == "final_position":
+        if not len(rec) or position[-1] == limit:
+            return []
+        return [Failure(key, f"axis {n}: final position {int(position[-1])} counts at cycle "
+                             f"{int(rec['cycle'][-1])}, expected {limit}",
+                        axis=n, column=column, cycle=int(rec["cycle"][-1]), row=len(rec) - 1,
+                        value=int(position[-1]), limit=limit)]
+    if key == "complete_by":
+        if not len(rec):
+            return []
+        status = rec[f"axis{n}.activityStatus"].astype(np.int64)
+        rest = (rec[f"axis{n}.commandedVelocity"] == 0) & ((status & IN_MOTION) == 0) & (position == position[-1])
+        if not rest[-1]:
+            return [Failure(key, f"axis {n}: still in motion at the end of the run (cycle {int(rec['cycle'][-1])}); "
+                                 f"it must be complete by cycle {limit}",
+                            axis=n, cycle=int(rec["cycle"][-1]), row=len(rec) - 1, limit=limit)]
+        moving = np.nonzero(~rest)[0]
+        i = int(moving[-1]) + 1 if len(moving) else 0
+        if int(rec["cycle"][i]) <= limit:
+            return []
+        return [Failure(key, f"axis {n}: motion complete at cycle {int(rec['cycle'][i])} (at rest at {int(position[i])} "
+                             f"counts from then on), after cycle {limit}",
+                        axis=n, cycle=int(rec["cycle"][i]), row=i, value=int(rec["cycle"][i]), limit=limit)]
+    if key == "no_events":
+        column = f"axis{n}.eventStatus"
+        if column not in rec.dtype.names:
+            return []                       # check_assertions skips the check
+        mask = 0
+        for name in limit:
+            mask |= EVENTS[name]
+        status = rec[column].astype(np.int64)
+        bad = (status & mask) != 0
+        if not bad.any():
+            return []
+        i = int(np.argmax(bad))
+        names = [name for name in limit if status[i] & EVENTS[name]]
+        return [Failure(key, f"axis {n}: event {', '.join(names)} at cycle {int(rec['cycle'][i])} "
+                             f"(event status 0x{int(status[i]):04X})",
+                        axis=n, column=column, cycle=int(rec["cycle"][i]), row=i, value=int(status[i]),
+                        limit=", ".join(limit))]
+    raise KeyError(key)
+
+
+def _check_name(axis: int, key: str, limit, units: str) -> str:
+    words = AXIS_KEYS[key][1]
+    if key in ("max_velocity", "max_acceleration", "max_jerk"):
+        return f"axis{axis + 1} {words} <= {limit:g} {QUANTITIES[(key[4:], units)][2]}"
+    if key == "no_events":
+        return f"axis{axis + 1} no event {', '.join(limit)}"
+    return f"axis{axis + 1} {words} {limit}"
+
+
+def check_assertions(spec: Assertions, rec: Optional[np.ndarray], axes: Sequence[int], cycle_time: float,
+                     messages: Sequence = (), warnings: Optional[int] = None) -> List[Check]:
+    """One Check per assertion and axis. messages: the FMU's log (a refused script command is a host I/O
+    error); warnings: a count of warnings instead (a batch's row)."""
+    checks = []
+    for axis, limits in spec.for_axes(axes).items():
+        for key in AXIS_KEYS:
+            if key not in limits:
+                continue
+            check = Check(_check_name(axis, key, limits[key], spec.units))
+            if axis not in axes:
+                check.failures.append(Failure(key, f"axis {axis + 1} was not recorded: the profile addresses "
+                                                   f"axes {', '.join(str(a + 1) for a in axes)}", axis=axis + 1))
+            elif key == "no_events" and f"axis{axis + 1}.eventStatus" not in rec.dtype.names:
+                check.skipped = f"axis{axis + 1}.eventStatus was not recorded (a sweep's case records no event status)"
+            else:
+                check.failures += _limit_check(key, axis, limits[key], rec, spec.units, cycle_time)
+            checks.append(check)
+    if spec.no_host_errors:
+        check = Check("no host I/O error")
+        refused = [m.message for m in messages if "host I/O error" in m.message or m.status == "Error"]
+        first = None
+        for a in axes:
+            column = f"axis{a + 1}.eventStatus"
+            if rec is not None and column in rec.dtype.names:
+                bad = (rec[column].astype(np.int64) & INSTRUCTION_ERROR) != 0
+                if bad.any() and (first is None or int(np.argmax(bad)) < first[1]):
+                    first = (a + 1, int(np.argmax(bad)))
+        if refused or first:
+            where = (f"first at cycle {int(rec['cycle'][first[1]])} (axis {first[0]}'s event status "
+                     "InstructionError)") if first else "during the run"
+            text = f"{len(refused) or 'a'} command(s) refused with a host I/O error, {where}"
+            if refused:
+                text += ": " + "; ".join(refused[:5]) + ("; ..." if len(refused) > 5 else "")
+            check.failures.append(Failure("no_host_errors", text, axis=first[0] if first else None,
+                                          cycle=int(rec["cycle"][first[1]]) if first else None,
+                                          row=first[1] if first else None, value=len(refused)))
+        elif warnings:
+            check.failures.append(Failure("no_host_errors", f"{warnings} warning(s) logged during the run "
+                                                            "(a refused script command logs one)", value=warnings))
+        checks.append(check)
+    return checks
+
+
+# ---- one profile ----------------------------------------------------------------------------------
+
+def _locate(failure: Failure, run_profile_args: dict, axes: Sequence[int]) -> None:
+    """Where the profile was at the failure's row: runs the profile again up to that row (a run of n cycles
+    gives the first n rows of any longer run) and asks the chip for the axis's position buffer
+    (GetBufferFunction) and its read index (GetBufferReadIndex); adds them to the message."""
+    found = {}
+
+    def inspect(chip):
+        for a in axes:
+            ax = chip.axis(a)
+            buffer = ax.GetBufferFunction(CONSTANTS["PMDBufferFunctionPosition"])
+            if 0 <= buffer < 0x8000:
+                found[a + 1] = (buffer, ax.GetBufferReadIndex(buffer))
+
+    try:
+        profile.run_profile(**{**run_profile_args, "max_cycles": failure.row + 1, "inspect": inspect})
+    except Exception:                       # the report says what it can without
+        return
+    wanted = [failure.axis] if failure.axis else sorted(found)
+    parts = [f"axis {x} position buffer {found[x][0]} read index {found[x][1]}" for x in wanted if x in found]
+    if failure.axis in found:
+        failure.buffer, failure.read_index = found[failure.axis]
+    if parts:
+        failure.message += f"; after that cycle {', '.join(parts)}"
+
+
+def _name_of(source) -> str:
+    return Path(str(source)).stem if isinstance(source, (str, Path)) else "profile"
+
+
+def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], golden_path: Optional[Path],
+            required: Sequence[str], out: Optional[PathLike], cycle_time: float) -> None:
+    """On a golden's failure: the diff plot and the run's own recording, in the golden's format, to `out`."""
+    failing = [f for c in result.checks if c.name == "golden trace" for f in c.failures]
+    if out is None or golden is None or not failing:
+        return
+    from .verify_report import plot_diff
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    columns = list(dict.fromkeys([*required, *golden.dtype.names]))
+    result.actual = out / f"{result.name}.actual{golden_path.suffix.lower() if golden_path else '.csv'}"
+    write_recording(result.actual, rec[[c for c in columns if c in rec.dtype.names]])
+    result.plot = out / f"{result.name}.diff.png"
+    plot_diff(result.plot, golden, rec, failing, cycle_time, title=f"pmdfmu verify {result.name}: {result.source}")
+
+
+def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathLike] = None,
+           assertions: Union[None, PathLike, Mapping, Assertions] = None,
+           tolerance: Optional[Mapping[str, float]] = None, *, fmu: Optional[str] = None, fmi_version: int = 2,
+           cycle_time: float = 1e-4, upload: str = "memory", max_cycles: int = 1_000_000,
+           parameters: Optional[dict] = None, out: Optional[PathLike] = None, name: Optional[str] = None,
+           locate: bool = True) -> VerifyResult:
+    """Runs a script or segment table (a path, or tables) exactly as `pmdfmu run` does and checks it against
+    the golden trace `against` (a .csv or .npz recording) and `assertions` (a TOML file, a dict of its shape
+    or Assertions); tolerance: column -> absolute tolerance (over the file's). On a golden's failure it
+    writes NAME.diff.png and NAME.actual.csv|npz to `out` (None: no files). Raises InputError for a
+    malformed golden or assertion file; a profile that does not run is a failed case."""
+    spec = load_assertions(assertions, {"tolerance": dict(tolerance)} if tolerance else None)
+    golden = read_recording(against) if against is not None else None
+    name = name or _name_of(source)
+    args = dict(source=source, fmu=fmu, fmi_version=fmi_version, cycle_time=cycle_time, upload=upload,
+                parameters=parameters)
+    extra = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()), *spec.columns()]))
+    result = CaseResult(name, str(source) if isinstance(source, (str, Path)) else "segment tables")
+    start = time.perf_counter()
+    try:
+        run = profile.run_profile(**args, max_cycles=max_cycles, record=extra)
+    except Exception as e:
+        result.error = " ".join(str(e).split()) or type(e).__name__
+        result.seconds = time.perf_counter() - start
+        return VerifyResult([result])
+    result.seconds = time.perf_counter() - start
+    _evaluate(result, run.recording, run.axes, run.cycle_time, golden, against, spec, messages=run.messages,
+              locate_args={**args, "record": extra} if locate else None, out=out)
+    return VerifyResult([result])
+
+
+def _evaluate(result: CaseResult, rec: np.ndarray, axes: Sequence[int], cycle_time: float,
+              golden: Optional[np.ndarray], golden_path: Optional[PathLike], spec: Assertions, messages=(),
+              warnings: Optional[int] = None, locate_args: Optional[dict] = None, out=None) -> None:
+    result.cycles = len(rec)
+    required = ["cycle", *profile.record_outputs(axes)]
+    if golden is not None:
+        check = Check("golden trace", compare(golden, rec, required, spec.tolerance))
+        for f in check.failures:
+            if f.check == "golden" and f.row is not None and locate_args is not None:
+                _locate(f, locate_args, axes)
+        result.checks.append(check)
+    result.checks += check_assertions(spec, rec, axes, cycle_time, messages, warnings)
+    _finish(result, rec, golden, Path(golden_path) if golden_path else None, required, out, cycle_time)
+
+
+# ---- batches: a sweep's case table ----------------------------------------------------------------
+
+@dataclass(frozen=True)
+class VerifyCase:
+    """A sweep case (pmdfmu.Case) with its golden trace and assertion file (either may be None)."""
+    case: object
+    golden: Optional[str] = None
+    assertions: Optional[str] = None
+
+
+def read_verify_cases(path: PathLike) -> List[VerifyCase]:
+    """A case table as `pmdfmu sweep` reads it (sweep.read_cases), with two more columns: golden and
+    assertions, paths relative to the table's folder (blank: none)."""
+    from .sweep import read_cases
+    path = Path(path)
+    try:
+        cases = read_cases(path)
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except (OSError, UnicodeDecodeError, ValueError, KeyError) as e:
+        raise InputError(f"{path}: cannot read the case table: {e}") from None
+
+    def resolve(row, key):
+        value = (row.get(key) or "").strip()
+        return str((path.parent / value).resolve()) if value else None
+    return [VerifyCase(case, resolve(row, "golden"), resolve(row, "assertions")) for case, row in zip(cases, rows)]
+
+
+def _case_record_field() -> bool:
+    from .sweep import Case
+    return "record" in {f.name for f in dataclasses.fields(Case)}
+
+
+def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, workers: int = 2,
+                 assertions: Union[None, PathLike, Mapping] = None, extra: Optional[Mapping] = None,
+                 out: Optional[PathLike] = None, locate: bool = True) -> VerifyResult:
+    """Runs a case table (read_verify_cases) with pmdfmu.sweep (scheduler: as sweep's) and checks each case
+    against its golden and assertions (the case's file, over `assertions` and `extra`, the command line's).
+    One CaseResult per case; every golden and assertion file is read before anything runs."""
+    from .sweep import sweep
+    vcases = read_verify_cases(cases) if isinstance(cases, (str, Path)) else list(cases)
+    base = _merge(_assertion_data(assertions)[0], extra or {})
+    parse_assertions(base, "command line")
+    specs, goldens = [], []
+    for vc in vcases:
+        data, where, text = _assertion_data(vc.assertions)
+        specs.append(parse_assertions(_merge(base, data), where, text))     # the case's file over the common
+        goldens.append(read_recording(vc.golden) if vc.golden else None)
+    run_cases = []
+    record_field = _case_record_field()
+    for vc, spec, golden in zip(vcases, specs, goldens):
+        extra_columns = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()),
+                                            *spec.columns()]))
+        run_cases.append(dataclasses.replace(vc.case, record=tuple(extra_columns)) if record_field else vc.case)
+    start = time.perf_counter()
+    swept = sweep(run_cases, scheduler=scheduler, workers=workers)
+    seconds = (time.perf_counter() - start) / max(1, len(run_cases))
+    results = []
+    for vc, case, spec, golden, row in zip(vcases, run_cases, specs, goldens, swept.rows):
+        source = case.script or case.table
+        result = CaseResult(case.name, str(source), seconds=seconds)
+        results.append(result)
+        if row["status"] != "ok":
+            result.error = row["reason"]
+            continue
+        rec = swept.recordings[case.name]
+        params = dict(case.parameters)
+        axes = [a for a in range(4) if row.get(f"axis{a + 1}.finalPosition", "") != ""]    # the profile's own
+        locate_args = dict(source=source, fmu=case.fmu, fmi_version=case.fmi_version,
+                           cycle_time=float(params.pop("cycleTime", 1e-4)), upload="memory",
+                           parameters=params, record=getattr(case, "record", ())) if locate else None
+        _evaluate(result, rec, axes, float(dict(case.parameters).get("cycleTime", 1e-4)), golden, vc.golden, spec,
+                  warnings=row.get("warnings"), locate_args=locate_args, out=out)
+    return VerifyResult(results)
