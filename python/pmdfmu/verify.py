@@ -210,8 +210,8 @@ def _line_of(text: Optional[str], key: str) -> str:
 
 def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[str] = None) -> Assertions:
     """Assertions from the TOML file's shape (a dict); where/text name the source in messages."""
-    def bad(key, message):
-        return InputError(f"{where}{_line_of(text, key.split('.')[-1])}: {key}: {message}")
+    def bad(key, message, named=None):        # named: the key as the file writes it, to find its line
+        return InputError(f"{where}{_line_of(text, named or key.split('.')[-1])}: {key}: {message}")
 
     result = Assertions()
     for key, value in data.items():
@@ -229,9 +229,9 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
         raise bad("tolerance", 'is a table of column = tolerance ("axis1.velocity" = 1e-9)')
     for column, value in tolerance.items():
         if column != "cycle" and column not in DTYPES:
-            raise bad(column, "unknown column: not an output of the FMU (pmdfmu info lists them)")
+            raise bad(column, "unknown column: not an output of the FMU (pmdfmu info lists them)", column)
         if isinstance(value, bool) or not isinstance(value, (int, float)) or value < 0:
-            raise bad(column, f"the tolerance {value!r} is not a number >= 0")
+            raise bad(column, f"the tolerance {value!r} is not a number >= 0", column)
         result.tolerance[column] = float(value)
     for name in ("all_axes", "axis1", "axis2", "axis3", "axis4"):
         if name not in data:
