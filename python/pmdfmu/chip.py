@@ -21,7 +21,7 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2ValueReference
 from fmpy.fmi3 import FMU3Slave, fmi3Binary, fmi3ValueReference
 
-from . import hosttime, tables
+from . import hosttime, recording, tables
 from .fixed import integer, to_word
 from .hosttime import HostInterface
 from .tables import Command, Field
@@ -922,17 +922,31 @@ class Chip:
                 self._step(cycles)
             return np.zeros(0, dtype=[CYCLE])
         names = list(record)
-        # where each column is read: (variable, element); in FMI 3 an array's element ("io.output[3]")
-        # is read with its whole array
+        where, dtype = self._columns(names)
+        if self.fmi_version == 3 and set(names) <= set(RECORDED):
+            return self._run_recorded(cycles, names)
+        out = np.zeros(cycles, dtype=dtype)
+        recording.record(self, recording.Plan(self, where, dtype), out)
+        return out
+
+    def _columns(self, names: List[str]) -> Tuple[Dict[str, Tuple[str, int]], np.dtype]:
+        """run(record=names)'s checks, before any cycle runs: where each column is read (variable,
+        element: in FMI 3 an array's element, "io.output[3]", is read with its whole array) and the
+        rows' type (a name given twice is numpy's ValueError)."""
         where = {}
         for name in names:
             element = _array_element(self.variables, name) if self.fmi_version == 3 else None
             if name not in DTYPES or (name not in self.variables and not element):
                 raise ValueError(f"run: record={name!r} is not a variable of the FMU (pmdfmu info lists them)")
             where[name] = element or (name, 0)
-        if self.fmi_version == 3 and set(names) <= set(RECORDED):
-            return self._run_recorded(cycles, names)
-        out = np.zeros(cycles, dtype=[CYCLE] + [(n, DTYPES[n]) for n in names])
+        return where, np.dtype([CYCLE] + [(n, DTYPES[n]) for n in names])
+
+    def _run_stepwise(self, cycles: int, record: Sequence[str]) -> np.ndarray:
+        """run(cycles, record) cycle by cycle in Python through FMPy: what run() did before the native
+        loop (pmdfmu.recording), kept as its reference (tests/test_native_record.py)."""
+        names = list(record)
+        where, dtype = self._columns(names)
+        out = np.zeros(cycles, dtype=dtype)
         # one get per FMI type a cycle: the type's variables (each array once), and each column's
         # place among the values it returns
         groups = []

@@ -75,8 +75,6 @@ class Plan:
                 # Python loop's masks: FMI 2 reads UInt32 and UInt16 as signed Integers); a bool of a bool,
                 # or of an fmi2Boolean (an int: the field is value != 0)
                 field_type, offset = dtype.fields[f][:2]
-                assert field_type.itemsize <= values.itemsize and (field_type.kind == "b") == (values.dtype.kind
-                                                                                               in "b" or t == "Boolean")
                 source = values.ctypes.data + values.itemsize * (int(offsets[read.index(var)]) + element)
                 columns.append(Column(source, offset, field_type.itemsize,
                                       int(values.dtype != field_type and field_type.kind == "b")))
