@@ -5,19 +5,26 @@ an FMI version - and collects each case's recorded outputs and summary figures
 (final position, peak velocity and acceleration per axis, time to finish,
 errors) into one result table, with a summary plot.
 
-    result = pmdfmu.sweep(pmdfmu.read_cases("cases.csv"))           # a local cluster
+    result = pmdfmu.sweep(pmdfmu.read_cases("cases.csv"))           # a local cluster, for this call
+    result = pmdfmu.sweep(cases, scheduler=client)                   # a running cluster: its Client
     result = pmdfmu.sweep(cases, scheduler="tcp://10.0.0.5:8786")    # any Dask scheduler
     result = pmdfmu.sweep(cases, scheduler="serial")                 # in this process
     result.write("out/")            # summary.csv, one CSV per case, summary.png
 
-Each Dask worker keeps one FMU instance per FMU and FMI version and reuses it
-across cases: fmiReset, the case's parameters, a new initialization. A case
+Each Dask worker keeps its FMU instances (one per FMU file, FMI version and
+thread running cases) and reuses them across cases, and across sweeps on the
+same cluster: fmiReset, the case's parameters, a new initialization. A case
 that fails (a bad script, a refused initialization, a run that raises) becomes
 a failed row with its reason; the sweep goes on.
+
+Cases go to the workers in batches of consecutive cases, a few batches per
+worker thread (BATCHES_PER_THREAD): one task per case would cost the
+scheduler more than a short case itself.
 """
 from __future__ import annotations
 
 import csv
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple, Union
@@ -25,9 +32,10 @@ from typing import Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import profile
-from .chip import Chip
+from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
+BATCHES_PER_THREAD = 4      # tasks per worker thread: enough to even out cases of unequal length
 
 
 @dataclass(frozen=True)
@@ -68,18 +76,32 @@ def read_cases(path: Union[str, Path]) -> List[Case]:
 
 # ---- one case, in a worker -----------------------------------------------------
 
-_instances: Dict[Tuple[Optional[str], int], Chip] = {}     # this worker's instances, reused across cases
+# this process's idle instances, reused across cases: by FMU file (its identity: a rewritten file is
+# another FMU) and FMI version; a case takes one for itself (a worker may run cases in several threads)
+_idle: Dict[Tuple[tuple, int], List[Chip]] = {}
+_idle_lock = threading.Lock()
 
 
-def _instance(case: Case, parameters: dict) -> Chip:
-    key = (case.fmu, case.fmi_version)
-    chip = _instances.get(key)
+def _instance(case: Case, parameters: dict) -> Tuple[Tuple[tuple, int], Chip]:
+    """An instance for the case, initialized with its parameters, and its key (to give it back)."""
+    key = (_identity(Path(case.fmu) if case.fmu else default_fmu(case.fmi_version)), case.fmi_version)
+    with _idle_lock:
+        idle = _idle.get(key)
+        chip = idle.pop() if idle else None
     if chip is None:
         chip = Chip(fmi_version=case.fmi_version, fmu=case.fmu, log_categories=["warnings"], **parameters)
-        _instances[key] = chip
     else:
-        chip.reinitialize(**parameters)
-    return chip
+        try:
+            chip.reinitialize(**parameters)
+        except Exception:
+            _give_back(key, chip)
+            raise
+    return key, chip
+
+
+def _give_back(key: Tuple[tuple, int], chip: Chip) -> None:
+    with _idle_lock:
+        _idle.setdefault(key, []).append(chip)
 
 
 def _summary(case: Case, rec: np.ndarray, axes: Sequence[int], messages) -> dict:
@@ -102,18 +124,19 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
     try:
         if bool(case.script) == bool(case.table):
             raise ValueError("a case names a script or a table")
-        if case.script:
-            parameters["script"] = case.script
-            chip = _instance(case, parameters)
-            axes = profile.script_axes(chip)
-            rec = profile.run_script(chip, axes, max_cycles=case.max_cycles)
-        else:
-            parameters["script"] = ""
-            chip = _instance(case, parameters)
-            tables = profile.read_segment_table(Path(case.table))
-            axes = sorted(tables)
-            rec = profile.run_segment_table(chip, tables, max_cycles=case.max_cycles)
-        return _summary(case, rec, axes, chip.messages), rec
+        parameters["script"] = case.script or ""
+        key, chip = _instance(case, parameters)
+        try:
+            if case.script:
+                axes = profile.script_axes(chip)
+                rec = profile.run_script(chip, axes, max_cycles=case.max_cycles)
+            else:
+                tables = profile.read_segment_table(Path(case.table))
+                axes = sorted(tables)
+                rec = profile.run_segment_table(chip, tables, max_cycles=case.max_cycles)
+            return _summary(case, rec, axes, chip.messages), rec
+        finally:
+            _give_back(key, chip)
     except Exception as e:                      # the sweep goes on: the row says why
         reason = " ".join(str(e).split()) or type(e).__name__
         row = {"name": case.name, "status": "failed", "reason": reason, "cycles": 0, "warnings": 0}
@@ -168,25 +191,68 @@ class SweepResult:
         plt.close(fig)
 
 
-def sweep(cases: Sequence[Case], scheduler: Optional[str] = None, workers: int = 2) -> SweepResult:
-    """Runs the cases: scheduler None starts a local cluster of `workers`
-    processes, "serial" runs them in this process, anything else is a Dask
-    scheduler address (or a distributed.Client)."""
+def run_cases(cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]]:
+    """run_case for each case, in order: one Dask task of a sweep."""
+    return [run_case(c) for c in cases]
+
+
+def _batches(cases: Sequence[Case], threads: int) -> List[List[Case]]:
+    """The cases in consecutive batches, at most BATCHES_PER_THREAD per thread, of sizes differing by
+    one at most (8 cases on 2 threads: 8 batches of one; 64: 8 of 8)."""
+    count = max(1, min(len(cases), BATCHES_PER_THREAD * threads))
+    return [list(cases[i * len(cases) // count:(i + 1) * len(cases) // count]) for i in range(count)]
+
+
+def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]]:
+    threads = sum(client.nthreads().values()) or 1
+    batches = client.map(run_cases, _batches(cases, threads), pure=False)
+    return [result for batch in client.gather(batches) for result in batch]
+
+
+def _current_client(address: str):
+    """This process's default distributed.Client if it is connected to the scheduler at address
+    (e.g. one the user made with Client(address)), else None."""
+    from distributed import Client
+    from distributed.comm import resolve_address
+    try:
+        current = Client.current()
+    except ValueError:                      # no client in this process
+        return None
+    return current if current.status == "running" and current.scheduler.address == resolve_address(address) \
+        else None
+
+
+def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResult:
+    """Runs the cases; scheduler says where:
+
+    - None: a local cluster of `workers` processes, started for this call and closed after it;
+    - "serial": in this process;
+    - a distributed.Client (of a LocalCluster, SLURMCluster, ...): its cluster, reused as it is
+      (the client stays open; its workers keep their FMU instances from sweep to sweep);
+    - a scheduler address ("tcp://10.0.0.5:8786"): that cluster, through this process's default
+      Client if it is connected there, else through a client opened for this call.
+
+    A running cluster saves each call the cluster's start (seconds) and the workers' first FMU
+    instance: pass its Client (or its address) for repeated sweeps."""
     names = [c.name for c in cases]
     if len(set(names)) != len(names):
         raise ValueError("case names must be unique")
-    if scheduler == "serial":
-        results = [run_case(c) for c in cases]
-    else:
+    if isinstance(scheduler, str) and scheduler == "serial":
+        results = run_cases(cases)
+    elif scheduler is None:
         from dask.distributed import Client, LocalCluster
-        if scheduler is None:
-            with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                              dashboard_address=None) as cluster, Client(cluster) as client:
-                results = client.gather(client.map(run_case, list(cases), pure=False))
-        elif isinstance(scheduler, str):
-            with Client(scheduler) as client:
-                results = client.gather(client.map(run_case, list(cases), pure=False))
+        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                          dashboard_address=None) as cluster, Client(cluster) as client:
+            results = _on(client, cases)
+    elif isinstance(scheduler, str):
+        current = _current_client(scheduler)
+        if current is not None:
+            results = _on(current, cases)
         else:
-            results = scheduler.gather(scheduler.map(run_case, list(cases), pure=False))
+            from dask.distributed import Client
+            with Client(scheduler, set_as_default=False) as client:
+                results = _on(client, cases)
+    else:
+        results = _on(scheduler, cases)
     return SweepResult([row for row, _ in results],
                        {row["name"]: rec for row, rec in results if rec is not None})

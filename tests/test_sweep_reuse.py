@@ -1,0 +1,119 @@
+"""Sweeps on a running cluster (issue 16, target 6): a Client passed in is used as it is and
+stays open, its workers keep their FMU instances from sweep to sweep; an address goes through
+this process's client of it; cases in batches and in several threads of a worker give exactly
+the serial run; a rewritten FMU file is a new instance. README "Sweeps on Dask": its example runs."""
+import importlib
+import shutil
+import zipfile
+from pathlib import Path
+
+import dask.distributed
+import numpy as np
+import pytest
+from dask.distributed import Client, LocalCluster
+
+import pmdfmu
+from pmdfmu.sweep import Case
+
+sweeps = importlib.import_module("pmdfmu.sweep")         # the module (pmdfmu.sweep is also the function)
+
+REPO = Path(__file__).resolve().parent.parent
+EXAMPLES = REPO / "examples"
+
+
+@pytest.fixture(scope="module")
+def cases():
+    return pmdfmu.read_cases(EXAMPLES / "cases.csv")
+
+
+@pytest.fixture(scope="module")
+def serial(cases):
+    return pmdfmu.sweep(cases, scheduler="serial")
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """One worker process running cases in two threads at once."""
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, dashboard_address=None) as c:
+        yield c
+
+
+def same(result, expected):
+    assert result.rows == expected.rows
+    assert set(result.recordings) == set(expected.recordings)
+    for name, rec in expected.recordings.items():
+        assert np.array_equal(result.recordings[name], rec), name
+
+
+def idle_instances():
+    """This worker's idle instances: (FMU file, FMI version) -> their FMU instance pointers."""
+    sweeps = importlib.import_module("pmdfmu.sweep")
+    return {(key[0][0], key[1]): {chip.fmu.component for chip in chips} for key, chips in sweeps._idle.items()}
+
+
+def test_a_client_is_reused_as_it_is_and_its_workers_keep_their_instances(cluster, cases, serial):
+    with Client(cluster, set_as_default=False) as client:
+        same(pmdfmu.sweep(cases, scheduler=client), serial)
+        assert client.status == "running"
+        (first,) = client.run(idle_instances).values()
+        for _ in range(3):
+            same(pmdfmu.sweep(cases, scheduler=client), serial)
+            assert client.status == "running"
+        (later,) = client.run(idle_instances).values()
+        # the later sweeps took the first one's instances; at most one more per thread running cases
+        assert first.keys() == later.keys() and all(first[k] <= later[k] for k in first)
+        assert all(1 <= len(pointers) <= 2 for pointers in later.values())
+
+
+def test_an_address_goes_through_the_default_client_connected_there(cluster, cases, serial, monkeypatch):
+    with Client(cluster.scheduler_address) as client:            # this process's default client
+        def no_new_client(*args, **kwargs):
+            raise AssertionError("the sweep opened a client of its own")
+        monkeypatch.setattr(dask.distributed, "Client", no_new_client)
+        same(pmdfmu.sweep(cases, scheduler=cluster.scheduler_address), serial)
+        assert client.status == "running"
+
+
+def test_an_address_without_a_client_of_it_gets_one_for_the_call(cluster, cases, serial):
+    same(pmdfmu.sweep(cases, scheduler=cluster.scheduler_address), serial)
+
+
+def test_many_cases_in_batches_in_two_threads_equal_the_serial_run(cluster, cases):
+    many = [Case(f"{c.name}-{k}", c.script, c.table, c.parameters, c.fmi_version, c.max_cycles, c.fmu)
+            for k in range(4) for c in cases]
+    with Client(cluster, set_as_default=False) as client:
+        same(pmdfmu.sweep(many, scheduler=client), pmdfmu.sweep(many, scheduler="serial"))
+
+
+@pytest.mark.parametrize("n,threads,sizes", [(8, 2, [1] * 8), (64, 2, [8] * 8), (10, 2, [1, 1, 1, 2, 1, 1, 1, 2]),
+                                             (3, 4, [1, 1, 1]), (1, 1, [1]), (0, 2, [0])])
+def test_batches_are_consecutive_cases_a_few_per_thread(n, threads, sizes):
+    batches = sweeps._batches(list(range(n)), threads)
+    assert [len(b) for b in batches] == sizes
+    assert [c for b in batches for c in b] == list(range(n))
+
+
+def test_a_rewritten_fmu_file_is_a_new_instance(tmp_path):
+    fmu = Path(shutil.copy(pmdfmu.default_fmu(2), tmp_path / "copy.fmu"))
+    case = Case("copy", script=str(EXAMPLES / "two_axis.script"), fmu=str(fmu))
+    before = pmdfmu.sweep([case], scheduler="serial")
+    folders = {c._unzipdir for chips in sweeps._idle.values() for c in chips}
+    with zipfile.ZipFile(fmu, "a") as z:                         # the same path, another file
+        z.writestr("resources/marker.txt", "rewritten")
+    after = pmdfmu.sweep([case], scheduler="serial")
+    same(after, before)
+    used = [c for key, chips in sweeps._idle.items() if key[0][0] == str(fmu.resolve()) for c in chips]
+    assert len(used) == 2
+    new = [c for c in used if c._unzipdir not in folders]
+    assert len(new) == 1 and (Path(new[0]._unzipdir) / "resources" / "marker.txt").exists()
+
+
+def test_readme_reuse_example_prints_what_it_says(capsys, monkeypatch):
+    text = (REPO / "README.md").read_text()
+    section = text.split("## Sweeps on Dask\n", 1)[1].split("\n## ", 1)[0]
+    code = next(block.split("```", 1)[0] for block in section.split("```python\n")[1:] if "LocalCluster" in block)
+    monkeypatch.chdir(REPO)
+    exec(compile(code, "README.md (Sweeps on Dask)", "exec"), {})
+    printed = capsys.readouterr().out.split("\n")
+    said = [line.split("# -> ", 1)[1].strip() for line in code.split("\n") if "# -> " in line]
+    assert printed[:len(said)] == said
