@@ -50,6 +50,11 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS]);
  * it after an ordinary cycle, with inputs unchanged. */
 int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max);
 
+/* Runs `cycles` cycles with the result of pmd_chip_run(chip, cycles, NULL),
+ * fast-forwarding where that pays (fastforward.c): a doStep that records
+ * nothing. */
+void pmd_chip_advance(PmdChip *chip, int64_t cycles);
+
 /* Executes a batch of host words (whole commands as C-Motion sends them).
  * Get replies are appended to reply (at most PMD_BATCH_WORDS words).
  * Returns the host I/O error code of the first failing command, or 0.

@@ -210,3 +210,54 @@ int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
     return 0;
 }
 #endif
+
+/* An attempt at fast-forward (skippable, advance: 128-bit products and
+ * divisions, a square root, per moving axis) costs about what a few dozen
+ * ordinary cycles do; it is tried only when it could skip at least this many. */
+#define FAST_FORWARD_MIN 64
+/* Ordinary cycles between attempts that did not pay grow by doubling up to
+ * this: a doStep over short segments runs in a few long batches, and one that
+ * reaches long segments waits at most about as long again as it has run. */
+#define BATCH_MAX ((int64_t)1 << 20)
+
+/* A cheap upper bound on what pmd_chip_fast_forward could skip now (at most
+ * max): skippable's conditions but for the exact bounds, and the least
+ * remaining segment time of the moving axes; 0 when it cannot apply. */
+static int64_t fast_forward_bound(const PmdChip *chip, int64_t max)
+{
+    int64_t k = max;
+    int n;
+    if (chip->s.trace.active || chip->s.trace.start || !chip->s.loopback)
+        return 0;
+    for (n = 0; n < PMD_AXES; n++) {
+        const PmdAxis *ax = &chip->s.axis[n];
+        if (ax->breakpoint[0].trigger | ax->breakpoint[1].trigger || ax->motionCompletePending)
+            return 0;
+        if (ax->motion == PMD_MOTION_IDLE)
+            continue;
+        if (ax->motion != PMD_MOTION_EXTERNAL || !ax->motorOn)
+            return 0;
+        if ((int64_t)ax->segmentTime < k)
+            k = ax->segmentTime;
+    }
+    return k;
+}
+
+/* The policy: ordinary cycles in batches (pmd_chip_run), fast-forward after
+ * one when the bound says it can pay. Every fast-forward follows an ordinary
+ * cycle, as pmd_chip_fast_forward asks, and both are exact, so the result is
+ * that of pmd_chip_run(chip, cycles, NULL) whichever way the cycles went. */
+void pmd_chip_advance(PmdChip *chip, int64_t cycles)
+{
+    int64_t batch = 1;
+    while (cycles > 0) {
+        int64_t m = batch < cycles ? batch : cycles, k = 0;
+        pmd_chip_run(chip, m, NULL);
+        cycles -= m;
+        if (cycles > 1 && fast_forward_bound(chip, cycles) >= FAST_FORWARD_MIN)
+            k = pmd_chip_fast_forward(chip, cycles);
+        cycles -= k;
+        /* after a skip, one ordinary cycle (a segment read, a motion-complete event) and try again */
+        batch = k > 0 ? 1 : (batch < BATCH_MAX ? 2 * batch : BATCH_MAX);
+    }
+}
