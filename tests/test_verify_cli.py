@@ -189,3 +189,26 @@ def test_readme_python_example_runs(monkeypatch):
     code = section.split("```python\n", 1)[1].split("```", 1)[0]
     monkeypatch.chdir(REPO)
     exec(compile(code, "README.md (Verify in CI)", "exec"), {})
+
+
+def test_the_sample_ci_jobs_parse_and_their_commands_pass(tmp_path):
+    """examples/ci's GitHub Actions and GitLab jobs: valid YAML, and their pmdfmu verify lines pass as they
+    stand (run from a copy of the repository's top folder)."""
+    yaml = pytest.importorskip("yaml")
+    github = yaml.safe_load((CI / "github-actions.yml").read_text())
+    gitlab = yaml.safe_load((CI / "gitlab-ci.yml").read_text())
+    commands = [step["run"] for step in github["jobs"]["verify"]["steps"] if "pmdfmu verify" in step.get("run", "")]
+    commands += [line for line in gitlab["verify-trajectory"]["script"] if line.startswith("pmdfmu verify")]
+    assert len(commands) == 2
+    os.symlink(EXAMPLES, tmp_path / "examples")
+    summary = tmp_path / "step-summary.md"
+    for command in commands:
+        argv = command.replace('"$GITHUB_STEP_SUMMARY"', str(summary)).replace("\\\n", " ").split()
+        assert argv[0] == "pmdfmu"
+        cwd = os.getcwd()
+        os.chdir(tmp_path)
+        try:
+            assert main(argv[1:]) == 0
+        finally:
+            os.chdir(cwd)
+    assert (tmp_path / "reports" / "verify.xml").exists() and "4 of 4 cases passed" in summary.read_text()
