@@ -277,12 +277,9 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
     for (n = 0; n < PMD_AXES; n++) {
         pmd_profile_cycle(chip, n);            /* one call site: inlined into the loop */
         if (unsampled & (1u << n)) {
-            PmdAxis *ax = &chip->s.axis[n];
-            /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only
-             * resets its settle count (check_position_error) */
-            if (ax->motion != PMD_MOTION_IDLE) {
-                ax->settleCount = 0;
-            } else {
+            /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only resets
+             * its settle count, which the run's first cycle did (pmd_chip_run); at rest it settles */
+            if (chip->s.axis[n].motion == PMD_MOTION_IDLE) {
                 sample_actual(chip, n, loopback);
                 check_position_error(chip, n);
             }
@@ -347,24 +344,29 @@ static unsigned closed_form_axes(const PmdChip *chip, int quiet, int loopback)
     return axes;
 }
 
-/* Cycles of a quiet run leave an ideal servo's actual position (closedForm
- * axes) unsampled but for its last two: no one else reads it within the run
- * (cycle()), and its last cycle then sets the previous actual position
- * (GetActualVelocity) and the actual position as every cycle would have. */
+/* The middle cycles of a quiet run (all but its first and last) leave an
+ * ideal servo's axis (closedForm) unsampled and its settle count alone while
+ * it moves (cycle()): within the run no one else reads its actual position,
+ * and a cycle in which it moves resets the count, which only the settling at
+ * rest moves again; an axis at rest stays at rest until a command. The first
+ * cycle resets the count of an axis that moves, the last sets the previous
+ * actual position (GetActualVelocity) and the actual position as every cycle
+ * would have. */
 void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
 {
     int quiet = run_is_quiet(chip), loopback = chip->s.loopback, n;
     unsigned closedForm = closed_form_axes(chip, quiet, loopback);
     int64_t k;
-    for (k = 0; k < cycles - 1; k++)
-        cycle(chip, quiet, loopback, closedForm, closedForm, record ? record + k * PMD_RECORD_WORDS : NULL);
-    if (cycles <= 0)
-        return;
-    for (n = 0; n < PMD_AXES; n++)
-        if ((closedForm & (1u << n)) && cycles > 1)
-            chip->s.axis[n].actualPosition = chip->s.axis[n].trajectory.position;   /* sampled by cycle cycles - 2 */
-    cycle(chip, quiet, loopback, closedForm, 0, record ? record + k * PMD_RECORD_WORDS : NULL);
-    for (n = 0; n < PMD_AXES; n++)
-        if (closedForm & (1u << n))
-            pmd_servo_advance(chip, n, cycles);
+    for (k = 0; k < cycles; k++) {
+        int middle = k > 0 && k < cycles - 1;
+        if (k == cycles - 1 && k > 0)
+            for (n = 0; n < PMD_AXES; n++)
+                if (closedForm & (1u << n))
+                    chip->s.axis[n].actualPosition = chip->s.axis[n].trajectory.position;  /* cycle k - 1's sample */
+        cycle(chip, quiet, loopback, closedForm, middle ? closedForm : 0, record ? record + k * PMD_RECORD_WORDS : NULL);
+    }
+    if (cycles > 0)
+        for (n = 0; n < PMD_AXES; n++)
+            if (closedForm & (1u << n))
+                pmd_servo_advance(chip, n, cycles);
 }

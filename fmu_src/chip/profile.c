@@ -146,7 +146,8 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
     for (i = 0; i < ax->segmentBufferCount; i++) {
         PmdBuffer *b = &chip->s.buffer[ax->segmentBuffer[i]];
         b->readIndex = next;
-        b->unread -= b->unread != 0;
+        if (b->unread > 0)
+            b->unread--;
     }
     if (PMD_LOGGING(chip, PMD_LOG_SEGMENTS))
         pmd_log(chip, PMD_LOG_SEGMENTS, "axis %d: segment at index %u: position %d velocity %d acceleration %d "
