@@ -907,7 +907,19 @@ class Chip:
         array: row i holds the outputs as the i-th cycle left them, in a `cycle`
         column (chip time) and one field per requested FMU variable, of its width
         (variables.csv's FMI 3 type: axis1.motorCommand int16, io.output[3] uint16);
-        an array's element goes by its FMI 2 name ("io.output[3]") in FMI 3 too."""
+        an array's element goes by its FMI 2 name ("io.output[3]") in FMI 3 too.
+
+        Recording runs in C (the harness's native library, native/record.c): per cycle
+        one doStep and one get per FMI type of the FMU's own functions, as a master
+        stepping cycle by cycle would, the FMU's log callbacks included; the rows are
+        what that master would read. In FMI 3, when record holds only commanded
+        positions, velocities and accelerations (chip.RECORDED), the FMU records them
+        itself (record.data, one doStep per record.capacity cycles: the fastest path;
+        a script's SetSampleTime during such a run raises RuntimeError). Fewer FMI
+        types and fewer columns cost less; docs/performance.md, "Recording".
+        A failed FMI call raises FMPy's FMICallException (the FMU's messages in
+        chip.messages); a name given twice or not an FMU variable raises ValueError
+        before any cycle runs."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         try:
