@@ -167,7 +167,9 @@ static const PmdVariable3 *lookup(PmdInstance *inst, const char *fn, fmi3ValueRe
         return NULL;
     }
     v = &pmd_variables3[pmd_variable3_of_vr[vr]];
-    if (strcmp(type_names[v->type], type) != 0) {
+    /* the typed getters and setters pass type_names[type] itself: the pointers compare equal, no strcmp
+     * per value reference (a recording master gets every cycle); other callers' names compare by text */
+    if (type_names[v->type] != type && strcmp(type_names[v->type], type) != 0) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a %s, not %s", fn, vr,
                          v->name, type_names[v->type], type);
         return NULL;
