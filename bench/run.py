@@ -9,11 +9,14 @@ time. Each topic is a module of this folder with benchmarks(tmp).
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 import tempfile
 import traceback
 from pathlib import Path
 
+# numpy's OpenBLAS threads spin while idle and take a core of this 2-core machine from the figures
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import common  # noqa: E402  (this folder's modules import it by name)
 
