@@ -117,3 +117,61 @@ def test_readme_reuse_example_prints_what_it_says(capsys, monkeypatch):
     printed = capsys.readouterr().out.split("\n")
     said = [line.split("# -> ", 1)[1].strip() for line in code.split("\n") if "# -> " in line]
     assert printed[:len(said)] == said
+
+
+# ---- large recordings: handed back through a file on the same machine ----
+
+def long_move(path: Path, cycles: int) -> Path:
+    """Axis 1 in a trapezoidal move for `cycles` cycles: a recording of about 42 bytes a cycle."""
+    path.write_text("@ 0\nSetProfileMode(Axis1, PMDTrapezoidalProfile);\nSetPosition(Axis1, 2000000000);\n"
+                    "SetVelocity(Axis1, 0x10000);\nSetAcceleration(Axis1, 0x100);\nUpdate(Axis1);\n"
+                    f"@ {cycles}\nSetStopMode(Axis1, PMDAbruptStop);\nUpdate(Axis1);\n")
+    return path
+
+
+@pytest.fixture(scope="module")
+def large(tmp_path_factory):
+    script = long_move(tmp_path_factory.mktemp("large") / "long.script", 60_000)
+    cases = [Case(f"long{k}", script=str(script), fmi_version=2 + k % 2) for k in range(4)]
+    expected = pmdfmu.sweep(cases, scheduler="serial")
+    assert all(rec.nbytes >= sweeps.HANDOFF_BYTES for rec in expected.recordings.values())
+    return cases, expected
+
+
+def test_a_worker_hands_a_large_recording_back_through_the_sweeps_folder(cluster, large, tmp_path):
+    cases, expected = large
+    (tmp_path / "token").write_text("the token")
+    with Client(cluster, set_as_default=False) as client:
+        (row, handed), = client.submit(sweeps.run_cases, cases[:1], handoff=(str(tmp_path), "the token"),
+                                       pure=False).result()
+        assert isinstance(handed, sweeps._Handed) and Path(handed.path).parent == tmp_path
+        assert row == expected.rows[0]
+        assert np.array_equal(sweeps._received((row, handed))[1], expected.recordings["long0"])
+        assert not Path(handed.path).exists()
+        # another token (another machine's folder): the recording comes through Dask
+        (_, rec), = client.submit(sweeps.run_cases, cases[:1], handoff=(str(tmp_path), "another"),
+                                  pure=False).result()
+        assert isinstance(rec, np.ndarray) and np.array_equal(rec, expected.recordings["long0"])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["token"]
+
+
+def test_a_recording_that_cannot_be_written_comes_through_dask(large, tmp_path):
+    rec = large[1].recordings["long0"]
+    assert sweeps._hand(str(tmp_path / "missing"), rec) is rec
+    assert sweeps._hand(None, rec) is rec
+    small = rec[:100]
+    assert sweeps._hand(str(tmp_path), small) is small
+
+
+def test_large_recordings_on_a_cluster_equal_the_serial_run_and_leave_no_file(cluster, large, monkeypatch):
+    cases, expected = large
+    made = []
+    mkdtemp = sweeps.tempfile.mkdtemp
+
+    def recorded(*args, **kwargs):
+        made.append(mkdtemp(*args, **kwargs))
+        return made[-1]
+    monkeypatch.setattr(sweeps.tempfile, "mkdtemp", recorded)
+    with Client(cluster, set_as_default=False) as client:
+        same(pmdfmu.sweep(cases, scheduler=client), expected)
+    assert len(made) == 1 and not Path(made[0]).exists()

@@ -19,12 +19,20 @@ a failed row with its reason; the sweep goes on.
 
 Cases go to the workers in batches of consecutive cases, a few batches per
 worker thread (BATCHES_PER_THREAD): one task per case would cost the
-scheduler more than a short case itself.
+scheduler more than a short case itself. A worker on this machine hands a
+large recording back through a file in a folder the sweep made (/dev/shm where
+there is one): through Dask it would cross a socket, copied on both sides, which
+costs the sweep's process as much CPU time as the case took to record it.
 """
 from __future__ import annotations
 
 import csv
+import os
+import secrets
+import shutil
+import tempfile
 import threading
+import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple, Union
@@ -36,6 +44,7 @@ from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
 BATCHES_PER_THREAD = 4      # tasks per worker thread: enough to even out cases of unequal length
+HANDOFF_BYTES = 1 << 20     # a recording this large, or larger, is handed back through a file (when it can be)
 
 
 @dataclass(frozen=True)
@@ -191,9 +200,59 @@ class SweepResult:
         plt.close(fig)
 
 
-def run_cases(cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]]:
-    """run_case for each case, in order: one Dask task of a sweep."""
-    return [run_case(c) for c in cases]
+@dataclass(frozen=True)
+class _Handed:
+    """A recording a worker wrote to the sweep's handoff folder, its raw bytes, instead of returning it."""
+    path: str
+    dtype: np.dtype
+    rows: int
+
+
+def _handoff_folder(handoff: Optional[Tuple[str, str]]) -> Optional[str]:
+    """The sweep's handoff folder if this process sees it (the same machine): its token file holds
+    the token the sweep passed."""
+    if handoff is None:
+        return None
+    folder, token = handoff
+    try:
+        return folder if Path(folder, "token").read_text() == token else None
+    except OSError:
+        return None
+
+
+def _hand(folder: Optional[str], rec: Optional[np.ndarray]):
+    """rec, or where it was written for the sweep's process to read (a large one, when it can be)."""
+    if folder is None or rec is None or rec.nbytes < HANDOFF_BYTES:
+        return rec
+    path = os.path.join(folder, uuid.uuid4().hex + ".rec")
+    try:
+        np.ascontiguousarray(rec).tofile(path)
+    except OSError:                         # e.g. the folder is full: through Dask then
+        try:
+            os.unlink(path)
+        except OSError:
+            pass
+        return rec
+    return _Handed(path, rec.dtype, len(rec))
+
+
+def _received(result: Tuple[dict, object]) -> Tuple[dict, Optional[np.ndarray]]:
+    row, rec = result
+    if isinstance(rec, _Handed):
+        path, rec = rec.path, np.fromfile(rec.path, dtype=rec.dtype, count=rec.rows)
+        os.unlink(path)
+    return row, rec
+
+
+def run_cases(cases: Sequence[Case], handoff: Optional[Tuple[str, str]] = None) -> List[Tuple[dict, object]]:
+    """run_case for each case, in order: one Dask task of a sweep. handoff: the sweep's (folder,
+    token) for large recordings (_hand)."""
+    folder = _handoff_folder(handoff)
+    results = []
+    for case in cases:
+        row, rec = run_case(case)
+        results.append((row, _hand(folder, rec)))
+    return results
 
 
 def _batches(cases: Sequence[Case], threads: int) -> List[List[Case]]:
@@ -204,9 +263,23 @@ def _batches(cases: Sequence[Case], threads: int) -> List[List[Case]]:
 
 
 def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]]:
+    """The cases' results, run on the client's cluster; each batch's taken as soon as it is done."""
+    from distributed import as_completed
     threads = sum(client.nthreads().values()) or 1
-    batches = client.map(run_cases, _batches(cases, threads), pure=False)
-    return [result for batch in client.gather(batches) for result in batch]
+    shm = "/dev/shm"
+    folder = tempfile.mkdtemp(prefix="pmdfmu-sweep-", dir=shm if os.path.isdir(shm) and os.access(shm, os.W_OK)
+                              else None)
+    try:
+        token = secrets.token_hex(16)
+        Path(folder, "token").write_text(token)
+        futures = client.map(run_cases, _batches(cases, threads), handoff=(folder, token), pure=False)
+        where = {future.key: i for i, future in enumerate(futures)}
+        batches: List[list] = [[] for _ in futures]
+        for future, batch in as_completed(futures, loop=client.loop, with_results=True):
+            batches[where[future.key]] = [_received(result) for result in batch]
+        return [result for batch in batches for result in batch]
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 def _current_client(address: str):
