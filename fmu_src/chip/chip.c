@@ -254,6 +254,19 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
         record_axis(chip, n, row);
 }
 
+/* A hint for the loop over the axes in cycle(): unrolled, each axis's cycle
+ * addresses its state at constant offsets and the four independent
+ * recurrences interleave - bench/engine.c measured the quiet cycle 1.44x a
+ * bare loop's time rolled, 1.24x unrolled (4-cycle segments). Other
+ * compilers run the loop as written. */
+#if defined(__clang__)
+#define UNROLL_AXES _Pragma("clang loop unroll(full)")
+#elif defined(__GNUC__) && __GNUC__ >= 8
+#define UNROLL_AXES _Pragma("GCC unroll 4")
+#else
+#define UNROLL_AXES
+#endif
+
 /* One chip cycle; with row, the cycle's record row (pmd_chip_record). In a
  * quiet run (run_is_quiet) nothing couples the axes and the checks that cannot
  * fire are left out: each axis runs its cycle in turn, and its columns of the
@@ -274,6 +287,7 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
     if (quiet && row)
         row[0] = pmd_int32(chip->s.time);
     /* geared axes last: they follow their master's position of this cycle */
+    UNROLL_AXES
     for (n = 0; n < PMD_AXES; n++) {
         pmd_profile_cycle(chip, n);            /* one call site: inlined into the loop */
         if (unsampled & (1u << n)) {
