@@ -13,7 +13,8 @@
  * profile's.
  *
  * The bare loop keeps the core's exact representation (chip_types.h) and
- * floors the position's fraction with each of several divisions; the
+ * floors the position's fraction with each of several divisions, its loop
+ * over the axes as written and unrolled (as the core's cycle() has it); the
  * fastest of them is the baseline (bench/engine.py takes it). Every one must
  * store the core's rows bit for bit, or the program fails.
  *
@@ -144,9 +145,19 @@ static inline int64_t floor_compare(int64_t f)
     return (int64_t)(f >= U) + (f >= 2 * U) + (f >= 3 * U) - (f < 0);
 }
 
+/* The loop over the axes as written, or unrolled (as chip.c's cycle() has it) */
+#define ROLLED
+#if defined(__clang__)
+#define UNROLLED _Pragma("clang loop unroll(full)")
+#elif defined(__GNUC__) && __GNUC__ >= 8
+#define UNROLLED _Pragma("GCC unroll 4")
+#else
+#define UNROLLED
+#endif
+
 /* One run of the bare loop with floor division FLOOR: CYCLES cycles of 4
  * axes, a row per cycle in the layout of pmd_chip_record. */
-#define BARE_LOOP(NAME, FLOOR)                                                                               \
+#define BARE_LOOP(NAME, FLOOR, UNROLL)                                                                       \
     static void NAME(const Family *fam, int32_t *out)                                                        \
     {                                                                                                        \
         Plain p[AXES];                                                                                       \
@@ -158,6 +169,7 @@ static inline int64_t floor_compare(int64_t f)
                 p[a].next[f] = column(fam, a, f);                                                            \
         for (k = 0; k < CYCLES; k++) {                                                                       \
             out[0] = (int32_t)k;                                                                             \
+            UNROLL                                                                                           \
             for (a = 0; a < AXES; a++) {                                                                     \
                 Plain *x = &p[a];                                                                            \
                 if (x->left == 0) {                                                                          \
@@ -190,10 +202,14 @@ static inline int64_t floor_compare(int64_t f)
         }                                                                                                    \
     }
 
-BARE_LOOP(bare_c, floor_c)
-BARE_LOOP(bare_core, floor_core)
-BARE_LOOP(bare_multiply, floor_multiply)
-BARE_LOOP(bare_compare, floor_compare)
+BARE_LOOP(bare_c, floor_c, ROLLED)
+BARE_LOOP(bare_core, floor_core, ROLLED)
+BARE_LOOP(bare_multiply, floor_multiply, ROLLED)
+BARE_LOOP(bare_compare, floor_compare, ROLLED)
+BARE_LOOP(bare_c_unrolled, floor_c, UNROLLED)
+BARE_LOOP(bare_core_unrolled, floor_core, UNROLLED)
+BARE_LOOP(bare_multiply_unrolled, floor_multiply, UNROLLED)
+BARE_LOOP(bare_compare_unrolled, floor_compare, UNROLLED)
 
 static const struct {
     const char *name;
@@ -203,6 +219,10 @@ static const struct {
     {"bare-core-division", bare_core},
     {"bare-multiply", bare_multiply},
     {"bare-compare", bare_compare},
+    {"bare-c-division-unrolled", bare_c_unrolled},
+    {"bare-core-division-unrolled", bare_core_unrolled},
+    {"bare-multiply-unrolled", bare_multiply_unrolled},
+    {"bare-compare-unrolled", bare_compare_unrolled},
 };
 #define CONTENDERS (int)(sizeof contenders / sizeof contenders[0])
 
