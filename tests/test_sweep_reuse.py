@@ -146,8 +146,12 @@ def test_a_worker_hands_a_large_recording_back_through_the_sweeps_folder(cluster
                                        pure=False).result()
         assert isinstance(handed, sweeps._Handed) and Path(handed.path).parent == tmp_path
         assert row == expected.rows[0]
-        assert np.array_equal(sweeps._received((row, handed))[1], expected.recordings["long0"])
+        rec = sweeps._received((row, handed))[1]
         assert not Path(handed.path).exists()
+        assert type(rec) is np.ndarray and rec.dtype == expected.recordings["long0"].dtype
+        assert np.array_equal(rec, expected.recordings["long0"])
+        rec["axis1.position"] += 1                      # the caller's own array: writable, shared with nothing
+        assert np.array_equal(rec["axis1.position"], expected.recordings["long0"]["axis1.position"] + 1)
         # another token (another machine's folder): the recording comes through Dask
         (_, rec), = client.submit(sweeps.run_cases, cases[:1], handoff=(str(tmp_path), "another"),
                                   pure=False).result()

@@ -237,10 +237,14 @@ def _hand(folder: Optional[str], rec: Optional[np.ndarray]):
 
 
 def _received(result: Tuple[dict, object]) -> Tuple[dict, Optional[np.ndarray]]:
+    """A result as the worker made it: a handed recording mapped (copy-on-write, no copy made: reading
+    it back would cost this process, on a small machine the workers' CPU) and its file unlinked; its
+    pages are freed with the array."""
     row, rec = result
     if isinstance(rec, _Handed):
-        path, rec = rec.path, np.fromfile(rec.path, dtype=rec.dtype, count=rec.rows)
-        os.unlink(path)
+        mapped = np.memmap(rec.path, dtype=rec.dtype, mode="c", shape=(rec.rows,))
+        os.unlink(rec.path)
+        rec = mapped.view(np.ndarray)
     return row, rec
 
 
