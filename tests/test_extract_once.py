@@ -3,6 +3,7 @@ file shares its folder, model description and FMI prototypes; a rewritten file i
 extracted anew; instances of the shared folder give exactly what an instance of a
 fresh extract gives; closing one leaves the others working; the folder goes when
 the interpreter exits."""
+import os
 import shutil
 import subprocess
 import sys
@@ -114,6 +115,7 @@ def test_closing_one_instance_leaves_the_others_working(version, tmp_path):
 def test_chips_made_in_threads_at_once_share_one_extract(tmp_path):
     fmu = copy_of(2, tmp_path)
     chips, errors = [], []
+    cwd = os.getcwd()           # FMPy's constructor changes it for a moment: one at a time, it comes back
 
     def make():
         try:
@@ -130,6 +132,7 @@ def test_chips_made_in_threads_at_once_share_one_extract(tmp_path):
         assert not errors and len(chips) == 6
         assert len({c._unzipdir for c in chips}) == 1
         assert len({id(c.model_description) for c in chips}) == 1
+        assert os.getcwd() == cwd
     finally:
         for chip in chips:
             chip.close()

@@ -354,7 +354,9 @@ class _Unpacked:
 
 
 _UNPACKED: Dict[tuple, _Unpacked] = {}       # by the FMU file's identity (_identity)
-_UNPACKED_LOCK = threading.Lock()            # sweeps may make Chips in several threads
+# sweeps may make Chips in several threads: the lock guards the cache, and FMPy's slave constructor,
+# which changes the process's working directory while it loads the library
+_UNPACKED_LOCK = threading.Lock()
 _unpack_root: List[str] = []                 # this process's folder of extracted FMU files, once made
 
 
@@ -440,7 +442,8 @@ class Chip:
         kwargs = dict(functions=functions, guid=self.model_description.guid, unzipDirectory=self._unzipdir,
                       modelIdentifier=self.model_description.coSimulation.modelIdentifier, instanceName="pmd")
         if fmi_version == 2:
-            self.fmu = _Slave2(**kwargs)
+            with _UNPACKED_LOCK:
+                self.fmu = _Slave2(**kwargs)
             self._callbacks = fmi2CallbackFunctions()
             # Not FMPy's logger proxy: it keeps one process-wide pointer to the last
             # logger, which would dangle once this Chip is gone. The FMU passes no
@@ -451,7 +454,8 @@ class Chip:
             self.fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
             self.fmu.setupExperiment(startTime=0.0)
         else:
-            self.fmu = _Slave3(**kwargs)
+            with _UNPACKED_LOCK:
+                self.fmu = _Slave3(**kwargs)
             self.fmu.instantiate(loggingOn=bool(log_categories),
                                  logMessage=lambda env, status, category, message:
                                  self._record(status, category, message.decode(errors="replace")))
