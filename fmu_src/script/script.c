@@ -101,26 +101,29 @@ static int pool_grow(PmdScript *s, size_t n)
 
 /* ---- reading: scripts and tables alike ---- */
 
-/* A script or table being read line by line, from a file or (a script given
- * as text) from memory; w.line is the line last read. */
+/* A script or table being read line by line from its text in memory: a script
+ * given as text, or a file's bytes read at once (read_file; one read instead
+ * of a call per character, and a table's second pass reads the same bytes);
+ * w.line is the line last read. */
 typedef struct {
-    FILE *file;
     Where w;
     long bytes;
-    const char *text;                /* without a file: the text, its length and where reading stands */
+    const char *text;                /* the text, its length and where reading stands */
     size_t length, at;
+    char *owned;                     /* a file's bytes (text), freed by close_reader */
+    int readError;                   /* errno of the read that stopped after `length` bytes, or 0 */
 } Reader;
 
-static int next_char(Reader *r)
+static void close_reader(Reader *r)
 {
-    if (r->file)
-        return getc(r->file);
-    return r->at < r->length ? (unsigned char)r->text[r->at++] : EOF;
+    free(r->owned);
+    r->owned = NULL;
 }
 
 /* Opens a regular file of at most MAX_FILE bytes, or returns NULL with the
- * reason in why: a FIFO, a device or a directory would block or never end. */
-static FILE *open_text(const char *path, const char **why)
+ * reason in why: a FIFO, a device or a directory would block or never end.
+ * *size is the size the file has now. */
+static FILE *open_text(const char *path, const char **why, long *size)
 {
     FILE *file;
 #ifdef _WIN32
@@ -131,6 +134,7 @@ static FILE *open_text(const char *path, const char **why)
         return *why = "not a regular file", NULL;
     if (st.st_size > MAX_FILE)
         return *why = TOO_LARGE, NULL;
+    *size = (long)st.st_size;
     if (!(file = fopen(path, "rb")))
         *why = strerror(errno);
 #else
@@ -146,39 +150,99 @@ static FILE *open_text(const char *path, const char **why)
     else if (st.st_size > MAX_FILE)
         *why = TOO_LARGE;
     else if ((flags = fcntl(fd, F_GETFL)) < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0 ||
-             !(file = fdopen(fd, "rb")))             /* a regular file is then read as usual */
+             !(file = fdopen(fd, "rb"))) {           /* a regular file is then read as usual */
         *why = strerror(errno);
-    else
+    } else {
+        *size = (long)st.st_size;
         return file;
+    }
     close(fd);
     file = NULL;
 #endif
     return file;
 }
 
+/* The most of a file read: a file that grows while being read stops at
+ * MAX_FILE plus a line, so read_line's count still finds the line that takes
+ * it past MAX_FILE (or that line too long) as reading line by line did. */
+#define MAX_READ ((size_t)MAX_FILE + MAX_LINE + 1)
+
+/* Reads the file opened by open_text (size bytes when it was opened) into
+ * r->owned and closes it. A read error keeps the bytes before it and its errno
+ * (read_line reports it at the line it cuts short). -1 if out of memory. */
+static int read_file(Reader *r, FILE *file, long size)
+{
+    size_t capacity = (size_t)size + 1, length = 0;    /* + 1: the end is seen without growing */
+    char *bytes = (char *)malloc(capacity);
+    while (bytes) {
+        size_t n = fread(bytes + length, 1, capacity - length, file);
+        length += n;
+        if (n == 0 || length >= MAX_READ) {
+            if (ferror(file))
+                r->readError = errno ? errno : EIO;
+            break;
+        }
+        if (length == capacity) {                  /* the file grew since it was opened */
+            char *grown;
+            capacity = capacity < MAX_READ / 2 ? 2 * capacity : MAX_READ;
+            if (!(grown = (char *)realloc(bytes, capacity))) {
+                free(bytes);
+                bytes = NULL;
+            } else {
+                bytes = grown;
+            }
+        }
+    }
+    fclose(file);
+    if (!bytes)
+        return -1;
+    r->owned = bytes;
+    r->text = bytes;
+    r->length = length < MAX_READ ? length : MAX_READ;
+    r->at = 0;
+    return 0;
+}
+
+/* Opens and reads the file at path into r; -1 with the reason in why. */
+static int open_reader(Reader *r, const char *path, const char **why)
+{
+    long size = 0;
+    FILE *file = open_text(path, why, &size);
+    if (!file)
+        return -1;
+    if (read_file(r, file, size)) {
+        *why = "out of memory";
+        return -1;
+    }
+    return 0;
+}
+
 /* Reads the next line, without its newline, into line[MAX_LINE]: 1, or 0 at
  * the end, or -1 with "file:line: reason" (a line too long, a NUL byte, a
- * read error, a file grown past MAX_FILE while being read). */
+ * read error, a file grown past MAX_FILE while being read). A line's first
+ * MAX_LINE characters are looked at in order: a NUL byte among them is
+ * reported before the line's length. */
 static int read_line(Reader *r, char *line)
 {
-    size_t n = 0;
-    int c;
+    const char *start = r->text + r->at, *end;
+    size_t left = r->length - r->at, n;
     r->w.line++;
-    while ((c = next_char(r)) != EOF && c != '\n') {
-        if (c == '\0')
-            return fail(&r->w, "NUL byte in the line (a script or table is text)");
-        if (n == MAX_LINE - 1)
-            return fail(&r->w, "line longer than %d characters", MAX_LINE - 1);
-        line[n++] = (char)c;
-    }
-    if (r->file && ferror(r->file))
-        return fail(&r->w, "cannot read: %s", strerror(errno));
-    if (c == EOF && n == 0) {
+    end = (const char *)memchr(start, '\n', left);
+    n = end ? (size_t)(end - start) : left;
+    if (memchr(start, '\0', n < MAX_LINE ? n : MAX_LINE))
+        return fail(&r->w, "NUL byte in the line (a script or table is text)");
+    if (n > MAX_LINE - 1)
+        return fail(&r->w, "line longer than %d characters", MAX_LINE - 1);
+    if (!end && r->readError)
+        return fail(&r->w, "cannot read: %s", strerror(r->readError));
+    if (!end && n == 0) {
         r->w.line--;
         return 0;
     }
+    r->at += n + (end != NULL);
     if ((r->bytes += (long)n + 1) > MAX_FILE)
         return fail(&r->w, "the file grew " TOO_LARGE);
+    memcpy(line, start, n);
     line[n] = '\0';
     return 1;
 }
@@ -408,9 +472,13 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
     int columnOf[PMD_FUNCTIONS], nColumns = 0, present = 0, units = -1, header, got, f, k;
     size_t rows = 0, row, base = s->poolCount;
     const char *why = "";
-    Reader in = {NULL, {path, 0, at->error, at->errorSize}, 0, NULL, 0, 0};
+    Reader in;
 
-    if (!(in.file = open_text(path, &why)))
+    memset(&in, 0, sizeof in);
+    in.w = *at;
+    in.w.file = path;
+    in.w.line = 0;
+    if (open_reader(&in, path, &why))
         return fail(at, "cannot open segment table %s: %s", path, why);
     for (f = 0; f < PMD_FUNCTIONS; f++)
         columnOf[f] = -1;
@@ -425,9 +493,9 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
             text = trim(text + 6);
             counts = strcmp(text, "counts/cycle") == 0;
             if (!counts && strcmp(text, "raw") != 0)
-                return fclose(in.file), fail(&in.w, "units '%s': say raw or counts/cycle", text);
+                return close_reader(&in), fail(&in.w, "units '%s': say raw or counts/cycle", text);
             if (units >= 0 && units != counts)
-                return fclose(in.file), fail(&in.w, "units '%s' contradict the units stated before", text);
+                return close_reader(&in), fail(&in.w, "units '%s' contradict the units stated before", text);
             units = counts;
             continue;
         }
@@ -435,26 +503,26 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
             continue;
         if (!nColumns) {
             if ((nColumns = read_header(&in.w, t, columnOf)) < 0)
-                return fclose(in.file), -1;
+                return close_reader(&in), -1;
             continue;
         }
         rows++;
     }
     if (got < 0)
-        return fclose(in.file), -1;
+        return close_reader(&in), -1;
     if (!nColumns || rows == 0)
-        return fclose(in.file), fail(&in.w, "no header or no rows");
+        return close_reader(&in), fail(&in.w, "no header or no rows");
     for (f = 0; f < PMD_FUNCTIONS; f++)
         present += columnOf[f] >= 0;
     if (address < 0 || address + (int64_t)(present * rows) > (int64_t)memoryWords)
-        return fclose(in.file), fail(at, "%zu rows x %d columns at 0x%llX leave the %u-word memory", rows, present,
+        return close_reader(&in), fail(at, "%zu rows x %d columns at 0x%llX leave the %u-word memory", rows, present,
                                      (long long)address, (unsigned)memoryWords);
     if (firstBuffer < PMD_FIRST_PROFILE_BUFFER || firstBuffer + present > PMD_BUFFERS)
-        return fclose(in.file), fail(at, "buffers %lld.. do not fit IDs 2..31", (long long)firstBuffer);
+        return close_reader(&in), fail(at, "buffers %lld.. do not fit IDs 2..31", (long long)firstBuffer);
     /* pass 2: every row once, each present column into its own block of the pool */
     if (pool_grow(s, (size_t)present * rows))
-        return fclose(in.file), fail(at, "out of memory");
-    rewind(in.file);
+        return close_reader(&in), fail(at, "out of memory");
+    in.at = 0;
     in.w.line = 0;
     in.bytes = 0;
     got = 1;
@@ -468,25 +536,23 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
             continue;
         }
         if ((n = split_csv(t, cells, PMD_FUNCTIONS)) != nColumns)
-            return fclose(in.file), fail(&in.w, "expected %d values (one per column), found %d", nColumns, n);
+            return close_reader(&in), fail(&in.w, "expected %d values (one per column), found %d", nColumns, n);
         for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
             int64_t v;
             if (columnOf[f] < 0)
                 continue;
             if (parse_number(&in.w, cells[columnOf[f]], units == 1 ? fixedOfColumn[f] : 0, &v))
-                return fclose(in.file), -1;
+                return close_reader(&in), -1;
             if (f == PMDBufferFunctionTime ? (v < 0 || v > 0xFFFFFFFF)
                                            : (v < -(int64_t)0x80000000 || v > 0xFFFFFFFF))
-                return fclose(in.file), fail(&in.w, "%s %s does not fit 32 bits", columns[f], cells[columnOf[f]]);
+                return close_reader(&in), fail(&in.w, "%s %s does not fit 32 bits", columns[f], cells[columnOf[f]]);
             s->pool[base + (size_t)k++ * rows + row] = (uint32_t)(v & 0xFFFFFFFF);
         }
         row++;
     }
-    fclose(in.file);
+    close_reader(&in);
     if (got < 0)
         return -1;
-    if (row < rows)
-        return fail(&in.w, "the table changed while being read");
     s->poolCount = base + (size_t)present * rows;
     /* buffers firstBuffer.. at address.., one per present column, then the data */
     for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
@@ -784,7 +850,7 @@ static int compile_value(const char *value, int isText, const PmdScriptPlaces *p
             snprintf(error, errorSize, "%s: cannot open the script: %s", value, why);
             return -1;
         }
-        if (!(in.file = open_text(path, &reason))) {
+        if (open_reader(&in, path, &reason)) {
             snprintf(error, errorSize, "%s: cannot open the script: %s", path, reason);
             return -1;
         }
@@ -799,8 +865,7 @@ static int compile_value(const char *value, int isText, const PmdScriptPlaces *p
         add_resources(&tables, places);
     }
     if (!(script->name = (char *)malloc(strlen(name) + 1))) {
-        if (in.file)
-            fclose(in.file);
+        close_reader(&in);
         snprintf(error, errorSize, "%s: out of memory", name);
         return -1;
     }
@@ -812,8 +877,7 @@ static int compile_value(const char *value, int isText, const PmdScriptPlaces *p
     if (!isText && tables.place[0].folder)
         tables.place[0].folder = script->name;
     result = compile(script, &in, memoryWords, &tables);
-    if (in.file)
-        fclose(in.file);
+    close_reader(&in);
     if (result != 0) {
         pmd_script_free(script);
         return -1;
@@ -838,7 +902,7 @@ int pmd_script_read_start(const char *resources, char **value, char *error, size
     char path[MAX_PATH];
     const char *why = "";
     FILE *file;
-    long n = 0;
+    long n = 0, size;
     int c;
     *value = NULL;
     error[0] = '\0';
@@ -850,7 +914,7 @@ int pmd_script_read_start(const char *resources, char **value, char *error, size
     }
     if (!exists(path))
         return 0;
-    if (!(file = open_text(path, &why))) {
+    if (!(file = open_text(path, &why, &size))) {
         snprintf(error, errorSize, "%s: cannot open: %s", path, why);
         return -1;
     }

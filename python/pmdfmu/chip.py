@@ -21,7 +21,7 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2ValueReference
 from fmpy.fmi3 import FMU3Slave, fmi3Binary, fmi3ValueReference
 
-from . import hosttime, recording, tables
+from . import hosttime, memory_port, recording, tables
 from .fixed import integer, to_word
 from .hosttime import HostInterface
 from .tables import Command, Field
@@ -755,13 +755,29 @@ class Chip:
         (-1 and 0xFFFFFFFF store the same word); the words must fit the memory
         (0 <= address, address + len(words) <= memorySize). Anything else (a value
         that does not fit 32 bits, a float, a negative address, a block leaving the
-        memory) raises ValueError naming it before anything is written."""
+        memory) raises ValueError naming it before anything is written.
+
+        The strobes run in C (the harness's native library, native/memory.c), each
+        one the FMI calls a master makes; a call the FMU refuses raises FMPy's
+        FMICallException, the blocks before it written (docs/performance.md,
+        "Upload and streaming")."""
+        data, address = self._memory_block(address, words)
+        memory_port.write(self, address, data, self.get("memory.strobe"))
+
+    def _memory_block(self, address: int, words: Sequence[int]) -> Tuple[np.ndarray, int]:
+        """write_memory's checks: the words as uint32 and the address, inside the memory."""
         data = self._memory_words(words)
         address = integer(address, "write_memory: address")
         size = self.get("memorySize")
         if address < 0 or address + len(data) > size:
             raise ValueError(f"write_memory: {len(data)} words at address {address} leave the {size}-word memory "
                              f"(memorySize; addresses 0 .. {size - 1}); nothing was written")
+        return data, address
+
+    def _write_memory_stepwise(self, address: int, words: Sequence[int]) -> None:
+        """write_memory block by block in Python through FMPy: what it did before the native loop
+        (pmdfmu.memory_port), kept as its reference (tests/test_memory_port.py)."""
+        data, address = self._memory_block(address, words)
         strobe = self.get("memory.strobe")
         for start in range(0, len(data), BATCH_WORDS):
             strobe = (strobe + 1) & 0x7FFFFFFF

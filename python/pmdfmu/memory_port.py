@@ -1,0 +1,73 @@
+"""Chip.write_memory's strobes in the harness's native library (native/memory.c):
+per block of 64 words one set of memory.data, .address, .count and a new
+.strobe, then a get of host.ack that executes the write, through the FMU's own
+FMI functions with the arguments the harness's Python loop passed
+(Chip._write_memory_stepwise, kept as the reference)."""
+from __future__ import annotations
+
+from ctypes import POINTER, Structure, c_int, c_int32, c_size_t, c_uint32, c_void_p
+from functools import lru_cache
+from typing import Dict, Tuple
+
+import numpy as np
+from fmpy.fmi1 import FMICallException
+
+from . import native
+
+BLOCK_WORDS = 64             # memory.data[64]: the words one strobe writes
+
+# the FMI functions each version's loop calls, in memory.h's order (PMD_MEMORY_SET, _SET_INT32, _GET)
+FUNCTIONS = {2: ("fmi2SetInteger", "fmi2SetInteger", "fmi2GetInteger"),
+             3: ("fmi3SetUInt32", "fmi3SetInt32", "fmi3GetInt32")}
+
+
+class Port(Structure):
+    """memory.h's PmdMemoryPort: the value references a strobe uses."""
+    _fields_ = [("data", c_uint32 * BLOCK_WORDS), ("address", c_uint32), ("count", c_uint32),
+                ("strobe", c_uint32), ("ack", c_uint32)]
+
+
+class Stop(Structure):
+    _fields_ = [("blocks", c_size_t), ("call", c_int), ("status", c_int)]
+
+
+@lru_cache(maxsize=None)
+def _writers():
+    """The library's two loops with their prototypes, declared once."""
+    lib = native.library()
+    fmi2, fmi3 = lib.pmd_memory_write_fmi2, lib.pmd_memory_write_fmi3
+    tail = [c_void_p, POINTER(Port), c_uint32, c_void_p, c_size_t, c_int32, POINTER(Stop)]
+    fmi2.argtypes, fmi3.argtypes = [c_void_p] * 2 + tail, [c_void_p] * 3 + tail
+    fmi2.restype = fmi3.restype = c_int
+    return {2: fmi2, 3: fmi3}
+
+
+# value references per FMU model: the harness shares one name -> value reference map among the Chips of
+# an FMU file; kept with it so that the id stays its own
+_ports: Dict[int, Tuple[dict, Port]] = {}
+
+
+def _port(chip) -> Port:
+    vr = chip._vr
+    kept = _ports.get(id(vr))
+    if kept is None or kept[0] is not vr:
+        data = ([vr[f"memory.data[{i + 1}]"] for i in range(BLOCK_WORDS)] if chip.fmi_version == 2
+                else [vr["memory.data"]] + [0] * (BLOCK_WORDS - 1))
+        kept = _ports[id(vr)] = (vr, Port((c_uint32 * BLOCK_WORDS)(*data), vr["memory.address"],
+                                          vr["memory.count"], vr["memory.strobe"], vr["host.ack"]))
+    return kept[1]
+
+
+def write(chip, address: int, words: np.ndarray, strobe: int) -> None:
+    """Writes the uint32 words at address.. (checked by the caller), the first block with strobe
+    (strobe + 1) & 0x7FFFFFFF; raises as FMPy would for a call that failed (FMICallException naming
+    it: the FMU's messages are in chip.messages), the blocks before it written."""
+    words = np.ascontiguousarray(words, dtype=np.uint32)
+    version = chip.fmi_version
+    names = FUNCTIONS[version]
+    functions = chip.fmu._functions
+    calls = [native.address(functions[n]) for n in (names if version == 3 else (names[0], names[2]))]
+    stop = Stop()
+    if _writers()[version](*calls, chip.fmu.component, _port(chip), address, words.ctypes.data, len(words),
+                           strobe, stop):
+        raise FMICallException(function=names[stop.call], status=stop.status)
