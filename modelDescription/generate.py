@@ -187,7 +187,8 @@ def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
         initial = ' initial="exact"' if v.causality == "parameter" else ""
         lines.append(f'    <ScalarVariable name="{v.name}" valueReference="{v.vr}" causality="{v.causality}"'
                      f' variability="{v.variability}"{initial} description={quoteattr(v.description)}>')
-        start = f' start="{v.start}"' if v.start != "" or v.causality == "parameter" else ""
+        # parameters and inputs have a start value (FMI 2.0.5, 2.2.7), an empty String's too
+        start = f' start="{v.start}"' if v.start != "" or v.causality in ("parameter", "input") else ""
         lines.append(f"      <{v.type}{start}/>")
         lines.append("    </ScalarVariable>")
         if v.causality == "output":

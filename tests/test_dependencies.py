@@ -182,6 +182,8 @@ class Probe:
             return [16]
         if name == "script":
             return ["no-such.script"]
+        if name == "record.columns":
+            return ["axis1.activityStatus,axis2.position"]
         if name == "axis{axis}.actualPosition":              # 0: where a Reset puts the commanded position too
             return [x for x in (now + 1000, 0) if x != now]
         return [now + 1000]                                  # memory.address

@@ -1,6 +1,8 @@
-"""Chip.run(record=...) through the native loop (native/record.c, pmdfmu.recording)
-is the harness's cycle-by-cycle Python loop (Chip._run_stepwise, kept as the
-reference), bit for bit: rows, errors, log messages, host clock (issue 16)."""
+"""Chip.run(record=...) in bulk (the FMU's record.data and record.columns, FMI 2
+through pmdfmu_fmi2GetRecordData) and through the native loop (native/record.c,
+pmdfmu.recording) is the harness's cycle-by-cycle Python loop (Chip._run_stepwise,
+kept as the reference), bit for bit: rows, errors, log messages, host clock
+(issue 16)."""
 from ctypes import CFUNCTYPE
 
 import numpy as np
@@ -26,7 +28,14 @@ def reference(monkeypatch):
     host clock) stays."""
     def stepwise(chip, plan, out):
         out[:] = chip._run_stepwise(len(out), out.dtype.names[1:])
+    monkeypatch.setattr(recording, "BULK", False)
     monkeypatch.setattr(recording, "record", stepwise)
+
+
+@pytest.fixture
+def native_loop(monkeypatch):
+    """run() through the native loop, as for an FMU without bulk recording of any columns."""
+    monkeypatch.setattr(recording, "BULK", False)
 
 
 def every_type_chip(chip):
@@ -134,6 +143,7 @@ def test_an_error_mid_run_raises_as_the_python_loop_raised(version, monkeypatch)
             if not native:
                 m.setattr(recording, "record", lambda chip, plan, out: chip._run_stepwise(len(out),
                                                                                           out.dtype.names[1:]))
+            m.setattr(recording, "BULK", False)             # a doStep a cycle: the native loop's error
             with pmdfmu.Chip(fmi_version=version, host_interface="parallel16") as chip:
                 busy_chip(chip)                                     # the commands' host time runs cycles
                 start = chip.cycles
@@ -194,3 +204,30 @@ def test_a_chip_with_a_host_interface_moves_the_host_clock_as_before(version, re
             results.append((rows.tobytes(), host_ns, cycles))
     assert results[0] == results[1]
     assert results[0][1] > 0
+
+
+@pytest.mark.parametrize("version", (2, 3))
+@pytest.mark.parametrize("names", (EVERY_TYPE, record_outputs(range(4)), RECORDED))
+def test_the_native_loop_records_as_the_bulk_path(version, names, request):
+    bulk = recorded(version, names, 1500)
+    request.getfixturevalue("native_loop")
+    same(bulk, recorded(version, names, 1500))
+
+
+@pytest.mark.parametrize("version", (2, 3))
+@pytest.mark.parametrize("names", (EVERY_TYPE, RECORDED))
+def test_a_failed_bulk_step_raises_and_leaves_recording_off(version, names, monkeypatch):
+    """A doStep that fails in bulk (here: the FMU refuses a step of 0 s) raises FMPy's FMICallException;
+    record.enabled is off again and the instance goes on."""
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 100}) as chip:
+        busy_chip(chip)
+        name, fake = failing_step(chip, 3)
+        with monkeypatch.context() as m:
+            m.setitem(chip.fmu._functions, name, fake)      # the FMPy slaves of one FMU file may share them
+            with pytest.raises(FMICallException, match=f"fmi{version}DoStep failed with status 3"):
+                chip.run(1000, record=names)
+        assert not chip.get("record.enabled")
+        assert any("step size must be finite and > 0" in m.message for m in chip.messages)
+        start = chip.cycles
+        chip.run(5)
+        assert chip.cycles == start + 5

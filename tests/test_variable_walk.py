@@ -42,7 +42,8 @@ def outputs_of_a_new_chip(fmi_version):
                                                             ("eventStatus", "GetEventStatus"))}
     cycle_time = float(next(v.start for v in tables.read_variables(CSV) if v.name == "cycleTime"))
     known = {"time": 0.0, "activeCycleTime": cycle_time, "nextCycleTime": 0.0, "nextCycle": 0.0,
-             "script.axes": 0, "script.lastCycle": 0.0, "host.interrupt": False, "record.data": None, **statuses}
+             "script.axes": 0, "script.lastCycle": 0.0, "host.interrupt": False, "record.data": None,
+             "record.rowSize": 4 + 12 * 4, **statuses}      # record.columns "": the chip time, 12 commanded words
     return lambda name: known.get(name, 0)      # every other output (positions, replies, counts) is 0
 
 
@@ -53,6 +54,8 @@ def another_value(v, value):
         return not value
     if kind in ("Real", "Float64"):
         return value * 2                                # cycleTime: 2e-4 s, whole microseconds still
+    if kind == "String" and v.name == "record.columns":
+        return value + "axis1.position"                 # names checked when set: a variable's
     if kind == "String":
         return value + "walk.pmd"                       # the script is compiled only at the end of initialization
     return value + 1                                    # every Integer input and parameter takes start + 1

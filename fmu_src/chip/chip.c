@@ -289,6 +289,15 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
     /* geared axes last: they follow their master's position of this cycle */
     UNROLL_AXES
     for (n = 0; n < PMD_AXES; n++) {
+        if ((unsampled & (1u << n)) && chip->s.axis[n].motion == PMD_MOTION_EXTERNAL &&
+            chip->s.axis[n].segmentTime != 0) {
+            /* most cycles of a quiet run: pmd_profile_cycle's integration step, taken first; the
+             * axis moves on, so its servo side (below) has nothing to do */
+            pmd_external_step(chip, n);
+            if (row)
+                record_axis(chip, n, row);
+            continue;
+        }
         pmd_profile_cycle(chip, n);            /* one call site: inlined into the loop */
         if (unsampled & (1u << n)) {
             /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only resets

@@ -20,7 +20,7 @@ static void move_by_1616(PmdTrajectory *t, int64_t x)
 
 /* Motion complete (reference 4.5): at once in mode 0 (commanded); in mode 1
  * (actual) once the axis has settled, which the cycle checks. */
-static void motion_complete(PmdChip *chip, int n)
+void pmd_motion_complete(PmdChip *chip, int n)
 {
     if (chip->s.axis[n].motionCompleteMode == PMDMotionCompleteActualPosition)
         chip->s.axis[n].motionCompletePending = 1;
@@ -32,7 +32,7 @@ void pmd_halt(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
     if (ax->motion != PMD_MOTION_IDLE)
-        motion_complete(chip, n);
+        pmd_motion_complete(chip, n);
     ax->motion = PMD_MOTION_IDLE;
     ax->segmentTime = 0;
     ax->atMaximumVelocity = 0;
@@ -155,44 +155,6 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
     return 1;
 }
 
-/* The carry floor(f / PMD_U_PER_COUNT) of the f an integration step forms.
- * Every state keeps 0 <= fraction < 6 * 2^32 and 0 <= V's, A/2's fraction
- * < 2^33 (state_fields.c holds a restored state to them), and j is an int32,
- * so f = fraction + 3 (V + A/2's fractions) + j lies in [-2^31, 18 * 2^32 +
- * 2^31): floor(f / 2^33) = y is -1 .. 9 and the carry floor(y / 3) is
- * floor((y + 3) * 11 / 32) - 1, exact for 0 <= y + 3 < 32. One shift and a
- * small multiplication: the carry is the one value every integration step
- * waits for (the next step's fraction depends on it), and this is the
- * shortest exact way measured to it (bench/engine.c's contenders). */
-static inline int64_t integration_carry(int64_t f)
-{
-    return ((pmd_floor_shift(f, 33) + 3) * 11 >> 5) - 1;
-}
-
-/* One step of the recurrence, exactly (chip_types.h): in 2^-33 count (3 U)
- * V + A/2 is whole, J/2 is j and J is 2 j; J/6 is j U. Returns whether the
- * velocity came to rest (exactly 0 from non-zero): seed 000, 1.6 sets motion
- * complete then. Branch-free but for that rare case: V was 0 before the step
- * too exactly when A + J/2 was 0, i.e. when A after it (A + J) equals J/2. */
-static int integrate(PmdTrajectory *t)
-{
-    int64_t j = t->jerk;
-    PmdFixed half = pmd_fixed_half(t->acceleration);
-    int64_t f = t->fraction + 3 * (t->velocity.fraction + half.fraction) + j;        /* P += V + A/2 + J/6 */
-    int64_t carry = integration_carry(f);                                             /* -1 .. 3 */
-    PmdFixed halfJerk;
-    t->fraction = f - carry * PMD_U_PER_COUNT;
-    t->position = pmd_int32((uint32_t)t->position + (uint32_t)t->velocity.counts + (uint32_t)half.counts +
-                            (uint32_t)carry);
-    t->velocity = pmd_fixed_make(pmd_int64((uint64_t)t->velocity.counts + (uint64_t)t->acceleration.counts),
-                                 t->velocity.fraction + t->acceleration.fraction + j); /* V += A + J/2 */
-    t->acceleration = pmd_fixed_add_raw(t->acceleration, 2 * j);                     /* A += J */
-    if (!pmd_fixed_is_zero(t->velocity))
-        return 0;
-    halfJerk = pmd_fixed_make(0, j);
-    return t->acceleration.counts != halfJerk.counts || t->acceleration.fraction != halfJerk.fraction;
-}
-
 /* One cycle of seed 000's pseudo code. The decrement closes every cycle that
  * does not stop, so a segment with time T lasts T cycles: the read cycle and
  * T-1 integration cycles (the worked table, chip times 11003..11013). Seed
@@ -206,9 +168,7 @@ static void external_cycle(PmdChip *chip, int n)
     int moving;
 
     if (ax->segmentTime != 0) {               /* inside a segment: most cycles */
-        ax->segmentTime--;
-        if (integrate(t))
-            motion_complete(chip, n);
+        pmd_external_step(chip, n);
         return;
     }
     moving = !pmd_fixed_is_zero(t->velocity);
@@ -230,7 +190,7 @@ static void external_cycle(PmdChip *chip, int n)
     }
     ax->segmentTime--;
     if (moving && pmd_fixed_is_zero(t->velocity))
-        motion_complete(chip, n);
+        pmd_motion_complete(chip, n);
 }
 
 /* ---- trapezoidal point-to-point ------------------------------------------ */

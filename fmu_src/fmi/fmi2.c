@@ -287,6 +287,24 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
     return fmi2OK;
 }
 
+/* ---- extension: bulk recording ---- */
+
+/* record.data in FMI 2, which has no Binary type: this FMU's one function
+ * beside the FMI 2 ones (an importer that does not know it ignores it). It
+ * lends the buffer fmi3GetBinary gives for record.data in FMI 3: the rows of
+ * the cycles the last doStep recorded (record.enabled), valid until the next
+ * call to the instance; *size in bytes. docs/performance.md, "Recording". */
+FMI2_Export fmi2Status pmdfmu_fmi2GetRecordData(fmi2Component c, const void **data, size_t *size)
+{
+    PmdInstance *inst = begin(c, "pmdfmu_fmi2GetRecordData", GET_STATES);
+    const unsigned char *bytes;
+    if (!inst || !arrays_given(inst, "pmdfmu_fmi2GetRecordData", 1, data, size))
+        return fmi2Error;
+    pmd_record_data(inst, &bytes, size);
+    *data = bytes;
+    return fmi2OK;
+}
+
 /* ---- co-simulation ---- */
 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,

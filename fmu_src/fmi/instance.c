@@ -57,8 +57,12 @@ static void set_defaults(PmdInstance *inst)
     free(inst->record);
     inst->record = NULL;
     inst->recordRows = 0;
+    inst->recordBytes = 0;
     inst->recordCapacity = 65536;
     inst->recordCount = 0;
+    pmd_record_columns_free(&inst->columns);
+    pmd_record_columns_free(&inst->stagedColumns);
+    inst->recordRowBytes = inst->columns.rowBytes;
     memset(inst->chip.memory, 0, (size_t)memorySize * sizeof(uint32_t));
     pmd_chip_init(&inst->chip, inst->chip.memory, (uint32_t)memorySize);
 }
@@ -95,6 +99,8 @@ void pmd_instance_free(PmdInstance *inst)
     free(inst->resources);
     pmd_script_free(&inst->script);
     free(inst->record);
+    pmd_record_columns_free(&inst->columns);
+    pmd_record_columns_free(&inst->stagedColumns);
     free(inst->staged.memory);
     free(inst);
 }
@@ -319,30 +325,6 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double sta
     return PMD_OK;
 }
 
-/* The record.data buffer, allocated when recording is enabled: an instance
- * that never records does not carry it, and doStep never allocates. */
-PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
-{
-    int32_t *record;
-    if (inst->record && inst->recordRows == inst->recordCapacity)
-        return PMD_OK;
-    if (inst->recordCapacity == 0) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: record.capacity is 0", fn);
-        return PMD_ERROR;
-    }
-    record = (int32_t *)malloc((size_t)inst->recordCapacity * PMD_RECORD_WORDS * sizeof(int32_t));
-    if (!record) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: no host memory for record.capacity %u",
-                         fn, (unsigned)inst->recordCapacity);
-        return PMD_ERROR;
-    }
-    free(inst->record);                             /* sized for another record.capacity */
-    inst->record = record;
-    inst->recordRows = inst->recordCapacity;
-    inst->recordCount = 0;
-    return PMD_OK;
-}
-
 /* What can fail comes first and changes no state field: the grid is checked,
  * the script compiled into a local, record.data sized for record.capacity (a
  * buffer of this process, which may have changed in initialization); a refused
@@ -389,6 +371,7 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         free(inst->record);
         inst->record = NULL;
         inst->recordRows = 0;
+        inst->recordBytes = 0;
     }
     inst->recordCount = 0;
     /* the grid: the cycle time is the sample time register's (GetSampleTime reads it), anchored at 0 */
@@ -451,11 +434,18 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
             /* rows past record.capacity are not recorded: the grid may have restarted finer inside the step */
             int64_t k = cycles_to_skip(inst, end), room = (int64_t)inst->recordRows - recorded;
             int64_t r = k < room ? k : room;
-            pmd_chip_run(&inst->chip, r, inst->record + (size_t)recorded * PMD_RECORD_WORDS);
-            pmd_chip_run(&inst->chip, k - r, NULL);
+            inst->recordRowBytes = inst->columns.rowBytes;
+            if (inst->columns.count) {             /* record.columns: cycle by cycle (record.c) */
+                pmd_record_cycles(inst, r, recorded);
+                pmd_chip_run(&inst->chip, k - r, NULL);
+                inst->s.nextCycle += k - r;
+            } else {
+                pmd_chip_run(&inst->chip, r, inst->record + (size_t)recorded * PMD_RECORD_WORDS);
+                pmd_chip_run(&inst->chip, k - r, NULL);
+                inst->s.nextCycle += k;
+            }
             recorded += r;
             ran += k;
-            inst->s.nextCycle += k;
         } else {                                   /* nothing recorded: fast-forward where it pays */
             int64_t k = cycles_to_skip(inst, end);
             pmd_chip_advance(&inst->chip, k);
@@ -670,6 +660,7 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     case VAR_io_input: *value = inst->chip.s.ioInput[v->index]; break;
     case VAR_io_output: *value = inst->chip.s.ioOutput[v->index]; break;
     case VAR_record_capacity: *value = (int32_t)inst->recordCapacity; break;
+    case VAR_record_rowSize: *value = (int32_t)inst->columns.rowBytes; break;
     case VAR_script_axes: *value = inst->script.axes; break;
     default: return unhandled(inst, fn, v, "Integer getter");
     }
@@ -846,6 +837,7 @@ PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const c
         return PMD_ERROR;
     switch (v->family) {
     case VAR_script: *value = pmd_script_value(inst); break;
+    case VAR_record_columns: *value = inst->columns.text ? inst->columns.text : ""; break;
     default: return unhandled(inst, fn, v, "String getter");
     }
     return PMD_OK;
@@ -857,12 +849,14 @@ PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const c
     char *copy;
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
-    if (v->family != VAR_script)
+    if (v->family != VAR_script && v->family != VAR_record_columns)
         return unhandled(inst, fn, v, "String setter");
     if (!value) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s: the value is NULL", fn, v->name);
         return PMD_ERROR;
     }
+    if (v->family == VAR_record_columns)
+        return pmd_record_columns_set(inst, fn, value, apply);
     if (!apply)
         return PMD_OK;
     copy = (char *)malloc(strlen(value) + 1);
@@ -884,8 +878,7 @@ PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const u
     switch (v->family) {
     case VAR_record_data:
         /* little-endian int32 words as this platform stores them */
-        *value = (const unsigned char *)inst->record;
-        *size = (size_t)inst->recordCount * PMD_RECORD_WORDS * sizeof(int32_t);
+        pmd_record_data(inst, value, size);
         break;
     default: return unhandled(inst, fn, v, "Binary getter");
     }

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "chip.h"
+#include "record.h"
 #include "script.h"
 #include "variables.h"
 
@@ -85,13 +86,19 @@ typedef struct {
     char *resources;
     const char *noResources;
 
-    /* bulk recording (FMI 3 record.data): PMD_RECORD_WORDS int32 per cycle of the
-     * last doStep. The buffer and its size are this process's: a restored state
-     * keeps the instance's record.capacity and has recorded nothing yet. */
+    /* bulk recording (record.data; FMI 2: pmdfmu_fmi2GetRecordData): a row per
+     * cycle of the last doStep, PMD_RECORD_WORDS int32 or the columns of
+     * record.columns (record.c). The buffer, its size and record.columns are
+     * this process's: a restored state keeps the instance's record.capacity
+     * and record.columns and has recorded nothing yet. */
     uint32_t recordCapacity;         /* cycles (the record.capacity parameter) */
     int32_t *record;
     uint32_t recordRows;             /* cycles the record buffer holds (record.capacity when it was allocated) */
+    size_t recordBytes;              /* bytes the record buffer holds */
     uint32_t recordCount;            /* cycles recorded by the last doStep */
+    uint32_t recordRowBytes;         /* bytes of each of those rows (as record.columns stood at that doStep) */
+    PmdRecordColumns columns;        /* record.columns */
+    PmdRecordColumns stagedColumns;  /* a set call's new record.columns, compiled by its check */
 
     /* A set call checks every value, then what they ask for together (a memory
      * write that must fit the memory, a memory size that must hold the
@@ -136,8 +143,23 @@ int64_t pmd_cycles_before(const PmdGrid *grid, double t);
 PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime);
 PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn);
 PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);
-/* Allocates record.data's buffer (record.capacity cycles) unless it exists; never in doStep. */
+/* Allocates record.data's buffer (record.capacity cycles of record.columns' rows) unless it
+ * exists; never in doStep. A larger block keeps the rows recorded. */
 PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn);
+/* record.data's bytes: the rows the last doStep recorded (lent until the next call). */
+void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size);
+
+/* record.columns (record.c). Compiles a value: names checked and resolved to
+ * value references once; PMD_ERROR with a message naming fn, the value and
+ * the reason, *out untouched. */
+PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const char *text, PmdRecordColumns *out);
+void pmd_record_columns_free(PmdRecordColumns *columns);
+/* The set call's staged value: checked (and the buffer grown if recording) with apply = 0, installed with 1. */
+PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *text, int apply);
+/* A recording doStep with record.columns: runs `cycles` cycles one by one, each
+ * ending as a one-cycle doStep ends (nextCycle advanced), and writes each
+ * cycle's row into record.data from row `first` on. */
+void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first);
 
 /* Returns inst if a call to fn is legal in its state (a mask of PmdState), else logs and returns NULL. */
 PmdInstance *pmd_begin(PmdInstance *inst, const char *fn, unsigned states);

@@ -10,7 +10,7 @@ import shutil
 import tempfile
 import textwrap
 import threading
-from ctypes import POINTER, Array, c_double, c_int32, c_size_t, c_uint32, cast
+from ctypes import POINTER, Array, c_char, c_double, c_int32, c_uint32
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -19,7 +19,7 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2ValueReference
-from fmpy.fmi3 import FMU3Slave, fmi3Binary, fmi3ValueReference
+from fmpy.fmi3 import FMU3Slave, fmi3ValueReference
 
 from . import hosttime, memory_port, recording, tables
 from .fixed import integer, to_word
@@ -690,33 +690,66 @@ class Chip:
             raise FMUError(f"host.ack is {ack}, not the strobe {strobe}: the FMU did not execute the batch")
         return error, reply[:count]
 
-    def _run_recorded(self, cycles: int, names: Sequence[str]) -> np.ndarray:
-        """run() through FMI 3's record.data: one doStep and one Binary read per
-        chunk of record.capacity cycles instead of FMI calls every cycle."""
-        # record.data's words go straight into one table of 32-bit words, whose rows are the result's records
-        table = np.empty((cycles, 1 + len(names)), dtype=np.int32)
+    def _run_recorded(self, cycles: int, names: Sequence[str], lend, where, dtype: np.dtype) -> np.ndarray:
+        """run() through the FMU's record.data (lend: pmdfmu.recording.lender): one doStep and one read
+        per chunk of record.capacity cycles instead of FMI calls every cycle. Only commanded outputs
+        (RECORDED): record.data's default rows; else record.columns names the columns, and a chunk in
+        which a script step may change the grid (SetSampleTime) is redone cycle by cycle if it did."""
+        commanded = set(names) <= set(RECORDED)
+        if "record.columns" in self.variables:
+            self.set("record.columns", "" if commanded else ",".join(names))
+        if commanded:
+            # record.data's words go straight into one table of 32-bit words, whose rows are the result's records
+            table = np.empty((cycles, 1 + len(names)), dtype=np.int32)
+            # the wanted columns as runs of adjacent ones (table column, record column, width): whole
+            # runs copy as blocks, and all of record.data as one
+            columns, runs = [0] + [1 + RECORDED.index(n) for n in names], []
+            for i, c in enumerate(columns):
+                if runs and runs[-1][1] + runs[-1][2] == c:
+                    runs[-1][2] += 1
+                else:
+                    runs.append([i, c, 1])
+            row = np.dtype((np.int32, 1 + len(RECORDED)))
+        else:
+            # the FMU's packed row: the chip time, then each column as an int32 (any integer type, a
+            # Boolean) or a float64 (a Real), in the order of names
+            out = np.zeros(cycles, dtype=dtype)
+            row = np.dtype([("cycle", "<i4")] + [(n, "<f8" if DTYPES[n].kind == "f" else "<i4") for n in names])
+            if row.itemsize != self.get("record.rowSize"):
+                raise FMUError(f"record.rowSize is {self.get('record.rowSize')}, not the {row.itemsize} bytes of "
+                               f"a row of {len(names)} columns: the FMU's record.columns is another")
         capacity = self.get("record.capacity")
-        # the wanted columns as runs of adjacent ones (table column, record column, width): whole
-        # runs copy as blocks, and all of record.data as one
-        columns, runs = [0] + [1 + RECORDED.index(n) for n in names], []
-        for i, c in enumerate(columns):
-            if runs and runs[-1][1] + runs[-1][2] == c:
-                runs[-1][2] += 1
-            else:
-                runs.append([i, c, 1])
-        vr, size, value = (fmi3ValueReference * 1)(self._vr["record.data"]), (c_size_t * 1)(), (fmi3Binary * 1)()
+        # the script's steps run up to its last @ line: past it no step can change the grid
+        script_end = self.get("script.lastCycle") if "script.lastCycle" in self.variables else float("inf")
         self.set("record.enabled", True)
         try:
             done = 0
-            row_bytes = 4 * (1 + len(RECORDED))
             while done < cycles:
                 n = min(capacity, cycles - done)
+                state = None if commanded or self.cycles > script_end else self.fmu.getFMUState()
+                logged = len(self.messages)
                 self._step(n)                       # Warning if the step's cycles changed
-                # fmi3GetBinary lends the FMU's own buffer until the next call: read it in place, once,
-                # as many whole rows as it holds, never more
-                self.fmu.fmi3GetBinary(self.fmu.component, vr, 1, size, value, 1)
-                held = size[0] // row_bytes
-                if held != n or size[0] % row_bytes:
+                # record.data is the FMU's own buffer, lent until the next call: read in place, once, as
+                # many whole rows as it holds, never more
+                address, size = lend()
+                held = size // row.itemsize
+                whole = held == n and size % row.itemsize == 0
+                if state is not None and not whole:
+                    # the grid changed in the chunk: back to its start, and the chunk runs as a master
+                    # stepping cycle by cycle runs it (the native loop: Chip._run_stepwise's rows)
+                    self.fmu.setFMUState(state)
+                    del self.messages[logged:]
+                    self.set("record.enabled", False)
+                    part = np.zeros(n, dtype=dtype)
+                    recording.record(self, recording.Plan(self, where, dtype), part)
+                    out[done:done + n] = part
+                    self.set("record.enabled", True)
+                if state is not None:
+                    self.fmu.freeFMUState(state)
+                    if not whole:
+                        done += n
+                        continue
+                if not whole:
                     # the chip ran `held` cycles up to the step's end, on the grid the script chose
                     raise RuntimeError(
                         f"record.data holds {held} cycles, not {n}: a script changed the sample time during "
@@ -724,13 +757,19 @@ class Chip:
                         "are lost. Run the cycles up to the change in one run(record=...) and those after it "
                         "in another, or set the cycle time with the cycleTime parameter instead of "
                         "SetSampleTime in the script")
-                rows = np.ctypeslib.as_array(cast(value[0], POINTER(c_int32)), (held, 1 + len(RECORDED)))
-                for at, column, width in runs:
-                    table[done:done + n, at:at + width] = rows[:, column:column + width]
+                rows = np.frombuffer((c_char * size).from_address(address), dtype=row)
+                if commanded:
+                    for at, column, width in runs:
+                        table[done:done + n, at:at + width] = rows[:, column:column + width]
+                else:
+                    for name in row.names:          # the result's widths: the low bits, as FMI 3 reads them
+                        out[name][done:done + n] = rows[name]
                 done += n
         finally:
             self.set("record.enabled", False)
-        return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)
+        if commanded:
+            return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)
+        return out
 
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
         """Executes one C-Motion call; raises PMDError if the chip refuses it.
@@ -761,23 +800,27 @@ class Chip:
         one the FMI calls a master makes; a call the FMU refuses raises FMPy's
         FMICallException, the blocks before it written (docs/performance.md,
         "Upload and streaming")."""
-        data, address = self._memory_block(address, words)
-        memory_port.write(self, address, data, self.get("memory.strobe"))
-
-    def _memory_block(self, address: int, words: Sequence[int]) -> Tuple[np.ndarray, int]:
-        """write_memory's checks: the words as uint32 and the address, inside the memory."""
         data = self._memory_words(words)
         address = integer(address, "write_memory: address")
-        size = self.get("memorySize")
-        if address < 0 or address + len(data) > size:
-            raise ValueError(f"write_memory: {len(data)} words at address {address} leave the {size}-word memory "
+        # memorySize and memory.strobe in one get (both Integer, Int32 in FMI 3)
+        size, strobe = self._getters[self.variables["memorySize"].type]([self._vr["memorySize"],
+                                                                         self._vr["memory.strobe"]])
+        self._memory_fits(address, len(data), size)
+        memory_port.write(self, address, data, strobe)
+
+    @staticmethod
+    def _memory_fits(address: int, n: int, size: int) -> None:
+        """write_memory's check that n words at address fit the memory of size words."""
+        if address < 0 or address + n > size:
+            raise ValueError(f"write_memory: {n} words at address {address} leave the {size}-word memory "
                              f"(memorySize; addresses 0 .. {size - 1}); nothing was written")
-        return data, address
 
     def _write_memory_stepwise(self, address: int, words: Sequence[int]) -> None:
         """write_memory block by block in Python through FMPy: what it did before the native loop
         (pmdfmu.memory_port), kept as its reference (tests/test_memory_port.py)."""
-        data, address = self._memory_block(address, words)
+        data = self._memory_words(words)
+        address = integer(address, "write_memory: address")
+        self._memory_fits(address, len(data), self.get("memorySize"))
         strobe = self.get("memory.strobe")
         for start in range(0, len(data), BATCH_WORDS):
             strobe = (strobe + 1) & 0x7FFFFFFF
@@ -790,6 +833,8 @@ class Chip:
         array = np.asarray(words)
         if array.ndim != 1:
             raise ValueError(f"write_memory: words must be a sequence of integers, not {words!r}")
+        if array.dtype == np.uint32 or array.dtype == np.int32:     # every value a word: nothing to check
+            return array.view(np.uint32)
         try:
             if array.dtype.kind in "iub":          # numpy integers: the whole array checked at once
                 wide = array.astype(np.int64) if array.dtype.kind != "u" else array
@@ -955,8 +1000,11 @@ class Chip:
             return np.zeros(0, dtype=[CYCLE])
         names = list(record)
         where, dtype = self._columns(names)
-        if self.fmi_version == 3 and set(names) <= set(RECORDED):
-            return self._run_recorded(cycles, names)
+        lend = recording.lender(self)
+        # in bulk where the FMU records the columns: the commanded outputs always, any others with
+        # record.columns (not `time`, the same for all the cycles of a doStep)
+        if lend and (set(names) <= set(RECORDED) or ("record.columns" in self.variables and "time" not in names)):
+            return self._run_recorded(cycles, names, lend, where, dtype)
         out = np.zeros(cycles, dtype=dtype)
         recording.record(self, recording.Plan(self, where, dtype), out)
         return out

@@ -1,17 +1,28 @@
-"""Chip.run(cycles, record=names) cycle by cycle in the harness's native library
-(native/record.c): per cycle one doStep to the next cycle of the FMU's grid and
-one get per FMI type, through the FMU's own FMI functions with the arguments the
-harness's Python loop passed (Chip._run_stepwise, kept as the reference), the
-columns converted as that loop converted them."""
+"""How Chip.run(cycles, record=names) records (docs/performance.md, "Recording").
+
+In bulk, the FMU's way (Chip._run_recorded): the FMU writes each cycle's row into
+record.data itself (record.columns names the columns), one doStep and one read
+per record.capacity cycles; FMI 2 reads record.data through the FMU's extension
+function pmdfmu_fmi2GetRecordData. `lender` finds how an FMU lends it.
+
+Cycle by cycle in the harness's native library (native/record.c), for an FMU
+without bulk recording of the columns (an older build) or a run that records
+`time`: per cycle one doStep to the next cycle of the FMU's grid and one get per
+FMI type, through the FMU's own FMI functions with the arguments the harness's
+Python loop passed (Chip._run_stepwise, kept as the reference), the columns
+converted as that loop converted them."""
 from __future__ import annotations
 
-from ctypes import POINTER, Structure, c_int, c_size_t, c_uint32, c_void_p
-from typing import Dict, List, Sequence, Tuple
+from ctypes import POINTER, Structure, byref, c_int, c_size_t, c_uint32, c_void_p
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
 
 from . import native
+
+# False: every recording runs cycle by cycle in the native loop (tests pin that loop with it)
+BULK = True
 
 # record.h's PmdRecordType, by the FMU's type (FMI 2 and FMI 3 names) and by a row's numpy type
 DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
@@ -99,3 +110,32 @@ def record(chip, plan: Plan, out: np.ndarray) -> None:
     if fn(native.address(_function(chip.fmu, plan.do_step)), chip.fmu.component, plan.groups, len(plan.groups),
           plan.grid_group, 0, plan.columns, len(plan.columns), out.ctypes.data, out.dtype.itemsize, len(out), stop):
         raise FMICallException(function=plan.do_step if stop.call < 0 else plan.names[stop.call], status=stop.status)
+
+
+def lender(chip) -> Optional[Callable[[], Tuple[int, int]]]:
+    """A function returning record.data's (address, size in bytes) as the FMU lends it after a doStep
+    (valid until its next call), or None: an FMI 2 FMU without pmdfmu_fmi2GetRecordData (an older
+    build), or BULK off."""
+    if not BULK:
+        return None
+    if chip.fmi_version == 3:
+        from fmpy.fmi3 import fmi3Binary, fmi3ValueReference
+        vrs, size, value = (fmi3ValueReference * 1)(chip._vr["record.data"]), (c_size_t * 1)(), (fmi3Binary * 1)()
+
+        def lend3() -> Tuple[int, int]:
+            chip.fmu.fmi3GetBinary(chip.fmu.component, vrs, 1, size, value, 1)
+            return c_void_p.from_buffer(value).value or 0, size[0]
+        return lend3
+    get = getattr(chip.fmu.dll, "pmdfmu_fmi2GetRecordData", None)
+    if get is None:
+        return None
+    get.restype = c_int
+    get.argtypes = [c_void_p, POINTER(c_void_p), POINTER(c_size_t)]
+    data, nbytes = c_void_p(), c_size_t()
+
+    def lend2() -> Tuple[int, int]:
+        status = get(chip.fmu.component, byref(data), byref(nbytes))
+        if status > 1:                                  # as FMPy raises for an FMI function
+            raise FMICallException(function="pmdfmu_fmi2GetRecordData", status=status)
+        return data.value or 0, nbytes.value
+    return lend2

@@ -1,0 +1,212 @@
+/* Bulk recording: record.data's buffer and record.columns, the values a
+ * recording doStep writes per cycle (docs/performance.md, "Recording").
+ *
+ * A row is little-endian and packed: the chip time (int32, GetTime), then
+ * each column in record.columns' order as the FMU's getter returns it at the
+ * end of the cycle - an Integer (any FMI 3 integer type) or a Boolean as an
+ * int32, a Real as a float64. "" (the default) is the row of chip.c's
+ * pmd_chip_record: the chip time and the commanded position, velocity and
+ * acceleration of the four axes. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "instance.h"
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "record.data's rows are little-endian as the platform stores them"
+#endif
+
+/* Columns of one row at most: a row of every variable of variables.csv twice over fits. */
+#define MAX_COLUMNS 4096
+
+static PmdStatus record_reserve(PmdInstance *inst, const char *fn, uint32_t rowBytes)
+{
+    size_t bytes = (size_t)inst->recordCapacity * rowBytes;
+    int32_t *record;
+    if (inst->record && inst->recordRows == inst->recordCapacity && inst->recordBytes >= bytes)
+        return PMD_OK;
+    if (inst->recordCapacity == 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: record.capacity is 0", fn);
+        return PMD_ERROR;
+    }
+    /* a larger block of the same capacity keeps the rows of the last doStep (record.data) */
+    record = (int32_t *)realloc(inst->record, bytes);
+    if (!record) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.enabled: no host memory for record.capacity %u",
+                         fn, (unsigned)inst->recordCapacity);
+        return PMD_ERROR;
+    }
+    if (inst->recordRows != inst->recordCapacity)     /* sized for another record.capacity */
+        inst->recordCount = 0;
+    inst->record = record;
+    inst->recordRows = inst->recordCapacity;
+    inst->recordBytes = bytes;
+    return PMD_OK;
+}
+
+/* The record.data buffer, allocated when recording is enabled: an instance
+ * that never records does not carry it, and doStep never allocates. */
+PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
+{
+    return record_reserve(inst, fn, inst->columns.rowBytes);
+}
+
+void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size)
+{
+    *data = (const unsigned char *)inst->record;
+    *size = (size_t)inst->recordCount * inst->recordRowBytes;
+}
+
+void pmd_record_columns_free(PmdRecordColumns *columns)
+{
+    free(columns->text);
+    free(columns->column);
+    memset(columns, 0, sizeof *columns);
+    columns->rowBytes = PMD_RECORD_WORDS * sizeof(int32_t);
+}
+
+static const PmdVariable *variable_named(const char *name, size_t length)
+{
+    size_t i;
+    for (i = 0; i < PMD_VARIABLE_COUNT; i++)
+        if (strncmp(pmd_variables[i].name, name, length) == 0 && pmd_variables[i].name[length] == '\0')
+            return &pmd_variables[i];
+    return NULL;
+}
+
+static PmdStatus refused(PmdInstance *inst, const char *fn, const char *text, const char *name, size_t length,
+                         const char *why, PmdRecordColumn *column)
+{
+    free(column);
+    pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.columns = \"%s\": \"%.*s\" %s: not set", fn, text,
+                     (int)length, name, why);
+    return PMD_ERROR;
+}
+
+PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const char *text, PmdRecordColumns *out)
+{
+    PmdRecordColumns c;
+    const char *p = text;
+    size_t n = 1, k = 0;
+    memset(&c, 0, sizeof c);
+    c.rowBytes = sizeof(int32_t);                   /* the chip time */
+    if (!*text) {
+        pmd_record_columns_free(out);
+        return PMD_OK;
+    }
+    for (; *p; p++)
+        n += *p == ',';
+    if (n > MAX_COLUMNS) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.columns: %zu columns, more than %d: not set", fn,
+                         n, MAX_COLUMNS);
+        return PMD_ERROR;
+    }
+    c.column = (PmdRecordColumn *)malloc(n * sizeof *c.column);
+    c.text = (char *)malloc(strlen(text) + 1);
+    if (!c.column || !c.text) {
+        free(c.text);
+        free(c.column);
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: record.columns: out of host memory: not set", fn);
+        return PMD_ERROR;
+    }
+    strcpy(c.text, text);
+    for (p = text;; p++) {
+        /* one name: FMI 2's (an array's element as "io.output[3]"), spaces around it ignored */
+        const char *end = p + strcspn(p, ",");
+        const PmdVariable *v;
+        while (p < end && *p == ' ')
+            p++;
+        while (end > p && end[-1] == ' ')
+            end--;
+        v = variable_named(p, (size_t)(end - p));
+        if (end == p || !v || v->type == PMD_STRING || v->type == PMD_BINARY || v->family == VAR_time) {
+            free(c.text);
+            return refused(inst, fn, text, p, (size_t)(end - p),
+                           end == p ? "is no name (an empty column)"
+                           : !v ? "is not a variable of the FMU (FMI 2 names: an array's element as name[i])"
+                           : v->family == VAR_time ? "is the independent variable, the same for every cycle of a "
+                                                     "doStep (each cycle's time: nextCycleTime before it)"
+                           : "is not a number (String or Binary)", c.column);
+        }
+        c.column[k].vr = v->vr;
+        c.column[k].type = v->type;
+        c.rowBytes += v->type == PMD_REAL ? sizeof(double) : sizeof(int32_t);
+        k++;
+        p += strcspn(p, ",");
+        if (!*p)
+            break;
+    }
+    c.count = k;
+    pmd_record_columns_free(out);
+    *out = c;
+    return PMD_OK;
+}
+
+PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *text, int apply)
+{
+    const char *staged;
+    if (!apply) {
+        PmdRecordColumns c;
+        memset(&c, 0, sizeof c);
+        if (pmd_record_columns_compile(inst, fn, text, &c) != PMD_OK)
+            return PMD_ERROR;
+        /* recording goes on with the new rows: the buffer grows now, so that applying cannot fail */
+        if (inst->s.recordEnabled && record_reserve(inst, fn, c.rowBytes) != PMD_OK) {
+            pmd_record_columns_free(&c);
+            return PMD_ERROR;
+        }
+        pmd_record_columns_free(&inst->stagedColumns);
+        inst->stagedColumns = c;
+        return PMD_OK;
+    }
+    /* the call's last value was compiled last: an earlier one of the same call is overwritten anyway */
+    staged = inst->stagedColumns.text ? inst->stagedColumns.text : "";
+    if (strcmp(staged, text) == 0) {
+        pmd_record_columns_free(&inst->columns);
+        inst->columns = inst->stagedColumns;
+        memset(&inst->stagedColumns, 0, sizeof inst->stagedColumns);
+        pmd_record_columns_free(&inst->stagedColumns);
+    }
+    return PMD_OK;
+}
+
+/* A row: the chip time, then each column through its getter (which cannot
+ * fail: the columns were checked when set). */
+static void record_row(PmdInstance *inst, unsigned char *row)
+{
+    const PmdRecordColumn *c = inst->columns.column, *last = c + inst->columns.count;
+    int32_t time = pmd_int32(inst->chip.s.time);
+    memcpy(row, &time, sizeof time);
+    row += sizeof time;
+    for (; c < last; c++) {
+        if (c->type == PMD_REAL) {
+            double x = 0;
+            pmd_get_real(inst, "record.columns", c->vr, &x);
+            memcpy(row, &x, sizeof x);
+            row += sizeof x;
+        } else {
+            int32_t n = 0;
+            int b = 0;
+            if (c->type == PMD_INTEGER)
+                pmd_get_integer(inst, "record.columns", c->vr, &n);
+            else
+                pmd_get_boolean(inst, "record.columns", c->vr, &b), n = b != 0;
+            memcpy(row, &n, sizeof n);
+            row += sizeof n;
+        }
+    }
+}
+
+/* Each cycle alone (pmd_chip_run of one cycle): a longer quiet run leaves an
+ * ideal servo's filter and sampled actual position to its end (chip.c), and
+ * a column may show them. */
+void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first)
+{
+    unsigned char *row = (unsigned char *)inst->record + (size_t)first * inst->columns.rowBytes;
+    int64_t i;
+    for (i = 0; i < cycles; i++, row += inst->columns.rowBytes) {
+        pmd_chip_run(&inst->chip, 1, NULL);
+        inst->s.nextCycle++;
+        record_row(inst, row);
+    }
+}

@@ -1,0 +1,24 @@
+/* record.columns: which values a recording doStep writes into record.data
+ * besides the chip time (record.c). Independent of the FMI version. */
+#ifndef PMD_RECORD_H
+#define PMD_RECORD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* One column: a variable of variables.csv (its FMI 2 scalar), read through
+ * the instance's own getter (pmd_get_real, _integer, _boolean). */
+typedef struct {
+    unsigned vr;
+    unsigned char type;              /* PMD_REAL: 8 bytes; PMD_INTEGER, PMD_BOOLEAN: 4 */
+} PmdRecordColumn;
+
+/* record.columns compiled: count 0 is "" (the default row of PMD_RECORD_WORDS int32). */
+typedef struct {
+    char *text;                      /* the value as set; NULL: "" */
+    PmdRecordColumn *column;
+    size_t count;
+    uint32_t rowBytes;               /* of one row of record.data */
+} PmdRecordColumns;
+
+#endif
