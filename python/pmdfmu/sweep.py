@@ -21,8 +21,9 @@ Cases go to the workers in batches of consecutive cases, a few batches per
 worker thread (BATCHES_PER_THREAD): one task per case would cost the
 scheduler more than a short case itself. A worker on this machine hands a
 large recording back through a file in a folder the sweep made (/dev/shm where
-there is one): through Dask it would cross a socket, copied on both sides, which
-costs the sweep's process as much CPU time as the case took to record it.
+there is one): through Dask it would cross a socket, copied on both sides, in CPU
+time the workers need on a small machine (docs/performance.md, "Instances and
+sweeps").
 """
 from __future__ import annotations
 
