@@ -38,7 +38,7 @@ def test_model_description_and_c_value_references_agree_with_the_table():
         x = xml[name]
         assert (x.valueReference, x.type, x.causality, x.variability) == (v.vr, v.type, v.causality, v.variability)
     source = zipfile.ZipFile(FMU).read("sources/variables.c").decode()
-    c_rows = re.findall(r'\{(\d+), VAR_\w+, \d+, PMD_(\w+), PMD_(\w+), "([^"]+)"\}', source)
+    c_rows = re.findall(r'\{(\d+), VAR_\w+, \d+, PMD_(\w+), PMD_(\w+), \d+, "([^"]+)"\}', source)
     assert {name: (int(vr), t.capitalize(), c.lower()) for vr, t, c, name in c_rows} == \
         {n: (v.vr, v.type, v.causality) for n, v in everything.items()}
     guid = re.search(r'PMD_INSTANTIATION_TOKEN "([^"]+)"',

@@ -1,10 +1,11 @@
 /* Bulk recording: record.data's buffer and record.columns, the values a
  * recording doStep writes per cycle (docs/performance.md, "Recording").
  *
- * A row is little-endian and packed: the chip time (int32, GetTime), then
+ * A row is little-endian and packed: the chip time (uint32, GetTime), then
  * each column in record.columns' order as the FMU's getter returns it at the
- * end of the cycle - an Integer (any FMI 3 integer type) or a Boolean as an
- * int32, a Real as a float64. "" (the default) is the row of chip.c's
+ * end of the cycle, in its FMI 3 type (variables.csv): Float64 8 bytes, Int32
+ * and UInt32 4, Int16 and UInt16 2, Boolean 1 (0 or 1) - the layout of the
+ * harness's rows, which it copies whole. "" (the default) is the row of chip.c's
  * pmd_chip_record: the chip time and the commanded position, velocity and
  * acceleration of the four axes. */
 #include <stdlib.h>
@@ -130,7 +131,8 @@ PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const ch
         }
         c.column[k].vr = v->vr;
         c.column[k].type = v->type;
-        c.rowBytes += v->type == PMD_REAL ? sizeof(double) : sizeof(int32_t);
+        c.column[k].bytes = v->bytes;
+        c.rowBytes += v->bytes;
         k++;
         p += strcspn(p, ",");
         if (!*p)
@@ -171,28 +173,35 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
 }
 
 /* A row: the chip time, then each column through its getter (which cannot
- * fail: the columns were checked when set). */
+ * fail: the columns were checked when set), its low bytes (little-endian). */
 static void record_row(PmdInstance *inst, unsigned char *row)
 {
     const PmdRecordColumn *c = inst->columns.column, *last = c + inst->columns.count;
     int32_t time = pmd_int32(inst->chip.s.time);
     memcpy(row, &time, sizeof time);
     row += sizeof time;
-    for (; c < last; c++) {
-        if (c->type == PMD_REAL) {
-            double x = 0;
+    for (; c < last; row += c->bytes, c++) {
+        double x = 0;
+        int32_t n = 0;
+        int b = 0;
+        switch (c->type) {
+        case PMD_REAL:
             pmd_get_real(inst, "record.columns", c->vr, &x);
             memcpy(row, &x, sizeof x);
-            row += sizeof x;
-        } else {
-            int32_t n = 0;
-            int b = 0;
-            if (c->type == PMD_INTEGER)
-                pmd_get_integer(inst, "record.columns", c->vr, &n);
-            else
-                pmd_get_boolean(inst, "record.columns", c->vr, &b), n = b != 0;
-            memcpy(row, &n, sizeof n);
-            row += sizeof n;
+            break;
+        case PMD_INTEGER:
+            pmd_get_integer(inst, "record.columns", c->vr, &n);
+            if (c->bytes == 2) {
+                uint16_t w = (uint16_t)((uint32_t)n & 0xFFFFu);
+                memcpy(row, &w, sizeof w);
+            } else {
+                memcpy(row, &n, sizeof n);
+            }
+            break;
+        default:
+            pmd_get_boolean(inst, "record.columns", c->vr, &b);
+            *row = b != 0;
+            break;
         }
     }
 }

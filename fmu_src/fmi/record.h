@@ -10,7 +10,8 @@
  * the instance's own getter (pmd_get_real, _integer, _boolean). */
 typedef struct {
     unsigned vr;
-    unsigned char type;              /* PMD_REAL: 8 bytes; PMD_INTEGER, PMD_BOOLEAN: 4 */
+    unsigned char type;              /* PMD_REAL, PMD_INTEGER, PMD_BOOLEAN */
+    unsigned char bytes;             /* of its FMI 3 type: 8, 4, 2 (the low bits), 1 (a Boolean: 0 or 1) */
 } PmdRecordColumn;
 
 /* record.columns compiled: count 0 is "" (the default row of PMD_RECORD_WORDS int32). */

@@ -711,10 +711,10 @@ class Chip:
                     runs.append([i, c, 1])
             row = np.dtype((np.int32, 1 + len(RECORDED)))
         else:
-            # the FMU's packed row: the chip time, then each column as an int32 (any integer type, a
-            # Boolean) or a float64 (a Real), in the order of names
+            # the FMU's packed little-endian row is the result's: the chip time, then each column in its
+            # FMI 3 type's width; whole rows copy as one block
             out = np.zeros(cycles, dtype=dtype)
-            row = np.dtype([("cycle", "<i4")] + [(n, "<f8" if DTYPES[n].kind == "f" else "<i4") for n in names])
+            row = np.dtype((np.uint8, dtype.itemsize))
             if row.itemsize != self.get("record.rowSize"):
                 raise FMUError(f"record.rowSize is {self.get('record.rowSize')}, not the {row.itemsize} bytes of "
                                f"a row of {len(names)} columns: the FMU's record.columns is another")
@@ -762,8 +762,7 @@ class Chip:
                     for at, column, width in runs:
                         table[done:done + n, at:at + width] = rows[:, column:column + width]
                 else:
-                    for name in row.names:          # the result's widths: the low bits, as FMI 3 reads them
-                        out[name][done:done + n] = rows[name]
+                    out.view((np.uint8, dtype.itemsize))[done:done + n] = rows
                 done += n
         finally:
             self.set("record.enabled", False)
