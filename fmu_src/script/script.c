@@ -461,6 +461,52 @@ static int read_header(const Where *w, char *text, int *columnOf)
     return n;
 }
 
+/* What a column's 32-bit words hold: a segment time is unsigned, the others either reading. */
+static int fits_column(int f, int64_t v)
+{
+    return f == PMDBufferFunctionTime ? v >= 0 && v <= 0xFFFFFFFF : v >= -(int64_t)0x80000000 && v <= 0xFFFFFFFF;
+}
+
+/* A row read the common way, in place (a table of 10^5 rows spends its time
+ * here): every cell a decimal integer of at most 18 digits, which parse_number
+ * would read as the same value (scaled to the cell's fraction bits), as many
+ * cells as columns, each value fitting its column. Returns 0 with values[f] for
+ * each column's function f, or -1 for any other row, which load_table then
+ * reads cell by cell: its first error is reported as it always was. */
+static int plain_row(const char *p, int nColumns, const int *functionOfCell, const int *fixedOfCell, int64_t *values)
+{
+    int n;
+    for (n = 0; n < nColumns; n++) {
+        uint64_t mantissa = 0;
+        int negative = 0, digits = 0;
+        int64_t v;
+        while (isspace((unsigned char)*p))
+            p++;
+        if (*p == '-' || *p == '+')
+            negative = *p++ == '-';
+        for (; *p >= '0' && *p <= '9' && digits < 18; p++, digits++)
+            mantissa = mantissa * 10 + (uint64_t)(*p - '0');
+        if (digits == 0 || (*p >= '0' && *p <= '9'))
+            return -1;
+        while (isspace((unsigned char)*p))
+            p++;
+        if (*p != ',' && *p != '\0')
+            return -1;
+        if (fixedOfCell[n]) {                      /* mantissa * 2^fixed, a signed 32-bit word (parse_number) */
+            if (mantissa > (negative ? 0x80000000ull : 0x7FFFFFFFull) >> fixedOfCell[n])
+                return -1;
+            mantissa <<= fixedOfCell[n];
+        }
+        v = negative ? -(int64_t)mantissa : (int64_t)mantissa;
+        if (!fits_column(functionOfCell[n], v))
+            return -1;
+        values[functionOfCell[n]] = v;
+        if (*p++ == '\0')
+            return n + 1 == nColumns ? 0 : -1;
+    }
+    return -1;                                     /* more cells than columns */
+}
+
 /* Reads the table; emits, at `cycle`, buffer set-up commands and one memory
  * block per column. Units: "# units: raw" (default: the chip's words) or
  * "# units: counts/cycle" (decimals for velocity, acceleration and jerk). */
@@ -469,7 +515,9 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
 {
     static const int fixedOfColumn[PMD_FUNCTIONS] = {0, 16, 16, 32, 0};
     char line[MAX_LINE], *cells[PMD_FUNCTIONS];
-    int columnOf[PMD_FUNCTIONS], nColumns = 0, present = 0, units = -1, header, got, f, k;
+    int columnOf[PMD_FUNCTIONS], functionOfCell[PMD_FUNCTIONS], fixedOfCell[PMD_FUNCTIONS];
+    int nColumns = 0, present = 0, units = -1, header, got, f, k;
+    int64_t values[PMD_FUNCTIONS];
     size_t rows = 0, row, base = s->poolCount;
     const char *why = "";
     Reader in;
@@ -484,9 +532,11 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
         columnOf[f] = -1;
     /* pass 1 reads the header and counts rows; pass 2 stores the columns one after another */
     while ((got = read_line(&in, line)) == 1) {
-        char *t = trim(line);
+        char *t = line;
+        while (isspace((unsigned char)*t))       /* a row is only counted: trimmed when it is read */
+            t++;
         if (*t == '#') {
-            char *text = strstr(t, "units:");
+            char *text = strstr(trim(t), "units:");
             int counts;
             if (!text)
                 continue;
@@ -502,7 +552,7 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
         if (!*t)
             continue;
         if (!nColumns) {
-            if ((nColumns = read_header(&in.w, t, columnOf)) < 0)
+            if ((nColumns = read_header(&in.w, trim(t), columnOf)) < 0)
                 return close_reader(&in), -1;
             continue;
         }
@@ -522,19 +572,35 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
     /* pass 2: every row once, each present column into its own block of the pool */
     if (pool_grow(s, (size_t)present * rows))
         return close_reader(&in), fail(at, "out of memory");
+    for (f = 0; f < PMD_FUNCTIONS; f++) {
+        if (columnOf[f] >= 0) {
+            functionOfCell[columnOf[f]] = f;
+            fixedOfCell[columnOf[f]] = units == 1 ? fixedOfColumn[f] : 0;
+        }
+    }
     in.at = 0;
     in.w.line = 0;
     in.bytes = 0;
     got = 1;
     for (row = 0, header = 0; row < rows && (got = read_line(&in, line)) == 1;) {
-        char *t = trim(line);
+        char *t = line;
         int n;
+        while (isspace((unsigned char)*t))
+            t++;
         if (*t == '#' || !*t)
             continue;
         if (!header) {
             header = 1;
             continue;
         }
+        if (plain_row(t, nColumns, functionOfCell, fixedOfCell, values) == 0) {
+            for (f = 0, k = 0; f < PMD_FUNCTIONS; f++)
+                if (columnOf[f] >= 0)
+                    s->pool[base + (size_t)k++ * rows + row] = (uint32_t)(values[f] & 0xFFFFFFFF);
+            row++;
+            continue;
+        }
+        t = trim(t);
         if ((n = split_csv(t, cells, PMD_FUNCTIONS)) != nColumns)
             return close_reader(&in), fail(&in.w, "expected %d values (one per column), found %d", nColumns, n);
         for (f = 0, k = 0; f < PMD_FUNCTIONS; f++) {
@@ -543,8 +609,7 @@ static int load_table(PmdScript *s, const Where *at, int64_t cycle, int axis, co
                 continue;
             if (parse_number(&in.w, cells[columnOf[f]], units == 1 ? fixedOfColumn[f] : 0, &v))
                 return close_reader(&in), -1;
-            if (f == PMDBufferFunctionTime ? (v < 0 || v > 0xFFFFFFFF)
-                                           : (v < -(int64_t)0x80000000 || v > 0xFFFFFFFF))
+            if (!fits_column(f, v))
                 return close_reader(&in), fail(&in.w, "%s %s does not fit 32 bits", columns[f], cells[columnOf[f]]);
             s->pool[base + (size_t)k++ * rows + row] = (uint32_t)(v & 0xFFFFFFFF);
         }

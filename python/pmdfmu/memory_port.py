@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from ctypes import POINTER, Structure, c_int, c_int32, c_size_t, c_uint32, c_void_p
 from functools import lru_cache
-from typing import Dict, Tuple
+from typing import Dict, List, Tuple
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
@@ -42,9 +42,12 @@ def _writers():
     return {2: fmi2, 3: fmi3}
 
 
-# value references per FMU model: the harness shares one name -> value reference map among the Chips of
-# an FMU file; kept with it so that the id stays its own
+# per FMU model (the harness shares one name -> value reference map among the Chips of an FMU file):
+# the port's value references, kept with the map so that its id stays its own
 _ports: Dict[int, Tuple[dict, Port]] = {}
+# the FMI functions' addresses, by the ctypes functions FMPy calls (looked up each write, as FMPy's
+# own wrappers do, so that the native loop calls whatever FMPy would)
+_addresses: Dict[Tuple[int, ...], Tuple[tuple, List[int]]] = {}
 
 
 def _port(chip) -> Port:
@@ -58,16 +61,22 @@ def _port(chip) -> Port:
     return kept[1]
 
 
+def _calls(chip) -> List[int]:
+    names = FUNCTIONS[3] if chip.fmi_version == 3 else (FUNCTIONS[2][0], FUNCTIONS[2][2])
+    functions = tuple(chip.fmu._functions[n] for n in names)
+    key = tuple(map(id, functions))
+    kept = _addresses.get(key)
+    if kept is None or any(a is not b for a, b in zip(kept[0], functions)):
+        kept = _addresses[key] = (functions, [native.address(f) for f in functions])
+    return kept[1]
+
+
 def write(chip, address: int, words: np.ndarray, strobe: int) -> None:
     """Writes the uint32 words at address.. (checked by the caller), the first block with strobe
     (strobe + 1) & 0x7FFFFFFF; raises as FMPy would for a call that failed (FMICallException naming
     it: the FMU's messages are in chip.messages), the blocks before it written."""
     words = np.ascontiguousarray(words, dtype=np.uint32)
-    version = chip.fmi_version
-    names = FUNCTIONS[version]
-    functions = chip.fmu._functions
-    calls = [native.address(functions[n]) for n in (names if version == 3 else (names[0], names[2]))]
     stop = Stop()
-    if _writers()[version](*calls, chip.fmu.component, _port(chip), address, words.ctypes.data, len(words),
-                           strobe, stop):
-        raise FMICallException(function=names[stop.call], status=stop.status)
+    if _writers()[chip.fmi_version](*_calls(chip), chip.fmu.component, _port(chip), address, words.ctypes.data, len(words),
+                                    strobe, stop):
+        raise FMICallException(function=FUNCTIONS[chip.fmi_version][stop.call], status=stop.status)
