@@ -254,17 +254,29 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
         record_axis(chip, n, row);
 }
 
-/* A hint for the loop over the axes in cycle(): unrolled, each axis's cycle
- * addresses its state at constant offsets and the four independent
+/* A hint for the loop over the axes in quiet_cycles(): unrolled, each axis's
+ * cycle addresses its state at constant offsets and the four independent
  * recurrences interleave - bench/engine.c measured the quiet cycle 1.44x a
- * bare loop's time rolled, 1.24x unrolled (4-cycle segments). Other
- * compilers run the loop as written. */
+ * bare loop's time rolled, 1.24x unrolled (4-cycle segments). Other compilers
+ * run the loop as written. */
 #if defined(__clang__)
 #define UNROLL_AXES _Pragma("clang loop unroll(full)")
 #elif defined(__GNUC__) && __GNUC__ >= 8
 #define UNROLL_AXES _Pragma("GCC unroll 4")
 #else
 #define UNROLL_AXES
+#endif
+
+/* Inlining hints for GCC and Clang (other compilers decide for themselves):
+ * the rare path of a hot loop kept out of line, so that the loop keeps its
+ * values in registers; a loop body inlined at each of its call sites, so that
+ * each copy is compiled for its constant arguments (with a record or without). */
+#if defined(__GNUC__)
+#define NOINLINE __attribute__((noinline))
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define NOINLINE
+#define ALWAYS_INLINE inline
 #endif
 
 /* One chip cycle; with row, the cycle's record row (pmd_chip_record). In a
@@ -275,46 +287,26 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
  * error's auto-stop, a breakpoint's motor off or update): its output is the
  * motor command the cycle ends with (docs/decisions.md). In a quiet run the
  * filters of the axes in closedForm (bit n: axis n) are left to pmd_chip_run,
- * which runs all their cycles at once at the end; so is the sampling of the
- * axes in unsampled (a subset of closedForm, see pmd_chip_run): an ideal
- * servo's actual position is its commanded one, and within a quiet run only
- * its own settle check at rest reads it, which samples first. */
-static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closedForm, unsigned unsampled,
-                         int32_t *row)
+ * which runs all their cycles at once at the end. A quiet run's middle cycles
+ * are quiet_cycles(). */
+static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closedForm, int32_t *row)
 {
     int n;
     chip->s.time = chip->s.nextTime++;
     if (quiet && row)
         row[0] = pmd_int32(chip->s.time);
     /* geared axes last: they follow their master's position of this cycle */
-    UNROLL_AXES
     for (n = 0; n < PMD_AXES; n++) {
-        if ((unsampled & (1u << n)) && chip->s.axis[n].motion == PMD_MOTION_EXTERNAL &&
-            chip->s.axis[n].segmentTime != 0) {
-            /* most cycles of a quiet run: pmd_profile_cycle's integration step, taken first; the
-             * axis moves on, so its servo side (below) has nothing to do */
-            pmd_external_step(chip, n);
-            if (row)
-                record_axis(chip, n, row);
-            continue;
-        }
-        pmd_profile_cycle(chip, n);            /* one call site: inlined into the loop */
-        if (unsampled & (1u << n)) {
-            /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only resets
-             * its settle count, which the run's first cycle did (pmd_chip_run); at rest it settles */
-            if (chip->s.axis[n].motion == PMD_MOTION_IDLE) {
-                sample_actual(chip, n, loopback);
-                check_position_error(chip, n);
-            }
-        } else if (quiet) {
+        pmd_profile_cycle(chip, n);
+        if (quiet) {
             check_servo(chip, n, sample_actual(chip, n, loopback));
             if (!(closedForm & (1u << n)))
                 pmd_servo_cycle(chip, n);
+            if (row)
+                record_axis(chip, n, row);
         } else if (chip->s.axis[n].motion != PMD_MOTION_GEAR) {
             sample_actual(chip, n, loopback);
         }
-        if (quiet && row)
-            record_axis(chip, n, row);
     }
     if (quiet) {
         chip->s.updatedAxes = 0;           /* what pmd_trace_cycle does with no trace armed */
@@ -367,26 +359,110 @@ static unsigned closed_form_axes(const PmdChip *chip, int quiet, int loopback)
     return axes;
 }
 
-/* The middle cycles of a quiet run (all but its first and last) leave an
- * ideal servo's axis (closedForm) unsampled and its settle count alone while
- * it moves (cycle()): within the run no one else reads its actual position,
- * and a cycle in which it moves resets the count, which only the settling at
- * rest moves again; an axis at rest stays at rest until a command. The first
- * cycle resets the count of an axis that moves, the last sets the previous
- * actual position (GetActualVelocity) and the actual position as every cycle
- * would have. */
+/* An ideal servo's axis at rest in a quiet run's middle cycles: check_servo
+ * with its error 0 (sampled first), as quiet_axis_cycle. */
+static NOINLINE void settle(PmdChip *chip, int n, int loopback)
+{
+    sample_actual(chip, n, loopback);
+    check_position_error(chip, n);
+}
+
+/* Axis n's cycle in quiet_cycles() but for an ideal servo's integration step:
+ * cycle()'s, with an ideal servo's axis (closedForm) unsampled. Out of line:
+ * the loop's registers stay with the integration steps. */
+static NOINLINE void quiet_axis_cycle(PmdChip *chip, int n, int loopback, unsigned closedForm)
+{
+    pmd_profile_cycle(chip, n);
+    if (closedForm & (1u << n)) {
+        /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only resets
+         * its settle count, which the run's first cycle did (pmd_chip_run); at rest it settles */
+        if (chip->s.axis[n].motion == PMD_MOTION_IDLE)
+            settle(chip, n, loopback);
+    } else {
+        check_servo(chip, n, sample_actual(chip, n, loopback));
+        pmd_servo_cycle(chip, n);
+    }
+}
+
+/* The middle cycles of a quiet run (all but its first and last: see
+ * pmd_chip_run), `cycles` of them, rows from row on (or none). An ideal
+ * servo's axis inside an external segment - most cycles of a long run - takes
+ * the integration step (pmd_external_step) and nothing else: it moves on, so
+ * its servo side has nothing to do. Its columns of the row are stored before
+ * a motion-complete event is raised (which changes no register shown): the
+ * values are still in registers then. The chip time is kept in a local (the
+ * row's stores could alias the state's for all the compiler knows). */
+static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopback, unsigned closedForm,
+                                       int32_t *row)
+{
+    uint32_t time = chip->s.nextTime;
+    unsigned plain = 0;
+    int64_t k;
+    int n;
+    for (n = 0; n < PMD_AXES; n++)
+        if (pmd_external_plain(chip, n))
+            plain |= 1u << n;
+    for (k = 0; k < cycles; k++, time++) {
+        chip->s.time = time;
+        chip->s.nextTime = time + 1;
+        if (row)
+            row[0] = pmd_int32(time);
+        UNROLL_AXES
+        for (n = 0; n < PMD_AXES; n++) {
+            PmdAxis *ax = &chip->s.axis[n];
+            if ((closedForm & (1u << n)) && ax->motion == PMD_MOTION_EXTERNAL &&
+                (ax->segmentTime != 0 || (plain & (1u << n)))) {
+                int rest;
+                if (ax->segmentTime != 0) {
+                    ax->segmentTime--;
+                    rest = pmd_integrate(&ax->trajectory);
+                } else {
+                    rest = pmd_external_read_plain(chip, n);
+                    if (ax->motion == PMD_MOTION_IDLE)
+                        settle(chip, n, loopback);      /* a segment time 0 halted it */
+                }
+                if (row)
+                    record_axis(chip, n, row);
+                if (rest)
+                    pmd_motion_complete(chip, n);
+            } else {
+                quiet_axis_cycle(chip, n, loopback, closedForm);
+                if (row)
+                    record_axis(chip, n, row);
+            }
+        }
+        if (row)
+            row += PMD_RECORD_WORDS;
+    }
+    chip->s.updatedAxes = 0;               /* what pmd_trace_cycle does with no trace armed */
+}
+
+/* The middle cycles of a quiet run (quiet_cycles) leave an ideal servo's axis
+ * (closedForm) unsampled and its settle count alone while it moves: within the
+ * run no one else reads its actual position, and a cycle in which it moves
+ * resets the count, which only the settling at rest moves again; an axis at
+ * rest stays at rest until a command. The first cycle resets the count of an
+ * axis that moves, the last sets the previous actual position
+ * (GetActualVelocity) and the actual position as every cycle would have. */
 void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
 {
     int quiet = run_is_quiet(chip), loopback = chip->s.loopback, n;
     unsigned closedForm = closed_form_axes(chip, quiet, loopback);
     int64_t k;
     for (k = 0; k < cycles; k++) {
-        int middle = k > 0 && k < cycles - 1;
+        if (k == 1 && quiet && cycles > 2) {
+            /* a copy of the loop each, compiled with and without a record */
+            if (record)
+                quiet_cycles(chip, cycles - 2, loopback, closedForm, record + PMD_RECORD_WORDS);
+            else
+                quiet_cycles(chip, cycles - 2, loopback, closedForm, NULL);
+            k = cycles - 1;
+        }
         if (k == cycles - 1 && k > 0)
             for (n = 0; n < PMD_AXES; n++)
                 if (closedForm & (1u << n))
                     chip->s.axis[n].actualPosition = chip->s.axis[n].trajectory.position;  /* cycle k - 1's sample */
-        cycle(chip, quiet, loopback, closedForm, middle ? closedForm : 0, record ? record + k * PMD_RECORD_WORDS : NULL);
+        cycle(chip, quiet, loopback, closedForm, record ? record + k * PMD_RECORD_WORDS : NULL);
     }
     if (cycles > 0)
         for (n = 0; n < PMD_AXES; n++)

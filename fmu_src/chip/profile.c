@@ -155,6 +155,33 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
     return 1;
 }
 
+/* Whether axis n's segment reads may take pmd_external_read_plain for a whole
+ * run (no command runs within one): its read plan is current (read_segment
+ * would not check it again), it reads five distinct buffers (one per function,
+ * the usual layout), its position buffer is not streamed (no underrun to warn
+ * of), no buffer has unread entries to count down (a read only lowers them)
+ * and no one logs segments. */
+int pmd_external_plain(const PmdChip *chip, int n)
+{
+    const PmdAxis *ax = &chip->s.axis[n];
+    int i;
+    if (ax->buffersChecked != chip->s.bufferEpoch + 1 || ax->segmentBufferCount != PMD_FUNCTIONS ||
+        PMD_LOGGING(chip, PMD_LOG_SEGMENTS) || chip->s.buffer[ax->segmentBuffer[0]].streamed)
+        return 0;
+    for (i = 0; i < PMD_FUNCTIONS; i++)
+        if (chip->s.buffer[ax->segmentBuffer[i]].unread != 0)
+            return 0;
+    return 1;
+}
+
+/* The segment time 0 (seed 000, 1.5): StopTrajectory(), the read row's
+ * position held, the axis stationary. */
+void pmd_external_halt(PmdChip *chip, int n)
+{
+    pmd_log(chip, PMD_LOG_EVENTS, "axis %d: external profile read time 0: halted", n + 1);
+    pmd_abrupt_stop(chip, n);
+}
+
 /* One cycle of seed 000's pseudo code. The decrement closes every cycle that
  * does not stop, so a segment with time T lasts T cycles: the read cycle and
  * T-1 integration cycles (the worked table, chip times 11003..11013). Seed
@@ -163,7 +190,6 @@ static int read_segment(PmdChip *chip, int n, int32_t value[PMD_FUNCTIONS])
 static void external_cycle(PmdChip *chip, int n)
 {
     PmdAxis *ax = &chip->s.axis[n];
-    PmdTrajectory *t = &ax->trajectory;
     int32_t v[PMD_FUNCTIONS];
     int moving;
 
@@ -171,25 +197,12 @@ static void external_cycle(PmdChip *chip, int n)
         pmd_external_step(chip, n);
         return;
     }
-    moving = !pmd_fixed_is_zero(t->velocity);
+    moving = !pmd_fixed_is_zero(ax->trajectory.velocity);
     if (!read_segment(chip, n, v)) {
         pmd_abrupt_stop(chip, n);
         return;
     }
-    t->position = v[PMDBufferFunctionPosition];
-    t->fraction = 0;
-    t->velocity = pmd_fixed_from_1616(v[PMDBufferFunctionVelocity]);
-    t->acceleration = pmd_fixed_from_1616(v[PMDBufferFunctionAcceleration]);
-    t->jerk = v[PMDBufferFunctionJerk];
-    ax->segmentTime = (uint32_t)v[PMDBufferFunctionTime];
-    if (ax->segmentTime == 0) {
-        /* StopTrajectory(): this row's position is held, the axis stationary (seed 000, 1.5). */
-        pmd_log(chip, PMD_LOG_EVENTS, "axis %d: external profile read time 0: halted", n + 1);
-        pmd_abrupt_stop(chip, n);
-        return;
-    }
-    ax->segmentTime--;
-    if (moving && pmd_fixed_is_zero(t->velocity))
+    if (pmd_external_begin(chip, n, v, moving))
         pmd_motion_complete(chip, n);
 }
 

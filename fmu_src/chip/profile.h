@@ -69,4 +69,48 @@ static inline void pmd_external_step(PmdChip *chip, int n)
         pmd_motion_complete(chip, n);
 }
 
+/* The segment v read (seed 000's pseudo code after the read): the
+ * registers loaded, the read cycle counted. Returns whether the axis came to
+ * rest (moving: it was moving before), for the caller to call
+ * pmd_motion_complete (after it has read the registers it wants). */
+void pmd_external_halt(PmdChip *chip, int axis);
+static inline int pmd_external_begin(PmdChip *chip, int n, const int32_t v[PMD_FUNCTIONS], int moving)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    PmdTrajectory *t = &ax->trajectory;
+    t->position = v[PMDBufferFunctionPosition];
+    t->fraction = 0;
+    t->velocity = pmd_fixed_from_1616(v[PMDBufferFunctionVelocity]);
+    t->acceleration = pmd_fixed_from_1616(v[PMDBufferFunctionAcceleration]);
+    t->jerk = v[PMDBufferFunctionJerk];
+    ax->segmentTime = (uint32_t)v[PMDBufferFunctionTime];
+    if (ax->segmentTime == 0) {
+        pmd_external_halt(chip, n);
+        return 0;
+    }
+    ax->segmentTime--;
+    return moving && pmd_fixed_is_zero(t->velocity);
+}
+
+/* A segment read in the usual layout (pmd_external_plain held at the run's
+ * start): read_segment without its checks, which cannot fail then - one load
+ * per function at the position buffer's read index, each buffer's read index
+ * moved past it. Returns what pmd_external_begin does. */
+int pmd_external_plain(const PmdChip *chip, int axis);
+static inline int pmd_external_read_plain(PmdChip *chip, int n)
+{
+    PmdAxis *ax = &chip->s.axis[n];
+    const PmdBuffer *pos = &chip->s.buffer[ax->segmentBuffer[0]];      /* the plan lists position first */
+    uint32_t offset = pos->readIndex, next = offset + 1 == pos->length ? 0 : offset + 1;
+    const uint32_t *word = chip->memory + offset;
+    int32_t v[PMD_FUNCTIONS];
+    int f;
+    for (f = 0; f < PMD_FUNCTIONS; f++)
+        v[f] = (int32_t)word[ax->segmentStart[f]];
+    for (f = 0; f < PMD_FUNCTIONS; f++)
+        chip->s.buffer[ax->segmentBuffer[f]].readIndex = next;
+    ax->underrunWarned = 0;
+    return pmd_external_begin(chip, n, v, !pmd_fixed_is_zero(ax->trajectory.velocity));
+}
+
 #endif
