@@ -10,7 +10,7 @@ import shutil
 import tempfile
 import textwrap
 import threading
-from ctypes import POINTER, Array, c_char, c_double, c_int32, c_uint32
+from ctypes import POINTER, Array, c_char, c_double, c_int32, c_uint16, c_uint32
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -477,6 +477,7 @@ class Chip:
         self._grid_vrs = (c_uint32 * 3)(*[self._vr[n] for n in ("time", "nextCycleTime", "activeCycleTime")])
         self._grid = (c_double * 3)()
         self._memory_vrs: Dict[int, Array] = {}     # write_memory (FMI 2): value references per word count
+        self._host_port: Dict[int, tuple] = {}      # _send: value references and buffers per word count
 
     # ---- life cycle ----
 
@@ -670,25 +671,58 @@ class Chip:
         return self._send(words)
 
     def _send(self, words: List[int]) -> Tuple[int, List[int]]:
-        """One batch through the host port, executed now (checked words)."""
-        # a new strobe value, whoever set the last one
-        strobe = (self.get("host.strobe") + 1) & 0x7FFFFFFF
+        """One batch through the host port, executed now (checked words). A host
+        program sends thousands (a streamed profile polls a read index): the value
+        references and buffers of a batch of n words are made once, and each FMI
+        call takes them as they are (FMPy's checked calls, no list conversions)."""
+        n, fmu, c = len(words), self.fmu, self.fmu.component
+        port = self._host_port.get(n)
+        if port is None:
+            port = self._host_port[n] = self._host_port_arrays(n)
+        strobe_vr, strobe, set_vrs, values, get_vrs, out = port
         if self.fmi_version == 2:
-            vrs = [self._vr[f"host.word[{i + 1}]"] for i in range(len(words))]
-            self.fmu.setInteger(vrs + [self._vr["host.wordCount"], self._vr["host.strobe"]],
-                                list(words) + [len(words), strobe])
-            ack, error, count, *reply = self.fmu.getInteger(
-                [self._vr["host.ack"], self._vr["host.error"], self._vr["host.replyCount"]] +
-                [self._vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)])
+            fmu.fmi2GetInteger(c, strobe_vr, 1, strobe)
+            new = (strobe[0] + 1) & 0x7FFFFFFF          # a new strobe value, whoever set the last one
+            values[n:] = [n, new]
+            values[:n] = words
+            fmu.fmi2SetInteger(c, set_vrs, n + 2, values)
+            fmu.fmi2GetInteger(c, get_vrs, 3 + BATCH_WORDS, out)
+            ack, error, count = out[0], out[1], out[2]
+            reply = out[3:3 + count]
         else:
-            self.set("host.word", words + [0] * (BATCH_WORDS - len(words)))
-            self.fmu.setInt32([self._vr["host.wordCount"], self._vr["host.strobe"]], [len(words), strobe])
-            ack, count = self.fmu.getInt32([self._vr["host.ack"], self._vr["host.replyCount"]])
-            error = self.get("host.error")
-            reply = self.get("host.reply")
-        if ack != strobe:
-            raise FMUError(f"host.ack is {ack}, not the strobe {strobe}: the FMU did not execute the batch")
-        return error, reply[:count]
+            words16, counts, reply16 = values
+            fmu.fmi3GetInt32(c, strobe_vr, 1, strobe, 1)
+            new = (strobe[0] + 1) & 0x7FFFFFFF
+            words16[:n] = words
+            counts[:] = [n, new]
+            fmu.fmi3SetUInt16(c, set_vrs[0], 1, words16, BATCH_WORDS)     # the array is set whole
+            fmu.fmi3SetInt32(c, set_vrs[1], 2, counts, 2)
+            fmu.fmi3GetInt32(c, get_vrs[0], 2, out, 2)
+            fmu.fmi3GetUInt16(c, get_vrs[1], 2, reply16, 1 + BATCH_WORDS)  # host.error, then host.reply
+            ack, count, error = out[0], out[1], reply16[0]
+            reply = reply16[1:1 + count]
+        if ack != new:
+            raise FMUError(f"host.ack is {ack}, not the strobe {new}: the FMU did not execute the batch")
+        return error, reply
+
+    def _host_port_arrays(self, n: int) -> tuple:
+        """_send's value references and buffers for a batch of n words."""
+        vr = self._vr
+        if self.fmi_version == 2:
+            return ((fmi2ValueReference * 1)(vr["host.strobe"]), (c_int32 * 1)(),
+                    (fmi2ValueReference * (n + 2))(*[vr[f"host.word[{i + 1}]"] for i in range(n)],
+                                                   vr["host.wordCount"], vr["host.strobe"]),
+                    (c_int32 * (n + 2))(),
+                    (fmi2ValueReference * (3 + BATCH_WORDS))(vr["host.ack"], vr["host.error"], vr["host.replyCount"],
+                                                             *[vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]),
+                    (c_int32 * (3 + BATCH_WORDS))())
+        return ((fmi3ValueReference * 1)(vr["host.strobe"]), (c_int32 * 1)(),
+                ((fmi3ValueReference * 1)(vr["host.word"]),
+                 (fmi3ValueReference * 2)(vr["host.wordCount"], vr["host.strobe"])),
+                ((c_uint16 * BATCH_WORDS)(), (c_int32 * 2)(), (c_uint16 * (1 + BATCH_WORDS))()),
+                ((fmi3ValueReference * 2)(vr["host.ack"], vr["host.replyCount"]),
+                 (fmi3ValueReference * 2)(vr["host.error"], vr["host.reply"])),
+                (c_int32 * 2)())
 
     def _run_recorded(self, cycles: int, names: Sequence[str], lend, where, dtype: np.dtype) -> np.ndarray:
         """run() through the FMU's record.data (lend: pmdfmu.recording.lender): one doStep and one read
