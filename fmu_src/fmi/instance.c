@@ -604,27 +604,21 @@ static PmdStatus unhandled(PmdInstance *inst, const char *fn, const PmdVariable 
  * for other variables index is an array element and no axis exists. */
 #define AXIS_OF(v) (&inst->chip.s.axis[(v)->index])
 
+/* Each case is a row of record.h's tables (PMD_REAL_VALUES, ...), the values record.columns records. */
+#define VALUE_CASE(family, expression) case family: *value = (expression); break;
+
 PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
-    PmdGrid g;
+    PmdGrid grid;
+    const PmdGrid *g = &grid;
+    unsigned i;
     if (!v)
         return PMD_ERROR;
-    g = pmd_grid(&inst->s, &inst->chip.s);
+    grid = pmd_grid(&inst->s, &inst->chip.s);
+    i = v->index;
     switch (v->family) {
-    case VAR_time: *value = inst->s.time; break;
-    case VAR_cycleTime: *value = inst->s.cycleTime; break;
-    case VAR_activeCycleTime: *value = g.cycleTime; break;
-    case VAR_nextCycleTime: *value = g.anchorTime + (double)(g.nextCycle - g.anchorCycle) * g.cycleTime; break;
-    case VAR_nextCycle: *value = (double)g.nextCycle; break;
-    case VAR_script_lastCycle: *value = (double)inst->script.lastCycle; break;
-    case VAR_axis_position: *value = pmd_commanded_position_counts(&AXIS_OF(v)->trajectory); break;
-    case VAR_axis_velocity: *value = pmd_commanded_velocity_counts(&AXIS_OF(v)->trajectory) / g.cycleTime; break;
-    case VAR_axis_acceleration:
-        *value = pmd_commanded_acceleration_counts(&AXIS_OF(v)->trajectory) / (g.cycleTime * g.cycleTime);
-        break;
-    /* full scale is the 16-bit command's 2^15 (GetCurrentMotorCommand: 100/2^15 % per count) */
-    case VAR_axis_motorOutput: *value = AXIS_OF(v)->filter.output / 32768.0; break;
+    PMD_REAL_VALUES(VALUE_CASE)
     default: return unhandled(inst, fn, v, "Real getter");
     }
     return PMD_OK;
@@ -633,35 +627,12 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
 PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
+    unsigned i;
     if (!v)
         return PMD_ERROR;
+    i = v->index;
     switch (v->family) {
-    case VAR_memorySize: *value = inst->s.memorySize; break;
-    case VAR_chipTime: *value = pmd_int32(inst->chip.s.time); break;
-    case VAR_axis_commandedPosition: *value = AXIS_OF(v)->trajectory.position; break;
-    case VAR_axis_commandedVelocity: *value = pmd_commanded_velocity(&AXIS_OF(v)->trajectory); break;
-    case VAR_axis_commandedAcceleration: *value = pmd_commanded_acceleration(&AXIS_OF(v)->trajectory); break;
-    case VAR_axis_activityStatus: *value = pmd_activity_status(&inst->chip, v->index); break;
-    case VAR_axis_eventStatus: *value = AXIS_OF(v)->eventStatus; break;
-    case VAR_axis_motorCommand: *value = AXIS_OF(v)->filter.output; break;
-    case VAR_axis_actualPosition: *value = AXIS_OF(v)->actualPositionInput; break;
-    case VAR_host_word: *value = inst->s.hostWord[v->index]; break;
-    case VAR_host_wordCount: *value = inst->s.hostWordCount; break;
-    case VAR_host_strobe: *value = inst->s.hostStrobe; break;
-    case VAR_host_ack: *value = inst->s.hostAck; break;
-    case VAR_host_reply: *value = inst->s.hostReply[v->index]; break;
-    case VAR_host_replyCount: *value = inst->s.hostReplyCount; break;
-    case VAR_host_error: *value = inst->s.hostError; break;
-    case VAR_memory_address: *value = inst->s.memoryAddress; break;
-    case VAR_memory_count: *value = inst->s.memoryCount; break;
-    case VAR_memory_strobe: *value = inst->s.memoryStrobe; break;
-    case VAR_memory_data: *value = inst->s.memoryData[v->index]; break;
-    case VAR_analog: *value = inst->chip.s.analogInput[v->index]; break;
-    case VAR_io_input: *value = inst->chip.s.ioInput[v->index]; break;
-    case VAR_io_output: *value = inst->chip.s.ioOutput[v->index]; break;
-    case VAR_record_capacity: *value = (int32_t)inst->recordCapacity; break;
-    case VAR_record_rowSize: *value = (int32_t)inst->columns.rowBytes; break;
-    case VAR_script_axes: *value = inst->script.axes; break;
+    PMD_INTEGER_VALUES(VALUE_CASE)
     default: return unhandled(inst, fn, v, "Integer getter");
     }
     return PMD_OK;
@@ -670,15 +641,12 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
 PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
+    unsigned i;
     if (!v)
         return PMD_ERROR;
+    i = v->index;
     switch (v->family) {
-    case VAR_loopback: *value = inst->chip.s.loopback; break;
-    case VAR_axis_positiveLimit: *value = AXIS_OF(v)->positiveLimitInput; break;
-    case VAR_axis_negativeLimit: *value = AXIS_OF(v)->negativeLimitInput; break;
-    case VAR_axis_home: *value = AXIS_OF(v)->homeInput; break;
-    case VAR_record_enabled: *value = inst->s.recordEnabled; break;
-    case VAR_host_interrupt: *value = pmd_host_interrupt(&inst->chip); break;
+    PMD_BOOLEAN_VALUES(VALUE_CASE)
     default: return unhandled(inst, fn, v, "Boolean getter");
     }
     return PMD_OK;

@@ -20,9 +20,13 @@
 /* Columns of one row at most: a row of every variable of variables.csv twice over fits. */
 #define MAX_COLUMNS 4096
 
+/* Bytes past the last row: a row's 2-byte column is stored as 4 (its low
+ * bytes first, the next column overwrites the rest), see record_row. */
+#define ROW_SLACK sizeof(int32_t)
+
 static PmdStatus record_reserve(PmdInstance *inst, const char *fn, uint32_t rowBytes)
 {
-    size_t bytes = (size_t)inst->recordCapacity * rowBytes;
+    size_t bytes = (size_t)inst->recordCapacity * rowBytes + ROW_SLACK;
     int32_t *record;
     if (inst->record && inst->recordRows == inst->recordCapacity && inst->recordBytes >= bytes)
         return PMD_OK;
@@ -129,7 +133,8 @@ PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const ch
                                                      "doStep (each cycle's time: nextCycleTime before it)"
                            : "is not a number (String or Binary)", c.column);
         }
-        c.column[k].vr = v->vr;
+        c.column[k].family = (unsigned short)v->family;
+        c.column[k].index = v->index;
         c.column[k].type = v->type;
         c.column[k].bytes = v->bytes;
         c.rowBytes += v->bytes;
@@ -172,50 +177,56 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
     return PMD_OK;
 }
 
-/* A row: the chip time, then each column through its getter (which cannot
- * fail: the columns were checked when set), its low bytes (little-endian). */
-static void record_row(PmdInstance *inst, unsigned char *row)
+/* Each case is a row of record.h's tables, the getters' (instance.c): the
+ * value as its getter returns it, stored in the column's width. An Integer
+ * is stored as 4 bytes and the row moves on by the column's width: a 2-byte
+ * column's low bytes stay, the next column or ROW_SLACK takes the rest. */
+#define REAL_COLUMN(family, expression)                                                                               \
+    case family: {                                                                                                    \
+        double x = (expression);                                                                                      \
+        memcpy(row, &x, sizeof x);                                                                                    \
+        break;                                                                                                        \
+    }
+#define INTEGER_COLUMN(family, expression)                                                                            \
+    case family: {                                                                                                    \
+        int32_t n = (expression);                                                                                     \
+        memcpy(row, &n, sizeof n);                                                                                    \
+        break;                                                                                                        \
+    }
+#define BOOLEAN_COLUMN(family, expression) case family: *row = (expression) != 0; break;
+
+/* A row: the chip time, then each column (checked when set: its family is
+ * one of the tables', of the column's type). g: the grid as it stands. */
+static inline void record_row(PmdInstance *inst, const PmdGrid *g, unsigned char *row)
 {
     const PmdRecordColumn *c = inst->columns.column, *last = c + inst->columns.count;
     int32_t time = pmd_int32(inst->chip.s.time);
     memcpy(row, &time, sizeof time);
     row += sizeof time;
     for (; c < last; row += c->bytes, c++) {
-        double x = 0;
-        int32_t n = 0;
-        int b = 0;
-        switch (c->type) {
-        case PMD_REAL:
-            pmd_get_real(inst, "record.columns", c->vr, &x);
-            memcpy(row, &x, sizeof x);
-            break;
-        case PMD_INTEGER:
-            pmd_get_integer(inst, "record.columns", c->vr, &n);
-            if (c->bytes == 2) {
-                uint16_t w = (uint16_t)((uint32_t)n & 0xFFFFu);
-                memcpy(row, &w, sizeof w);
-            } else {
-                memcpy(row, &n, sizeof n);
-            }
-            break;
-        default:
-            pmd_get_boolean(inst, "record.columns", c->vr, &b);
-            *row = b != 0;
-            break;
+        unsigned i = c->index;
+        switch (c->family) {
+        PMD_REAL_VALUES(REAL_COLUMN)
+        PMD_INTEGER_VALUES(INTEGER_COLUMN)
+        PMD_BOOLEAN_VALUES(BOOLEAN_COLUMN)
+        default: break;
         }
     }
 }
 
 /* Each cycle alone (pmd_chip_run of one cycle): a longer quiet run leaves an
  * ideal servo's filter and sampled actual position to its end (chip.c), and
- * a column may show them. */
+ * a column may show them. The grid stays as it is: a cycle changes no part of
+ * it (only a host batch or a script step changes the sample time, and they
+ * run between calls); each row has its own next cycle. */
 void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first)
 {
     unsigned char *row = (unsigned char *)inst->record + (size_t)first * inst->columns.rowBytes;
+    PmdGrid g = pmd_grid(&inst->s, &inst->chip.s);
     int64_t i;
     for (i = 0; i < cycles; i++, row += inst->columns.rowBytes) {
         pmd_chip_run(&inst->chip, 1, NULL);
-        inst->s.nextCycle++;
-        record_row(inst, row);
+        g.nextCycle = ++inst->s.nextCycle;
+        record_row(inst, &g, row);
     }
 }
