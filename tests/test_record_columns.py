@@ -1,6 +1,6 @@
 """record.columns: bulk recording of any variables in FMI 2 and FMI 3 (issue 16, target 3): the
 FMU's rows equal a master's stepping cycle by cycle (Chip._run_stepwise), bad names are refused."""
-from ctypes import POINTER, byref, c_int, c_size_t, c_void_p
+from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at
 
 import numpy as np
 import pytest
@@ -8,6 +8,7 @@ from fmpy.fmi1 import FMICallException
 
 import pmdfmu
 from pmdfmu import recording
+from pmdfmu.chip import DTYPES
 from pmdfmu.profile import record_outputs
 from scenarios import busy_chip
 
@@ -89,3 +90,87 @@ def test_the_bulk_path_is_taken_for_any_columns(version, monkeypatch):
         busy_chip(chip)
         rows = chip.run(50, record=record_outputs([0, 2]))
         assert not calls and len(rows) == 50 and (np.diff(rows["cycle"].astype(int)) == 1).all()
+
+
+# ---- every column kind in bulk == a master stepping cycle by cycle --------------------------------
+
+def every_column():
+    """Every variable record.columns accepts: each Real, Integer and Boolean but time (FMI 2 names); the
+    record.* ones apart (they describe the recording itself: record.enabled is on only in the bulk run)."""
+    return [n for n in DTYPES if n != "time" and not n.startswith("record.")]
+
+
+def motors_and_idle_axes(chip):
+    """busy_chip (axis 1 external, axis 2 trapezoid, a breakpoint armed on axis 1), axis 3's motor off with
+    a motor command, axis 4 idle; switches and inputs at rest."""
+    busy_chip(chip)
+    ax = chip.axis(2)
+    ax.SetMotorMode(pmdfmu.PMDMotorOff)
+    ax.SetMotorCommand(-1234)
+    ax.Update()
+    chip.axis(0).WriteIO(2, 0xBEEF)
+
+
+def run_in_parts(chip, names, bulk):
+    """Runs in parts with commands between them (motor off and on, a breakpoint armed, then none):
+    the bulk rows or the stepwise ones."""
+    def part(cycles):
+        return chip.run(cycles, record=names) if bulk else chip._run_stepwise(cycles, names)
+    rows = [part(700)]
+    chip.axis(1).SetMotorMode(pmdfmu.PMDMotorOff)     # the trapezoid's motor off: its filter runs open loop
+    rows.append(part(300))
+    chip.axis(1).SetMotorMode(pmdfmu.PMDMotorOn)
+    chip.axis(0).SetBreakpoint(0, 0, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointDisable)
+    rows.append(part(900))                           # no breakpoint armed: a quiet run
+    return np.concatenate(rows)
+
+
+@VERSIONS
+@pytest.mark.parametrize("loopback", (True, False))
+def test_every_column_kind_in_bulk_is_the_stepwise_value(version, loopback):
+    with pmdfmu.Chip(fmi_version=version, loopback=loopback, **{"record.capacity": 500}) as chip, \
+            pmdfmu.Chip(fmi_version=version, loopback=loopback) as ref:
+        names = every_column()
+        assert len(names) > 250 and {"axis1.motorOutput", "io.output[16]", "host.interrupt"} <= set(names)
+        assert chip.run(1, record=["record.enabled", "record.capacity"])[0].tolist()[1:] == (True, 500)
+        ref.run(1)
+        motors_and_idle_axes(chip)
+        motors_and_idle_axes(ref)
+        rows = run_in_parts(chip, names, bulk=True)
+        assert rows.tobytes() == run_in_parts(ref, names, bulk=False).tobytes()
+
+
+@VERSIONS
+@pytest.mark.parametrize("names", [record_outputs(range(4)), ["axis1.activityStatus", "axis2.activityStatus"],
+                                   ["axis1.motorCommand", "axis2.motorOutput", "axis4.motorCommand"],
+                                   ["axis2.eventStatus", "host.interrupt", "axis1.velocity"]])
+def test_column_sets_in_bulk_are_the_stepwise_values(version, names):
+    """Sets that read no servo filter, only filters, or events: each as a master stepping cycle by cycle."""
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 333}) as chip, \
+            pmdfmu.Chip(fmi_version=version) as ref:
+        motors_and_idle_axes(chip)
+        motors_and_idle_axes(ref)
+        assert run_in_parts(chip, names, True).tobytes() == run_in_parts(ref, names, False).tobytes()
+
+
+@VERSIONS
+def test_a_set_sample_time_inside_a_recording_step_records_the_cycles_stepwise(version, tmp_path):
+    """One doStep across two SetSampleTime script steps, each to a coarser grid: record.data's rows (every
+    cycle the step ran, on the grid as it stood) are those of a master stepping cycle by cycle. (A finer grid
+    makes such a master's step run several cycles, recording the last: the harness then redoes the chunk
+    stepwise, tests/test_native_record.py.)"""
+    script = tmp_path / "grid.script"
+    script.write_text("@40\nSetSampleTime(Axis1, 200)\n@90\nSetSampleTime(Axis1, 500)\n")
+    names = ["nextCycleTime", "activeCycleTime", "nextCycle", "axis1.velocity", "axis1.acceleration",
+             "axis2.activityStatus", "chipTime"]
+    with pmdfmu.Chip(fmi_version=version, script=script) as chip:
+        busy_chip(chip)
+        _, dtype = chip._columns(names)
+        chip.set("record.columns", ",".join(names))
+        chip.set("record.enabled", True)
+        chip._step(300)
+        address, size = recording.lender(chip)()
+        rows = np.frombuffer(string_at(address, size), dtype=dtype)
+        assert size == len(rows) * dtype.itemsize and set(rows["activeCycleTime"]) == {1e-4, 2e-4, 5e-4}
+    ref = reference(version, names, len(rows), script=script)
+    assert rows.tobytes() == ref.tobytes()
