@@ -214,19 +214,55 @@ static inline void record_row(PmdInstance *inst, const PmdGrid *g, unsigned char
     }
 }
 
-/* Each cycle alone (pmd_chip_run of one cycle): a longer quiet run leaves an
- * ideal servo's filter and sampled actual position to its end (chip.c), and
- * a column may show them. The grid stays as it is: a cycle changes no part of
- * it (only a host batch or a script step changes the sample time, and they
- * run between calls); each row has its own next cycle. */
+/* A row per cycle of a chip run (pmd_chip_run_rows): where it goes, the grid. */
+typedef struct {
+    PmdInstance *inst;
+    PmdGrid grid;
+    unsigned char *row;
+} Rows;
+
+static void next_row(void *context)
+{
+    Rows *r = (Rows *)context;
+    r->grid.nextCycle = ++r->inst->s.nextCycle;
+    record_row(r->inst, &r->grid, r->row);
+    r->row += r->inst->columns.rowBytes;
+}
+
+#ifdef PMD_CHIP_RUN_ROWS
+/* Whether a column reads the servo filter of an axis whose filter a run leaves to its end. */
+static int reads_deferred(const PmdInstance *inst, unsigned deferred)
+{
+    const PmdRecordColumn *c = inst->columns.column, *last = c + inst->columns.count;
+    for (; c < last; c++)
+        if ((c->family == VAR_axis_motorCommand || c->family == VAR_axis_motorOutput) &&
+            (deferred & (1u << c->index)))
+            return 1;
+    return 0;
+}
+#endif
+
+/* The cycles as one chip run with a row after each cycle (pmd_chip_run_rows)
+ * unless a column shows an ideal servo's filter, which such a run brings up to
+ * date at its end (chip.c): then each cycle alone (pmd_chip_run of one cycle).
+ * The grid stays as it is: a cycle changes no part of it (only a host batch or
+ * a script step changes the sample time, and they run between calls); each
+ * row has its own next cycle. */
 void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first)
 {
-    unsigned char *row = (unsigned char *)inst->record + (size_t)first * inst->columns.rowBytes;
-    PmdGrid g = pmd_grid(&inst->s, &inst->chip.s);
+    Rows r;
     int64_t i;
-    for (i = 0; i < cycles; i++, row += inst->columns.rowBytes) {
+    r.inst = inst;
+    r.grid = pmd_grid(&inst->s, &inst->chip.s);
+    r.row = (unsigned char *)inst->record + (size_t)first * inst->columns.rowBytes;
+#ifdef PMD_CHIP_RUN_ROWS
+    if (!reads_deferred(inst, pmd_chip_deferred_axes(&inst->chip))) {
+        pmd_chip_run_rows(&inst->chip, cycles, next_row, &r);
+        return;
+    }
+#endif
+    for (i = 0; i < cycles; i++) {
         pmd_chip_run(&inst->chip, 1, NULL);
-        g.nextCycle = ++inst->s.nextCycle;
-        record_row(inst, &g, row);
+        next_row(&r);
     }
 }
