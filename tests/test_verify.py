@@ -340,3 +340,15 @@ def test_the_examples_ci_golden_still_passes():
     result = pmdfmu.verify(SCRIPT, against=ci / "two_axis.golden.npz", assertions=ci / "two_axis.toml")
     assert result.passed, result.report()
     assert pmdfmu.verify(SQUARE, against=ci / "square.golden.csv").passed
+
+
+def test_a_batch_checks_events_each_case_records(tmp_path):
+    """verify_cases asks each case (sweep.Case.record) for the event status its assertions need: the
+    refused command's InstructionError is caught at its cycle in a batch as in a single run, not skipped."""
+    (tmp_path / "limit.script").write_text(LIMIT_SCRIPT)
+    (tmp_path / "events.toml").write_text('[axis1]\nno_events = ["InstructionError"]\n')
+    (tmp_path / "cases.csv").write_text("name,script,assertions\nlimit,limit.script,events.toml\n")
+    result = pmdfmu.verify_cases(tmp_path / "cases.csv", scheduler="serial", out=tmp_path / "out")
+    [check] = [c for c in result.cases[0].checks if c.name.startswith("axis1 no event")]
+    assert check.skipped is None and not check.passed
+    assert (check.failures[0].cycle, check.failures[0].value & pmdfmu.PMDEventInstructionErrorMask) == (300, 0x80)

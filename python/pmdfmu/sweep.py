@@ -58,6 +58,9 @@ class Case:
     fmi_version: int = 2
     max_cycles: int = 1_000_000
     fmu: Optional[str] = None
+    # FMU outputs recorded after the profile's own columns (pmdfmu verify asks for what its golden and
+    # assertions need, e.g. axisN.eventStatus)
+    record: Tuple[str, ...] = ()
 
 
 def read_cases(path: Union[str, Path]) -> List[Case]:
@@ -139,11 +142,11 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
         try:
             if case.script:
                 axes = profile.script_axes(chip)
-                rec = profile.run_script(chip, axes, max_cycles=case.max_cycles)
+                rec = profile.run_script(chip, axes, max_cycles=case.max_cycles, record=case.record)
             else:
                 tables = profile.read_segment_table(Path(case.table))
                 axes = sorted(tables)
-                rec = profile.run_segment_table(chip, tables, max_cycles=case.max_cycles)
+                rec = profile.run_segment_table(chip, tables, max_cycles=case.max_cycles, record=case.record)
             return _summary(case, rec, axes, chip.messages), rec
         finally:
             _give_back(key, chip)

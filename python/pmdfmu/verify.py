@@ -725,11 +725,6 @@ def read_verify_cases(path: PathLike) -> List[VerifyCase]:
     return [VerifyCase(case, resolve(row, "golden"), resolve(row, "assertions")) for case, row in zip(cases, rows)]
 
 
-def _case_record_field() -> bool:
-    from .sweep import Case
-    return "record" in {f.name for f in dataclasses.fields(Case)}
-
-
 def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, workers: int = 2,
                  assertions: Union[None, PathLike, Mapping] = None, extra: Optional[Mapping] = None,
                  out: Optional[PathLike] = None, locate: bool = True) -> VerifyResult:
@@ -746,11 +741,10 @@ def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, w
         specs.append(parse_assertions(_merge(base, data), where, text))     # the case's file over the common
         goldens.append(read_recording(vc.golden) if vc.golden else None)
     run_cases = []
-    record_field = _case_record_field()
     for vc, spec, golden in zip(vcases, specs, goldens):
         extra_columns = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()),
                                             *spec.columns()]))
-        run_cases.append(dataclasses.replace(vc.case, record=tuple(extra_columns)) if record_field else vc.case)
+        run_cases.append(dataclasses.replace(vc.case, record=tuple(extra_columns)))
     start = time.perf_counter()
     swept = sweep(run_cases, scheduler=scheduler, workers=workers)
     seconds = (time.perf_counter() - start) / max(1, len(run_cases))
@@ -767,7 +761,7 @@ def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, w
         axes = [a for a in range(4) if row.get(f"axis{a + 1}.finalPosition", "") != ""]    # the profile's own
         locate_args = dict(source=source, fmu=case.fmu, fmi_version=case.fmi_version,
                            cycle_time=float(params.pop("cycleTime", 1e-4)), upload="memory",
-                           parameters=params, record=getattr(case, "record", ())) if locate else None
+                           parameters=params, record=case.record) if locate else None
         _evaluate(result, rec, axes, float(dict(case.parameters).get("cycleTime", 1e-4)), golden, vc.golden, spec,
                   warnings=row.get("warnings"), locate_args=locate_args, out=out)
     return VerifyResult(results)
