@@ -254,7 +254,7 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
         record_axis(chip, n, row);
 }
 
-/* A hint for the loop over the axes in quiet_cycles(): unrolled, each axis's
+/* A hint for the loops over the axes in cycle() and quiet_cycles(): unrolled, each axis's
  * cycle addresses its state at constant offsets and the four independent
  * recurrences interleave - bench/engine.c measured the quiet cycle 1.44x a
  * bare loop's time rolled, 1.24x unrolled (4-cycle segments). Other compilers
@@ -296,8 +296,15 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
     if (quiet && row)
         row[0] = pmd_int32(chip->s.time);
     /* geared axes last: they follow their master's position of this cycle */
+    UNROLL_AXES
     for (n = 0; n < PMD_AXES; n++) {
-        pmd_profile_cycle(chip, n);
+        /* pmd_profile_cycle's most frequent cases inline (it is out of line: quiet_axis_cycle calls it too) */
+        if (chip->s.axis[n].motion == PMD_MOTION_EXTERNAL && chip->s.axis[n].segmentTime != 0)
+            pmd_external_step(chip, n);
+        else if (chip->s.axis[n].motion == PMD_MOTION_IDLE)
+            pmd_rest_cycle(chip, n);
+        else
+            pmd_profile_cycle(chip, n);
         if (quiet) {
             check_servo(chip, n, sample_actual(chip, n, loopback));
             if (!(closedForm & (1u << n)))

@@ -368,8 +368,7 @@ void pmd_profile_cycle(PmdChip *chip, int n)
     case PMD_MOTION_GEAR:
         break;                 /* after the other axes: pmd_gear_cycle */
     default:
-        /* at rest: the braking of the last moving cycle is over */
-        chip->s.axis[n].trajectory.acceleration = PMD_FIXED_ZERO;
+        pmd_rest_cycle(chip, n);
         break;
     }
 }

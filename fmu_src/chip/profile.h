@@ -69,6 +69,13 @@ static inline void pmd_external_step(PmdChip *chip, int n)
         pmd_motion_complete(chip, n);
 }
 
+/* An axis at rest (PMD_MOTION_IDLE): the braking of the last moving cycle is
+ * over. Inline: chip.c's cycle() takes it without a call. */
+static inline void pmd_rest_cycle(PmdChip *chip, int n)
+{
+    chip->s.axis[n].trajectory.acceleration = PMD_FIXED_ZERO;
+}
+
 /* The segment v read (seed 000's pseudo code after the read): the
  * registers loaded, the read cycle counted. Returns whether the axis came to
  * rest (moving: it was moving before), for the caller to call
