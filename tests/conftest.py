@@ -4,7 +4,7 @@
   one): whatever two test files share lives in one of the two places below, so
   that a test file can be read, run or deleted on its own.
 - conftest.py, this file: the fixtures, which pytest hands to any test that names
-  them as an argument (chip, any_chip). Nothing imports it.
+  them as an argument (chip, any_chip, cases, serial). Nothing imports it.
 - helper modules: plain Python with no tests in it, imported by name (pytest puts
   tests/ on sys.path): reference.py, the exact reference model of seed 000 written
   independently of the C core; states.py, work below the Chip API (FMU states as
@@ -15,9 +15,13 @@
 Fixtures for what a test receives ready-made, helper modules for what it calls or
 compares with: test_suite_layout.py checks the rule.
 """
+from pathlib import Path
+
 import pytest
 
 import pmdfmu
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
 @pytest.fixture
@@ -31,3 +35,15 @@ def any_chip(request):
     """A chip through each FMI version: the behaviour must not depend on it."""
     with pmdfmu.Chip(fmi_version=request.param) as c:
         yield c
+
+
+@pytest.fixture(scope="session")
+def cases():
+    """examples/cases.csv, the sweep's example case table (test_sweep*.py)."""
+    return pmdfmu.read_cases(EXAMPLES / "cases.csv")
+
+
+@pytest.fixture(scope="session")
+def serial(cases):
+    """examples/cases.csv swept in this process: what every scheduler must equal."""
+    return pmdfmu.sweep(cases, scheduler="serial")

@@ -11,16 +11,6 @@ from pmdfmu.cli import main
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
-@pytest.fixture(scope="module")
-def cases():
-    return pmdfmu.read_cases(EXAMPLES / "cases.csv")
-
-
-@pytest.fixture(scope="module")
-def serial(cases):
-    return pmdfmu.sweep(cases, scheduler="serial")
-
-
 def test_a_two_worker_local_cluster_equals_the_serial_run_row_for_row(cases, serial):
     parallel = pmdfmu.sweep(cases, workers=2)
     assert parallel.rows == serial.rows

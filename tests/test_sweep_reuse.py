@@ -22,16 +22,6 @@ EXAMPLES = REPO / "examples"
 
 
 @pytest.fixture(scope="module")
-def cases():
-    return pmdfmu.read_cases(EXAMPLES / "cases.csv")
-
-
-@pytest.fixture(scope="module")
-def serial(cases):
-    return pmdfmu.sweep(cases, scheduler="serial")
-
-
-@pytest.fixture(scope="module")
 def cluster():
     """One worker process running cases in two threads at once."""
     with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, dashboard_address=None) as c:
