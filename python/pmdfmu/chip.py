@@ -3,6 +3,7 @@ on axis handles, and cycle-exact runs recorded into numpy arrays."""
 from __future__ import annotations
 
 import atexit
+import contextlib
 import inspect
 import os
 import re
@@ -727,8 +728,9 @@ class Chip:
     def _run_recorded(self, cycles: int, names: Sequence[str], lend, where, dtype: np.dtype) -> np.ndarray:
         """run() through the FMU's record.data (lend: pmdfmu.recording.lender): one doStep and one read
         per chunk of record.capacity cycles instead of FMI calls every cycle. Only commanded outputs
-        (RECORDED): record.data's default rows; else record.columns names the columns, and a chunk in
-        which a script step may change the grid (SetSampleTime) is redone cycle by cycle if it did."""
+        (RECORDED): record.data's default rows; else record.columns names the columns. A chunk in which
+        a script step may change the grid (SetSampleTime) starts from a saved FMU state and is redone
+        cycle by cycle if it did, so that its rows are those of a master stepping cycle by cycle."""
         commanded = set(names) <= set(RECORDED)
         if "record.columns" in self.variables:
             self.set("record.columns", "" if commanded else ",".join(names))
@@ -760,7 +762,7 @@ class Chip:
             done = 0
             while done < cycles:
                 n = min(capacity, cycles - done)
-                state = None if commanded or self.cycles > script_end else self.fmu.getFMUState()
+                state = None if self.cycles > script_end else self.fmu.getFMUState()
                 logged = len(self.messages)
                 self._step(n)                       # Warning if the step's cycles changed
                 # record.data is the FMU's own buffer, lent until the next call: read in place, once, as
@@ -776,7 +778,10 @@ class Chip:
                     self.set("record.enabled", False)
                     part = np.zeros(n, dtype=dtype)
                     recording.record(self, recording.Plan(self, where, dtype), part)
-                    out[done:done + n] = part
+                    if commanded:                   # the same 32-bit fields as the table's row
+                        table[done:done + n] = part.view(np.int32).reshape(n, 1 + len(names))
+                    else:
+                        out[done:done + n] = part
                     self.set("record.enabled", True)
                 if state is not None:
                     self.fmu.freeFMUState(state)
@@ -784,13 +789,9 @@ class Chip:
                         done += n
                         continue
                 if not whole:
-                    # the chip ran `held` cycles up to the step's end, on the grid the script chose
-                    raise RuntimeError(
-                        f"record.data holds {held} cycles, not {n}: a script changed the sample time during "
-                        f"run(record=...), so the time of {n} cycles held {held}; the cycles recorded before "
-                        "are lost. Run the cycles up to the change in one run(record=...) and those after it "
-                        "in another, or set the cycle time with the cycleTime parameter instead of "
-                        "SetSampleTime in the script")
+                    # past the script's last step nothing can change the grid inside a step
+                    raise FMUError(f"record.data holds {size} bytes after a step of {n} cycles, not {n} rows of "
+                                   f"{row.itemsize} bytes")
                 rows = np.frombuffer((c_char * size).from_address(address), dtype=row)
                 if commanded:
                     for at, column, width in runs:
@@ -798,8 +799,11 @@ class Chip:
                 else:
                     out.view((np.uint8, dtype.itemsize))[done:done + n] = rows
                 done += n
-        finally:
-            self.set("record.enabled", False)
+        except BaseException:
+            with contextlib.suppress(Exception):    # the error that stopped the run is the one to see
+                self.set("record.enabled", False)
+            raise
+        self.set("record.enabled", False)
         if commanded:
             return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)
         return out
@@ -1007,14 +1011,15 @@ class Chip:
         (variables.csv's FMI 3 type: axis1.motorCommand int16, io.output[3] uint16);
         an array's element goes by its FMI 2 name ("io.output[3]") in FMI 3 too.
 
-        Recording runs in C (the harness's native library, native/record.c): per cycle
-        one doStep and one get per FMI type of the FMU's own functions, as a master
-        stepping cycle by cycle would, the FMU's log callbacks included; the rows are
-        what that master would read. In FMI 3, when record holds only commanded
-        positions, velocities and accelerations (chip.RECORDED), the FMU records them
-        itself (record.data, one doStep per record.capacity cycles: the fastest path;
-        a script's SetSampleTime during such a run raises RuntimeError). Fewer FMI
-        types and fewer columns cost less; docs/performance.md, "Recording".
+        The FMU records the rows itself (record.data, record.columns: one doStep per
+        record.capacity cycles, FMI 2 through its extension pmdfmu_fmi2GetRecordData);
+        the rows are what a master stepping cycle by cycle would read, also where a
+        script's SetSampleTime changes the grid (that chunk is redone cycle by cycle
+        from a saved FMU state). Recording `time`, or an FMU without record.columns,
+        runs the harness's native loop (native/record.c: per cycle one doStep and one
+        get per FMI type of the FMU's own functions). Commanded positions, velocities
+        and accelerations only (chip.RECORDED) are fastest; docs/performance.md,
+        "Recording".
         A failed FMI call raises FMPy's FMICallException (the FMU's messages in
         chip.messages); a name given twice or not an FMU variable raises ValueError
         before any cycle runs."""
