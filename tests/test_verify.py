@@ -238,6 +238,8 @@ def test_a_limit_switch_event_is_caught_at_its_cycle():
     ("cycle,cycle\n0,1\n", "g.csv:1: column 2: 'cycle' named twice"),
     ("cycle,axis1.commandedPosition\n0,1\n1\n", "g.csv:3: 1 values, the header names 2 columns"),
     ("cycle,axis1.commandedPosition\n0,1\n1,x1\n", "g.csv:3: column 2 (axis1.commandedPosition): 'x1' is not a number"),
+    ("cycle,axis1.commandedPosition\n0,1\n1,nan\n", "g.csv:3: column 2 (axis1.commandedPosition): 'nan' is not an integer"),
+    ("cycle,axis1.commandedPosition\n0,1.5\n", "g.csv:2: column 2 (axis1.commandedPosition): '1.5' is not an integer"),
 ])
 def test_a_malformed_golden_csv_is_an_input_error(tmp_path, text, message):
     (tmp_path / "g.csv").write_text(text)
@@ -266,6 +268,9 @@ def test_a_malformed_or_missing_npz_is_an_input_error(tmp_path):
     ('[all_axes]\nno_events = ["Bogus"]\n', "a.toml:2: all_axes.no_events: unknown event 'Bogus'"),
     ('[tolerance]\n"axis1.speed" = 1e-9\n', "a.toml:2: axis1.speed: unknown column"),
     ("[axis1]\nposition_min = 5\nposition_max = 4\n", "a.toml:2: axis1.position_min: is above position_max"),
+    ("[axis1]\nmax_velocity = nan\n", "a.toml:2: axis1.max_velocity: nan is not a finite number"),
+    ("[axis1]\nmax_jerk = inf\n", "a.toml:2: axis1.max_jerk: inf is not a finite number"),
+    ('[tolerance]\n"axis1.velocity" = nan\n', "a.toml:2: axis1.velocity: the tolerance nan is not a finite number"),
 ])
 def test_a_malformed_assertion_file_is_an_input_error(tmp_path, text, message):
     (tmp_path / "a.toml").write_text(text)
@@ -352,3 +357,19 @@ def test_a_batch_checks_events_each_case_records(tmp_path):
     [check] = [c for c in result.cases[0].checks if c.name.startswith("axis1 no event")]
     assert check.skipped is None and not check.passed
     assert (check.failures[0].cycle, check.failures[0].value & pmdfmu.PMDEventInstructionErrorMask) == (300, 0x80)
+
+
+@pytest.mark.parametrize("cycles", [0, -5])
+def test_a_run_of_no_cycles_is_an_input_error(cycles):
+    with pytest.raises(InputError, match=f"max_cycles {cycles}: a run records at least 1 cycle"):
+        pmdfmu.verify(SQUARE, assertions={"axis1": {"final_position": 1}}, max_cycles=cycles)
+
+
+def test_junit_xml_stays_xml_when_a_message_holds_a_control_character(tmp_path):
+    """A script's stray control byte reaches the failure messages: the report must still parse."""
+    script = tmp_path / "ctl.script"
+    script.write_bytes(b"@ 0\nSetPosition(Axis1, 1\x01);\n")
+    result = pmdfmu.verify(script, assertions={"no_host_errors": True})
+    assert "\x01" in result.cases[0].error
+    root = ET.fromstring(result.to_junit())
+    assert root.get("errors") == "1" and "\ufffd" in root.find("testsuite/testcase/error").text

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import math
 import re
 import time
 from dataclasses import dataclass, field
@@ -62,6 +63,8 @@ def read_recording(path: PathLike) -> np.ndarray:
         raise InputError(f"{path}:1: no header: a golden trace is `pmdfmu run ... --csv` output")
     header = [h.strip() for h in rows[0]]
     _check_columns(path, header)
+    # the chip's registers are integers: a golden's cell of one that is not is a malformed golden
+    integer = [h == "cycle" or np.dtype(DTYPES[h]).kind in "iub" for h in header]
     columns: List[list] = [[] for _ in header]
     for line, row in enumerate(rows[1:], start=2):
         if len(row) != len(header):
@@ -76,6 +79,9 @@ def read_recording(path: PathLike) -> np.ndarray:
                 except ValueError:
                     raise InputError(f"{path}:{line}: column {i + 1} ({header[i]}): {cell!r} is not a number") \
                         from None
+            if integer[i] and not isinstance(value, int):
+                raise InputError(f"{path}:{line}: column {i + 1} ({header[i]}): {cell!r} is not an integer "
+                                 "(the FMU's register is)")
             columns[i].append(value)
     dtype = []
     for name, values in zip(header, columns):
@@ -230,8 +236,8 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
     for column, value in tolerance.items():
         if column != "cycle" and column not in DTYPES:
             raise bad(column, "unknown column: not an output of the FMU (pmdfmu info lists them)", column)
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or value < 0:
-            raise bad(column, f"the tolerance {value!r} is not a number >= 0", column)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
+            raise bad(column, f"the tolerance {value!r} is not a finite number >= 0", column)
         result.tolerance[column] = float(value)
     for name in ("all_axes", "axis1", "axis2", "axis3", "axis4"):
         if name not in data:
@@ -255,9 +261,13 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
                 unknown = [v for v in value if v not in EVENTS]
                 if unknown:
                     raise bad(f"{name}.{key}", f"unknown event {unknown[0]!r} (known: {', '.join(EVENTS)})")
-            elif isinstance(value, bool) or not isinstance(value, (int, float)) or \
+            elif isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or \
                     (kind is int and not float(value).is_integer()):
-                raise bad(f"{name}.{key}", f"{value!r} is not {'a whole number' if kind is int else 'a number'}")
+                # nan would pass every comparison, inf is no limit: both refused
+                number = not isinstance(value, bool) and isinstance(value, (int, float))
+                want = ("a number" if not number else "a finite number" if not math.isfinite(value)
+                        else "a whole number")
+                raise bad(f"{name}.{key}", f"{value!r} is not {want}")
             else:
                 value = kind(value)
             limits[key] = value
@@ -664,6 +674,8 @@ def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathL
     malformed golden or assertion file; a profile that does not run is a failed case."""
     spec = load_assertions(assertions, {"tolerance": dict(tolerance)} if tolerance else None)
     golden = read_recording(against) if against is not None else None
+    if isinstance(max_cycles, bool) or not isinstance(max_cycles, int) or max_cycles < 1:
+        raise InputError(f"max_cycles {max_cycles!r}: a run records at least 1 cycle")
     name = name or _name_of(source)
     args = dict(source=source, fmu=fmu, fmi_version=fmi_version, cycle_time=cycle_time, upload=upload,
                 parameters=parameters)

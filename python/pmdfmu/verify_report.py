@@ -2,6 +2,7 @@
 Markdown summary (GITHUB_STEP_SUMMARY) and the diff plot of a golden trace (docs/verify.md)."""
 from __future__ import annotations
 
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import List, Sequence
@@ -9,6 +10,8 @@ from typing import List, Sequence
 import numpy as np
 
 from .verify import CaseResult, Failure, VerifyResult
+
+XML_FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
 def _headline(result: VerifyResult) -> str:
@@ -76,7 +79,10 @@ def junit_xml(result: VerifyResult) -> str:
         suites.set(key, str(value))
     suites.set("time", f"{total_time:.3f}")
     ET.indent(suites) if hasattr(ET, "indent") else None
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n"
+    # ElementTree writes characters XML 1.0 forbids (a script's stray control byte in a message) as they
+    # are, and a CI system would reject the whole report: each becomes U+FFFD (they occur in text only)
+    text = XML_FORBIDDEN.sub("\ufffd", ET.tostring(suites, encoding="unicode"))
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
 
 
 def _cell(text: str) -> str:
