@@ -136,7 +136,9 @@ def test_a_worker_hands_a_large_recording_back_through_the_sweeps_folder(cluster
                                        pure=False).result()
         assert isinstance(handed, sweeps._Handed) and Path(handed.path).parent == tmp_path
         assert row == expected.rows[0]
-        rec = sweeps._received((row, handed))[1]
+        with pytest.raises(RuntimeError, match="not a recording of the sweep's folder"):
+            sweeps._received((row, handed), str(tmp_path / "elsewhere"))     # only the sweep's own files
+        rec = sweeps._received((row, handed), str(tmp_path))[1]
         assert not Path(handed.path).exists()
         assert type(rec) is np.ndarray and rec.dtype == expected.recordings["long0"].dtype
         assert np.array_equal(rec, expected.recordings["long0"])

@@ -240,12 +240,14 @@ def _hand(folder: Optional[str], rec: Optional[np.ndarray]):
     return _Handed(path, rec.dtype, len(rec))
 
 
-def _received(result: Tuple[dict, object]) -> Tuple[dict, Optional[np.ndarray]]:
+def _received(result: Tuple[dict, object], folder: str) -> Tuple[dict, Optional[np.ndarray]]:
     """A result as the worker made it: a handed recording mapped (copy-on-write, no copy made: reading
     it back would cost this process, on a small machine the workers' CPU) and its file unlinked; its
-    pages are freed with the array."""
+    pages are freed with the array. Only a file of the sweep's own folder is taken."""
     row, rec = result
     if isinstance(rec, _Handed):
+        if os.path.dirname(rec.path) != folder or not os.path.basename(rec.path).endswith(".rec"):
+            raise RuntimeError(f"a worker handed back {rec.path!r}, not a recording of the sweep's folder {folder}")
         mapped = np.memmap(rec.path, dtype=rec.dtype, mode="c", shape=(rec.rows,))
         os.unlink(rec.path)
         rec = mapped.view(np.ndarray)
@@ -277,6 +279,7 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
     shm = "/dev/shm"
     folder = tempfile.mkdtemp(prefix="pmdfmu-sweep-", dir=shm if os.path.isdir(shm) and os.access(shm, os.W_OK)
                               else None)
+    futures: list = []
     try:
         token = secrets.token_hex(16)
         Path(folder, "token").write_text(token)
@@ -284,8 +287,11 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
         where = {future.key: i for i, future in enumerate(futures)}
         batches: List[list] = [[] for _ in futures]
         for future, batch in as_completed(futures, loop=client.loop, with_results=True):
-            batches[where[future.key]] = [_received(result) for result in batch]
+            batches[where[future.key]] = [_received(result, folder) for result in batch]
         return [result for batch in batches for result in batch]
+    except BaseException:
+        client.cancel(futures)              # no worker goes on writing into the folder removed below
+        raise
     finally:
         shutil.rmtree(folder, ignore_errors=True)
 
