@@ -111,6 +111,17 @@ def motors_and_idle_axes(chip):
     chip.axis(0).WriteIO(2, 0xBEEF)
 
 
+def a_move_that_settles(chip):
+    """motors_and_idle_axes, and axis 4 on a short trapezoid that ends, settles and raises motion complete
+    during the first part (an ideal servo's axis, loopback, at rest mid-run)."""
+    motors_and_idle_axes(chip)
+    a4 = chip.axis(3)
+    a4.SetPosition(300)
+    a4.SetVelocity(0x50000)
+    a4.SetAcceleration(0x2000)
+    a4.Update()
+
+
 def run_in_parts(chip, names, bulk):
     """Runs in parts with commands between them (motor off and on, a breakpoint armed, then none):
     the bulk rows or the stepwise ones."""
@@ -138,6 +149,26 @@ def test_every_column_kind_in_bulk_is_the_stepwise_value(version, loopback):
         motors_and_idle_axes(ref)
         rows = run_in_parts(chip, names, bulk=True)
         assert rows.tobytes() == run_in_parts(ref, names, bulk=False).tobytes()
+
+
+@VERSIONS
+@pytest.mark.parametrize("loopback", (True, False))
+def test_every_column_but_the_filters_in_bulk_is_the_stepwise_value(version, loopback):
+    """Without the motor command columns a recording doStep runs its cycles as one chip run (record.c,
+    pmd_chip_run_rows), an ideal servo's filter advanced at its end: every other column (status bits of
+    position error and settling, events, the Reals) as a master stepping cycle by cycle."""
+    names = [n for n in every_column() if not n.endswith((".motorCommand", ".motorOutput"))]
+    with pmdfmu.Chip(fmi_version=version, loopback=loopback, **{"record.capacity": 450}) as chip, \
+            pmdfmu.Chip(fmi_version=version, loopback=loopback) as ref:
+        a_move_that_settles(chip)
+        a_move_that_settles(ref)
+        rows = run_in_parts(chip, names, bulk=True)
+        assert rows.tobytes() == run_in_parts(ref, names, bulk=False).tobytes()
+        # the ideal servo's move ended and settled inside the first part; the filters are up to date after a run
+        settled = pmdfmu.field_dp(0, "PMDActivityAxisSettled", 1)
+        status = rows["axis4.activityStatus"]
+        assert not status[0] & settled and bool(status[600] & settled) == loopback
+        assert chip.get("axis1.motorCommand") == ref.get("axis1.motorCommand")
 
 
 @VERSIONS

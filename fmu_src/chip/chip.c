@@ -444,6 +444,31 @@ static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopba
     chip->s.updatedAxes = 0;               /* what pmd_trace_cycle does with no trace armed */
 }
 
+unsigned pmd_chip_deferred_axes(const PmdChip *chip)
+{
+    return closed_form_axes(chip, run_is_quiet(chip), chip->s.loopback);
+}
+
+/* Every cycle through cycle(), as pmd_chip_run runs a run of one or two
+ * cycles, the deferred filters advanced at the end: unlike quiet_cycles,
+ * cycle() samples every axis's actual position and checks its servo side
+ * (position error, settling, motion complete) each cycle, so only the filters
+ * of the axes in closedForm lag behind a row. */
+void pmd_chip_run_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context), void *context)
+{
+    int quiet = run_is_quiet(chip), loopback = chip->s.loopback, n;
+    unsigned closedForm = closed_form_axes(chip, quiet, loopback);
+    int64_t k;
+    for (k = 0; k < cycles; k++) {
+        cycle(chip, quiet, loopback, closedForm, NULL);
+        row(context);
+    }
+    if (cycles > 0)
+        for (n = 0; n < PMD_AXES; n++)
+            if (closedForm & (1u << n))
+                pmd_servo_advance(chip, n, cycles);
+}
+
 /* The middle cycles of a quiet run (quiet_cycles) leave an ideal servo's axis
  * (closedForm) unsampled and its settle count alone while it moves: within the
  * run no one else reads its actual position, and a cycle in which it moves

@@ -41,6 +41,16 @@ void pmd_chip_cycle(PmdChip *chip);
 #define PMD_RECORD_WORDS (1 + 3 * PMD_AXES)
 void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record);
 
+/* Runs `cycles` cycles with the result of pmd_chip_run(chip, cycles, NULL),
+ * calling row(context) after each: every register then reads as that cycle
+ * left it but the servo filter (the motor command) of the axes
+ * pmd_chip_deferred_axes names, which the run brings up to date at its end
+ * (record.columns' rows, fmu_src/fmi/record.c). */
+void pmd_chip_run_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context), void *context);
+/* The axes (bit n: axis n) whose servo filter a run of the chip as it stands
+ * leaves to its end: an ideal servo's in a quiet run. */
+unsigned pmd_chip_deferred_axes(const PmdChip *chip);
+
 /* One record row: chip time, then each axis's commanded position, velocity
  * and acceleration registers. */
 void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS]);

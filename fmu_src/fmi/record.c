@@ -237,7 +237,6 @@ static void next_row(void *context)
     r->row += r->inst->columns.rowBytes;
 }
 
-#ifdef PMD_CHIP_RUN_ROWS
 /* Whether a column reads the servo filter of an axis whose filter a run leaves to its end. */
 static int reads_deferred(const PmdInstance *inst, unsigned deferred)
 {
@@ -248,7 +247,6 @@ static int reads_deferred(const PmdInstance *inst, unsigned deferred)
             return 1;
     return 0;
 }
-#endif
 
 /* The cycles as one chip run with a row after each cycle (pmd_chip_run_rows)
  * unless a column shows an ideal servo's filter, which such a run brings up to
@@ -263,12 +261,10 @@ void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first)
     r.inst = inst;
     r.grid = pmd_grid(&inst->s, &inst->chip.s);
     r.row = (unsigned char *)inst->record + (size_t)first * inst->columns.rowBytes;
-#ifdef PMD_CHIP_RUN_ROWS
     if (!reads_deferred(inst, pmd_chip_deferred_axes(&inst->chip))) {
         pmd_chip_run_rows(&inst->chip, cycles, next_row, &r);
         return;
     }
-#endif
     for (i = 0; i < cycles; i++) {
         pmd_chip_run(&inst->chip, 1, NULL);
         next_row(&r);
