@@ -102,7 +102,15 @@ def every_column():
 
 def motors_and_idle_axes(chip):
     """busy_chip (axis 1 external, axis 2 trapezoid, a breakpoint armed on axis 1), axis 3's motor off with
-    a motor command, axis 4 idle; switches and inputs at rest."""
+    a motor command, axis 4 idle; switches and inputs at rest. Feedforward gains and a bias on every axis
+    (applied by the moves' Updates): an ideal servo's motor command shows each cycle's velocity and
+    acceleration, so a filter left behind would show in its columns."""
+    for n in range(4):
+        ax = chip.axis(n)
+        ax.SetKvff(0x100)
+        ax.SetKaff(0x4000)
+        ax.SetMotorBias(300)
+    chip.axis(3).Update()
     busy_chip(chip)
     ax = chip.axis(2)
     ax.SetMotorMode(pmdfmu.PMDMotorOff)
