@@ -102,12 +102,17 @@ def test_a_pending_sample_time_change_in_a_recording_step_records_at_most_the_ca
             assert len(chip.fmu.getBinary([vr(chip, "record.data")])[0]) == 10 * 13 * 4
 
 
-def test_the_harness_reports_a_recording_cut_short_by_the_script(tmp_path):
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_script_that_makes_the_grid_finer_mid_recording_gets_a_stepping_masters_rows(tmp_path, version):
+    """A step of 100 us then holds 100 cycles of 1 us, more than one row: the harness redoes that chunk
+    cycle by cycle from its saved state (once it raised), and the rows are a stepping master's."""
     script = tmp_path / "fine.pmd"
     script.write_text("@0\nSetSampleTime(Axis1, 1);\n")
-    with pmdfmu.Chip(fmi_version=3, script=script) as chip:
-        with pytest.raises(RuntimeError, match="sample time"):
-            chip.run(1000, record=["axis1.commandedPosition"])
+    with pmdfmu.Chip(fmi_version=version, script=script) as chip, \
+            pmdfmu.Chip(fmi_version=version, script=script) as stepping:
+        rows = chip.run(1000, record=["axis1.commandedPosition"])
+        assert rows.tobytes() == stepping._run_stepwise(1000, ["axis1.commandedPosition"]).tobytes()
+        assert chip.cycles == stepping.cycles
 
 
 # ---- 4. a refused set changes nothing ----

@@ -762,36 +762,39 @@ class Chip:
             done = 0
             while done < cycles:
                 n = min(capacity, cycles - done)
-                state = None if self.cycles > script_end else self.fmu.getFMUState()
-                logged = len(self.messages)
-                self._step(n)                       # Warning if the step's cycles changed
+                before = self.cycles
+                state = None if before > script_end else self.fmu.getFMUState()
+                try:
+                    logged = len(self.messages)
+                    self._step(n)                       # Warning if the step's cycles changed
+                    redo = state is not None and self.cycles - before != n
+                    if redo:
+                        # the grid changed in the chunk: back to its start, and the chunk runs as a master
+                        # stepping cycle by cycle runs it (the native loop: Chip._run_stepwise's rows)
+                        self.fmu.setFMUState(state)
+                        del self.messages[logged:]
+                        self.set("record.enabled", False)
+                        part = np.zeros(n, dtype=dtype)
+                        recording.record(self, recording.Plan(self, where, dtype), part)
+                        if commanded:                   # the same 32-bit fields as the table's row
+                            table[done:done + n] = part.view(np.int32).reshape(n, 1 + len(names))
+                        else:
+                            out[done:done + n] = part
+                        self.set("record.enabled", True)
+                finally:                            # a failed redo keeps no FMU state alive
+                    if state is not None:
+                        self.fmu.freeFMUState(state)
+                if redo:
+                    done += n
+                    continue
                 # record.data is the FMU's own buffer, lent until the next call: read in place, once, as
                 # many whole rows as it holds, never more
                 address, size = lend()
                 held = size // row.itemsize
-                whole = held == n and size % row.itemsize == 0
-                if state is not None and not whole:
-                    # the grid changed in the chunk: back to its start, and the chunk runs as a master
-                    # stepping cycle by cycle runs it (the native loop: Chip._run_stepwise's rows)
-                    self.fmu.setFMUState(state)
-                    del self.messages[logged:]
-                    self.set("record.enabled", False)
-                    part = np.zeros(n, dtype=dtype)
-                    recording.record(self, recording.Plan(self, where, dtype), part)
-                    if commanded:                   # the same 32-bit fields as the table's row
-                        table[done:done + n] = part.view(np.int32).reshape(n, 1 + len(names))
-                    else:
-                        out[done:done + n] = part
-                    self.set("record.enabled", True)
-                if state is not None:
-                    self.fmu.freeFMUState(state)
-                    if not whole:
-                        done += n
-                        continue
-                if not whole:
-                    # past the script's last step nothing can change the grid inside a step
-                    raise FMUError(f"record.data holds {size} bytes after a step of {n} cycles, not {n} rows of "
-                                   f"{row.itemsize} bytes")
+                if held != n or size % row.itemsize:
+                    # the step ran its cycles, but record.data does not hold their rows: never read past it
+                    raise RuntimeError(f"record.data holds {held} cycles, not {n}: {size} bytes, rows of "
+                                       f"{row.itemsize} bytes")
                 rows = np.frombuffer((c_char * size).from_address(address), dtype=row)
                 if commanded:
                     for at, column, width in runs:
