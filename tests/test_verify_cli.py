@@ -150,7 +150,7 @@ def test_batch_on_a_local_dask_cluster(tmp_path, capsys):
 
 def test_from_a_shell(tmp_path):
     """The exit status a pipeline gates on, from a real process."""
-    env = dict(os.environ, PYTHONPATH=str(REPO / "python") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env = dict(os.environ)             # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR)
     ok = subprocess.run([sys.executable, "-m", "pmdfmu.cli", "verify", str(SCRIPT), "--against",
                          str(CI / "two_axis.golden.npz")], capture_output=True, text=True, env=env, cwd=tmp_path)
     assert ok.returncode == 0, ok.stderr
@@ -167,8 +167,8 @@ def test_readme_example_runs(tmp_path):
     text = (REPO / "README.md").read_text()
     section = text.split("## Verify in CI\n", 1)[1].split("\n## ", 1)[0]
     code = section.split("```sh\n", 1)[1].split("```", 1)[0]
-    env = dict(os.environ, PYTHONPATH=str(REPO / "python") + os.pathsep + os.environ.get("PYTHONPATH", ""),
-               PATH=os.path.dirname(sys.executable) + os.pathsep + os.environ["PATH"])
+    # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR), this interpreter's scripts first
+    env = dict(os.environ, PATH=os.path.dirname(sys.executable) + os.pathsep + os.environ["PATH"])
     pmdfmu = tmp_path / "bin" / "pmdfmu"          # the command as pip installs it, on this interpreter
     pmdfmu.parent.mkdir()
     pmdfmu.write_text(f"#!/bin/sh\nexec {sys.executable} -m pmdfmu.cli \"$@\"\n")
