@@ -112,3 +112,19 @@ def test_long_segments_after_many_short_ones_take_one_step_in_o_segments():
         assert chip.axis(0).GetCommandedVelocity() == v
         assert chip.axis(2).GetCommandedPosition() == 5                  # its table ended long ago
         assert chip.get("chipTime") == wrap32(cycles - 1)
+
+
+def test_a_chip_at_rest_with_loopback_off_takes_a_huge_step_at_once():
+    """Every axis at rest, the servo closed by the plant (loopback 0), a limit input's sense set (the
+    run is not quiet): 10^12 cycles in one doStep are skipped as before the batch policy (the fuzzer's
+    sequence target found the policy stepping them one by one). The settle count saturates, the
+    motor command holds, the time is exact."""
+    with pmdfmu.Chip(loopback=False) as chip:
+        ax = chip.axis(0)
+        ax.SetSignalSense(2420)
+        ax.SetSettleWindow(2)
+        chip.set("axis1.actualPosition", 1)
+        cycles = 10 ** 12
+        chip.run(cycles)
+        assert chip.get("chipTime") == wrap32(cycles - 1)
+        assert ax.GetActualPosition() == 1 and ax.GetCommandedPosition() == 0

@@ -227,15 +227,15 @@ static int64_t fast_forward_bound(const PmdChip *chip, int64_t max)
 {
     int64_t k = max;
     int n;
-    if (chip->s.trace.active || chip->s.trace.start || !chip->s.loopback)
+    if (chip->s.trace.active || chip->s.trace.start)
         return 0;
     for (n = 0; n < PMD_AXES; n++) {
         const PmdAxis *ax = &chip->s.axis[n];
         if (ax->breakpoint[0].trigger | ax->breakpoint[1].trigger || ax->motionCompletePending)
             return 0;
-        if (ax->motion == PMD_MOTION_IDLE)
+        if (ax->motion == PMD_MOTION_IDLE)      /* at rest any servo does: loopback or not (skippable) */
             continue;
-        if (ax->motion != PMD_MOTION_EXTERNAL || !ax->motorOn)
+        if (ax->motion != PMD_MOTION_EXTERNAL || !chip->s.loopback || !ax->motorOn)
             return 0;
         if ((int64_t)ax->segmentTime < k)
             k = ax->segmentTime;
