@@ -23,13 +23,15 @@ class Figure:
     min: float
     median: float
 
+    @staticmethod
+    def of(values) -> "Figure":
+        """The least and the median of measured values."""
+        values = sorted(values)
+        return Figure(values[0], statistics.median(values))
+
     def per(self, n: float) -> "Figure":
         """time per item"""
         return Figure(self.min / n, self.median / n)
-
-    def rate(self, n: float) -> "Figure":
-        """n items over the time: items per second, the best run's first"""
-        return Figure(n / self.min, n / self.median)
 
     def text(self, scale: float, unit: str, fmt: str = ".2f") -> str:
         """'best / median unit', each value times scale (1e9: ns, 1e-6: M/s ...)"""
@@ -38,8 +40,7 @@ class Figure:
 
 def repeat(f: Callable[[], float], runs: int = RUNS) -> Figure:
     """f() returns a time in seconds; it runs `runs` times."""
-    values = sorted(f() for _ in range(runs))
-    return Figure(values[0], statistics.median(values))
+    return Figure.of(f() for _ in range(runs))
 
 
 def timed(f: Callable[[], object]) -> float:

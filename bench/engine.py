@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import os
 import random
-import statistics
 import subprocess
 import sys
 import zipfile
@@ -46,7 +45,7 @@ def figures(lines, key_fields: int) -> dict:
     for line in lines:
         *key, seconds = line.split()
         times.setdefault(" ".join(key[:key_fields]), []).append(float(seconds))
-    return {k: Figure(min(v), statistics.median(v)) for k, v in times.items()}
+    return {k: Figure.of(v) for k, v in times.items()}
 
 
 def engine(tree: Path) -> None:

@@ -124,10 +124,10 @@ def one(version: int, cycles: Sequence[int], record: Sequence[str], target: bool
     ends = {r[2] for r in runs} | {p[1] for p in plain}
     if len(ends) != 1:
         raise AssertionError(f"the streamed run ended elsewhere than the whole table's: {ends}")
-    shares = sorted(r[0] / r[1] for r in runs)
-    loop = Figure(min(r[1] for r in runs), float(np.median([r[1] for r in runs])))
-    base = Figure(min(p[0] for p in plain), float(np.median([p[0] for p in plain])))
-    share = Figure(shares[0], float(np.median(shares)))
+    shares = [r[0] / r[1] for r in runs]
+    loop = Figure.of(r[1] for r in runs)
+    base = Figure.of(p[0] for p in plain)
+    share = Figure.of(shares)
     what = f"{'recorded (3 outputs)' if record else 'not recorded'}, {cycles[0]}-{cycles[1]}-cycle segments"
     report(f"streamed run, FMI {version}, {what}: share refilling",
            f"{share.text(100, '%', '.1f')} of {loop.text(1e3, 'ms', '.1f')}",

@@ -5,7 +5,6 @@ run serially in this process. Part of ./dev bench."""
 from __future__ import annotations
 
 import logging
-import statistics
 import time
 from pathlib import Path
 
@@ -19,10 +18,6 @@ HEAVY = 8               # cases of the speed-up
 HEAVY_SECONDS = 0.25    # each heavy case's serial time, at least (the target asks >= 0.2 s)
 OVERHEAD = 2e-3         # s per case (issue 16, target 6)
 SPEED_UP = 1.8          # on 2 workers
-
-
-def figure(values) -> Figure:
-    return Figure(min(values), statistics.median(values))
 
 
 def long_move(path: Path, cycles: int) -> Path:
@@ -75,7 +70,7 @@ def benchmarks(tmp: Path) -> None:
         for _ in range(RUNS):
             serial_runs.append(timed(lambda: pmdfmu.sweep(heavy, scheduler="serial")))
             cluster_runs.append(timed(lambda: pmdfmu.sweep(heavy, scheduler=client)))
-        serial_heavy, cluster_heavy = figure(serial_runs), figure(cluster_runs)
+        serial_heavy, cluster_heavy = Figure.of(serial_runs), Figure.of(cluster_runs)
 
     report("sweep per-case overhead, 2-worker cluster (client reused), empty cases",
            cluster_empty.text(1e3, "ms", ".3f"), f"serial here {serial_empty.text(1e3, 'ms', '.3f')}",
