@@ -27,7 +27,6 @@
  *     files' paths fit script.c's 1024 bytes) works end to end: the
  *     instance reads script.start from it, initializes with its tables found
  *     there, and after fmi2Reset the relative script "s.script" is found there. */
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,6 +34,7 @@
 #include <unistd.h>
 
 #include "fmi2.c"
+#include "fuzz_property.h"
 #include "variables.h"
 
 static const char START[] = "@ 0\nLoadSegmentTable(Axis1, \"t.csv\", 0x200, 2);\n"
@@ -49,17 +49,6 @@ static char root[64], res[96], resEncoded[128];
  * (the script parameter's start value cannot be looked for). */
 #define SCRIPT_PATH_LIMIT 1024
 #define FITS(folder, name) (strlen(folder) + strlen(name) < SCRIPT_PATH_LIMIT)
-
-static void violated(const char *format, ...)
-{
-    va_list args;
-    fprintf(stderr, "property violated: ");
-    va_start(args, format);
-    vfprintf(stderr, format, args);
-    va_end(args);
-    fprintf(stderr, "\n");
-    abort();
-}
 
 /* ---- the resources folder ---- */
 

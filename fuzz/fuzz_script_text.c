@@ -34,7 +34,6 @@
  *     found a table in the working directory.
  *
  * FUZZ_TEXT_TRACE=1 prints what each input compiled to, or why it was refused. */
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,20 +41,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "fuzz_property.h"
 #include "script.h"
 
 static char root[64], res[96];       /* the temporary folder and its resources folder (no '/' at the end) */
-
-static void violated(const char *format, ...)
-{
-    va_list args;
-    fprintf(stderr, "property violated: ");
-    va_start(args, format);
-    vfprintf(stderr, format, args);
-    va_end(args);
-    fprintf(stderr, "\n");
-    abort();
-}
 
 static void put_file(const char *name, const uint8_t *data, size_t n)
 {
