@@ -10,6 +10,7 @@ import random
 from fractions import Fraction
 from math import floor
 
+import numpy as np
 import pytest
 
 import pmdfmu
@@ -103,6 +104,53 @@ def test_review_findings_follow_the_exact_recurrence_every_cycle(fmi, finding):
         out = recorded(chip, time + 3)
     assert out[:time] == [seg.registers(n) for n in range(time)]
     assert out[time:] == [(123, 0, 0)] * 3                  # the next row read: time 0, held
+
+
+# ---- the Reals, bit for bit -----------------------------------------------------------
+
+def documented_reals(seg, n, cycle_time):
+    """axisN.position, .velocity, .acceleration as the FMU computes its doubles (status.c,
+    pmd_commanded_reals): the position's whole counts plus its fraction divided by U = D; a
+    velocity or acceleration X in U divided by U where it fits an int64 (X converted first,
+    rounded beyond 2^53), else whole counts plus the fraction in 2^-33; then divided by the
+    cycle time (squared)."""
+    P, V, A = seg.exact(n)
+    D = seg.D
+    whole = P // D
+
+    def counts(x):
+        if -(1 << 63) <= x < 1 << 63:
+            return float(x) / float(D)
+        c = x // D
+        return float(c) + float((x - c * D) // 3) / 2 ** 33
+    return (float(wrap32(whole)) + (P - whole * D) / D, counts(V) / cycle_time,
+            counts(A) / (cycle_time * cycle_time))
+
+
+@FMI
+def test_the_reals_of_every_axis_are_the_documented_doubles_bit_for_bit(fmi):
+    """Four axes at once (the four lanes of pmd_commanded_reals' packed divisions), recorded in bulk
+    and read by the getters: velocities and accelerations from 0 through 2^53 in U (rounded before
+    the division) to beyond an int64 in U (whole counts plus fraction), both signs."""
+    rows = {0: (0, 0, MAX32, 0), 1: (5, 0xE0000000, 0x40000000, 0), 2: (-7, MAX32, MIN32, MIN32),
+            3: (MAX32, 0x12345678, 0xFEDCBA98, 0x9E3779B9)}
+    time = 11500                                        # axis 1's velocity passes 2^31/6 counts/cycle
+    segments = {axis: Segment(*row) for axis, row in rows.items()}
+    names = [f"axis{axis + 1}.{q}" for axis in rows for q in ("position", "velocity", "acceleration")]
+    with pmdfmu.Chip(fmi_version=fmi) as chip:
+        cycle_time = chip.cycle_time
+        load_external_profile(chip, {axis: [row + (time,), (0, 0, 0, 0, 0)] for axis, row in rows.items()})
+        start_external_profile(chip, list(rows))
+        rec = chip.run(time - 1, record=names)
+        for axis, seg in segments.items():
+            expected = np.array([documented_reals(seg, n, cycle_time) for n in range(time - 1)])
+            for k, q in enumerate(("position", "velocity", "acceleration")):
+                column = rec[f"axis{axis + 1}.{q}"]
+                assert column.tobytes() == expected[:, k].tobytes(), (axis, q)
+            assert [chip.get(f"axis{axis + 1}.{q}") for q in ("position", "velocity", "acceleration")] == \
+                list(expected[-1])
+        velocity = abs(segments[0].exact(time - 2)[1])
+        assert velocity >= 1 << 63 and any(abs(s.exact(0)[1]) < 1 << 53 for s in segments.values())
 
 
 # ---- the extremes, for the longest segment time -------------------------------------

@@ -184,18 +184,32 @@ static inline int64_t pmd_fixed_to_1616(PmdFixed x)
     return x.counts * 65536 + (x.fraction >> (PMD_FIXED_BITS - 16));
 }
 
-/* x in counts as a double, for the Real outputs. A value that fits an int64
- * in U (|x| < 2^31/6 counts) is converted from that integer, as the state
- * once held it, so those Reals stay bit-identical; a larger one from its parts. */
-static inline double pmd_fixed_double(PmdFixed x)
+/* The Real outputs convert x in counts (pmd_commanded_reals): a value that
+ * fits an int64 in U (|x| < 2^31/6 counts) from that integer, as the state once
+ * held it, so that those Reals stay bit-identical: (double)*u / PMD_U_PER_COUNT
+ * (pmd_fixed_in_u is 1); a larger one from its parts (pmd_fixed_wide_double). */
+static inline int pmd_fixed_in_u(PmdFixed x, int64_t *u)
 {
     const int64_t most = INT64_MAX / PMD_U_PER_COUNT;            /* whole counts that fit */
     int64_t rest = 3 * x.fraction;                                /* the fraction in U: below PMD_U_PER_COUNT */
-    if (x.counts >= 0 && x.counts <= most && x.counts * PMD_U_PER_COUNT <= INT64_MAX - rest)
-        return (double)(x.counts * PMD_U_PER_COUNT + rest) / (double)PMD_U_PER_COUNT;
+    if (x.counts > -most && x.counts < most) {                    /* the usual case: no bound is near */
+        *u = x.counts * PMD_U_PER_COUNT + rest;
+        return 1;
+    }
+    if (x.counts >= 0 && x.counts <= most && x.counts * PMD_U_PER_COUNT <= INT64_MAX - rest) {
+        *u = x.counts * PMD_U_PER_COUNT + rest;
+        return 1;
+    }
     if (x.counts < 0 && x.counts >= -most - 1 &&
-        (x.counts + 1) * PMD_U_PER_COUNT >= INT64_MIN + (PMD_U_PER_COUNT - rest))
-        return (double)((x.counts + 1) * PMD_U_PER_COUNT + (rest - PMD_U_PER_COUNT)) / (double)PMD_U_PER_COUNT;
+        (x.counts + 1) * PMD_U_PER_COUNT >= INT64_MIN + (PMD_U_PER_COUNT - rest)) {
+        *u = (x.counts + 1) * PMD_U_PER_COUNT + (rest - PMD_U_PER_COUNT);
+        return 1;
+    }
+    return 0;
+}
+
+static inline double pmd_fixed_wide_double(PmdFixed x)
+{
     return (double)x.counts + (double)x.fraction / (double)PMD_FIXED_ONE;
 }
 

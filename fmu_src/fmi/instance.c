@@ -612,10 +612,14 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
     PmdGrid grid;
     const PmdGrid *g = &grid;
+    PmdCommandedReals all;
+    const PmdCommandedReals *reals = &all;
     unsigned i;
     if (!v)
         return PMD_ERROR;
     grid = pmd_grid(&inst->s, &inst->chip.s);
+    if (PMD_READS_REALS(v->family))
+        pmd_commanded_reals(&inst->chip, g->cycleTime, &all);
     i = v->index;
     switch (v->family) {
     PMD_REAL_VALUES(VALUE_CASE)

@@ -20,13 +20,9 @@
 /* Columns of one row at most: a row of every variable of variables.csv twice over fits. */
 #define MAX_COLUMNS 4096
 
-/* Bytes past the last row: a row's 2-byte column is stored as 4 (its low
- * bytes first, the next column overwrites the rest), see record_row. */
-#define ROW_SLACK sizeof(int32_t)
-
 static PmdStatus record_reserve(PmdInstance *inst, const char *fn, uint32_t rowBytes)
 {
-    size_t bytes = (size_t)inst->recordCapacity * rowBytes + ROW_SLACK;
+    size_t bytes = (size_t)inst->recordCapacity * rowBytes;
     int32_t *record;
     if (inst->record && inst->recordRows == inst->recordCapacity && inst->recordBytes >= bytes)
         return PMD_OK;
@@ -88,6 +84,15 @@ static PmdStatus refused(PmdInstance *inst, const char *fn, const char *text, co
     return PMD_ERROR;
 }
 
+/* Families in order, a family's columns in row order (offsets differ: the order is total). */
+static int by_family(const void *a, const void *b)
+{
+    const PmdRecordColumn *x = (const PmdRecordColumn *)a, *y = (const PmdRecordColumn *)b;
+    if (x->family != y->family)
+        return x->family < y->family ? -1 : 1;
+    return x->offset < y->offset ? -1 : x->offset > y->offset;
+}
+
 PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const char *text, PmdRecordColumns *out)
 {
     PmdRecordColumns c;
@@ -137,6 +142,8 @@ PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const ch
         c.column[k].index = v->index;
         c.column[k].type = v->type;
         c.column[k].bytes = v->bytes;
+        c.column[k].offset = c.rowBytes;
+        c.readsReals |= PMD_READS_REALS(v->family);
         c.rowBytes += v->bytes;
         k++;
         p += strcspn(p, ",");
@@ -144,6 +151,7 @@ PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const ch
             break;
     }
     c.count = k;
+    qsort(c.column, k, sizeof *c.column, by_family);
     pmd_record_columns_free(out);
     *out = c;
     return PMD_OK;
@@ -178,22 +186,25 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
 }
 
 /* Each case is a row of record.h's tables, the getters' (instance.c): the
- * value as its getter returns it, stored in the column's width. An Integer
- * is stored as 4 bytes and the row moves on by the column's width: a 2-byte
- * column's low bytes stay, the next column or ROW_SLACK takes the rest. */
-#define REAL_COLUMN(family, expression)                                                                               \
-    case family: {                                                                                                    \
-        double x = (expression);                                                                                      \
-        memcpy(row, &x, sizeof x);                                                                                    \
-        break;                                                                                                        \
-    }
-#define INTEGER_COLUMN(family, expression)                                                                            \
-    case family: {                                                                                                    \
-        int32_t n = (expression);                                                                                     \
-        memcpy(row, &n, sizeof n);                                                                                    \
-        break;                                                                                                        \
-    }
-#define BOOLEAN_COLUMN(family, expression) case family: *row = (expression) != 0; break;
+ * value as its getter returns it, stored at each of the family's columns in
+ * its width (a family has one type, hence one width), the columns of a family
+ * one after the other (record.columns is kept in that order): one switch per
+ * family and row. */
+#define FAMILY_COLUMNS(F, store)                                                                                      \
+    case F:                                                                                                           \
+        do {                                                                                                          \
+            unsigned i = c->index;                                                                                    \
+            (void)i;                                                                                                  \
+            store;                                                                                                    \
+        } while (++c < last && c->family == F);                                                                       \
+        break;
+#define REAL_COLUMN(F, expression)                                                                                    \
+    FAMILY_COLUMNS(F, double x = (expression); memcpy(row + c->offset, &x, sizeof x))
+#define INTEGER_COLUMN(F, expression)                                                                                 \
+    FAMILY_COLUMNS(F, int32_t n = (expression); uint16_t low = (uint16_t)(uint32_t)n;                                       \
+                   if (c->bytes == 2) memcpy(row + c->offset, &low, sizeof low);                                      \
+                   else memcpy(row + c->offset, &n, sizeof n))
+#define BOOLEAN_COLUMN(F, expression) FAMILY_COLUMNS(F, row[c->offset] = (expression) != 0)
 
 /* A family the tables have no row for: no column has one (record.columns was checked when set), and
  * telling GCC or Clang so leaves the range check out of the switch. */
@@ -209,10 +220,12 @@ static inline void record_row(PmdInstance *inst, const PmdGrid *g, unsigned char
 {
     const PmdRecordColumn *c = inst->columns.column, *last = c + inst->columns.count;
     int32_t time = pmd_int32(inst->chip.s.time);
+    PmdCommandedReals all;
+    const PmdCommandedReals *reals = &all;
+    if (inst->columns.readsReals)
+        pmd_commanded_reals(&inst->chip, g->cycleTime, &all);
     memcpy(row, &time, sizeof time);
-    row += sizeof time;
-    for (; c < last; row += c->bytes, c++) {
-        unsigned i = c->index;
+    while (c < last) {
         switch (c->family) {
         PMD_REAL_VALUES(REAL_COLUMN)
         PMD_INTEGER_VALUES(INTEGER_COLUMN)

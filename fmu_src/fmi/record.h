@@ -13,6 +13,7 @@ typedef struct {
     unsigned short index;            /* the axis or array element */
     unsigned char type;              /* PMD_REAL, PMD_INTEGER, PMD_BOOLEAN */
     unsigned char bytes;             /* of its FMI 3 type: 8, 4, 2 (the low bits), 1 (a Boolean: 0 or 1) */
+    uint32_t offset;                 /* of its value in a row */
 } PmdRecordColumn;
 
 /* The value of each Real, Integer and Boolean variable: one table (family,
@@ -21,8 +22,12 @@ typedef struct {
  * (record.c), so that a getter and a column cannot disagree - the same
  * expression, hence the same floating-point operations. An expression reads
  * inst (PmdInstance *), i (the variable's index: its axis 0..3 or array
- * element) and, a Real, g (const PmdGrid *, the grid as it stands). */
+ * element) and, a Real, g (const PmdGrid *, the grid as it stands) and reals
+ * (const PmdCommandedReals *, pmd_commanded_reals at g's cycle time: the
+ * readers compute it where a PMD_READS_REALS family is read). */
 #define PMD_AXIS(i) (&inst->chip.s.axis[(i)])
+#define PMD_READS_REALS(family) \
+    ((family) == VAR_axis_position || (family) == VAR_axis_velocity || (family) == VAR_axis_acceleration)
 #define PMD_REAL_VALUES(X) \
     X(VAR_time, inst->s.time) \
     X(VAR_cycleTime, inst->s.cycleTime) \
@@ -30,10 +35,9 @@ typedef struct {
     X(VAR_nextCycleTime, g->anchorTime + (double)(g->nextCycle - g->anchorCycle) * g->cycleTime) \
     X(VAR_nextCycle, (double)g->nextCycle) \
     X(VAR_script_lastCycle, (double)inst->script.lastCycle) \
-    X(VAR_axis_position, pmd_commanded_position_counts(&PMD_AXIS(i)->trajectory)) \
-    X(VAR_axis_velocity, pmd_commanded_velocity_counts(&PMD_AXIS(i)->trajectory) / g->cycleTime) \
-    X(VAR_axis_acceleration, \
-      pmd_commanded_acceleration_counts(&PMD_AXIS(i)->trajectory) / (g->cycleTime * g->cycleTime)) \
+    X(VAR_axis_position, reals->position[i]) \
+    X(VAR_axis_velocity, reals->velocity[i]) \
+    X(VAR_axis_acceleration, reals->acceleration[i]) \
     /* full scale is the 16-bit command's 2^15 (GetCurrentMotorCommand: 100/2^15 % per count) */ \
     X(VAR_axis_motorOutput, PMD_AXIS(i)->filter.output / 32768.0)
 #define PMD_INTEGER_VALUES(X) \
@@ -71,11 +75,14 @@ typedef struct {
     X(VAR_record_enabled, inst->s.recordEnabled) \
     X(VAR_host_interrupt, pmd_host_interrupt(&inst->chip))
 
-/* record.columns compiled: count 0 is "" (the default row of PMD_RECORD_WORDS int32). */
+/* record.columns compiled: count 0 is "" (the default row of PMD_RECORD_WORDS int32).
+ * The columns are kept in the order of their families (each at its offset in
+ * the row): a row reads each family's expression once for all its columns. */
 typedef struct {
     char *text;                      /* the value as set; NULL: "" */
     PmdRecordColumn *column;
     size_t count;
+    int readsReals;                  /* a column's family is PMD_READS_REALS */
     uint32_t rowBytes;               /* of one row of record.data */
 } PmdRecordColumns;
 
