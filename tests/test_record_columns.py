@@ -81,6 +81,103 @@ def test_the_fmi2_extension_checks_its_instance_and_pointers():
         assert get(None, byref(data), byref(size)) == 3
 
 
+def lend_function(chip):
+    lend = chip.fmu.dll.pmdfmu_fmi2SetRecordBuffer
+    lend.restype, lend.argtypes = c_int, [c_void_p, c_void_p, c_size_t]
+    return lend
+
+
+def record_data(chip):
+    get = chip.fmu.dll.pmdfmu_fmi2GetRecordData
+    get.restype, get.argtypes = c_int, [c_void_p, POINTER(c_void_p), POINTER(c_size_t)]
+    data, size = c_void_p(), c_size_t()
+    assert get(chip.fmu.component, byref(data), byref(size)) == 0
+    return data.value, size.value
+
+
+@pytest.mark.parametrize("names", [record_outputs(range(4)), []])
+def test_rows_recorded_into_lent_memory_are_record_datas_rows(names):
+    """pmdfmu_fmi2SetRecordBuffer: the rows of a recording doStep go into the caller's memory, byte for byte
+    those record.data's own buffer holds (record.columns, and the default rows); record.data reports them
+    there; NULL gives the buffer back; a step recording more cycles than fit is refused and runs nothing."""
+    with pmdfmu.Chip(fmi_version=2) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+        for c in (chip, ref):
+            busy_chip(c)
+            c.set("record.columns", ",".join(names))
+            c.set("record.enabled", True)
+        size = chip.get("record.rowSize")
+        lent = np.full(400 * size + 8, 0xA5, dtype=np.uint8)
+        lend = lend_function(chip)
+        assert lend(chip.fmu.component, lent.ctypes.data, 400 * size) == 0
+        assert record_data(chip)[1] == 0                     # nothing recorded there yet
+        chip._step(400)
+        ref._step(400)
+        address, nbytes = record_data(chip)
+        assert (address, nbytes) == (lent.ctypes.data, 400 * size)
+        assert lent[:nbytes].tobytes() == string_at(*record_data(ref))
+        assert (lent[nbytes:] == 0xA5).all()                  # nothing past the lent size
+        with pytest.raises(FMICallException):
+            chip._step(401)
+        assert any("holds 400 rows" in m.message for m in chip.messages if m.status == "Error")
+        assert chip.cycles == ref.cycles                        # the refused step ran nothing
+        assert lend(chip.fmu.component, None, 0) == 0
+        chip._step(1000)
+        ref._step(1000)
+        assert record_data(chip)[0] != lent.ctypes.data
+        assert string_at(*record_data(chip)) == string_at(*record_data(ref))
+
+
+def test_lent_memory_is_checked_and_a_reset_forgets_it():
+    with pmdfmu.Chip(fmi_version=2) as chip:
+        lend = lend_function(chip)
+        buffer = np.zeros(64, dtype=np.uint8)
+        chip.set("record.enabled", True)
+        assert lend(chip.fmu.component, buffer.ctypes.data + 1, 60) == 0
+        with pytest.raises(FMICallException):                # the default rows are int32 words
+            chip._step(1)
+        assert any("pmdfmu_fmi2SetRecordBuffer" in m.message and "not aligned to 4 bytes" in m.message
+                   for m in chip.messages if m.status == "Error")
+        assert chip.cycles == 0 and (buffer == 0).all()
+        chip.set("record.columns", "axis1.activityStatus")   # 6-byte rows: any address
+        chip._step(10)
+        assert record_data(chip) == (buffer.ctypes.data + 1, 60) and buffer[1:61].any()
+        chip.set("record.enabled", False)
+        buffer[:] = 0
+        assert lend(None, buffer.ctypes.data, 64) == 3
+        assert lend(chip.fmu.component, buffer.ctypes.data, 64) == 0
+        chip.fmu.reset()                                       # the instance as instantiated: nothing lent
+        chip.set("record.enabled", True)
+        chip.fmu.enterInitializationMode()
+        chip.fmu.exitInitializationMode()
+        chip._step(10)                                         # 10 rows would not fit the 64 bytes
+        assert record_data(chip)[0] != buffer.ctypes.data and (buffer == 0).all()
+
+
+@pytest.mark.parametrize("redo", [False, True])
+def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkeypatch, redo, tmp_path):
+    """Chip.run lends its result to the FMU chunk by chunk (no copy) and ends the loan whatever happens; a
+    chunk redone stepwise (a script's SetSampleTime) is overwritten with the stepwise rows."""
+    loans = []
+    real = recording.borrower
+
+    def spy(chip):
+        borrow = real(chip)
+        return lambda address, size: (loans.append((address, size)), borrow(address, size))[1]
+    monkeypatch.setattr(recording, "borrower", spy)
+    names = record_outputs(range(2))
+    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 700}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+        for c in (chip, ref):
+            busy_chip(c)
+        rows = chip.run(2000, record=names)
+        assert rows.tobytes() == ref._run_stepwise(2000, names).tobytes()
+        assert [size for _, size in loans] == [700 * rows.itemsize, 700 * rows.itemsize, 600 * rows.itemsize, 0]
+        assert loans[0][0] == rows.ctypes.data and loans[-1] == (0, 0)
+        loans.clear()
+        with pytest.raises(ValueError):
+            chip.run(10, record=names + ["axis1.nothing"])      # refused before any loan
+        assert not loans
+
+
 @VERSIONS
 def test_the_bulk_path_is_taken_for_any_columns(version, monkeypatch):
     """The native loop is not called (record.data holds the rows) unless `time` is recorded."""

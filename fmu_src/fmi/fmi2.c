@@ -305,6 +305,19 @@ FMI2_Export fmi2Status pmdfmu_fmi2GetRecordData(fmi2Component c, const void **da
     return fmi2OK;
 }
 
+/* The other side of the same buffer: the caller lends the FMU memory of its
+ * own (size bytes; 4-byte aligned for the default rows) for the rows of the
+ * recording doSteps that follow, NULL gives record.data's buffer back;
+ * pmdfmu_fmi2GetRecordData then reports the rows there. The harness records
+ * into its result this way, without a copy. The memory must stay valid until
+ * NULL is lent or the instance is reset or freed; a step recording more cycles
+ * than fit is refused, as one beyond record.capacity is. */
+FMI2_Export fmi2Status pmdfmu_fmi2SetRecordBuffer(fmi2Component c, void *rows, size_t size)
+{
+    PmdInstance *inst = begin(c, "pmdfmu_fmi2SetRecordBuffer", ANY_STATE);
+    return inst ? status_of[pmd_record_lend(inst, "pmdfmu_fmi2SetRecordBuffer", rows, size)] : fmi2Error;
+}
+
 /* ---- co-simulation ---- */
 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,

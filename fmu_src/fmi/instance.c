@@ -58,6 +58,8 @@ static void set_defaults(PmdInstance *inst)
     inst->record = NULL;
     inst->recordRows = 0;
     inst->recordBytes = 0;
+    inst->recordLent = NULL;
+    inst->recordLentBytes = 0;
     inst->recordCapacity = 65536;
     inst->recordCount = 0;
     pmd_record_columns_free(&inst->columns);
@@ -418,6 +420,21 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
                          "is %u: not run", fn, (long long)(end - inst->s.nextCycle), (unsigned)inst->recordCapacity);
         return PMD_ERROR;
     }
+    if (inst->s.recordEnabled && inst->recordLent) {
+        if (end - inst->s.nextCycle > pmd_record_room(inst)) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: recording a step of %lld cycles, but the memory "
+                             "lent by pmdfmu_fmi2SetRecordBuffer holds %lld rows of %u bytes: not run", fn,
+                             (long long)(end - inst->s.nextCycle), (long long)pmd_record_room(inst),
+                             (unsigned)inst->columns.rowBytes);
+            return PMD_ERROR;
+        }
+        if (!inst->columns.count && (uintptr_t)inst->recordLent % sizeof(int32_t)) {
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: the memory lent by pmdfmu_fmi2SetRecordBuffer (%p) "
+                             "is not aligned to 4 bytes, as the default rows of int32 words need: not run", fn,
+                             (void *)inst->recordLent);
+            return PMD_ERROR;
+        }
+    }
     pmd_commit_ports(inst);
     g = pmd_grid(&inst->s, &inst->chip.s);              /* the batch may have restarted the grid */
     end = pmd_cycles_before(&g, t + h);
@@ -432,7 +449,7 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
         }
         if (inst->s.recordEnabled) {               /* every cycle recorded: no fast-forward */
             /* rows past record.capacity are not recorded: the grid may have restarted finer inside the step */
-            int64_t k = cycles_to_skip(inst, end), room = (int64_t)inst->recordRows - recorded;
+            int64_t k = cycles_to_skip(inst, end), room = pmd_record_room(inst) - recorded;
             int64_t r = k < room ? k : room;
             inst->recordRowBytes = inst->columns.rowBytes;
             if (inst->columns.count) {             /* record.columns: cycle by cycle (record.c) */
@@ -440,7 +457,8 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
                 pmd_chip_run(&inst->chip, k - r, NULL);
                 inst->s.nextCycle += k - r;
             } else {
-                pmd_chip_run(&inst->chip, r, inst->record + (size_t)recorded * PMD_RECORD_WORDS);
+                /* the rows are int32 words: record.data's buffer is aligned, lent memory was checked above */
+                pmd_chip_run(&inst->chip, r, (int32_t *)(void *)pmd_record_rows(inst) + (size_t)recorded * PMD_RECORD_WORDS);
                 pmd_chip_run(&inst->chip, k - r, NULL);
                 inst->s.nextCycle += k;
             }

@@ -97,6 +97,11 @@ typedef struct {
     size_t recordBytes;              /* bytes the record buffer holds */
     uint32_t recordCount;            /* cycles recorded by the last doStep */
     uint32_t recordRowBytes;         /* bytes of each of those rows (as record.columns stood at that doStep) */
+    /* FMI 2: the caller's memory the rows go to instead of the buffer while it
+     * lends it (pmdfmu_fmi2SetRecordBuffer), NULL when it does not; the FMU
+     * never frees it nor keeps it past the caller's NULL or a reset */
+    unsigned char *recordLent;
+    size_t recordLentBytes;
     PmdRecordColumns columns;        /* record.columns */
     PmdRecordColumns stagedColumns;  /* a set call's new record.columns, compiled by its check */
 
@@ -148,6 +153,12 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);
 PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn);
 /* record.data's bytes: the rows the last doStep recorded (lent until the next call). */
 void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size);
+/* FMI 2's pmdfmu_fmi2SetRecordBuffer: the caller's memory for the rows of the recording doSteps that follow, or
+ * NULL for record.data's buffer again. */
+PmdStatus pmd_record_lend(PmdInstance *inst, const char *fn, void *rows, size_t bytes);
+/* Where a recording doStep writes its rows, and how many fit there (record.columns as it stands). */
+unsigned char *pmd_record_rows(const PmdInstance *inst);
+int64_t pmd_record_room(const PmdInstance *inst);
 
 /* record.columns (record.c). Compiles a value: names checked and resolved to
  * value references once; PMD_ERROR with a message naming fn, the value and

@@ -54,8 +54,31 @@ PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn)
 
 void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size)
 {
-    *data = (const unsigned char *)inst->record;
+    *data = pmd_record_rows(inst);
     *size = (size_t)inst->recordCount * inst->recordRowBytes;
+}
+
+unsigned char *pmd_record_rows(const PmdInstance *inst)
+{
+    return inst->recordLent ? inst->recordLent : (unsigned char *)inst->record;
+}
+
+int64_t pmd_record_room(const PmdInstance *inst)
+{
+    int64_t lent = (int64_t)(inst->recordLentBytes / inst->columns.rowBytes);
+    return inst->recordLent && lent < (int64_t)inst->recordRows ? lent : (int64_t)inst->recordRows;
+}
+
+/* The rows go straight into the caller's memory, which spares it a copy of
+ * record.data's (docs/performance.md, "Recording"). The rows recorded so far
+ * are in the other memory: record.data holds none until the next doStep. */
+PmdStatus pmd_record_lend(PmdInstance *inst, const char *fn, void *rows, size_t bytes)
+{
+    (void)fn;                                       /* any memory may be lent: doStep checks it fits its rows */
+    inst->recordLent = (unsigned char *)rows;
+    inst->recordLentBytes = rows ? bytes : 0;
+    inst->recordCount = 0;
+    return PMD_OK;
 }
 
 void pmd_record_columns_free(PmdRecordColumns *columns)
@@ -273,7 +296,7 @@ void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first)
     int64_t i;
     r.inst = inst;
     r.grid = pmd_grid(&inst->s, &inst->chip.s);
-    r.row = (unsigned char *)inst->record + (size_t)first * inst->columns.rowBytes;
+    r.row = pmd_record_rows(inst) + (size_t)first * inst->columns.rowBytes;
     if (!reads_deferred(inst, pmd_chip_deferred_axes(&inst->chip))) {
         pmd_chip_run_rows(&inst->chip, cycles, next_row, &r);
         return;

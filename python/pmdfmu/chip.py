@@ -749,19 +749,26 @@ class Chip:
         else:
             # the FMU's packed little-endian row is the result's: the chip time, then each column in its
             # FMI 3 type's width; whole rows copy as one block
-            out = np.zeros(cycles, dtype=dtype)
+            out = np.empty(cycles, dtype=dtype)         # every byte of every row is written below
             row = np.dtype((np.uint8, dtype.itemsize))
             if row.itemsize != self.get("record.rowSize"):
                 raise FMUError(f"record.rowSize is {self.get('record.rowSize')}, not the {row.itemsize} bytes of "
                                f"a row of {len(names)} columns: the FMU's record.columns is another")
         capacity = self.get("record.capacity")
-        # the script's steps run up to its last @ line: past it no step can change the grid
-        script_end = self.get("script.lastCycle") if "script.lastCycle" in self.variables else float("inf")
+        # the script's steps run up to its last @ line: past it no step can change the grid; a chip without a
+        # script's call (script.axes 0) has no step at all, and its chunks need no saved FMU state
+        script_end = float("inf")
+        if "script.lastCycle" in self.variables:
+            script_end = self.get("script.lastCycle") if self.get("script.axes") else -1
+        # FMI 2: the FMU writes the rows straight into the result (pmdfmu_fmi2SetRecordBuffer), no copy
+        borrow = None if commanded else recording.borrower(self)
         self.set("record.enabled", True)
         try:
             done = 0
             while done < cycles:
                 n = min(capacity, cycles - done)
+                if borrow:
+                    borrow(out.ctypes.data + done * row.itemsize, n * row.itemsize)
                 before = self.cycles
                 state = None if before > script_end else self.fmu.getFMUState()
                 try:
@@ -795,6 +802,9 @@ class Chip:
                     # the step ran its cycles, but record.data does not hold their rows: never read past it
                     raise RuntimeError(f"record.data holds {held} cycles, not {n}: {size} bytes, rows of "
                                        f"{row.itemsize} bytes")
+                if borrow and address == out.ctypes.data + done * row.itemsize:
+                    done += n                           # the rows are in place
+                    continue
                 rows = np.frombuffer((c_char * size).from_address(address), dtype=row)
                 if commanded:
                     for at, column, width in runs:
@@ -806,6 +816,9 @@ class Chip:
             with contextlib.suppress(Exception):    # the error that stopped the run is the one to see
                 self.set("record.enabled", False)
             raise
+        finally:
+            if borrow:                              # the FMU keeps no pointer into the result
+                borrow(0, 0)
         self.set("record.enabled", False)
         if commanded:
             return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)

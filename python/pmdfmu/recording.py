@@ -139,3 +139,23 @@ def lender(chip) -> Optional[Callable[[], Tuple[int, int]]]:
             raise FMICallException(function="pmdfmu_fmi2GetRecordData", status=status)
         return data.value or 0, nbytes.value
     return lend2
+
+
+def borrower(chip) -> Optional[Callable[[int, int], None]]:
+    """A function lending the FMU (address, size in bytes) of the caller's memory for the rows of the
+    recording doSteps that follow, (0, 0) to end the loan: FMI 2's pmdfmu_fmi2SetRecordBuffer, which
+    spares the copy of record.data into the result. None where the FMU has no such function (FMI 3:
+    its binary exports the FMI 3 functions only) or BULK is off."""
+    if not BULK or chip.fmi_version != 2:
+        return None
+    lend = getattr(chip.fmu.dll, "pmdfmu_fmi2SetRecordBuffer", None)
+    if lend is None:
+        return None
+    lend.restype = c_int
+    lend.argtypes = [c_void_p, c_void_p, c_size_t]
+
+    def borrow(address: int, size: int) -> None:
+        status = lend(chip.fmu.component, address or None, size)
+        if status > 1:
+            raise FMICallException(function="pmdfmu_fmi2SetRecordBuffer", status=status)
+    return borrow
