@@ -33,6 +33,10 @@ class Figure:
         """time per item"""
         return Figure(self.min / n, self.median / n)
 
+    def rate(self, n: float) -> "Figure":
+        """n items over the time: items per second, the best run's first (recording.py, upload.py)"""
+        return Figure(n / self.min, n / self.median)
+
     def text(self, scale: float, unit: str, fmt: str = ".2f") -> str:
         """'best / median unit', each value times scale (1e9: ns, 1e-6: M/s ...)"""
         return f"{self.min * scale:{fmt}} / {self.median * scale:{fmt}} {unit}"
