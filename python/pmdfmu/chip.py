@@ -12,7 +12,7 @@ import tempfile
 import textwrap
 import threading
 from ctypes import POINTER, Array, c_char, c_double, c_int32, c_uint16, c_uint32
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
@@ -352,6 +352,10 @@ class _Unpacked:
     variables: Dict[str, object]
     vr: Dict[str, int]
     prototypes: Dict[int, object]
+    # Chip._columns' checks and row types per (FMI version, names): a few sets at most
+    recorded: Dict[tuple, tuple] = field(default_factory=dict)
+    # the FMU's own functions beside the FMI ones (pmdfmu.recording.extension), looked up once
+    extensions: Dict[str, object] = field(default_factory=dict)
 
 
 _UNPACKED: Dict[tuple, _Unpacked] = {}       # by the FMU file's identity (_identity)
@@ -438,6 +442,9 @@ class Chip:
         self.model_description = unpacked.model_description
         self.variables = unpacked.variables
         self._vr = unpacked.vr
+        self._recorded = unpacked.recorded
+        self._extensions = unpacked.extensions
+        self._library = unpacked.prototypes[fmi_version].dll    # loaded for the process (_Unpacked)
         self.messages: List[LogMessage] = []
         self._unzipdir = unpacked.unzipdir
         kwargs = dict(functions=functions, guid=self.model_description.guid, unzipDirectory=self._unzipdir,
@@ -855,11 +862,11 @@ class Chip:
         "Upload and streaming")."""
         data = self._memory_words(words)
         address = integer(address, "write_memory: address")
-        # memorySize and memory.strobe in one get (both Integer, Int32 in FMI 3)
-        size, strobe = self._getters[self.variables["memorySize"].type]([self._vr["memorySize"],
-                                                                         self._vr["memory.strobe"]])
-        self._memory_fits(address, len(data), size)
-        memory_port.write(self, address, data, strobe)
+        # memorySize and memory.strobe read in one get, then the strobes: None, or the size they left
+        size = memory_port.write(self, address, data)
+        if size is not None:
+            self._memory_fits(address, len(data), size)          # raises, naming it
+            raise AssertionError(f"memory_port.write refused {len(data)} words at {address} of {size}")
 
     @staticmethod
     def _memory_fits(address: int, n: int, size: int) -> None:
@@ -886,7 +893,9 @@ class Chip:
         array = np.asarray(words)
         if array.ndim != 1:
             raise ValueError(f"write_memory: words must be a sequence of integers, not {words!r}")
-        if array.dtype == np.uint32 or array.dtype == np.int32:     # every value a word: nothing to check
+        if array.dtype == np.uint32:                # every value a word: nothing to check
+            return array
+        if array.dtype == np.int32:
             return array.view(np.uint32)
         try:
             if array.dtype.kind in "iub":          # numpy integers: the whole array checked at once
@@ -1066,14 +1075,21 @@ class Chip:
     def _columns(self, names: List[str]) -> Tuple[Dict[str, Tuple[str, int]], np.dtype]:
         """run(record=names)'s checks, before any cycle runs: where each column is read (variable,
         element: in FMI 3 an array's element, "io.output[3]", is read with its whole array) and the
-        rows' type (a name given twice is numpy's ValueError)."""
+        rows' type (a name given twice is numpy's ValueError). Kept per set of names for every Chip of
+        the FMU file: making the row type again costs as long as 150 recorded cycles."""
+        key = (self.fmi_version,) + tuple(names)
+        if key in self._recorded:
+            return self._recorded[key]
         where = {}
         for name in names:
             element = _array_element(self.variables, name) if self.fmi_version == 3 else None
             if name not in DTYPES or (name not in self.variables and not element):
                 raise ValueError(f"run: record={name!r} is not a variable of the FMU (pmdfmu info lists them)")
             where[name] = element or (name, 0)
-        return where, np.dtype([CYCLE] + [(n, DTYPES[n]) for n in names])
+        if len(self._recorded) >= 16:
+            self._recorded.clear()
+        self._recorded[key] = where, np.dtype([CYCLE] + [(n, DTYPES[n]) for n in names])
+        return self._recorded[key]
 
     def _run_stepwise(self, cycles: int, record: Sequence[str]) -> np.ndarray:
         """run(cycles, record) cycle by cycle in Python through FMPy: what run() did before the native
