@@ -776,8 +776,8 @@ class Chip:
                 n = min(capacity, cycles - done)
                 if borrow:
                     borrow(out.ctypes.data + done * row.itemsize, n * row.itemsize)
-                before = self.cycles
-                state = None if before > script_end else self.fmu.getFMUState()
+                before = self.cycles if script_end >= 0 else None
+                state = None if before is None or before > script_end else self.fmu.getFMUState()
                 try:
                     logged = len(self.messages)
                     self._step(n)                       # Warning if the step's cycles changed
