@@ -257,8 +257,54 @@ GET_FUNCTION(fmi2GetBoolean, fmi2Boolean, pmd_get_boolean, PMD_BOOLEAN)
     }
 
 SET_FUNCTION(fmi2SetReal, fmi2Real, pmd_set_real)
-SET_FUNCTION(fmi2SetInteger, fmi2Integer, pmd_set_integer)
 SET_FUNCTION(fmi2SetBoolean, fmi2Boolean, pmd_set_boolean)
+
+/* How many value references from vr[0] on are consecutive elements of
+ * memory.data (at most n), a strobe's block (Chip.write_memory sets
+ * memory.data[1..64] in one call); below 2 none: a lone element, and any
+ * other order, takes the per-value path. */
+static size_t memory_data_run(const fmi2ValueReference vr[], size_t n)
+{
+    size_t span = pmd_memory_data_span(vr[0], n), run, k;
+    fmi2ValueReference differ = 0;
+    if (span < 2)
+        return span;
+    for (k = 1; k < span; k++)          /* no early exit: a whole block compares in one vectorized pass */
+        differ |= vr[k] ^ (fmi2ValueReference)(vr[0] + k);
+    if (!differ)
+        return span;
+    for (run = 1; vr[run] == vr[0] + run; run++)
+        continue;                       /* ends before span: an element there differs */
+    return run;
+}
+
+/* SET_FUNCTION's passes, a run of memory.data set as one block
+ * (pmd_set_memory_data: the same checks, messages and order as value by
+ * value, without a lookup and two switches per word and pass). */
+fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[])
+{
+    static const char fn[] = "fmi2SetInteger";
+    PmdInstance *inst = begin(c, fn, SET_STATES);
+    size_t i, run;
+    if (!inst || !arrays_given(inst, fn, nvr, vr, value))
+        return fmi2Error;
+    pmd_set_begin(inst);
+    for (i = 0; i < nvr; i += run)
+        if ((run = memory_data_run(vr + i, nvr - i)) > 1) {
+            if (pmd_set_memory_data(inst, fn, vr[i], value + i, 1, run, 0) != PMD_OK)
+                return fmi2Error;
+        } else if (run = 1, pmd_set_integer(inst, fn, vr[i], value[i], 0) != PMD_OK) {
+            return fmi2Error;
+        }
+    if (pmd_set_check(inst, fn) != PMD_OK)
+        return fmi2Error;
+    for (i = 0; i < nvr; i += run)
+        if ((run = memory_data_run(vr + i, nvr - i)) > 1)
+            pmd_set_memory_data(inst, fn, vr[i], value + i, 1, run, 1);
+        else
+            run = 1, pmd_set_integer(inst, fn, vr[i], value[i], 1);
+    return fmi2OK;
+}
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[])
 {

@@ -279,7 +279,10 @@ static fmi3Status get_values(fmi3Instance c, const char *fn, PmdType3 type, cons
     return fmi3OK;
 }
 
-/* Sets are all or nothing: every value is checked before any is applied. */
+/* Sets are all or nothing: every value is checked before any is applied. The
+ * memory.data array (a strobe's words, Chip.write_memory) is set as one block
+ * (pmd_set_memory_data: the same checks, messages and order as element by
+ * element, without a lookup and two switches per word and pass). */
 static fmi3Status set_values(fmi3Instance c, const char *fn, PmdType3 type, const fmi3ValueReference vrs[],
                              size_t nvr, const void *values, size_t nValues)
 {
@@ -296,6 +299,13 @@ static fmi3Status set_values(fmi3Instance c, const char *fn, PmdType3 type, cons
             return fmi3Error;
         for (i = 0, k = 0; i < nvr; i++) {
             const PmdVariable3 *v = &pmd_variables3[pmd_variable3_of_vr[vrs[i]]];
+            if (type == PMD3_UINT32 && v->count > 1 && pmd_memory_data_span(v->vr, v->count) == v->count) {
+                if (pmd_set_memory_data(inst, fn, v->vr, (const fmi3UInt32 *)values + k, 0, v->count, apply) !=
+                    PMD_OK)
+                    return fmi3Error;
+                k += v->count;
+                continue;
+            }
             for (e = 0; e < v->count; e++)
                 if (set_element(inst, fn, type, v->vr + e, values, k++, apply) != PMD_OK)
                     return fmi3Error;

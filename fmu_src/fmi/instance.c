@@ -724,6 +724,13 @@ static void set_memory_size(PmdInstance *inst, int32_t words)
     inst->s.memorySize = words;
 }
 
+/* memory.data's range, one check for pmd_set_integer and pmd_set_memory_data alike */
+#define MEMORY_WORD_RANGE "a 32-bit word"
+static int memory_word_fits(int64_t value)
+{
+    return value >= INT32_MIN && value <= UINT32_MAX;     /* FMI 2 Integer or FMI 3 UInt32: the word's 32 bits */
+}
+
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_t value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
@@ -752,8 +759,8 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
             return out_of_range(inst, fn, v, (double)value, "0 .. 2^24 cycles");
         break;
     case VAR_memory_data:
-        if (value < INT32_MIN || value > UINT32_MAX)      /* FMI 2 Integer or FMI 3 UInt32: the word's 32 bits */
-            return out_of_range(inst, fn, v, (double)value, "a 32-bit word");
+        if (!memory_word_fits(value))
+            return out_of_range(inst, fn, v, (double)value, MEMORY_WORD_RANGE);
         break;
     case VAR_analog:
     case VAR_io_input:                                      /* UInt16 wires: FMI 2 Integer can go beyond them */
@@ -795,6 +802,47 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
     case VAR_record_capacity: inst->recordCapacity = (uint32_t)value; break;
     default: return unhandled(inst, fn, v, "Integer setter");   /* the check pass refused it already */
     }
+    return PMD_OK;
+}
+
+size_t pmd_memory_data_span(unsigned vr, size_t n)
+{
+    const PmdVariable *v;
+    size_t left;
+    if (vr > PMD_VR_MAX || pmd_variable_of_vr[vr] < 0)
+        return 0;
+    v = &pmd_variables[pmd_variable_of_vr[vr]];
+    if (v->family != VAR_memory_data)
+        return 0;
+    left = (size_t)(PMD_BATCH_WORDS - v->index);     /* memory.data[index + 1] .. [64] */
+    return n < left ? n : left;
+}
+
+/* What pmd_set_integer does for each of the n elements in turn, at once: the
+ * elements are one variable row (variables.csv, memory.data[64]), so the
+ * first's type and causality are every one's (a refusal names the first, as
+ * the per-value path would), each word passes the same range check (which no
+ * 32-bit value fails: the compiler may drop the loop), and applying stores the
+ * words' 32 bits, as pmd_int32 does one by one. */
+PmdStatus pmd_set_memory_data(PmdInstance *inst, const char *fn, unsigned vr, const void *words, int isSigned,
+                              size_t n, int apply)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
+    size_t k;
+    if (!v || !settable(inst, fn, v))
+        return PMD_ERROR;
+    if (v->family != VAR_memory_data || n > (size_t)(PMD_BATCH_WORDS - v->index))
+        return unhandled(inst, fn, v, "block setter");     /* a caller that did not ask pmd_memory_data_span */
+    if (!apply) {
+        for (k = 0; k < n; k++) {
+            int64_t value = isSigned ? (int64_t)((const int32_t *)words)[k] : (int64_t)((const uint32_t *)words)[k];
+            if (!memory_word_fits(value))
+                return out_of_range(inst, fn, &pmd_variables[pmd_variable_of_vr[vr + k]], (double)value,
+                                    MEMORY_WORD_RANGE);
+        }
+        return PMD_OK;
+    }
+    memcpy(&inst->s.memoryData[v->index], words, n * sizeof *inst->s.memoryData);
     return PMD_OK;
 }
 

@@ -198,6 +198,16 @@ PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *v
 PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply);
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_t value, int apply);
 PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply);
+/* A block of memory.data (a strobe's words, Chip.write_memory), set at once
+ * rather than value by value, with the same checks, messages and staging.
+ * pmd_memory_data_span: how many of the n value references vr, vr + 1, ..
+ * are elements of memory.data (0 if vr is none; element k + 1 is vr + k:
+ * FMI 3's array and FMI 2's scalars alike, variables3.h). pmd_set_memory_data:
+ * pmd_set_integer of each of those n elements in turn, the words 32-bit (FMI
+ * 2 Integer: isSigned; FMI 3 UInt32: not). */
+size_t pmd_memory_data_span(unsigned vr, size_t n);
+PmdStatus pmd_set_memory_data(PmdInstance *inst, const char *fn, unsigned vr, const void *words, int isSigned,
+                              size_t n, int apply);
 PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value);
 PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value, size_t *size);
 PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply);

@@ -5,9 +5,10 @@ FMI functions with the arguments the harness's Python loop passed
 (Chip._write_memory_stepwise, kept as the reference)."""
 from __future__ import annotations
 
-from ctypes import POINTER, Structure, c_int, c_int32, c_size_t, c_uint32, c_void_p
+from ctypes import POINTER, Array, Structure, addressof, c_char, c_int, c_int32, c_size_t, c_uint32, c_void_p
 from functools import lru_cache
-from typing import Dict, List, Tuple
+from operator import is_
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
@@ -19,6 +20,8 @@ BLOCK_WORDS = 64             # memory.data[64]: the words one strobe writes
 # the FMI functions each version's loop calls, in memory.h's order (PMD_MEMORY_SET, _SET_INT32, _GET)
 FUNCTIONS = {2: ("fmi2SetInteger", "fmi2SetInteger", "fmi2GetInteger"),
              3: ("fmi3SetUInt32", "fmi3SetInt32", "fmi3GetInt32")}
+# the ones each version's native loop takes, in its argument order
+NAMES = {2: (FUNCTIONS[2][0], FUNCTIONS[2][2]), 3: FUNCTIONS[3]}
 
 
 class Port(Structure):
@@ -43,40 +46,61 @@ def _writers():
 
 
 # per FMU model (the harness shares one name -> value reference map among the Chips of an FMU file):
-# the port's value references, kept with the map so that its id stays its own
-_ports: Dict[int, Tuple[dict, Port]] = {}
+# the port's value references and those of the get before the strobes (memorySize, memory.strobe),
+# kept with the map so that its id stays its own
+_ports: Dict[int, Tuple[dict, Port, Array]] = {}
 # the FMI functions' addresses, by the ctypes functions FMPy calls (looked up each write, as FMPy's
 # own wrappers do, so that the native loop calls whatever FMPy would)
 _addresses: Dict[Tuple[int, ...], Tuple[tuple, List[int]]] = {}
 
 
-def _port(chip) -> Port:
+def _port(chip) -> Tuple[dict, Port, Array]:
     vr = chip._vr
     kept = _ports.get(id(vr))
     if kept is None or kept[0] is not vr:
         data = ([vr[f"memory.data[{i + 1}]"] for i in range(BLOCK_WORDS)] if chip.fmi_version == 2
                 else [vr["memory.data"]] + [0] * (BLOCK_WORDS - 1))
         kept = _ports[id(vr)] = (vr, Port((c_uint32 * BLOCK_WORDS)(*data), vr["memory.address"],
-                                          vr["memory.count"], vr["memory.strobe"], vr["host.ack"]))
-    return kept[1]
+                                          vr["memory.count"], vr["memory.strobe"], vr["host.ack"]),
+                                 (c_uint32 * 2)(vr["memorySize"], vr["memory.strobe"]))
+    return kept
 
 
 def _calls(chip) -> List[int]:
-    names = FUNCTIONS[3] if chip.fmi_version == 3 else (FUNCTIONS[2][0], FUNCTIONS[2][2])
-    functions = tuple(chip.fmu._functions[n] for n in names)
-    key = tuple(map(id, functions))
-    kept = _addresses.get(key)
-    if kept is None or any(a is not b for a, b in zip(kept[0], functions)):
-        kept = _addresses[key] = (functions, [native.address(f) for f in functions])
+    functions = chip.fmu._functions
+    now = tuple([functions[n] for n in NAMES[chip.fmi_version]])
+    kept = _addresses.get(tuple(map(id, now)))
+    if kept is None or not all(map(is_, kept[0], now)):
+        kept = _addresses[tuple(map(id, now))] = (now, [native.address(f) for f in now])
     return kept[1]
 
 
-def write(chip, address: int, words: np.ndarray, strobe: int) -> None:
-    """Writes the uint32 words at address.. (checked by the caller), the first block with strobe
-    (strobe + 1) & 0x7FFFFFFF; raises as FMPy would for a call that failed (FMICallException naming
-    it: the FMU's messages are in chip.messages), the blocks before it written."""
+def _pointer(words: np.ndarray) -> int:
+    """The address of a contiguous array's first word: through the buffer protocol where it is
+    writable (a fraction of a microsecond less than numpy's .ctypes, which builds an object)."""
+    if len(words) and words.flags.writeable:
+        return addressof(c_char.from_buffer(words))
+    return words.ctypes.data
+
+
+def write(chip, address: int, words: np.ndarray) -> Optional[int]:
+    """Reads memorySize and memory.strobe (one get, through FMPy), then, if the uint32 words (checked
+    by the caller) fit at address.. (0 <= address, address + len(words) <= memorySize), writes
+    them, the first block with strobe (strobe + 1) & 0x7FFFFFFF. Returns None, or memorySize if they
+    do not fit (nothing written). Raises as FMPy would for a call that failed (FMICallException
+    naming it: the FMU's messages are in chip.messages), the blocks before it written."""
     words = np.ascontiguousarray(words, dtype=np.uint32)
+    _vr, port, read = _port(chip)
+    fmu, got = chip.fmu, (c_int32 * 2)()
+    if chip.fmi_version == 2:
+        fmu.fmi2GetInteger(fmu.component, read, 2, got)
+    else:
+        fmu.fmi3GetInt32(fmu.component, read, 2, got, 2)
+    size, strobe = got
+    if address < 0 or address + len(words) > size:
+        return size
     stop = Stop()
-    if _writers()[chip.fmi_version](*_calls(chip), chip.fmu.component, _port(chip), address, words.ctypes.data, len(words),
+    if _writers()[chip.fmi_version](*_calls(chip), fmu.component, port, address, _pointer(words), len(words),
                                     strobe, stop):
         raise FMICallException(function=FUNCTIONS[chip.fmi_version][stop.call], status=stop.status)
+    return None
