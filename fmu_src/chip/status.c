@@ -98,9 +98,9 @@ static Lanes lanes(double a, double b, double c, double d)
     } while (0)
 #endif
 #define LANES_OF(x) LANES((x), (x), (x), (x))
-#define AXIS_LANES(expression) LANES(AXIS_VALUE(0, expression), AXIS_VALUE(1, expression), \
-                                     AXIS_VALUE(2, expression), AXIS_VALUE(3, expression))
-#define AXIS_VALUE(k, expression) (t = &chip->s.axis[k].trajectory, n = (k), (expression))
+/* A lane per axis k, F(k) each: F has no side effect but a function call's (a
+ * vector's initializers are not sequenced with each other; calls are). */
+#define AXIS_LANES(F) LANES(F(0), F(1), F(2), F(3))
 
 /* x in U as a double where it fits an int64 (pmd_fixed_in_u), else 0 and the
  * axis's bit set in *wide: its lane is redone from its parts. */
@@ -119,15 +119,21 @@ __attribute__((always_inline))
 #endif
 static inline void commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r)
 {
-    const PmdTrajectory *t;
-    int n;
+    const PmdTrajectory *t[PMD_AXES];
     unsigned wideVelocity = 0, wideAcceleration = 0;
-    Lanes u = LANES_OF((double)PMD_U_PER_COUNT);
-    Lanes position = AXIS_LANES((double)t->fraction);
-    Lanes velocity = AXIS_LANES(in_u(t->velocity, &wideVelocity, n));
-    Lanes acceleration = AXIS_LANES(in_u(t->acceleration, &wideAcceleration, n));
-    Lanes perCycle = LANES_OF(cycleTime), perCycle2 = LANES_OF(cycleTime * cycleTime);
-    Lanes whole = AXIS_LANES((double)t->position);
+    int n;
+    Lanes u = LANES_OF((double)PMD_U_PER_COUNT), perCycle = LANES_OF(cycleTime);
+    Lanes perCycle2 = LANES_OF(cycleTime * cycleTime), position, whole, velocity, acceleration;
+    for (n = 0; n < PMD_AXES; n++)
+        t[n] = &chip->s.axis[n].trajectory;
+#define FRACTION(k) ((double)t[k]->fraction)
+#define WHOLE(k) ((double)t[k]->position)
+#define VELOCITY(k) in_u(t[k]->velocity, &wideVelocity, (k))
+#define ACCELERATION(k) in_u(t[k]->acceleration, &wideAcceleration, (k))
+    position = AXIS_LANES(FRACTION);
+    whole = AXIS_LANES(WHOLE);
+    velocity = AXIS_LANES(VELOCITY);
+    acceleration = AXIS_LANES(ACCELERATION);
     LANES_DIVIDE(position, u);
     LANES_ADD(position, whole);
     LANES_DIVIDE(velocity, u);
@@ -139,11 +145,10 @@ static inline void commanded_reals(const PmdChip *chip, double cycleTime, PmdCom
     memcpy(r->acceleration, &acceleration, sizeof r->acceleration);
     if (wideVelocity | wideAcceleration)
         for (n = 0; n < PMD_AXES; n++) {
-            t = &chip->s.axis[n].trajectory;
             if (wideVelocity & (1u << n))
-                r->velocity[n] = pmd_fixed_wide_double(t->velocity) / cycleTime;
+                r->velocity[n] = pmd_fixed_wide_double(t[n]->velocity) / cycleTime;
             if (wideAcceleration & (1u << n))
-                r->acceleration[n] = pmd_fixed_wide_double(t->acceleration) / (cycleTime * cycleTime);
+                r->acceleration[n] = pmd_fixed_wide_double(t[n]->acceleration) / (cycleTime * cycleTime);
         }
 }
 
