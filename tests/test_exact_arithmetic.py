@@ -7,8 +7,12 @@ the slave by exactly delta * ratio at any ratio and master jump. Through the
 real FMU, FMI 2 and FMI 3; run with the sanitizer build (./dev sanitize) these
 are also the regression tests for the undefined behaviour the review found."""
 import random
+import shutil
+import subprocess
+import zipfile
 from fractions import Fraction
 from math import floor
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -151,6 +155,125 @@ def test_the_reals_of_every_axis_are_the_documented_doubles_bit_for_bit(fmi):
                 list(expected[-1])
         velocity = abs(segments[0].exact(time - 2)[1])
         assert velocity >= 1 << 63 and any(abs(s.exact(0)[1]) < 1 << 53 for s in segments.values())
+
+
+@FMI
+def test_the_reals_past_an_int64_in_u_are_the_documented_doubles_bit_for_bit(fmi):
+    """After 10^9 cycles at the greatest jerk (a coarse doStep: the closed form) the acceleration, too,
+    is past an int64 in U on two lanes: recorded in bulk, every lane as documented."""
+    rows = {0: (0, 0, 0, MAX32), 1: (0, 0, 0, MIN32), 2: (1, 0x10000, 0, 0), 3: (-1, 0, 0x10000, 1)}
+    segments = {axis: Segment(*row) for axis, row in rows.items()}
+    names = [f"axis{axis + 1}.{q}" for axis in rows for q in ("position", "velocity", "acceleration")]
+    start = 10 ** 9
+    with pmdfmu.Chip(fmi_version=fmi) as chip:
+        cycle_time = chip.cycle_time
+        load_external_profile(chip, {axis: [row + (LONGEST,), (0, 0, 0, 0, 0)] for axis, row in rows.items()})
+        start_external_profile(chip, list(rows))
+        chip.run(start)
+        rec = chip.run(50, record=names)
+    for axis, seg in segments.items():
+        expected = np.array([documented_reals(seg, n, cycle_time) for n in range(start, start + 50)])
+        for k, q in enumerate(("position", "velocity", "acceleration")):
+            assert rec[f"axis{axis + 1}.{q}"].tobytes() == expected[:, k].tobytes(), (axis, q)
+    assert all(abs(segments[axis].exact(start)[2]) >= 1 << 63 for axis in (0, 1))
+
+
+@pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
+def test_every_form_of_the_reals_is_the_scalar_expressions(tmp_path):
+    """pmd_commanded_reals' forms - SSE2 vectors, AVX vectors (where the processor has AVX) and plain C
+    (PMD_PORTABLE_LANES, as a compiler without vectors builds it) - against the scalar expressions the
+    getters had before them, over random and boundary states: the FMU's own sources (its sources/)."""
+    with zipfile.ZipFile(pmdfmu.default_fmu(2)) as fmu:
+        for name in fmu.namelist():
+            if name.startswith("sources/") and not name.endswith("/"):
+                (tmp_path / Path(name).name).write_bytes(fmu.read(name))
+    program = tmp_path / "reals_forms.c"
+    program.write_text(REALS_FORMS)
+    for flags in ([], ["-DPMD_PORTABLE_LANES"]):
+        exe = tmp_path / f"reals{len(flags)}"
+        subprocess.run(["cc", "-std=gnu99", "-O2", "-Wall", "-Werror", *flags, f"-I{tmp_path}", str(program),
+                        "-o", str(exe)], check=True)
+        out = subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout
+        assert out.startswith("differ 0 of ") and int(out.split()[3]) > 10 ** 6, out
+
+
+# status.c included whole: its static forms are this program's; the reference is 0505d1e's pmd_fixed_double
+REALS_FORMS = r"""
+#include <stdio.h>
+#include <string.h>
+#include "status.c"
+static double scalar_counts(PmdFixed x)
+{
+    const int64_t most = INT64_MAX / PMD_U_PER_COUNT;
+    int64_t rest = 3 * x.fraction;
+    if (x.counts >= 0 && x.counts <= most && x.counts * PMD_U_PER_COUNT <= INT64_MAX - rest)
+        return (double)(x.counts * PMD_U_PER_COUNT + rest) / (double)PMD_U_PER_COUNT;
+    if (x.counts < 0 && x.counts >= -most - 1 &&
+        (x.counts + 1) * PMD_U_PER_COUNT >= INT64_MIN + (PMD_U_PER_COUNT - rest))
+        return (double)((x.counts + 1) * PMD_U_PER_COUNT + (rest - PMD_U_PER_COUNT)) / (double)PMD_U_PER_COUNT;
+    return (double)x.counts + (double)x.fraction / (double)PMD_FIXED_ONE;
+}
+static uint64_t seed = 88172645463325252u;
+static uint64_t next(void) { seed ^= seed << 13; seed ^= seed >> 7; seed ^= seed << 17; return seed; }
+static PmdFixed pick(void)
+{
+    const int64_t most = INT64_MAX / PMD_U_PER_COUNT;
+    PmdFixed x;
+    switch (next() % 6) {
+    case 0: x.counts = (int64_t)next(); break;
+    case 1: x.counts = most + (int64_t)(next() % 5) - 2; break;
+    case 2: x.counts = -most - 1 + (int64_t)(next() % 5) - 2; break;
+    case 3: x.counts = (int64_t)(next() % 2000001) - 1000000; break;
+    case 4: x.counts = (next() & 1) ? INT64_MAX - (int64_t)(next() % 3) : INT64_MIN + (int64_t)(next() % 3); break;
+    default: x.counts = (int64_t)(next() >> (next() % 64)) * ((next() & 1) ? 1 : -1); break;
+    }
+    x.fraction = (int64_t)(next() % 4 == 0 ? (next() & 1) * (PMD_FIXED_ONE - 1) : next() % PMD_FIXED_ONE);
+    return x;
+}
+static long compare(const PmdCommandedReals *r, const PmdChip *chip, double ct)
+{
+    long bad = 0;
+    int n;
+    for (n = 0; n < PMD_AXES; n++) {
+        const PmdTrajectory *t = &chip->s.axis[n].trajectory;
+        double p = (double)t->position + (double)t->fraction / (double)PMD_U_PER_COUNT;
+        double v = scalar_counts(t->velocity) / ct, a = scalar_counts(t->acceleration) / (ct * ct);
+        bad += memcmp(&p, &r->position[n], 8) != 0 || memcmp(&v, &r->velocity[n], 8) != 0 ||
+               memcmp(&a, &r->acceleration[n], 8) != 0;
+    }
+    return bad;
+}
+int main(void)
+{
+    static PmdChip chip;
+    const double cycleTimes[] = {1e-4, 1e-6, 0.065535, 3e-5, 1.7e-5};
+    long bad = 0, checked = 0, i;
+    int n;
+    for (i = 0; i < 300000; i++) {
+        PmdCommandedReals r;
+        double ct = cycleTimes[i % 5];
+        for (n = 0; n < PMD_AXES; n++) {
+            PmdTrajectory *t = &chip.s.axis[n].trajectory;
+            t->position = (int32_t)(uint32_t)next();
+            t->fraction = (int64_t)(next() % (uint64_t)PMD_U_PER_COUNT);
+            t->velocity = pick();
+            t->acceleration = pick();
+        }
+        commanded_reals(&chip, ct, &r);
+        bad += compare(&r, &chip, ct);
+        checked += PMD_AXES;
+#ifdef HAS_AVX_FORM
+        if (pmd_processor_has_avx()) {
+            commanded_reals_avx(&chip, ct, &r);
+            bad += compare(&r, &chip, ct);
+            checked += PMD_AXES;
+        }
+#endif
+    }
+    printf("differ %ld of %ld\n", bad, checked);
+    return 0;
+}
+"""
 
 
 # ---- the extremes, for the longest segment time -------------------------------------

@@ -153,10 +153,8 @@ def test_lent_memory_is_checked_and_a_reset_forgets_it():
         assert record_data(chip)[0] != buffer.ctypes.data and (buffer == 0).all()
 
 
-@pytest.mark.parametrize("redo", [False, True])
-def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkeypatch, redo, tmp_path):
-    """Chip.run lends its result to the FMU chunk by chunk (no copy) and ends the loan whatever happens; a
-    chunk redone stepwise (a script's SetSampleTime) is overwritten with the stepwise rows."""
+def spy_loans(monkeypatch):
+    """Every (address, size) Chip.run lends its FMU (recording.borrower), in order."""
     loans = []
     real = recording.borrower
 
@@ -164,6 +162,13 @@ def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkey
         borrow = real(chip)
         return lambda address, size: (loans.append((address, size)), borrow(address, size))[1]
     monkeypatch.setattr(recording, "borrower", spy)
+    return loans
+
+
+def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkeypatch):
+    """Chip.run lends its result to the FMU chunk by chunk (no copy) and ends the loan; a run refused
+    before any cycle lends nothing."""
+    loans = spy_loans(monkeypatch)
     names = record_outputs(range(2))
     with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 700}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
         for c in (chip, ref):
@@ -176,6 +181,68 @@ def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkey
         with pytest.raises(ValueError):
             chip.run(10, record=names + ["axis1.nothing"])      # refused before any loan
         assert not loans
+
+
+def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(monkeypatch, tmp_path):
+    """A script's SetSampleTime inside a lent chunk: the harness goes back to the chunk's saved state and
+    writes the stepwise rows over what the FMU wrote there; the next chunks are lent again."""
+    loans = spy_loans(monkeypatch)
+    script = tmp_path / "finer.pmd"
+    script.write_text("@500\nSetSampleTime(Axis1, 50);\n@900\nSetSampleTime(Axis1, 20);\n")
+    names = record_outputs(range(2))
+    with pmdfmu.Chip(fmi_version=2, script=script, **{"record.capacity": 300}) as chip, \
+            pmdfmu.Chip(fmi_version=2, script=script) as ref:
+        rows = chip.run(2000, record=names)
+        assert rows.tobytes() == ref._run_stepwise(2000, names).tobytes()
+        assert chip.cycles == ref.cycles
+        assert len(loans) == 8 and loans[-1] == (0, 0)       # 7 chunks of at most 300 cycles, then the end
+
+
+def test_a_failed_run_ends_the_loan(monkeypatch):
+    """An exception inside a lent run (here the second chunk's doStep) ends the loan: the FMU keeps no
+    pointer into the result it was writing."""
+    loans = spy_loans(monkeypatch)
+    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 100}) as chip:
+        busy_chip(chip)
+        real, calls = chip._step, []
+
+        def failing(n):
+            calls.append(n)
+            if len(calls) == 2:
+                raise KeyboardInterrupt
+            return real(n)
+        monkeypatch.setattr(chip, "_step", failing)
+        with pytest.raises(KeyboardInterrupt):
+            chip.run(300, record=record_outputs([0]))
+        assert loans[-1] == (0, 0) and len(loans) == 3
+        monkeypatch.setattr(chip, "_step", real)
+        chip.set("record.enabled", True)
+        chip._step(10)
+        assert record_data(chip)[0] not in {address for address, _ in loans}
+
+
+def test_a_grid_change_the_harness_cannot_redo_raises(monkeypatch, tmp_path):
+    """The last guard: a recording step that ran other cycles than its rows (doStep's Warning) with no saved
+    state to redo it from raises RuntimeError. Here the harness is made to believe the chip has no script."""
+    script = tmp_path / "finer.pmd"
+    script.write_text("@100\nSetSampleTime(Axis1, 50);\n")
+    for version in (2, 3):
+        with pmdfmu.Chip(fmi_version=version, script=script, **{"record.capacity": 500}) as chip:
+            real = chip.get
+            monkeypatch.setattr(chip, "get", lambda name: 0 if name == "script.axes" else real(name))
+            with pytest.raises(RuntimeError, match="ran other cycles than its rows"):
+                chip.run(400, record=record_outputs([0]))
+
+
+@VERSIONS
+def test_every_integer_column_is_stored_in_2_or_4_bytes(version):
+    """record.c's row writer stores an Integer in 2 or 4 bytes, a Real in 8, a Boolean in 1: every variable
+    record.columns accepts has one of those widths (a wider or narrower type needs a row writer for it)."""
+    with pmdfmu.Chip(fmi_version=version) as chip:
+        chip.set("record.columns", ",".join(every_column()))
+        assert chip.get("record.rowSize") == 4 + sum(DTYPES[n].itemsize for n in every_column())
+    kinds = {DTYPES[n].kind + str(DTYPES[n].itemsize) for n in every_column()}
+    assert kinds <= {"f8", "i4", "u4", "i2", "u2", "b1"}, kinds
 
 
 @VERSIONS

@@ -2,6 +2,9 @@
  * (reference 2.1-2.3, 4.5): read by the host, the cycle, breakpoints and the
  * trace; they change nothing. */
 #include <string.h>
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <cpuid.h>
+#endif
 
 #include "status.h"
 
@@ -72,7 +75,7 @@ int pmd_host_interrupt(const PmdChip *chip)
  * scalar operation would (IEEE 754), so the values do not depend on the form.
  * The lanes are built from registers and stored whole: a vector loaded from
  * scalars just stored, or the reverse, would stall on the store buffer. */
-#if defined(__GNUC__)
+#if defined(__GNUC__) && !defined(PMD_PORTABLE_LANES)   /* PMD_PORTABLE_LANES: the plain C form (a test) */
 typedef double Lanes __attribute__((vector_size(PMD_AXES * sizeof(double))));
 #define LANES(a, b, c, d) ((Lanes){(a), (b), (c), (d)})
 #define LANES_DIVIDE(x, y) ((x) /= (y))
@@ -153,7 +156,7 @@ static inline void commanded_reals(const PmdChip *chip, double cycleTime, PmdCom
 }
 
 /* An x86-64 build with GCC or Clang has an AVX form too, taken where the
- * processor has AVX: four lanes a division instead of two. */
+ * processor has AVX (PmdChip.avx): four lanes a division instead of two. */
 #if defined(__GNUC__) && defined(__x86_64__)
 __attribute__((target("avx"))) static void commanded_reals_avx(const PmdChip *chip, double cycleTime,
                                                                PmdCommandedReals *r)
@@ -161,12 +164,30 @@ __attribute__((target("avx"))) static void commanded_reals_avx(const PmdChip *ch
     commanded_reals(chip, cycleTime, r);
 }
 #define HAS_AVX_FORM 1
+
+/* CPUID 1 says AVX and OSXSAVE, and XCR0 that the system saves the XMM and YMM
+ * registers: what __builtin_cpu_supports("avx") tells, without the
+ * process-wide variables of libgcc it reads. */
+int pmd_processor_has_avx(void)
+{
+    unsigned a, b, c, d, low, high;
+    if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_AVX) || !(c & bit_OSXSAVE))
+        return 0;
+    __asm__ volatile("xgetbv" : "=a"(low), "=d"(high) : "c"(0));
+    (void)high;
+    return (low & 6u) == 6u;
+}
+#else
+int pmd_processor_has_avx(void)
+{
+    return 0;
+}
 #endif
 
 void pmd_commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r)
 {
 #ifdef HAS_AVX_FORM
-    if (__builtin_cpu_supports("avx")) {
+    if (chip->avx) {
         commanded_reals_avx(chip, cycleTime, r);
         return;
     }

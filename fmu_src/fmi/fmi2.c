@@ -278,31 +278,38 @@ static size_t memory_data_run(const fmi2ValueReference vr[], size_t n)
     return run;
 }
 
-/* SET_FUNCTION's passes, a run of memory.data set as one block
- * (pmd_set_memory_data: the same checks, messages and order as value by
- * value, without a lookup and two switches per word and pass). */
+/* One pass of fmi2SetInteger over the values from vr[0] on: a run of
+ * memory.data as one block (pmd_set_memory_data: the same checks, messages and
+ * order as value by value, without a lookup and two switches per word and
+ * pass), else one value; *taken: how many values it took. */
+static PmdStatus set_integers(PmdInstance *inst, const char *fn, const fmi2ValueReference vr[], size_t n,
+                              const fmi2Integer value[], int apply, size_t *taken)
+{
+    size_t run = memory_data_run(vr, n);
+    if (run > 1) {
+        *taken = run;
+        return pmd_set_memory_data(inst, fn, vr[0], value, 1, run, apply);
+    }
+    *taken = 1;
+    return pmd_set_integer(inst, fn, vr[0], value[0], apply);
+}
+
+/* SET_FUNCTION's two passes (check, then apply), through set_integers. */
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[])
 {
     static const char fn[] = "fmi2SetInteger";
     PmdInstance *inst = begin(c, fn, SET_STATES);
-    size_t i, run;
+    size_t i, taken;
     if (!inst || !arrays_given(inst, fn, nvr, vr, value))
         return fmi2Error;
     pmd_set_begin(inst);
-    for (i = 0; i < nvr; i += run)
-        if ((run = memory_data_run(vr + i, nvr - i)) > 1) {
-            if (pmd_set_memory_data(inst, fn, vr[i], value + i, 1, run, 0) != PMD_OK)
-                return fmi2Error;
-        } else if (run = 1, pmd_set_integer(inst, fn, vr[i], value[i], 0) != PMD_OK) {
+    for (i = 0; i < nvr; i += taken)
+        if (set_integers(inst, fn, vr + i, nvr - i, value + i, 0, &taken) != PMD_OK)
             return fmi2Error;
-        }
     if (pmd_set_check(inst, fn) != PMD_OK)
         return fmi2Error;
-    for (i = 0; i < nvr; i += run)
-        if ((run = memory_data_run(vr + i, nvr - i)) > 1)
-            pmd_set_memory_data(inst, fn, vr[i], value + i, 1, run, 1);
-        else
-            run = 1, pmd_set_integer(inst, fn, vr[i], value[i], 1);
+    for (i = 0; i < nvr; i += taken)
+        set_integers(inst, fn, vr + i, nvr - i, value + i, 1, &taken);
     return fmi2OK;
 }
 

@@ -474,8 +474,9 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
     inst->recordCount = (uint32_t)recorded;
     if (ran > recorded) {
         pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s: SetSampleTime restarted the cycle grid during a "
-                         "recording step: it ran %lld cycles, record.data holds the first %lld (record.capacity)",
-                         fn, (long long)ran, (long long)recorded);
+                         "recording step: it ran %lld cycles, record.data holds the first %lld (%s)", fn,
+                         (long long)ran, (long long)recorded,
+                         inst->recordLent ? "the memory lent by pmdfmu_fmi2SetRecordBuffer" : "record.capacity");
         return PMD_WARNING;
     }
     return PMD_OK;

@@ -152,6 +152,8 @@ PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const ch
         while (end > p && end[-1] == ' ')
             end--;
         v = variable_named(p, (size_t)(end - p));
+        /* a row stores an Integer in 2 or 4 bytes, a Real in 8, a Boolean in 1 (record_row): a variable of
+         * another width would need a row writer that stores it (tests/test_record_columns.py checks the table) */
         if (end == p || !v || v->type == PMD_STRING || v->type == PMD_BINARY || v->family == VAR_time) {
             free(c.text);
             return refused(inst, fn, text, p, (size_t)(end - p),
@@ -224,9 +226,9 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
 #define REAL_COLUMN(F, expression)                                                                                    \
     FAMILY_COLUMNS(F, double x = (expression); memcpy(row + c->offset, &x, sizeof x))
 #define INTEGER_COLUMN(F, expression)                                                                                 \
-    FAMILY_COLUMNS(F, int32_t n = (expression); uint16_t low = (uint16_t)(uint32_t)n;                                       \
+    FAMILY_COLUMNS(F, int32_t n = (expression); uint16_t low = (uint16_t)(uint32_t)n;                                 \
                    if (c->bytes == 2) memcpy(row + c->offset, &low, sizeof low);                                      \
-                   else memcpy(row + c->offset, &n, sizeof n))
+                   else memcpy(row + c->offset, &n, sizeof n))   /* 4: an Integer is 16 or 32 bits (compile) */
 #define BOOLEAN_COLUMN(F, expression) FAMILY_COLUMNS(F, row[c->offset] = (expression) != 0)
 
 /* A family the tables have no row for: no column has one (record.columns was checked when set), and

@@ -11,7 +11,7 @@ import shutil
 import tempfile
 import textwrap
 import threading
-from ctypes import POINTER, Array, c_char, c_double, c_int32, c_uint16, c_uint32
+from ctypes import POINTER, Array, byref, c_char, c_double, c_int32, c_uint16, c_uint32
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -19,8 +19,8 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2ValueReference
-from fmpy.fmi3 import FMU3Slave, fmi3ValueReference
+from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2True, fmi2ValueReference
+from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3True, fmi3ValueReference
 
 from . import hosttime, memory_port, recording, tables
 from .fixed import integer, to_word
@@ -486,6 +486,8 @@ class Chip:
         self._grid = (c_double * 3)()
         self._memory_vrs: Dict[int, Array] = {}     # write_memory (FMI 2): value references per word count
         self._host_port: Dict[int, tuple] = {}      # _send: value references and buffers per word count
+        # fmi3DoStep's outputs (_step): event handling needed, terminate, early return, last successful time
+        self._step_out = (byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Float64()))
 
     # ---- life cycle ----
 
@@ -622,15 +624,20 @@ class Chip:
         (the FMU's nextCycle; an FMU state restores it)."""
         return int(self.get("nextCycle"))
 
-    def _step(self, cycles: int) -> None:
+    def _step(self, cycles: int) -> int:
         """One doStep that runs the next `cycles` cycles of the FMU's grid: from its
-        last communication point to the time of the cycle after them."""
+        last communication point to the time of the cycle after them. Returns its
+        status (OK, or Warning: a grid change inside a recording step); FMPy raises
+        for an Error."""
         if self.fmi_version == 2:
             self.fmu.fmi2GetReal(self.fmu.component, self._grid_vrs, 3, self._grid)
         else:
             self.fmu.fmi3GetFloat64(self.fmu.component, self._grid_vrs, 3, self._grid, 3)
         now, next_time, cycle_time = self._grid
-        self.fmu.doStep(now, (next_time - now) + cycles * cycle_time)
+        if self.fmi_version == 2:                    # FMPy's doStep returns no status: the FMI call does
+            return self.fmu.fmi2DoStep(self.fmu.component, now, (next_time - now) + cycles * cycle_time, fmi2True)
+        return self.fmu.fmi3DoStep(self.fmu.component, now, (next_time - now) + cycles * cycle_time, fmi3True,
+                                   *self._step_out)
 
     # ---- FMU state ----
 
@@ -780,8 +787,13 @@ class Chip:
                 state = None if before is None or before > script_end else self.fmu.getFMUState()
                 try:
                     logged = len(self.messages)
-                    self._step(n)                       # Warning if the step's cycles changed
+                    status = self._step(n)              # Warning if the step's cycles changed
                     redo = state is not None and self.cycles - before != n
+                    if status and not redo:
+                        # a grid change with no saved state to redo the chunk from (or a Warning the harness
+                        # does not know): the rows would not be a stepping master's
+                        raise RuntimeError(f"the recording step of {n} cycles ran other cycles than its rows "
+                                           f"(doStep's Warning: {self.messages[-1].message if self.messages else ''})")
                     if redo:
                         # the grid changed in the chunk: back to its start, and the chunk runs as a master
                         # stepping cycle by cycle runs it (the native loop: Chip._run_stepwise's rows)
@@ -862,11 +874,8 @@ class Chip:
         "Upload and streaming")."""
         data = self._memory_words(words)
         address = integer(address, "write_memory: address")
-        # memorySize and memory.strobe read in one get, then the strobes: None, or the size they left
-        size = memory_port.write(self, address, data)
-        if size is not None:
-            self._memory_fits(address, len(data), size)          # raises, naming it
-            raise AssertionError(f"memory_port.write refused {len(data)} words at {address} of {size}")
+        # memorySize and memory.strobe read in one get, the fit checked (_memory_fits), then the strobes
+        memory_port.write(self, address, data)
 
     @staticmethod
     def _memory_fits(address: int, n: int, size: int) -> None:
@@ -1078,18 +1087,20 @@ class Chip:
         rows' type (a name given twice is numpy's ValueError). Kept per set of names for every Chip of
         the FMU file: making the row type again costs as long as 150 recorded cycles."""
         key = (self.fmi_version,) + tuple(names)
-        if key in self._recorded:
-            return self._recorded[key]
+        known = self._recorded.get(key)             # one read: another thread may clear the dict
+        if known is not None:
+            return known
         where = {}
         for name in names:
             element = _array_element(self.variables, name) if self.fmi_version == 3 else None
             if name not in DTYPES or (name not in self.variables and not element):
                 raise ValueError(f"run: record={name!r} is not a variable of the FMU (pmdfmu info lists them)")
             where[name] = element or (name, 0)
+        known = where, np.dtype([CYCLE] + [(n, DTYPES[n]) for n in names])
         if len(self._recorded) >= 16:
             self._recorded.clear()
-        self._recorded[key] = where, np.dtype([CYCLE] + [(n, DTYPES[n]) for n in names])
-        return self._recorded[key]
+        self._recorded[key] = known
+        return known
 
     def _run_stepwise(self, cycles: int, record: Sequence[str]) -> np.ndarray:
         """run(cycles, record) cycle by cycle in Python through FMPy: what run() did before the native

@@ -8,7 +8,7 @@ from __future__ import annotations
 from ctypes import POINTER, Array, Structure, addressof, c_char, c_int, c_int32, c_size_t, c_uint32, c_void_p
 from functools import lru_cache
 from operator import is_
-from typing import Dict, List, Optional, Tuple
+from typing import Dict, List, Tuple
 
 import numpy as np
 from fmpy.fmi1 import FMICallException
@@ -83,12 +83,13 @@ def _pointer(words: np.ndarray) -> int:
     return words.ctypes.data
 
 
-def write(chip, address: int, words: np.ndarray) -> Optional[int]:
+def write(chip, address: int, words: np.ndarray) -> None:
     """Reads memorySize and memory.strobe (one get, through FMPy), then, if the uint32 words (checked
     by the caller) fit at address.. (0 <= address, address + len(words) <= memorySize), writes
-    them, the first block with strobe (strobe + 1) & 0x7FFFFFFF. Returns None, or memorySize if they
-    do not fit (nothing written). Raises as FMPy would for a call that failed (FMICallException
-    naming it: the FMU's messages are in chip.messages), the blocks before it written."""
+    them, the first block with strobe (strobe + 1) & 0x7FFFFFFF; if they do not, raises
+    Chip._memory_fits' ValueError, nothing written. Raises as FMPy would for a call that failed
+    (FMICallException naming it: the FMU's messages are in chip.messages), the blocks before it
+    written."""
     words = np.ascontiguousarray(words, dtype=np.uint32)
     _vr, port, read = _port(chip)
     fmu, got = chip.fmu, (c_int32 * 2)()
@@ -97,10 +98,8 @@ def write(chip, address: int, words: np.ndarray) -> Optional[int]:
     else:
         fmu.fmi3GetInt32(fmu.component, read, 2, got, 2)
     size, strobe = got
-    if address < 0 or address + len(words) > size:
-        return size
+    chip._memory_fits(address, len(words), size)
     stop = Stop()
     if _writers()[chip.fmi_version](*_calls(chip), fmu.component, port, address, _pointer(words), len(words),
                                     strobe, stop):
         raise FMICallException(function=FUNCTIONS[chip.fmi_version][stop.call], status=stop.status)
-    return None
