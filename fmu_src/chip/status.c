@@ -69,44 +69,8 @@ int pmd_host_interrupt(const PmdChip *chip)
     return 0;
 }
 
-/* The four axes' Reals computed together, each quantity as the lanes of one
- * vector where the compiler has vectors (GCC, Clang): the twenty divisions of a
- * row run as five packed ones with AVX, ten with SSE2. Each lane rounds as its
- * scalar operation would (IEEE 754), so the values do not depend on the form.
- * The lanes are built from registers and stored whole: a vector loaded from
- * scalars just stored, or the reverse, would stall on the store buffer. */
-#if defined(__GNUC__) && !defined(PMD_PORTABLE_LANES)   /* PMD_PORTABLE_LANES: the plain C form (a test) */
-typedef double Lanes __attribute__((vector_size(PMD_AXES * sizeof(double))));
-#define LANES(a, b, c, d) ((Lanes){(a), (b), (c), (d)})
-#define LANES_DIVIDE(x, y) ((x) /= (y))
-#define LANES_ADD(x, y) ((x) += (y))
-#else
-typedef struct {
-    double v[PMD_AXES];
-} Lanes;
-static Lanes lanes(double a, double b, double c, double d)
-{
-    Lanes x;
-    x.v[0] = a, x.v[1] = b, x.v[2] = c, x.v[3] = d;
-    return x;
-}
-#define LANES(a, b, c, d) lanes((a), (b), (c), (d))
-#define LANES_DIVIDE(x, y) LANES_EACH(x, /=, y)
-#define LANES_ADD(x, y) LANES_EACH(x, +=, y)
-#define LANES_EACH(x, op, y)                                                                                          \
-    do {                                                                                                              \
-        int lane_;                                                                                                    \
-        for (lane_ = 0; lane_ < PMD_AXES; lane_++)                                                                    \
-            (x).v[lane_] op (y).v[lane_];                                                                             \
-    } while (0)
-#endif
-#define LANES_OF(x) LANES((x), (x), (x), (x))
-/* A lane per axis k, F(k) each: F has no side effect but a function call's (a
- * vector's initializers are not sequenced with each other; calls are). */
-#define AXIS_LANES(F) LANES(F(0), F(1), F(2), F(3))
-
 /* x in U as a double where it fits an int64 (pmd_fixed_in_u), else 0 and the
- * axis's bit set in *wide: its lane is redone from its parts. */
+ * axis's bit set in *wide: its value is made from its parts (wide_reals). */
 static inline double in_u(PmdFixed x, unsigned *wide, int n)
 {
     int64_t u;
@@ -116,55 +80,98 @@ static inline double in_u(PmdFixed x, unsigned *wide, int n)
     return 0.0;
 }
 
-/* The body of pmd_commanded_reals, compiled twice on x86-64 (below). */
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-static inline void commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r)
+/* The velocities and accelerations beyond an int64 in U, from their parts. */
+static void wide_reals(const PmdChip *chip, double cycleTime, unsigned wideVelocity, unsigned wideAcceleration,
+                       PmdCommandedReals *r)
 {
-    const PmdTrajectory *t[PMD_AXES];
-    unsigned wideVelocity = 0, wideAcceleration = 0;
     int n;
-    Lanes u = LANES_OF((double)PMD_U_PER_COUNT), perCycle = LANES_OF(cycleTime);
-    Lanes perCycle2 = LANES_OF(cycleTime * cycleTime), position, whole, velocity, acceleration;
-    for (n = 0; n < PMD_AXES; n++)
-        t[n] = &chip->s.axis[n].trajectory;
-#define FRACTION(k) ((double)t[k]->fraction)
-#define WHOLE(k) ((double)t[k]->position)
-#define VELOCITY(k) in_u(t[k]->velocity, &wideVelocity, (k))
-#define ACCELERATION(k) in_u(t[k]->acceleration, &wideAcceleration, (k))
-    position = AXIS_LANES(FRACTION);
-    whole = AXIS_LANES(WHOLE);
-    velocity = AXIS_LANES(VELOCITY);
-    acceleration = AXIS_LANES(ACCELERATION);
-    LANES_DIVIDE(position, u);
-    LANES_ADD(position, whole);
-    LANES_DIVIDE(velocity, u);
-    LANES_DIVIDE(velocity, perCycle);
-    LANES_DIVIDE(acceleration, u);
-    LANES_DIVIDE(acceleration, perCycle2);
-    memcpy(r->position, &position, sizeof r->position);
-    memcpy(r->velocity, &velocity, sizeof r->velocity);
-    memcpy(r->acceleration, &acceleration, sizeof r->acceleration);
-    if (wideVelocity | wideAcceleration)
-        for (n = 0; n < PMD_AXES; n++) {
-            if (wideVelocity & (1u << n))
-                r->velocity[n] = pmd_fixed_wide_double(t[n]->velocity) / cycleTime;
-            if (wideAcceleration & (1u << n))
-                r->acceleration[n] = pmd_fixed_wide_double(t[n]->acceleration) / (cycleTime * cycleTime);
-        }
+    for (n = 0; n < PMD_AXES; n++) {
+        const PmdTrajectory *t = &chip->s.axis[n].trajectory;
+        if (wideVelocity & (1u << n))
+            r->velocity[n] = pmd_fixed_wide_double(t->velocity) / cycleTime;
+        if (wideAcceleration & (1u << n))
+            r->acceleration[n] = pmd_fixed_wide_double(t->acceleration) / (cycleTime * cycleTime);
+    }
 }
 
-/* An x86-64 build with GCC or Clang has an AVX form too, taken where the
- * processor has AVX (PmdChip.avx): four lanes a division instead of two. */
-#if defined(__GNUC__) && defined(__x86_64__)
+/* The Reals of the four axes: each axis's fraction, velocity and acceleration
+ * in U converted (in_u), divided by U, the velocity then by the cycle time
+ * and the acceleration by its square, the position's whole counts added. The
+ * twenty divisions of a row are the cost; where the compiler has vector types
+ * (GCC, Clang) they run as packed ones: two lanes a division in the form every
+ * processor runs (SSE2, NEON), four with AVX (x86-64, PmdChip.avx). IEEE 754
+ * rounds each lane as the scalar division, so every form gives the same
+ * doubles, bit for bit (tests/test_exact_arithmetic.py checks them against the
+ * scalar expressions; PMD_PORTABLE_LANES builds the plain C form). The lanes
+ * are built from registers and stored whole: a vector loaded from scalars just
+ * stored would stall on the store buffer. */
+#define FRACTION(k) ((double)chip->s.axis[k].trajectory.fraction)
+#define WHOLE(k) ((double)chip->s.axis[k].trajectory.position)
+#define VELOCITY(k) in_u(chip->s.axis[k].trajectory.velocity, &wideVelocity, (k))
+#define ACCELERATION(k) in_u(chip->s.axis[k].trajectory.acceleration, &wideAcceleration, (k))
+
+#if defined(__GNUC__) && !defined(PMD_PORTABLE_LANES)
+typedef double Pair __attribute__((vector_size(2 * sizeof(double))));
+/* the lanes of axes k and k + 1, F(k) each: F has no side effect but a function call's (a vector's
+ * initializers are not sequenced with each other; calls are) */
+#define PAIR(F, k) ((Pair){F(k), F((k) + 1)})
+#define PAIR_OF(x) ((Pair){(x), (x)})
+
+static void commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r)
+{
+    unsigned wideVelocity = 0, wideAcceleration = 0;
+    int k;
+    for (k = 0; k < PMD_AXES; k += 2) {
+        Pair u = PAIR_OF((double)PMD_U_PER_COUNT);
+        Pair position = PAIR(FRACTION, k) / u + PAIR(WHOLE, k);
+        Pair velocity = PAIR(VELOCITY, k) / u / PAIR_OF(cycleTime);
+        Pair acceleration = PAIR(ACCELERATION, k) / u / PAIR_OF(cycleTime * cycleTime);
+        memcpy(r->position + k, &position, sizeof position);
+        memcpy(r->velocity + k, &velocity, sizeof velocity);
+        memcpy(r->acceleration + k, &acceleration, sizeof acceleration);
+    }
+    if (wideVelocity | wideAcceleration)
+        wide_reals(chip, cycleTime, wideVelocity, wideAcceleration, r);
+}
+
+#if defined(__x86_64__)
+typedef double Quad __attribute__((vector_size(PMD_AXES * sizeof(double))));
+#define QUAD(F) ((Quad){F(0), F(1), F(2), F(3)})
+#define QUAD_OF(x) ((Quad){(x), (x), (x), (x)})
+
 __attribute__((target("avx"))) static void commanded_reals_avx(const PmdChip *chip, double cycleTime,
                                                                PmdCommandedReals *r)
 {
-    commanded_reals(chip, cycleTime, r);
+    unsigned wideVelocity = 0, wideAcceleration = 0;
+    Quad u = QUAD_OF((double)PMD_U_PER_COUNT);
+    Quad position = QUAD(FRACTION) / u + QUAD(WHOLE);
+    Quad velocity = QUAD(VELOCITY) / u / QUAD_OF(cycleTime);
+    Quad acceleration = QUAD(ACCELERATION) / u / QUAD_OF(cycleTime * cycleTime);
+    memcpy(r->position, &position, sizeof position);
+    memcpy(r->velocity, &velocity, sizeof velocity);
+    memcpy(r->acceleration, &acceleration, sizeof acceleration);
+    if (wideVelocity | wideAcceleration)
+        wide_reals(chip, cycleTime, wideVelocity, wideAcceleration, r);
 }
 #define HAS_AVX_FORM 1
+#endif
 
+#else
+static void commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r)
+{
+    unsigned wideVelocity = 0, wideAcceleration = 0;
+    int k;
+    for (k = 0; k < PMD_AXES; k++) {
+        r->position[k] = FRACTION(k) / (double)PMD_U_PER_COUNT + WHOLE(k);
+        r->velocity[k] = VELOCITY(k) / (double)PMD_U_PER_COUNT / cycleTime;
+        r->acceleration[k] = ACCELERATION(k) / (double)PMD_U_PER_COUNT / (cycleTime * cycleTime);
+    }
+    if (wideVelocity | wideAcceleration)
+        wide_reals(chip, cycleTime, wideVelocity, wideAcceleration, r);
+}
+#endif
+
+#if defined(__GNUC__) && defined(__x86_64__)
 /* CPUID 1 says AVX and OSXSAVE, and XCR0 that the system saves the XMM and YMM
  * registers: what __builtin_cpu_supports("avx") tells, without the
  * process-wide variables of libgcc it reads. */
