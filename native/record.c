@@ -3,6 +3,7 @@
  * cycle), over the same FMI functions of the FMU with the same arguments, so
  * that the rows and the FMU's log are the same, at the cost of the FMU's own
  * calls alone. */
+#include <stdint.h>
 #include <string.h>
 
 #include "fmi2FunctionTypes.h"
@@ -123,4 +124,14 @@ int pmd_record_fmi3(PmdRecordFunction do_step_fn, void *instance, const PmdRecor
 {
     return record(1, do_step_fn, instance, groups, n_groups, grid_group, grid_place, columns, n_columns, rows,
                   row_bytes, cycles, stop);
+}
+
+void pmd_record_prefault(unsigned char *bytes, size_t size)
+{
+    const uintptr_t page = 4096;
+    size_t i = 0;
+    while (i < size) {
+        bytes[i] = 0;
+        i += (size_t)(page - ((uintptr_t)(bytes + i) & (page - 1)));     /* the next page's first byte */
+    }
 }

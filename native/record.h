@@ -71,4 +71,11 @@ PMD_NATIVE_EXPORT int pmd_record_fmi3(PmdRecordFunction do_step, void *instance,
                                       size_t n_columns, void *rows, size_t row_bytes, size_t cycles,
                                       PmdRecordStop *stop);
 
+/* Writes a zero to the first byte of `bytes` and to every byte of it that
+ * starts a 4 KiB page: the harness's thread faults in the pages of a
+ * recording's next chunk while the FMU fills the one before (Chip.run), so
+ * that the kernel zeroes them on another core. Only bytes of the range are
+ * written: a page it shares with the chunk being filled keeps that chunk's. */
+PMD_NATIVE_EXPORT void pmd_record_prefault(unsigned char *bytes, size_t size);
+
 #endif

@@ -377,3 +377,38 @@ def test_a_set_sample_time_inside_a_recording_step_records_the_cycles_stepwise(v
         assert size == len(rows) * dtype.itemsize and set(rows["activeCycleTime"]) == {1e-4, 2e-4, 5e-4}
     ref = reference(version, names, len(rows), script=script)
     assert rows.tobytes() == ref.tobytes()
+
+
+@VERSIONS
+@pytest.mark.parametrize("names", [record_outputs(range(4)), ["axis1.commandedPosition", "axis3.commandedVelocity"]])
+def test_chunks_faulted_in_ahead_hold_the_stepwise_rows(version, names, monkeypatch):
+    """The next chunk's pages are faulted in on a thread while the FMU fills the chunk before
+    (recording.prefault; here for every chunk, PREFAULT_BYTES 1): the rows are a stepping master's, in FMI 2
+    (rows lent), FMI 3 (record.data copied) and the commanded table."""
+    monkeypatch.setattr(recording, "PREFAULT_BYTES", 1)
+    submitted = []
+    real = recording.prefault
+    monkeypatch.setattr(recording, "prefault", lambda a, s: submitted.append(s) or real(a, s))
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 333}) as chip, \
+            pmdfmu.Chip(fmi_version=version) as ref:
+        for c in (chip, ref):
+            motors_and_idle_axes(c)
+        rows = chip.run(1500, record=names)
+        assert rows.tobytes() == ref._run_stepwise(1500, names).tobytes()
+        assert len(submitted) == 5 and submitted[-1] == 0 and submitted[-2] == 168 * submitted[0] // 333
+
+
+def test_prefault_writes_a_zero_at_each_page_start_inside_its_range_only():
+    """native pmd_record_prefault: the first byte of the range and each byte that starts a 4 KiB page, nothing
+    outside it (a page it shares with the chunk the FMU fills keeps that chunk's bytes)."""
+    from ctypes import c_size_t, c_void_p
+    from pmdfmu import native
+    buffer = np.full(5 * 4096, 0xA5, dtype=np.uint8)
+    base = buffer.ctypes.data
+    start = (-base) % 4096 + 100                            # 100 bytes into a page
+    prefault = native.library().pmd_record_prefault
+    prefault.restype, prefault.argtypes = None, [c_void_p, c_size_t]
+    prefault(base + start, 2 * 4096)
+    zeros = np.flatnonzero(buffer == 0)
+    page_starts = [i for i in range(start + 1, start + 2 * 4096) if (base + i) % 4096 == 0]
+    assert zeros.tolist() == [start] + page_starts and len(page_starts) == 2

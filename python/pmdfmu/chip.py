@@ -776,11 +776,17 @@ class Chip:
             script_end = self.get("script.lastCycle") if self.get("script.axes") else -1
         # FMI 2: the FMU writes the rows straight into the result (pmdfmu_fmi2SetRecordBuffer), no copy
         borrow = None if commanded else recording.borrower(self)
+        result = table if commanded else out
+        stride, ahead = result.strides[0], None       # ahead: the next chunk's pages being faulted in
         self.set("record.enabled", True)
         try:
             done = 0
             while done < cycles:
                 n = min(capacity, cycles - done)
+                if ahead:
+                    ahead.result()
+                following = min(capacity, cycles - done - n)
+                ahead = recording.prefault(result.ctypes.data + (done + n) * stride, following * stride)
                 if borrow:
                     borrow(out.ctypes.data + done * row.itemsize, n * row.itemsize)
                 before = self.cycles if script_end >= 0 else None
@@ -836,6 +842,8 @@ class Chip:
                 self.set("record.enabled", False)
             raise
         finally:
+            if ahead:                               # nothing writes into the result once it is returned or freed
+                ahead.result()
             if borrow:                              # the FMU keeps no pointer into the result
                 borrow(0, 0)
         self.set("record.enabled", False)
