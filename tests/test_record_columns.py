@@ -1,5 +1,6 @@
 """record.columns: bulk recording of any variables in FMI 2 and FMI 3 (issue 16, target 3): the
 FMU's rows equal a master's stepping cycle by cycle (Chip._run_stepwise), bad names are refused."""
+import os
 from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at
 
 import numpy as np
@@ -412,3 +413,24 @@ def test_prefault_writes_a_zero_at_each_page_start_inside_its_range_only():
     zeros = np.flatnonzero(buffer == 0)
     page_starts = [i for i in range(start + 1, start + 2 * 4096) if (base + i) % 4096 == 0]
     assert zeros.tolist() == [start] + page_starts and len(page_starts) == 2
+
+
+def test_a_forked_child_records_with_its_own_prefault_thread(monkeypatch):
+    """The prefault pool's thread is the process's: a child forked after the parent used it makes its own
+    (a task given to the parent's executor would never run in the child, and the run would hang)."""
+    import multiprocessing
+    monkeypatch.setattr(recording, "PREFAULT_BYTES", 1)
+    names = record_outputs(range(2))
+
+    def record():
+        with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 300}) as chip:
+            busy_chip(chip)
+            return chip.run(1000, record=names)
+    parent = record()                                       # the parent's pool exists now
+    context = multiprocessing.get_context("fork")
+    child = context.Process(target=lambda: os._exit(0 if record().tobytes() == parent.tobytes() else 3))
+    child.start()
+    child.join(60)
+    if child.is_alive():
+        child.kill()
+    assert child.exitcode == 0

@@ -13,6 +13,7 @@ Python loop passed (Chip._run_stepwise, kept as the reference), the columns
 converted as that loop converted them."""
 from __future__ import annotations
 
+import os
 import threading
 from concurrent.futures import Future, ThreadPoolExecutor
 from ctypes import POINTER, Structure, byref, c_int, c_size_t, c_uint32, c_void_p
@@ -176,6 +177,18 @@ def borrower(chip) -> Optional[Callable[[int, int], None]]:
 PREFAULT_BYTES = 1 << 20
 _prefault_pool: List[ThreadPoolExecutor] = []
 _prefault_lock = threading.Lock()
+
+
+def _forget_prefault_pool() -> None:
+    """In a forked child: the parent's pool thread does not exist there, and a task given to its executor
+    would never run; the child makes its own pool (and lock) when it first needs one."""
+    global _prefault_lock
+    _prefault_lock = threading.Lock()
+    _prefault_pool.clear()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_prefault_pool)
 
 
 def prefault(address: int, size: int) -> Optional[Future]:
