@@ -434,3 +434,23 @@ def test_a_forked_child_records_with_its_own_prefault_thread(monkeypatch):
     if child.is_alive():
         child.kill()
     assert child.exitcode == 0
+
+
+def test_an_interrupted_wait_for_a_prefault_task_waits_on_then_raises(monkeypatch):
+    """recording.settle: a KeyboardInterrupt while the harness waits for the thread writing into the result
+    is raised only once that thread is done (the result must outlive it)."""
+    import threading
+    from concurrent.futures import Future
+    future, real, calls = Future(), recording.wait, []
+
+    def interrupted_once(fs):
+        calls.append(1)
+        if len(calls) == 1:
+            raise KeyboardInterrupt
+        return real(fs)
+    monkeypatch.setattr(recording, "wait", interrupted_once)
+    threading.Timer(0.2, lambda: future.set_result(None)).start()
+    with pytest.raises(KeyboardInterrupt):
+        recording.settle(future)
+    assert future.done() and len(calls) >= 2
+    recording.settle(None)                                   # nothing ahead: nothing to wait for

@@ -783,8 +783,7 @@ class Chip:
             done = 0
             while done < cycles:
                 n = min(capacity, cycles - done)
-                if ahead:
-                    ahead.result()
+                recording.settle(ahead)
                 following = min(capacity, cycles - done - n)
                 ahead = recording.prefault(result.ctypes.data + (done + n) * stride, following * stride)
                 if borrow:
@@ -842,8 +841,7 @@ class Chip:
                 self.set("record.enabled", False)
             raise
         finally:
-            if ahead:                               # nothing writes into the result once it is returned or freed
-                ahead.result()
+            recording.settle(ahead)                 # nothing writes into the result once it is returned or freed
             if borrow:                              # the FMU keeps no pointer into the result
                 borrow(0, 0)
         self.set("record.enabled", False)

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import os
 import threading
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor, wait
 from ctypes import POINTER, Structure, byref, c_int, c_size_t, c_uint32, c_void_p
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -206,3 +206,16 @@ def prefault(address: int, size: int) -> Optional[Future]:
     function = native.library().pmd_record_prefault
     function.restype, function.argtypes = None, [c_void_p, c_size_t]
     return _prefault_pool[0].submit(function, address, size)
+
+
+def settle(future: Optional[Future]) -> None:
+    """Waits until a prefault task has finished, also through an interrupted wait (KeyboardInterrupt):
+    its thread writes into the result, which must outlive it; the interruption is raised after."""
+    interrupted: Optional[BaseException] = None
+    while future is not None and not future.done():
+        try:
+            wait([future])
+        except BaseException as e:          # raised once the task is done
+            interrupted = e
+    if interrupted is not None:
+        raise interrupted
