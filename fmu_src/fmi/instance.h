@@ -155,7 +155,7 @@ PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn);
 void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size);
 /* FMI 2's pmdfmu_fmi2SetRecordBuffer: the caller's memory for the rows of the recording doSteps that follow, or
  * NULL for record.data's buffer again. */
-PmdStatus pmd_record_lend(PmdInstance *inst, const char *fn, void *rows, size_t bytes);
+void pmd_record_lend(PmdInstance *inst, void *rows, size_t bytes);
 /* Where a recording doStep writes its rows, and how many fit there (record.columns as it stands). */
 unsigned char *pmd_record_rows(const PmdInstance *inst);
 int64_t pmd_record_room(const PmdInstance *inst);

@@ -72,13 +72,12 @@ int64_t pmd_record_room(const PmdInstance *inst)
 /* The rows go straight into the caller's memory, which spares it a copy of
  * record.data's (docs/performance.md, "Recording"). The rows recorded so far
  * are in the other memory: record.data holds none until the next doStep. */
-PmdStatus pmd_record_lend(PmdInstance *inst, const char *fn, void *rows, size_t bytes)
+void pmd_record_lend(PmdInstance *inst, void *rows, size_t bytes)
 {
-    (void)fn;                                       /* any memory may be lent: doStep checks it fits its rows */
+    /* any memory may be lent: doStep checks that its rows fit */
     inst->recordLent = (unsigned char *)rows;
     inst->recordLentBytes = rows ? bytes : 0;
     inst->recordCount = 0;
-    return PMD_OK;
 }
 
 void pmd_record_columns_free(PmdRecordColumns *columns)
@@ -177,7 +176,6 @@ PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const ch
         }
         c.column[k].family = (unsigned short)v->family;
         c.column[k].index = v->index;
-        c.column[k].type = v->type;
         c.column[k].bytes = v->bytes;
         c.column[k].offset = c.rowBytes;
         c.readsReals |= PMD_READS_REALS(v->family);

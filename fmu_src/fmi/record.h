@@ -11,7 +11,6 @@
 typedef struct {
     unsigned short family;           /* PmdFamily */
     unsigned short index;            /* the axis or array element */
-    unsigned char type;              /* PMD_REAL, PMD_INTEGER, PMD_BOOLEAN */
     unsigned char bytes;             /* of its FMI 3 type: 8, 4, 2 (the low bits), 1 (a Boolean: 0 or 1) */
     uint32_t offset;                 /* of its value in a row */
 } PmdRecordColumn;
@@ -77,7 +76,7 @@ typedef struct {
 
 /* record.columns compiled: count 0 is "" (the default row of PMD_RECORD_WORDS int32).
  * The columns are kept in the order of their families (each at its offset in
- * the row): a row reads each family's expression once for all its columns. */
+ * the row): a row switches once per family, then reads each of its columns. */
 typedef struct {
     char *text;                      /* the value as set; NULL: "" */
     PmdRecordColumn *column;
