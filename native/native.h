@@ -3,7 +3,7 @@
 
 /* Raised whenever a function's signature changes: python/pmdfmu/native.py
  * refuses a library of another ABI (a stale build). */
-#define PMD_NATIVE_ABI 3
+#define PMD_NATIVE_ABI 4
 
 #if defined(_WIN32)
 #define PMD_NATIVE_EXPORT __declspec(dllexport)

@@ -126,12 +126,33 @@ int pmd_record_fmi3(PmdRecordFunction do_step_fn, void *instance, const PmdRecor
                   row_bytes, cycles, stop);
 }
 
-void pmd_record_prefault(unsigned char *bytes, size_t size)
+int pmd_record_step_lent(PmdRecordFunction set_buffer, PmdRecordFunction get_data, PmdRecordFunction do_step_fn,
+                         void *instance, double now, double step, void *rows, size_t size, size_t *recorded, int *call)
 {
-    const uintptr_t page = 4096;
-    size_t i = 0;
-    while (i < size) {
-        bytes[i] = 0;
-        i += (size_t)(page - ((uintptr_t)(bytes + i) & (page - 1)));     /* the next page's first byte */
+    const void *data = NULL;
+    size_t bytes = 0;
+    int status, got, ended;
+    *recorded = 0;
+    *call = PMD_STEP_LEND;
+    status = ((PmdSetRecordBuffer *)set_buffer)(instance, rows, size);
+    if (FAILED(status))
+        return status;
+    *call = PMD_STEP_DO_STEP;
+    status = do_step(0, do_step_fn, instance, now, step);
+    if (!FAILED(status)) {
+        got = ((PmdGetRecordData *)get_data)(instance, &data, &bytes);
+        if (FAILED(got)) {
+            *call = PMD_STEP_GET_DATA;
+            status = got;
+        } else {
+            *recorded = data == rows ? bytes : 0;
+        }
     }
+    /* the loan ends whatever happened: the FMU keeps no pointer into the caller's memory */
+    ended = ((PmdSetRecordBuffer *)set_buffer)(instance, NULL, 0);
+    if (FAILED(ended) && !FAILED(status)) {
+        *call = PMD_STEP_END_LOAN;
+        return ended;
+    }
+    return status;
 }

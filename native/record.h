@@ -71,11 +71,23 @@ PMD_NATIVE_EXPORT int pmd_record_fmi3(PmdRecordFunction do_step, void *instance,
                                       size_t n_columns, void *rows, size_t row_bytes, size_t cycles,
                                       PmdRecordStop *stop);
 
-/* Writes a zero to the first byte of `bytes` and to every byte of it that
- * starts a 4 KiB page: the harness's thread faults in the pages of a
- * recording's next chunk while the FMU fills the one before (Chip.run), so
- * that the kernel zeroes them on another core. Only bytes of the range are
- * written: a page it shares with the chunk being filled keeps that chunk's. */
-PMD_NATIVE_EXPORT void pmd_record_prefault(unsigned char *bytes, size_t size);
+/* The FMU's extension functions beside the FMI 2 ones (fmu_src/fmi/fmi2.c) */
+typedef int PmdSetRecordBuffer(void *instance, void *rows, size_t size);
+typedef int PmdGetRecordData(void *instance, const void **data, size_t *size);
+
+/* Which call of pmd_record_step_lent failed */
+enum { PMD_STEP_LEND, PMD_STEP_DO_STEP, PMD_STEP_GET_DATA, PMD_STEP_END_LOAN };
+
+/* One recording doStep of an FMI 2 FMU into the caller's memory (Chip.run):
+ * `rows` (`size` bytes) lent to the FMU (pmdfmu_fmi2SetRecordBuffer), the
+ * step from `now` of `step` s, the bytes it recorded there asked for
+ * (pmdfmu_fmi2GetRecordData: *recorded, 0 if the rows are elsewhere) and the
+ * loan ended, in this one call: no Python code (a KeyboardInterrupt, an
+ * exception) runs while the FMU holds a pointer into the caller's memory, so
+ * the loan cannot outlive it. Returns the doStep's status (Warning: a grid
+ * change inside the step), or that of the first call that failed (*call). */
+PMD_NATIVE_EXPORT int pmd_record_step_lent(PmdRecordFunction set_buffer, PmdRecordFunction get_data,
+                                           PmdRecordFunction do_step, void *instance, double now, double step,
+                                           void *rows, size_t size, size_t *recorded, int *call);
 
 #endif

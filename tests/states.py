@@ -78,6 +78,7 @@ class InitializationChip:
     set = pmdfmu.Chip.set
     get = pmdfmu.Chip.get
     _size = pmdfmu.Chip._size
+    _variable = pmdfmu.Chip._variable
 
     def reply(self):
         n = self.get("host.replyCount")

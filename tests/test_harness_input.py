@@ -172,3 +172,60 @@ def test_a_bulk_recording_reads_only_the_rows_record_data_holds():
         chip.fmu.fmi3GetBinary = short
         with pytest.raises(RuntimeError, match="holds 3 cycles, not 100"):
             chip.run(100, record=RECORDED)
+
+
+# ---- an FMU refusal raised with the FMU's reason; a name that is no variable, with the nearest ----
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_refused_parameter_raises_with_the_fmus_reason(version):
+    """Chip(cycleTime=1.5e-6): the exception itself says what is wrong (1.5 us is inside 1 .. 65535 us but
+    not whole), not only the FMI function and status; it is an FMUError and FMPy's FMICallException."""
+    from fmpy.fmi1 import FMICallException
+    with pytest.raises(pmdfmu.FMUError) as info:
+        pmdfmu.Chip(fmi_version=version, cycleTime=1.5e-6)
+    text = str(info.value)
+    assert isinstance(info.value, FMICallException) and info.value.status == 3
+    assert "cycleTime = 1.5e-06 s is not a whole number of microseconds" in text
+    assert ("fmi3SetFloat64" if version == 3 else "fmi2SetReal") in text
+    with pytest.raises(pmdfmu.FMUError, match="outside 1 us .. 65535 us"):
+        pmdfmu.Chip(fmi_version=version, cycleTime=0.1)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_refused_set_of_an_output_raises_with_the_fmus_reason(version):
+    with pmdfmu.Chip(fmi_version=version) as chip:
+        with pytest.raises(pmdfmu.FMUError, match=r"axis1.commandedPosition\) is an output and cannot be set"):
+            chip.set("axis1.commandedPosition", 3)
+        with pytest.raises(pmdfmu.FMUError, match="record.columns"):
+            chip.set("record.columns", "axis1.nothing")
+        assert chip.run(3, record=["axis1.commandedPosition"]).tolist() == [(0, 0), (1, 0), (2, 0)]
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_name_that_is_no_variable_says_so_and_names_the_nearest(version):
+    with pmdfmu.Chip(fmi_version=version) as chip:
+        with pytest.raises(KeyError) as info:
+            chip.get("axis5.position")
+        assert str(info.value).startswith("get: 'axis5.position' is not a variable of the FMU: did you mean ")
+        assert "axis4.position" in str(info.value)
+        with pytest.raises(KeyError, match=r"'analog\[9\]' is not a variable of the FMU: did you mean analog\[8\]"):
+            chip.set("analog[9]", 1)
+        with pytest.raises(KeyError, match=r"'frobnicate' is not a variable of the FMU \(pmdfmu info lists them\)"):
+            chip.get("frobnicate")
+    with pytest.raises(KeyError, match="set: 'cycletime' is not a variable of the FMU: did you mean cycleTime?"):
+        pmdfmu.Chip(fmi_version=version, cycletime=1e-4)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_script_path_is_a_file_and_text_that_fails_says_it_was_read_as_text(version, tmp_path):
+    """A Path is a file, never text: one holding a line feed (which the FMU would read as a script's text)
+    is refused before the FMU sees it; a str holding one is text, and its error says why it was."""
+    folder = tmp_path / "dir\nnew"
+    folder.mkdir()
+    (folder / "s.pmd").write_text("@0\nSetSampleTime(Axis1, 100);\n")
+    with pytest.raises(ValueError, match="holds a line feed, and the FMU reads a script value holding one as"):
+        pmdfmu.Chip(fmi_version=version, script=folder / "s.pmd")
+    with pytest.raises(pmdfmu.FMUError) as info:
+        pmdfmu.Chip(fmi_version=version, script=str(folder / "s.pmd"))
+    assert "(script text):1:" in str(info.value)
+    assert "(the value holds a line feed, so it was read as script text)" in str(info.value)

@@ -1,6 +1,5 @@
 """record.columns: bulk recording of any variables in FMI 2 and FMI 3 (issue 16, target 3): the
 FMU's rows equal a master's stepping cycle by cycle (Chip._run_stepwise), bad names are refused."""
-import os
 from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at
 
 import numpy as np
@@ -155,20 +154,29 @@ def test_lent_memory_is_checked_and_a_reset_forgets_it():
 
 
 def spy_loans(monkeypatch):
-    """Every (address, size) Chip.run lends its FMU (recording.borrower), in order."""
+    """Every (address, size) Chip.run lends its FMU for one doStep (recording.lent_stepper), in order."""
     loans = []
-    real = recording.borrower
+    real = recording.lent_stepper
 
     def spy(chip):
-        borrow = real(chip)
-        return lambda address, size: (loans.append((address, size)), borrow(address, size))[1]
-    monkeypatch.setattr(recording, "borrower", spy)
+        step_into = real(chip)
+        return lambda address, size, *step: (loans.append((address, size)), step_into(address, size, *step))[1]
+    monkeypatch.setattr(recording, "lent_stepper", spy)
     return loans
 
 
+def holds_no_loan(chip, loans):
+    """The FMU records into record.data's own buffer, none of the memory lent to it (a recording doStep
+    with record.enabled, then record.enabled off again)."""
+    chip.set("record.enabled", True)
+    chip._step(10)
+    chip.set("record.enabled", False)
+    return record_data(chip)[0] not in {address for address, _ in loans}
+
+
 def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkeypatch):
-    """Chip.run lends its result to the FMU chunk by chunk (no copy) and ends the loan; a run refused
-    before any cycle lends nothing."""
+    """Chip.run lends its result to the FMU chunk by chunk (no copy), each loan ending with its doStep; a
+    run refused before any cycle lends nothing."""
     loans = spy_loans(monkeypatch)
     names = record_outputs(range(2))
     with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 700}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
@@ -176,8 +184,9 @@ def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkey
             busy_chip(c)
         rows = chip.run(2000, record=names)
         assert rows.tobytes() == ref._run_stepwise(2000, names).tobytes()
-        assert [size for _, size in loans] == [700 * rows.itemsize, 700 * rows.itemsize, 600 * rows.itemsize, 0]
-        assert loans[0][0] == rows.ctypes.data and loans[-1] == (0, 0)
+        assert [size for _, size in loans] == [700 * rows.itemsize, 700 * rows.itemsize, 600 * rows.itemsize]
+        assert loans[0][0] == rows.ctypes.data and loans[2][0] == rows.ctypes.data + 1400 * rows.itemsize
+        assert holds_no_loan(chip, loans)
         loans.clear()
         with pytest.raises(ValueError):
             chip.run(10, record=names + ["axis1.nothing"])      # refused before any loan
@@ -196,30 +205,35 @@ def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(monkeypatch, tmp_path)
         rows = chip.run(2000, record=names)
         assert rows.tobytes() == ref._run_stepwise(2000, names).tobytes()
         assert chip.cycles == ref.cycles
-        assert len(loans) == 8 and loans[-1] == (0, 0)       # 7 chunks of at most 300 cycles, then the end
+        assert len(loans) == 7 and holds_no_loan(chip, loans)    # 7 chunks of at most 300 cycles
 
 
-def test_a_failed_run_ends_the_loan(monkeypatch):
-    """An exception inside a lent run (here the second chunk's doStep) ends the loan: the FMU keeps no
-    pointer into the result it was writing."""
+def test_an_interrupt_after_a_lent_step_leaves_no_loan_and_recording_off(monkeypatch):
+    """A KeyboardInterrupt landing just after the second chunk's doStep: the loan ended inside that native
+    call, record.enabled is off again, and the next run records as a fresh chip's."""
     loans = spy_loans(monkeypatch)
-    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 100}) as chip:
-        busy_chip(chip)
-        real, calls = chip._step, []
+    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 100}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+        for c in (chip, ref):
+            busy_chip(c)
+        spy = recording.lent_stepper
 
-        def failing(n):
-            calls.append(n)
-            if len(calls) == 2:
-                raise KeyboardInterrupt
-            return real(n)
-        monkeypatch.setattr(chip, "_step", failing)
+        def interrupting(c):
+            step_into = spy(c)
+
+            def step(*args):
+                result = step_into(*args)
+                if len(loans) == 2:
+                    raise KeyboardInterrupt
+                return result
+            return step
+        monkeypatch.setattr(recording, "lent_stepper", interrupting)
         with pytest.raises(KeyboardInterrupt):
             chip.run(300, record=record_outputs([0]))
-        assert loans[-1] == (0, 0) and len(loans) == 3
-        monkeypatch.setattr(chip, "_step", real)
-        chip.set("record.enabled", True)
-        chip._step(10)
-        assert record_data(chip)[0] not in {address for address, _ in loans}
+        assert len(loans) == 2 and chip.cycles == 200 and not chip.get("record.enabled")
+        monkeypatch.setattr(recording, "lent_stepper", spy)
+        ref.run(200)
+        assert chip.run(300, record=record_outputs([0])).tobytes() == ref.run(300, record=record_outputs([0])).tobytes()
+        assert holds_no_loan(chip, loans)
 
 
 def test_a_grid_change_the_harness_cannot_redo_raises(monkeypatch, tmp_path):
@@ -382,75 +396,12 @@ def test_a_set_sample_time_inside_a_recording_step_records_the_cycles_stepwise(v
 
 @VERSIONS
 @pytest.mark.parametrize("names", [record_outputs(range(4)), ["axis1.commandedPosition", "axis3.commandedVelocity"]])
-def test_chunks_faulted_in_ahead_hold_the_stepwise_rows(version, names, monkeypatch):
-    """The next chunk's pages are faulted in on a thread while the FMU fills the chunk before
-    (recording.prefault; here for every chunk, PREFAULT_BYTES 1): the rows are a stepping master's, in FMI 2
-    (rows lent), FMI 3 (record.data copied) and the commanded table."""
-    monkeypatch.setattr(recording, "PREFAULT_BYTES", 1)
-    submitted = []
-    real = recording.prefault
-    monkeypatch.setattr(recording, "prefault", lambda a, s: submitted.append(s) or real(a, s))
+def test_a_run_of_many_chunks_holds_the_stepwise_rows(version, names):
+    """Five chunks of record.capacity cycles: the rows are a stepping master's, in FMI 2 (rows lent), FMI 3
+    (record.data copied) and the commanded table."""
     with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 333}) as chip, \
             pmdfmu.Chip(fmi_version=version) as ref:
         for c in (chip, ref):
             motors_and_idle_axes(c)
         rows = chip.run(1500, record=names)
         assert rows.tobytes() == ref._run_stepwise(1500, names).tobytes()
-        assert len(submitted) == 5 and submitted[-1] == 0 and submitted[-2] == 168 * submitted[0] // 333
-
-
-def test_prefault_writes_a_zero_at_each_page_start_inside_its_range_only():
-    """native pmd_record_prefault: the first byte of the range and each byte that starts a 4 KiB page, nothing
-    outside it (a page it shares with the chunk the FMU fills keeps that chunk's bytes)."""
-    from ctypes import c_size_t, c_void_p
-    from pmdfmu import native
-    buffer = np.full(5 * 4096, 0xA5, dtype=np.uint8)
-    base = buffer.ctypes.data
-    start = (-base) % 4096 + 100                            # 100 bytes into a page
-    prefault = native.library().pmd_record_prefault
-    prefault.restype, prefault.argtypes = None, [c_void_p, c_size_t]
-    prefault(base + start, 2 * 4096)
-    zeros = np.flatnonzero(buffer == 0)
-    page_starts = [i for i in range(start + 1, start + 2 * 4096) if (base + i) % 4096 == 0]
-    assert zeros.tolist() == [start] + page_starts and len(page_starts) == 2
-
-
-def test_a_forked_child_records_with_its_own_prefault_thread(monkeypatch):
-    """The prefault pool's thread is the process's: a child forked after the parent used it makes its own
-    (a task given to the parent's executor would never run in the child, and the run would hang)."""
-    import multiprocessing
-    monkeypatch.setattr(recording, "PREFAULT_BYTES", 1)
-    names = record_outputs(range(2))
-
-    def record():
-        with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 300}) as chip:
-            busy_chip(chip)
-            return chip.run(1000, record=names)
-    parent = record()                                       # the parent's pool exists now
-    context = multiprocessing.get_context("fork")
-    child = context.Process(target=lambda: os._exit(0 if record().tobytes() == parent.tobytes() else 3))
-    child.start()
-    child.join(60)
-    if child.is_alive():
-        child.kill()
-    assert child.exitcode == 0
-
-
-def test_an_interrupted_wait_for_a_prefault_task_waits_on_then_raises(monkeypatch):
-    """recording.settle: a KeyboardInterrupt while the harness waits for the thread writing into the result
-    is raised only once that thread is done (the result must outlive it)."""
-    import threading
-    from concurrent.futures import Future
-    future, real, calls = Future(), recording.wait, []
-
-    def interrupted_once(fs):
-        calls.append(1)
-        if len(calls) == 1:
-            raise KeyboardInterrupt
-        return real(fs)
-    monkeypatch.setattr(recording, "wait", interrupted_once)
-    threading.Timer(0.2, lambda: future.set_result(None)).start()
-    with pytest.raises(KeyboardInterrupt):
-        recording.settle(future)
-    assert future.done() and len(calls) >= 2
-    recording.settle(None)                                   # nothing ahead: nothing to wait for

@@ -171,3 +171,49 @@ def test_large_recordings_on_a_cluster_equal_the_serial_run_and_leave_no_file(cl
     with Client(cluster, set_as_default=False) as client:
         same(pmdfmu.sweep(cases, scheduler=client), expected)
     assert len(made) == 1 and not Path(made[0]).exists()
+
+
+def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
+    """A sweep killed outright (SIGKILL: no cleanup runs) leaves its handoff folder, holding RAM in
+    /dev/shm; the next sweep removes it, as its token names a process that is gone. A folder of a
+    process that runs (this one) is left."""
+    import glob
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    script = long_move(tmp_path / "long.script", 2_000_000)
+    code = ("import pmdfmu\nfrom pmdfmu.sweep import Case\n"
+            f"pmdfmu.sweep([Case(f'long{{k}}', script={str(script)!r}) for k in range(4)], workers=1)\n")
+    process = subprocess.Popen([sys.executable, "-c", code], start_new_session=True,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    pattern = os.path.join(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{process.pid}-*")
+    try:
+        deadline = time.monotonic() + 120
+        while not glob.glob(pattern) and time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.05)
+        left = glob.glob(pattern)
+        assert left, "the sweep made no handoff folder"
+    finally:
+        process.kill()                  # the sweep's process alone: its workers see it gone and end
+        process.wait()
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            try:
+                os.killpg(process.pid, 0)
+            except ProcessLookupError:
+                break
+            time.sleep(0.1)
+        else:
+            os.killpg(process.pid, signal.SIGKILL)
+    assert Path(left[0], "token").exists()                  # nothing removed it
+    alive = Path(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{os.getpid()}-test")
+    alive.mkdir()
+    (alive / "token").write_text(f"{os.getpid()}-abc")
+    try:
+        with Client(cluster, set_as_default=False) as client:
+            pmdfmu.sweep([Case("short", script=str(long_move(tmp_path / "short.script", 100)))], scheduler=client)
+        assert not Path(left[0]).exists() and alive.exists()
+    finally:
+        shutil.rmtree(alive, ignore_errors=True)

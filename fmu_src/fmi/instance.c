@@ -347,7 +347,10 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         places.resources = inst->resources;
         places.noResources = inst->noResources;
         if (pmd_script_compile(value, &places, (uint32_t)inst->s.memorySize, &script, error, sizeof error)) {
-            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: script refused: %s", fn, error);
+            /* a path holding a line feed is read as text too: say why it was (README "Scripts") */
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: script refused: %s%s", fn, error,
+                             pmd_script_is_text(value) ? " (the value holds a line feed, so it was read as script "
+                             "text)" : "");
             return PMD_ERROR;
         }
     }
@@ -699,8 +702,15 @@ PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double va
         /* The chip's sample time register (GetSampleTime) holds whole
          * microseconds, 1..65535: a cycle time it cannot hold is refused
          * rather than rounded. */
-        if (!pmd_cycle_time_valid(value))
-            return out_of_range(inst, fn, v, value, "a whole number of microseconds, 1e-6 .. 0.065535 s");
+        if (!pmd_cycle_time_valid(value)) {
+            /* say which of the two it is: 1.5e-6 is inside the range, just not whole */
+            int inside = value * 1e6 >= 0.5 && value * 1e6 < 65535.5;
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: cycleTime = %.17g s is %s: the sample time "
+                             "register (GetSampleTime) holds a whole number of microseconds, 1 .. 65535: not set",
+                             fn, value, isnan(value) ? "not a number" : inside ? "not a whole number of microseconds"
+                             : "outside 1 us .. 65535 us");
+            return PMD_ERROR;
+        }
         if (apply)
             inst->s.cycleTime = value;
         return PMD_OK;

@@ -3,7 +3,8 @@ on axis handles, and cycle-exact runs recorded into numpy arrays."""
 from __future__ import annotations
 
 import atexit
-import contextlib
+import difflib
+import functools
 import inspect
 import os
 import re
@@ -19,6 +20,7 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2True, fmi2ValueReference
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3True, fmi3ValueReference
 
@@ -141,6 +143,41 @@ class PMDError(Exception):
 
 class FMUError(RuntimeError):
     """The FMU refused a call; the message is what it logged (e.g. a script's file:line: reason)."""
+
+
+class FMURefusal(FMUError, FMICallException):
+    """An FMI call the FMU refused: FMPy's FMICallException (.function, .status) with what the FMU logged
+    for it (.messages: warnings and errors, as chip.messages holds them), which its text ends with."""
+
+    def __init__(self, function: str, status: int, messages: Sequence[str]):
+        FMICallException.__init__(self, function, status)
+        self.messages = list(messages)
+        if self.messages:
+            self.args = (f"{self.args[0][:-1]}: " + "; ".join(self.messages),)
+
+
+class UnknownVariable(KeyError):
+    """A name that is no variable of the FMU (a KeyError, as a dict lookup gives): the message says so and
+    names the nearest variables."""
+
+    def __str__(self) -> str:
+        return self.args[0]
+
+
+def _refusals(method):
+    """Chip's public calls: an FMI call the FMU refuses inside raises FMURefusal, carrying the FMU's
+    messages logged during the call (FMPy's FMICallException names only the function and status)."""
+    @functools.wraps(method)
+    def call(self, *args, **kwargs):
+        logged = len(self.messages)
+        try:
+            return method(self, *args, **kwargs)
+        except FMICallException as e:
+            if isinstance(e, FMURefusal):
+                raise
+            raise FMURefusal(e.function, e.status, [m.message for m in self.messages[logged:]
+                                                    if m.status not in ("OK", "Pending")]) from None
+    return call
 
 
 @dataclass
@@ -434,6 +471,7 @@ class Chip:
         if fmi_version not in (2, 3):
             raise ValueError(f"fmi_version is 2 or 3, not {fmi_version}")
         self.host_interface = hosttime.host_interface(host_interface)
+        self._recording = False     # a recording run has turned record.enabled on (_close_recording)
         self._host_ns = 0           # the host clock, whole ns since the chip's time 0
         self.fmi_version = fmi_version
         self.path = Path(fmu) if fmu else default_fmu(fmi_version)
@@ -476,7 +514,7 @@ class Chip:
         self._getters.pop("String")           # run() records numbers; get() reads the script path below
         try:
             self._initialize(parameters)
-        except FMUError:
+        except BaseException:                 # a refused, unknown or bad parameter: no instance is left behind
             self.fmu.freeInstance()
             self.fmu = None
             raise
@@ -495,7 +533,13 @@ class Chip:
         """What the `script` parameter gets: a script's text (a value holding a line feed) as it is; a
         relative path the FMU holds in its resources folder as it is (the FMU looks there first); any
         other path resolved from the user's working directory, so that it means the same file whatever
-        directory the FMU or a sweep's worker runs in."""
+        directory the FMU or a sweep's worker runs in. A Path is a file, never text: one holding a line
+        feed, which the FMU would read as text, is refused (ValueError)."""
+        if isinstance(value, os.PathLike):
+            text = os.fspath(value)
+            if "\n" in text:
+                raise ValueError(f"script: the path {text!r} holds a line feed, and the FMU reads a script value "
+                                 "holding one as the script's text (README \"Scripts\"): rename the file or its folder")
         text = str(value) if value else ""
         if not text or "\n" in text:
             return text
@@ -519,10 +563,12 @@ class Chip:
             errors = [m.message for m in self.messages if m.status == "Error"]
             raise FMUError("\n".join(errors) or "initialization failed") from None
 
+    @_refusals
     def reinitialize(self, **parameters) -> None:
         """The same instance as new: fmiReset, then these parameters and a new
         initialization (a sweep reuses one instance per worker this way)."""
         self.fmu.reset()
+        self._recording = False                     # the reset turned record.enabled off
         self.messages.clear()
         self._host_ns = 0
         if self.fmi_version == 2:
@@ -552,6 +598,22 @@ class Chip:
         v = self.variables[name]
         return int(v.dimensions[0].start) if getattr(v, "dimensions", None) else 1
 
+    def _variable(self, name: str, fn: str):
+        """The model variable of this name, or UnknownVariable naming the call and the nearest names."""
+        v = self.variables.get(name)
+        if v is not None:
+            return v
+        names = set(self.variables)
+        for n, variable in self.variables.items():       # the names set() and get() take besides the variables
+            m = _ELEMENT.fullmatch(n)
+            if m:
+                names.add(m.group(1))
+            names.update(f"{n}[{i + 1}]" for i in range(self._size(n) if self.fmi_version == 3 else 0))
+        near = difflib.get_close_matches(name, sorted(names), n=3, cutoff=0.7)
+        hint = f": did you mean {' or '.join(near)}?" if near else " (pmdfmu info lists them)"
+        raise UnknownVariable(f"{fn}: {name!r} is not a variable of the FMU{hint}")
+
+    @_refusals
     def set(self, name: str, value) -> None:
         """Sets an FMU input or parameter by name (an FMI 3 array takes a list).
 
@@ -573,7 +635,7 @@ class Chip:
             self.set(base, values)              # a bad value raises naming base[i + 1], i.e. `name`
             return
         elements = _array_elements(self.variables, name) if self.fmi_version == 2 else []
-        v = self.variables[elements[0] if elements else name]
+        v = self._variable(elements[0] if elements else name, "set")
         count = len(elements) or self._size(name)
         values = list(value) if count > 1 else [value]
         if len(values) != count:
@@ -587,6 +649,7 @@ class Chip:
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)
 
+    @_refusals
     def get(self, name: str):
         """Reads an FMU variable by name (an array reads as a list, an element
         such as "io.output[3]" as a number, in FMI 2 and FMI 3 alike)."""
@@ -597,7 +660,7 @@ class Chip:
         if elements:
             return list(self._getters[self.variables[elements[0]].type](
                 [self.variables[e].valueReference for e in elements]))
-        v = self.variables[name]
+        v = self._variable(name, "get")
         if v.type == "String":
             value = self.fmu.getString([v.valueReference])[0]
             return value.decode() if isinstance(value, bytes) else value
@@ -628,19 +691,31 @@ class Chip:
         """One doStep that runs the next `cycles` cycles of the FMU's grid: from its
         last communication point to the time of the cycle after them. Returns its
         status (OK, or Warning: a grid change inside a recording step); FMPy raises
-        for an Error."""
+        for an Error. A recording run an interrupt left open is closed first."""
+        if self._recording:
+            self._close_recording()
+        return self._do_step(cycles)
+
+    def _step_span(self, cycles: int) -> Tuple[float, float]:
+        """The doStep that runs the next `cycles` cycles of the FMU's grid: its start (the
+        last communication point) and its size (to the time of the cycle after them)."""
         if self.fmi_version == 2:
             self.fmu.fmi2GetReal(self.fmu.component, self._grid_vrs, 3, self._grid)
         else:
             self.fmu.fmi3GetFloat64(self.fmu.component, self._grid_vrs, 3, self._grid, 3)
         now, next_time, cycle_time = self._grid
+        return now, (next_time - now) + cycles * cycle_time
+
+    def _do_step(self, cycles: int) -> int:
+        """_step's doStep itself."""
+        now, step = self._step_span(cycles)
         if self.fmi_version == 2:                    # FMPy's doStep returns no status: the FMI call does
-            return self.fmu.fmi2DoStep(self.fmu.component, now, (next_time - now) + cycles * cycle_time, fmi2True)
-        return self.fmu.fmi3DoStep(self.fmu.component, now, (next_time - now) + cycles * cycle_time, fmi3True,
-                                   *self._step_out)
+            return self.fmu.fmi2DoStep(self.fmu.component, now, step, fmi2True)
+        return self.fmu.fmi3DoStep(self.fmu.component, now, step, fmi3True, *self._step_out)
 
     # ---- FMU state ----
 
+    @_refusals
     def get_state(self) -> bytes:
         """The whole chip as bytes: the FMU's serialized FMU state, as it is (the
         time grid is in it). Restorable with set_state in any Chip of the same FMU
@@ -651,6 +726,7 @@ class Chip:
         finally:
             self.fmu.freeFMUState(state)
 
+    @_refusals
     def set_state(self, data: bytes) -> None:
         """Restores a get_state snapshot; the FMU refuses a corrupted or foreign one."""
         state = self.fmu.deserializeFMUState(data)
@@ -667,6 +743,7 @@ class Chip:
         """Axis handle n = 0..3 (C-Motion's PMDAxis1..PMDAxis4)."""
         return Axis(self, n)
 
+    @_refusals
     def batch(self, words: Sequence[int]) -> Tuple[int, List[int]]:
         """Sends raw host words (whole commands) as one batch; returns
         (host.error, reply words). It executes now, before the next cycle.
@@ -774,25 +851,24 @@ class Chip:
         script_end = float("inf")
         if "script.lastCycle" in self.variables:
             script_end = self.get("script.lastCycle") if self.get("script.axes") else -1
-        # FMI 2: the FMU writes the rows straight into the result (pmdfmu_fmi2SetRecordBuffer), no copy
-        borrow = None if commanded else recording.borrower(self)
-        result = table if commanded else out
-        stride, ahead = result.strides[0], None       # ahead: the next chunk's pages being faulted in
-        self.set("record.enabled", True)
+        # FMI 2: the FMU writes the rows straight into the result, lent for one doStep at a time, no copy
+        step_into = None if commanded else recording.lent_stepper(self)
+        # record.enabled stays on for the run: _close_recording turns it off on every way out, interrupts included
+        self._recording = True
         try:
+            self.set("record.enabled", True)
             done = 0
             while done < cycles:
                 n = min(capacity, cycles - done)
-                recording.settle(ahead)
-                following = min(capacity, cycles - done - n)
-                ahead = recording.prefault(result.ctypes.data + (done + n) * stride, following * stride)
-                if borrow:
-                    borrow(out.ctypes.data + done * row.itemsize, n * row.itemsize)
                 before = self.cycles if script_end >= 0 else None
                 state = None if before is None or before > script_end else self.fmu.getFMUState()
                 try:
                     logged = len(self.messages)
-                    status = self._step(n)              # Warning if the step's cycles changed
+                    if step_into:
+                        status, lent = step_into(out.ctypes.data + done * row.itemsize, n * row.itemsize,
+                                                 *self._step_span(n))
+                    else:
+                        status = self._do_step(n)           # Warning if the step's cycles changed
                     redo = state is not None and self.cycles - before != n
                     if status and not redo:
                         # a grid change with no saved state to redo the chunk from (or a Warning the harness
@@ -818,6 +894,12 @@ class Chip:
                 if redo:
                     done += n
                     continue
+                if step_into:
+                    if lent != n * row.itemsize:
+                        raise RuntimeError(f"the lent memory holds {lent // row.itemsize} cycles, not {n}: {lent} "
+                                           f"bytes, rows of {row.itemsize} bytes")
+                    done += n                           # the rows are in place
+                    continue
                 # record.data is the FMU's own buffer, lent until the next call: read in place, once, as
                 # many whole rows as it holds, never more
                 address, size = lend()
@@ -826,9 +908,6 @@ class Chip:
                     # the step ran its cycles, but record.data does not hold their rows: never read past it
                     raise RuntimeError(f"record.data holds {held} cycles, not {n}: {size} bytes, rows of "
                                        f"{row.itemsize} bytes")
-                if borrow and address == out.ctypes.data + done * row.itemsize:
-                    done += n                           # the rows are in place
-                    continue
                 rows = np.frombuffer((c_char * size).from_address(address), dtype=row)
                 if commanded:
                     for at, column, width in runs:
@@ -837,18 +916,33 @@ class Chip:
                     out.view((np.uint8, dtype.itemsize))[done:done + n] = rows
                 done += n
         except BaseException:
-            with contextlib.suppress(Exception):    # the error that stopped the run is the one to see
-                self.set("record.enabled", False)
+            self._close_recording(quiet=True)      # the error that stopped the run is the one to see
             raise
-        finally:
-            recording.settle(ahead)                 # nothing writes into the result once it is returned or freed
-            if borrow:                              # the FMU keeps no pointer into the result
-                borrow(0, 0)
-        self.set("record.enabled", False)
+        self._close_recording()
         if commanded:
             return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)
         return out
 
+    def _close_recording(self, quiet: bool = False) -> None:
+        """Turns record.enabled off once a recording run ends, on every way out of it: retried until it has run
+        through when a KeyboardInterrupt lands in it (raised after), and, should one land where no retry can
+        catch it, by the next doStep (_step). quiet: an FMU that refuses is left for that next doStep to try
+        again, with no exception of its own (another one is on its way)."""
+        interrupted: Optional[BaseException] = None
+        while self._recording:
+            try:
+                self.set("record.enabled", False)
+                self._recording = False
+            except KeyboardInterrupt as e:
+                interrupted = e
+            except Exception:
+                if not quiet:
+                    raise
+                break
+        if interrupted is not None:
+            raise interrupted
+
+    @_refusals
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
         """Executes one C-Motion call; raises PMDError if the chip refuses it.
         Returns None, the reply value, or a tuple of reply values."""
@@ -864,6 +958,7 @@ class Chip:
 
     # ---- dual-port memory ----
 
+    @_refusals
     def write_memory(self, address: int, words: Sequence[int]) -> None:
         """Writes 32-bit words straight into external memory (the seed's dual-port
         upload, bypassing the processor), 64 words per strobe.
@@ -1009,6 +1104,7 @@ class Chip:
         """The host clock in s (host_time_ns / 1e9, for printing: the clock itself is whole ns)."""
         return self._host_ns / hosttime.NS_PER_S
 
+    @_refusals
     def wait(self, seconds) -> None:
         """Host time passes without a command (a host program's sleep): the host clock moves on
         by `seconds` (an int, float or Fraction; rounded to the nearest ns) and the chip runs
@@ -1018,6 +1114,7 @@ class Chip:
             raise ValueError(f"wait: {seconds} s is negative")
         self.wait_ns(ns)
 
+    @_refusals
     def wait_ns(self, nanoseconds: int) -> None:
         """wait() in whole ns."""
         ns = integer(nanoseconds, "wait_ns: nanoseconds")
@@ -1026,6 +1123,7 @@ class Chip:
         self._host_ns += ns
         self._run_due()
 
+    @_refusals
     def wait_for_interrupt(self, timeout=None) -> bool:
         """Waits for the host interrupt line (host.interrupt), as a host's interrupt handler
         would: the chip runs cycle by cycle until one raises it, and the host clock moves to
@@ -1044,6 +1142,7 @@ class Chip:
 
     # ---- time ----
 
+    @_refusals
     def run(self, cycles: int, record: Sequence[str] = ()) -> np.ndarray:
         """Advances the chip by `cycles` cycles. With record, returns a structured
         array: row i holds the outputs as the i-th cycle left them, in a `cycle`

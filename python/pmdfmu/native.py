@@ -12,7 +12,7 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 REPO = PACKAGE.parent.parent
-ABI = 3                  # native/native.h PMD_NATIVE_ABI
+ABI = 4                  # native/native.h PMD_NATIVE_ABI
 NAME = {"win32": "pmdnative.dll", "darwin": "libpmdnative.dylib"}.get(sys.platform, "libpmdnative.so")
 
 

@@ -13,10 +13,7 @@ Python loop passed (Chip._run_stepwise, kept as the reference), the columns
 converted as that loop converted them."""
 from __future__ import annotations
 
-import os
-import threading
-from concurrent.futures import Future, ThreadPoolExecutor, wait
-from ctypes import POINTER, Structure, byref, c_int, c_size_t, c_uint32, c_void_p
+from ctypes import POINTER, Structure, byref, c_double, c_int, c_size_t, c_uint32, c_void_p
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -154,68 +151,31 @@ def lender(chip) -> Optional[Callable[[], Tuple[int, int]]]:
     return lend2
 
 
-def borrower(chip) -> Optional[Callable[[int, int], None]]:
-    """A function lending the FMU (address, size in bytes) of the caller's memory for the rows of the
-    recording doSteps that follow, (0, 0) to end the loan: FMI 2's pmdfmu_fmi2SetRecordBuffer, which
-    spares the copy of record.data into the result. None where the FMU has no such function (FMI 3:
-    its binary exports the FMI 3 functions only) or BULK is off."""
+def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int, int]]]:
+    """A function running one recording doStep (from `now`, of `step` s) of an FMI 2 FMU into (address, size
+    in bytes) of the caller's memory, returning (doStep's status, the bytes of rows recorded there): the
+    memory is lent (pmdfmu_fmi2SetRecordBuffer), the step run and the loan ended in one native call
+    (native pmd_record_step_lent), so no Python code, a KeyboardInterrupt included, runs while the FMU
+    holds a pointer into the caller's memory. Spares the copy of record.data into the result. None where
+    the FMU has no such function (FMI 3: its binary exports the FMI 3 functions only) or BULK is off."""
     if not BULK or chip.fmi_version != 2:
         return None
-    lend = extension(chip, "pmdfmu_fmi2SetRecordBuffer", [c_void_p, c_void_p, c_size_t])
-    if lend is None:
+    pointers = [c_void_p, c_void_p, c_size_t]
+    lend = extension(chip, "pmdfmu_fmi2SetRecordBuffer", pointers)
+    get = extension(chip, "pmdfmu_fmi2GetRecordData", [c_void_p, POINTER(c_void_p), POINTER(c_size_t)])
+    if lend is None or get is None:
         return None
+    fn = native.library().pmd_record_step_lent
+    fn.restype = c_int
+    fn.argtypes = [c_void_p, c_void_p, c_void_p, c_void_p, c_double, c_double, c_void_p, c_size_t,
+                   POINTER(c_size_t), POINTER(c_int)]
+    functions = native.address(lend), native.address(get), native.address(_function(chip.fmu, "fmi2DoStep"))
+    recorded, call = c_size_t(), c_int()
+    names = ("pmdfmu_fmi2SetRecordBuffer", "fmi2DoStep", "pmdfmu_fmi2GetRecordData", "pmdfmu_fmi2SetRecordBuffer")
 
-    def borrow(address: int, size: int) -> None:
-        status = lend(chip.fmu.component, address or None, size)
-        if status > 1:
-            raise FMICallException(function="pmdfmu_fmi2SetRecordBuffer", status=status)
-    return borrow
-
-
-# A result's chunks smaller than this are not faulted in ahead: small arrays come from memory the process
-# already has (the allocator keeps it), whose pages need no fault.
-PREFAULT_BYTES = 1 << 20
-_prefault_pool: List[ThreadPoolExecutor] = []
-_prefault_lock = threading.Lock()
-
-
-def _forget_prefault_pool() -> None:
-    """In a forked child: the parent's pool thread does not exist there, and a task given to its executor
-    would never run; the child makes its own pool (and lock) when it first needs one."""
-    global _prefault_lock
-    _prefault_lock = threading.Lock()
-    _prefault_pool.clear()
-
-
-if hasattr(os, "register_at_fork"):
-    os.register_at_fork(after_in_child=_forget_prefault_pool)
-
-
-def prefault(address: int, size: int) -> Optional[Future]:
-    """Faults in the pages of the result's next chunk [address, address + size) on a thread of the harness
-    (native pmd_record_prefault: a zero written to one byte of each page, all inside the range), while the
-    FMU fills the chunk before it: the kernel zeroes a fresh page on first touch, ~5 ns a recorded cycle of a
-    156-byte row, and this way does it on another core (ctypes lets go of the GIL in both calls). None for
-    a chunk below PREFAULT_BYTES. The caller waits for the future before it hands the chunk to the FMU,
-    and before the result can be freed."""
-    if size < PREFAULT_BYTES:
-        return None
-    with _prefault_lock:
-        if not _prefault_pool:
-            _prefault_pool.append(ThreadPoolExecutor(max_workers=1, thread_name_prefix="pmdfmu-prefault"))
-    function = native.library().pmd_record_prefault
-    function.restype, function.argtypes = None, [c_void_p, c_size_t]
-    return _prefault_pool[0].submit(function, address, size)
-
-
-def settle(future: Optional[Future]) -> None:
-    """Waits until a prefault task has finished, also through an interrupted wait (KeyboardInterrupt):
-    its thread writes into the result, which must outlive it; the interruption is raised after."""
-    interrupted: Optional[BaseException] = None
-    while future is not None and not future.done():
-        try:
-            wait([future])
-        except BaseException as e:          # raised once the task is done
-            interrupted = e
-    if interrupted is not None:
-        raise interrupted
+    def step_into(address: int, size: int, now: float, step: float) -> Tuple[int, int]:
+        status = fn(*functions, chip.fmu.component, now, step, address, size, byref(recorded), byref(call))
+        if status > 1:                                  # as FMPy raises for an FMI function
+            raise FMICallException(function=names[call.value], status=status)
+        return status, recorded.value
+    return step_into

@@ -46,6 +46,7 @@ from .chip import Chip, _identity, default_fmu
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
 BATCHES_PER_THREAD = 4      # tasks per worker thread: enough to even out cases of unequal length
 HANDOFF_BYTES = 1 << 20     # a recording this large, or larger, is handed back through a file (when it can be)
+HANDOFF_PREFIX = "pmdfmu-sweep-"    # the handoff folders: pmdfmu-sweep-<pid of the sweep>-<random>
 
 
 @dataclass(frozen=True)
@@ -276,12 +277,12 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
     """The cases' results, run on the client's cluster; each batch's taken as soon as it is done."""
     from distributed import as_completed
     threads = sum(client.nthreads().values()) or 1
-    shm = "/dev/shm"
-    folder = tempfile.mkdtemp(prefix="pmdfmu-sweep-", dir=shm if os.path.isdir(shm) and os.access(shm, os.W_OK)
-                              else None)
+    root = handoff_root()
+    _remove_orphans(root)
+    folder = tempfile.mkdtemp(prefix=f"{HANDOFF_PREFIX}{os.getpid()}-", dir=root)
     futures: list = []
     try:
-        token = secrets.token_hex(16)
+        token = f"{os.getpid()}-{secrets.token_hex(16)}"
         Path(folder, "token").write_text(token)
         futures = client.map(run_cases, _batches(cases, threads), handoff=(folder, token), pure=False)
         where = {future.key: i for i, future in enumerate(futures)}
@@ -294,6 +295,42 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
         raise
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+
+
+def handoff_root() -> str:
+    """Where sweeps make their handoff folders: /dev/shm where there is one (RAM, no disk), else the
+    temporary folder. A sweep killed outright leaves its folder there; the next sweep removes it, or by
+    hand when no sweep runs: rm -rf /dev/shm/pmdfmu-sweep-*."""
+    shm = "/dev/shm"
+    return shm if os.path.isdir(shm) and os.access(shm, os.W_OK) else tempfile.gettempdir()
+
+
+def _remove_orphans(root: str) -> None:
+    """Removes the handoff folders of sweeps whose process is gone (killed: SIGKILL runs no cleanup), which
+    would hold their RAM in /dev/shm until a reboot: each folder's token names its sweep's process id. A
+    folder of another user, or whose process still runs (or whose id a new process took), is left. POSIX
+    only: elsewhere os.kill(pid, 0) is no question."""
+    if os.name != "posix":
+        return
+    try:
+        entries = list(os.scandir(root))
+    except OSError:
+        return
+    for entry in entries:
+        if not entry.name.startswith(HANDOFF_PREFIX):
+            continue
+        try:
+            if entry.stat(follow_symlinks=False).st_uid != os.getuid() or not entry.is_dir(follow_symlinks=False):
+                continue
+            pid = int(Path(entry.path, "token").read_text().split("-")[0])
+        except (OSError, ValueError):
+            continue
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            shutil.rmtree(entry.path, ignore_errors=True)
+        except OSError:                     # another user's process: it runs
+            pass
 
 
 def _current_client(address: str):
