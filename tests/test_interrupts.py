@@ -153,3 +153,48 @@ def test_the_recording_cleanup_retries_through_interrupts(monkeypatch):
         chip.set("record.enabled", True)
         chip._step(CAPACITY + 1)                      # the next doStep closes it first: no capacity error
         assert not chip.get("record.enabled") and not chip._recording
+
+
+# ---- real signals at random times, in a process of its own ----
+
+CHILD = """
+import sys
+sys.path.insert(0, {tests!r})
+import test_interrupts as t
+import pathlib
+tmp = pathlib.Path({tmp!r})
+for run in sorted(t.RUNS):
+    with t.chip_for(run, tmp) as chip:
+        print("ready", flush=True)
+        try:
+            while True:
+                chip.run(t.CYCLES, record=t.RUNS[run][1])
+        except KeyboardInterrupt:
+            pass
+        t.assert_intact(chip, run, tmp)
+        print("intact", run, flush=True)
+"""
+
+
+def test_sigint_at_random_times_leaves_every_kind_of_run_exact(tmp_path):
+    """SIGINT, sent at random times into a process recording in a loop (each kind of run in turn): after
+    each, the child checks its chip as the line-by-line test does and says so."""
+    import random
+    import signal
+    import subprocess
+    import time
+    code = CHILD.format(tests=str(Path(__file__).parent), tmp=str(tmp_path))
+    child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True)
+    rng, said = random.Random(20261201), []
+    try:
+        for _ in RUNS:
+            assert child.stdout.readline() == "ready\n"
+            time.sleep(0.05 + 0.3 * rng.random())
+            child.send_signal(signal.SIGINT)
+            said.append(child.stdout.readline())
+        out, err = child.communicate(timeout=120)
+    finally:
+        child.kill()
+    assert child.returncode == 0, err
+    assert said == [f"intact {run}\n" for run in sorted(RUNS)]

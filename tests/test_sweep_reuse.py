@@ -217,3 +217,35 @@ def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
         assert not Path(left[0]).exists() and alive.exists()
     finally:
         shutil.rmtree(alive, ignore_errors=True)
+
+
+def test_a_sweep_interrupted_at_random_times_leaves_no_folder(tmp_path):
+    """Ctrl-C (SIGINT) at random times while a sweep runs on its local cluster: the sweep raises
+    KeyboardInterrupt, its cluster closes, and its handoff folder is gone with it."""
+    import glob
+    import os
+    import random
+    import signal
+    import subprocess
+    import sys
+    import time
+    script = long_move(tmp_path / "long.script", 1_000_000)
+    code = ("import pmdfmu\nfrom pmdfmu.sweep import Case\ntry:\n"
+            f"    pmdfmu.sweep([Case(f'long{{k}}', script={str(script)!r}) for k in range(4)], workers=1)\n"
+            "except KeyboardInterrupt:\n    print('interrupted', flush=True)\n")
+    rng = random.Random(7)
+    for _ in range(2):
+        process = subprocess.Popen([sys.executable, "-c", code], start_new_session=True, text=True,
+                                   stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+        pattern = os.path.join(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{process.pid}-*")
+        try:
+            deadline = time.monotonic() + 120
+            while not glob.glob(pattern) and time.monotonic() < deadline and process.poll() is None:
+                time.sleep(0.02)
+            time.sleep(rng.random() * 0.5)
+            process.send_signal(signal.SIGINT)
+            out, _ = process.communicate(timeout=120)
+        finally:
+            if process.poll() is None:
+                os.killpg(process.pid, signal.SIGKILL)
+        assert out == "interrupted\n" and not glob.glob(pattern)
