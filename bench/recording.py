@@ -17,6 +17,7 @@ import fmpy
 
 import common
 import pmdfmu
+from pmdfmu import recording
 from pmdfmu.chip import RECORDED
 from pmdfmu.profile import load_external_profile, record_outputs, start_external_profile
 
@@ -81,3 +82,28 @@ def benchmarks(tmp: Path) -> None:
                               f"simulate_fmu {sim.text(1e3, 'ms', '.0f')}"
                               + (f" ({sim_runs} runs)" if sim_runs != common.RUNS else ""),
                               ratio, ">= 200x (simulate_fmu / run)", ratio >= 200)
+    lending(table)
+
+
+def lending(table) -> None:
+    """FMI 2's lent rows (pmdfmu_fmi2SetRecordBuffer: the FMU writes the result in place) against the
+    copy of record.data into the result that FMI 3 makes (recording.lent_stepper made to give None),
+    interleaved run by run, status + Reals: what the extension buys, per recorded row."""
+    names = SETS["status + Reals (7/axis)"]
+    real = recording.lent_stepper
+    for cycles in CYCLES:
+        lent, copied = [], []
+        for _ in range(common.RUNS):
+            for times, stepper in ((lent, real), (copied, lambda chip: None)):
+                recording.lent_stepper = stepper
+                try:
+                    with prepared(2, table) as chip:
+                        times.append(common.timed(lambda: chip.run(cycles, record=names)))
+                finally:
+                    recording.lent_stepper = real
+        lent_f, copied_f = common.Figure.of(lent), common.Figure.of(copied)
+        saved = (copied_f.median - lent_f.median) / lent_f.median
+        common.report(f"lent vs copied rows, FMI 2, status + Reals, {cycles:,} cycles",
+                      lent_f.per(cycles).text(1e9, "ns/row"), f"copied {copied_f.per(cycles).text(1e9, 'ns/row')}",
+                      copied_f.median / lent_f.median,
+                      f"report (the copy costs {saved:.0%} of a lent row: the extension stays if > 10 %)", True)

@@ -79,6 +79,7 @@ class InitializationChip:
     get = pmdfmu.Chip.get
     _size = pmdfmu.Chip._size
     _variable = pmdfmu.Chip._variable
+    _nearest = pmdfmu.Chip._nearest
 
     def reply(self):
         n = self.get("host.replyCount")

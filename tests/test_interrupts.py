@@ -7,6 +7,7 @@ each interrupted run (once, and twice in a row: the second lands in the cleanup 
 same Chip's next recording is byte for byte a fresh Chip's at the same cycle, record.enabled is off
 once the Chip steps again, and the FMU holds none of the memory it was lent."""
 import _thread
+import signal
 import sys
 from pathlib import Path
 
@@ -32,11 +33,14 @@ class Interrupter:
         self.at, self.lines = set(at), 0
 
     def __enter__(self):
+        # Python's own handler, which raises KeyboardInterrupt (another test may have left another one)
+        self.handler = signal.signal(signal.SIGINT, signal.default_int_handler)
         sys.settrace(self.call)
         return self
 
     def __exit__(self, *exc):
         sys.settrace(None)
+        signal.signal(signal.SIGINT, self.handler)
 
     def call(self, frame, event, arg):
         return self.line if frame.f_code.co_filename.startswith(WATCHED) else None
@@ -158,7 +162,9 @@ def test_the_recording_cleanup_retries_through_interrupts(monkeypatch):
 # ---- real signals at random times, in a process of its own ----
 
 CHILD = """
+import signal
 import sys
+signal.signal(signal.SIGINT, signal.default_int_handler)      # as in a terminal (a background job ignores it)
 sys.path.insert(0, {tests!r})
 import test_interrupts as t
 import pathlib
@@ -180,13 +186,15 @@ def test_sigint_at_random_times_leaves_every_kind_of_run_exact(tmp_path):
     """SIGINT, sent at random times into a process recording in a loop (each kind of run in turn): after
     each, the child checks its chip as the line-by-line test does and says so."""
     import random
-    import signal
     import subprocess
+    import threading
     import time
     code = CHILD.format(tests=str(Path(__file__).parent), tmp=str(tmp_path))
     child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                              text=True)
     rng, said = random.Random(20261201), []
+    watchdog = threading.Timer(300, child.kill)       # a child that missed a signal would record forever
+    watchdog.start()
     try:
         for _ in RUNS:
             assert child.stdout.readline() == "ready\n"
@@ -195,6 +203,7 @@ def test_sigint_at_random_times_leaves_every_kind_of_run_exact(tmp_path):
             said.append(child.stdout.readline())
         out, err = child.communicate(timeout=120)
     finally:
+        watchdog.cancel()
         child.kill()
     assert child.returncode == 0, err
     assert said == [f"intact {run}\n" for run in sorted(RUNS)]

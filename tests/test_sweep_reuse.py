@@ -230,7 +230,8 @@ def test_a_sweep_interrupted_at_random_times_leaves_no_folder(tmp_path):
     import sys
     import time
     script = long_move(tmp_path / "long.script", 1_000_000)
-    code = ("import pmdfmu\nfrom pmdfmu.sweep import Case\ntry:\n"
+    code = ("import signal\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"   # a background job ignores it
+            "import pmdfmu\nfrom pmdfmu.sweep import Case\ntry:\n"
             f"    pmdfmu.sweep([Case(f'long{{k}}', script={str(script)!r}) for k in range(4)], workers=1)\n"
             "except KeyboardInterrupt:\n    print('interrupted', flush=True)\n")
     rng = random.Random(7)

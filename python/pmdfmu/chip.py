@@ -601,17 +601,20 @@ class Chip:
     def _variable(self, name: str, fn: str):
         """The model variable of this name, or UnknownVariable naming the call and the nearest names."""
         v = self.variables.get(name)
-        if v is not None:
-            return v
+        if v is None:
+            raise UnknownVariable(f"{fn}: {name!r} is not a variable of the FMU{self._nearest(name)}")
+        return v
+
+    def _nearest(self, name: str) -> str:
+        """The end of a message for a name that is no variable: the nearest names set() and get() take."""
         names = set(self.variables)
-        for n, variable in self.variables.items():       # the names set() and get() take besides the variables
+        for n in self.variables:                # arrays as a whole (FMI 2) and their elements (FMI 3)
             m = _ELEMENT.fullmatch(n)
             if m:
                 names.add(m.group(1))
             names.update(f"{n}[{i + 1}]" for i in range(self._size(n) if self.fmi_version == 3 else 0))
         near = difflib.get_close_matches(name, sorted(names), n=3, cutoff=0.7)
-        hint = f": did you mean {' or '.join(near)}?" if near else " (pmdfmu info lists them)"
-        raise UnknownVariable(f"{fn}: {name!r} is not a variable of the FMU{hint}")
+        return f": did you mean {' or '.join(near)}?" if near else " (pmdfmu info lists them)"
 
     @_refusals
     def set(self, name: str, value) -> None:
@@ -1199,7 +1202,7 @@ class Chip:
         for name in names:
             element = _array_element(self.variables, name) if self.fmi_version == 3 else None
             if name not in DTYPES or (name not in self.variables and not element):
-                raise ValueError(f"run: record={name!r} is not a variable of the FMU (pmdfmu info lists them)")
+                raise ValueError(f"run: record={name!r} is not a variable of the FMU{self._nearest(name)}")
             where[name] = element or (name, 0)
         known = where, np.dtype([CYCLE] + [(n, DTYPES[n]) for n in names])
         if len(self._recorded) >= 16:
