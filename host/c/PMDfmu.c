@@ -105,7 +105,7 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
     va_start(ap, message);              /* the FMU escapes '%' as "%%" and passes no arguments */
     vsnprintf(text, sizeof text, message, ap);
     va_end(ap);
-    /* kept for the line of the call that fails: with no callback too, it is the only reason */
+    /* kept for the transport's line of the call that fails (errors come whatever the categories) */
     if (status >= fmi2Error)
         memcpy(d->fmuError, text, sizeof text);
     if (d->options.log)
@@ -425,8 +425,11 @@ static PMDresult open_device(PMDFMUDevice *d, const char *fmu)
         }
         fmu = d->unpacked;
     }
-    if (!realpath(fmu, dir))
+    if (!realpath(fmu, dir)) {
+        snprintf(why, sizeof why, "cannot resolve the FMU's path %s: %s", fmu, error_text(errno, path, sizeof path));
+        log_text(d, why);
         return PMD_ERR_OpeningPort;
+    }
     snprintf(path, sizeof path, "%s/modelDescription.xml", dir);
     xml = read_file(path);
     if (!xml || !attribute(xml, "guid", guid, sizeof guid) ||

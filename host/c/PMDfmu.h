@@ -90,8 +90,9 @@ PMDresult PMDFMU_Wait(PMDAxisInterface axis_intf, PMDuint32 microseconds);
 
 /* C-Motion's sleep: host time passes for every chip the calling thread opened (and not yet
    closed), each running the cycles due, as PMDFMU_Wait does; other threads' chips do not move, so
-   a thread's results do not depend on what other threads do. A chip opened in one thread and
-   handed to another: advance it there with PMDFMU_Wait. */
+   a thread's results do not depend on what other threads do. A chip handed to another thread
+   stays its opener's for PMDTaskWait: that thread advances it with PMDFMU_Wait, and the opener
+   calls no PMDTaskWait while it does. */
 void PMDTaskWait(PMDuint32 milliseconds);
 
 /* Runs the next `cycles` cycles of the chip's grid now (the harness's chip.run); the host clock
