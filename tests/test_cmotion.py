@@ -10,7 +10,6 @@ they load the FMU the suite tests (pmdfmu.default_fmu(2))."""
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -19,6 +18,7 @@ import pmdfmu
 from pmdfmu import (PMDActivityInMotionMask, PMDAxis1Mask, PMDAxis2Mask, PMDAxis3Mask, PMDExternalProfile,
                     PMDTrapezoidal, field_ex)
 from pmdfmu.chip import COMMANDS, encode, instruction_word
+from cmotion_build import compile_program, generate
 from reference import ExternalProfile
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -44,19 +44,8 @@ def programs(tmp_path_factory):
     if not shutil.which("cc"):
         pytest.skip("no CMake build of the C-Motion programs and no C compiler")
     tmp = tmp_path_factory.mktemp("cmotion")
-    gen = tmp / "generated"
-    for generator in ("generate_cmotion.py", "generate_hosttime.py"):
-        subprocess.run([sys.executable, str(ROOT / "modelDescription" / generator), str(gen)], check=True)
-    headers = Path(__import__("fmpy").__file__).parent / "c-code"
-    library = [ROOT / "host" / "c" / "PMDfmu.c", ROOT / "host" / "c" / "PMDhosttime.c", gen / "c-motion.c",
-               gen / "PMDfmu_ports.c"]
-    out = {}
-    for p in PROGRAMS:
-        out[p] = tmp / p
-        subprocess.run(["cc", "-std=c99", "-O1", "-DPMD_HAVE_HOSTTIME", f"-I{ROOT / 'host' / 'c'}", f"-I{gen}",
-                        f"-I{headers}", *map(str, library), str(source_of(p)), "-o", str(out[p]), "-ldl", "-lm"],
-                       check=True)
-    return out
+    generated = generate(tmp / "generated")
+    return {p: compile_program(source_of(p), tmp / p, generated) for p in PROGRAMS}
 
 
 def run_c(programs, name, *args, host="none"):

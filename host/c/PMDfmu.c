@@ -1,9 +1,14 @@
 /* The C-Motion library's FMU transport (PMDfmu.h): loads the FMI 2 binary of the
    PMDMotionProcessor FMU with dlopen and drives it as a co-simulation master does. */
-#define _XOPEN_SOURCE 700     /* realpath, mkdtemp */
+#define _XOPEN_SOURCE 700     /* realpath, mkdtemp, nftw */
 #include <dlfcn.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
 #include <limits.h>
 #include <math.h>
+#include <pthread.h>
+#include <spawn.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,17 +29,27 @@
 #define PMD_FMI2_PLATFORM "linux64"
 #endif
 
+/* The longest message the FMU formats (fmu_src/fmi/instance.c: a refused script names the places
+   it was looked for) */
+#define PMD_FMU_MESSAGE 8192
+
+extern char **environ;     /* unzip's environment: the caller's */
+
 /* One chip: an FMU instance and the host's side of its ports. Every handle of the chip points here. */
 typedef struct PMDFMUDevice {
-    struct PMDFMUDevice *next;      /* the open chips, for PMDTaskWait */
+    struct PMDFMUDevice *next;      /* the open chips, for PMDTaskWait (under open_devices_lock) */
+    pthread_t opener;               /* the thread that opened it: its PMDTaskWait advances the chip */
     int handles;                    /* handles that use it; freed with the last */
     void *library;
     fmi2Component instance;
     char *unpacked;                 /* the temporary directory a .fmu file was unpacked into, or NULL */
     PMDFMUOptions options;
+    fmi2CallbackFunctions callbacks;    /* the FMU's logger calls back with this device */
+    char fmuError[PMD_FMU_MESSAGE];     /* the FMU's last error message, for the transport's line */
     PMDAxisHandle self;             /* the handle the cycle callback gets */
     fmi2Integer strobe;             /* the last host.strobe value set */
     fmi2Integer memoryStrobe;       /* the last memory.strobe value set */
+    int initialized;                /* out of initialization mode: Terminate before FreeInstance */
     uint64_t hostNs;                /* the host clock: ns since the chip's time 0 */
     int commandsTakeTime;           /* 0 for the host interface `none`: commands run no cycle */
 #ifdef PMD_HAVE_HOSTTIME
@@ -49,6 +64,9 @@ typedef struct PMDFMUDevice {
     fmi2GetBooleanTYPE *getBoolean;
 } PMDFMUDevice;
 
+/* Threads open and close their chips at the same time (one chip per thread), so the list is read
+   and changed under the lock only; a chip's other fields are its thread's and need none. */
+static pthread_mutex_t open_devices_lock = PTHREAD_MUTEX_INITIALIZER;
 static PMDFMUDevice *open_devices;
 
 /* ---- host time (host/c/PMDhosttime.h) ---- */
@@ -79,15 +97,19 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
                    fmi2String message, ...)
 {
     PMDFMUDevice *d = env;
-    char text[2048];
+    char text[PMD_FMU_MESSAGE];
     va_list ap;
     (void)name;
-    if (!d || !d->options.log)
+    if (!d || !message)
         return;
     va_start(ap, message);              /* the FMU escapes '%' as "%%" and passes no arguments */
     vsnprintf(text, sizeof text, message, ap);
     va_end(ap);
-    d->options.log(d->options.logContext, category ? category : "", (int)status, text);
+    /* kept for the transport's line of the call that fails (errors come whatever the categories) */
+    if (status >= fmi2Error)
+        memcpy(d->fmuError, text, sizeof text);
+    if (d->options.log)
+        d->options.log(d->options.logContext, category ? category : "", (int)status, text);
 }
 
 static void log_text(PMDFMUDevice *d, const char *text)
@@ -96,20 +118,36 @@ static void log_text(PMDFMUDevice *d, const char *text)
         d->options.log(d->options.logContext, "transport", fmi2Error, text);
 }
 
+/* A refused FMI call: the transport's line names the call and quotes the FMU's reason (the
+   error it logged), so that "fmi2ExitInitializationMode failed: ... script:2: reason" is one
+   line, whichever categories the callback gets. */
+static PMDresult fmi_failed(PMDFMUDevice *d, PMDresult result, const char *call)
+{
+    char text[PMD_FMU_MESSAGE + 128];
+    const char *reason = d->fmuError;
+    const size_t n = strlen(call);
+    if (strncmp(reason, call, n) == 0 && reason[n] == ':' && reason[n + 1] == ' ')
+        reason += n + 2;                /* the FMU's message names the call too */
+    snprintf(text, sizeof text, "%s failed: %s", call, reason[0] ? reason : "the FMU logged no reason");
+    d->fmuError[0] = '\0';
+    log_text(d, text);
+    return result;
+}
+
 /* ---- the time grid: the FMU's own outputs (time, nextCycleTime, activeCycleTime) ---- */
 
 typedef struct {
     double now, next, cycle;    /* the last communication point, the next cycle's time, the cycle time (s) */
 } Grid;
 
-static int read_grid(PMDFMUDevice *d, Grid *g)
+static PMDresult read_grid(PMDFMUDevice *d, Grid *g)
 {
     const fmi2ValueReference vrs[3] = {PMD_FMU_VR_TIME, PMD_FMU_VR_NEXT_CYCLE_TIME, PMD_FMU_VR_ACTIVE_CYCLE_TIME};
     fmi2Real v[3];
     if (d->getReal(d->instance, vrs, 3, v) > fmi2Warning)
-        return 0;
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2GetReal of the time grid");
     g->now = v[0], g->next = v[1], g->cycle = v[2];
-    return 1;
+    return PMD_ERR_OK;
 }
 
 /* A grid time in whole ns: the grid's times are whole microseconds (the sample time register). */
@@ -121,10 +159,8 @@ static uint64_t to_ns(double seconds)
 /* One doStep that runs the next `cycles` cycles of the grid (python/pmdfmu/chip.py: Chip._step). */
 static PMDresult step(PMDFMUDevice *d, const Grid *g, uint64_t cycles)
 {
-    if (d->doStep(d->instance, g->now, (g->next - g->now) + (double)cycles * g->cycle, fmi2True) > fmi2Warning) {
-        log_text(d, "fmi2DoStep failed");
-        return PMD_ERR_Driver;
-    }
+    if (d->doStep(d->instance, g->now, (g->next - g->now) + (double)cycles * g->cycle, fmi2True) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2DoStep");
     return PMD_ERR_OK;
 }
 
@@ -132,11 +168,11 @@ static PMDresult step(PMDFMUDevice *d, const Grid *g, uint64_t cycles)
 static PMDresult run_due(PMDFMUDevice *d)
 {
     for (;;) {
-        Grid g;
+        Grid g = {0, 0, 0};
         uint64_t next, cycle, due;
-        PMDresult r;
-        if (!read_grid(d, &g))
-            return PMD_ERR_Driver;
+        PMDresult r = read_grid(d, &g);
+        if (r != PMD_ERR_OK)
+            return r;
         next = to_ns(g.next), cycle = to_ns(g.cycle);
 #ifdef PMD_HAVE_HOSTTIME
         due = PMDHostCyclesDue(d->hostNs, next, cycle);
@@ -201,41 +237,114 @@ static int attribute(const char *xml, const char *name, char *out, size_t size)
     return 1;
 }
 
-static int run_program(char *const argv[])
+/* Runs argv (argv[0] looked for in PATH) with stdin from /dev/null and stdout and stderr into the
+   open file `output`: a library writes nothing on its user's terminal. posix_spawn, not fork, in
+   a process whose other threads may hold locks. The exit status, or -1 with errno. */
+static int run_program(char *const argv[], int output)
 {
-    int status;
-    pid_t pid = fork();
-    if (pid < 0)
-        return -1;
-    if (pid == 0) {
-        execvp(argv[0], argv);
-        _exit(127);
-    }
-    if (waitpid(pid, &status, 0) < 0)
-        return -1;
+    posix_spawn_file_actions_t actions;
+    pid_t pid;
+    int status, e;
+    if ((e = posix_spawn_file_actions_init(&actions)) != 0)
+        return errno = e, -1;
+    if ((e = posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0)) == 0 &&
+        (e = posix_spawn_file_actions_adddup2(&actions, output, 1)) == 0 &&
+        (e = posix_spawn_file_actions_adddup2(&actions, output, 2)) == 0)
+        e = posix_spawnp(&pid, argv[0], &actions, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (e != 0)
+        return errno = e, -1;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return -1;
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-static void remove_tree(const char *dir)
+/* What a program wrote into `output`, on one line: every run of blanks and line ends one blank
+   (unzip wraps its sentences), at most size - 1 characters. */
+static void read_output(int output, char *text, size_t size)
 {
-    char *argv[] = {"rm", "-rf", (char *)dir, NULL};
-    run_program(argv);
+    ssize_t n;
+    size_t i = 0;
+    char c;
+    int blank = 1;
+    if (lseek(output, 0, SEEK_SET) != 0) {
+        text[0] = '\0';
+        return;
+    }
+    while (i + 1 < size && (n = read(output, &c, 1)) == 1) {
+        int is_blank = c == ' ' || c == '\t' || c == '\n' || c == '\r';
+        if (!is_blank)
+            text[i++] = c;
+        else if (!blank)
+            text[i++] = ' ';
+        blank = is_blank;
+    }
+    while (i > 0 && text[i - 1] == ' ')
+        i--;
+    text[i] = '\0';
 }
 
-/* A .fmu file unpacked into a new temporary directory (NULL on failure). */
-static char *unpack(const char *fmu)
+static int remove_entry(const char *path, const struct stat *st, int type, struct FTW *ftw)
 {
-    char *dir = malloc(PATH_MAX);
+    (void)st, (void)type, (void)ftw;
+    remove(path);
+    return 0;           /* on with the rest: remove what can be removed */
+}
+
+/* The temporary directory and what it holds, children first, no link followed (nftw, not
+   `rm -rf`: no child process, nothing on stderr). */
+static void remove_tree(const char *dir)
+{
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* errno's text (strerror_r: strerror's buffer may be shared by the threads) */
+static const char *error_text(int e, char *text, size_t size)
+{
+    if (strerror_r(e, text, size) != 0)
+        snprintf(text, size, "error %d", e);
+    return text;
+}
+
+/* A .fmu file unpacked into a new temporary directory (NULL on failure, with why: unzip's own
+   words, which go into the library's log line instead of onto the terminal). */
+static char *unpack(const char *fmu, char *why, size_t size)
+{
+    char *dir = malloc(PATH_MAX), output[PATH_MAX], said[1024];
     const char *tmp = getenv("TMPDIR");
     char *argv[] = {"unzip", "-qq", "-o", (char *)fmu, "-d", dir, NULL};
-    if (!dir)
+    int out, status;
+    if (!tmp || !*tmp)
+        tmp = "/tmp";
+    if (!dir) {
+        snprintf(why, size, "out of memory");
         return NULL;
-    snprintf(dir, PATH_MAX, "%s/pmdfmu-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    }
+    snprintf(dir, PATH_MAX, "%s/pmdfmu-XXXXXX", tmp);
+    snprintf(output, sizeof output, "%s/pmdfmu-unzip-XXXXXX", tmp);
     if (!mkdtemp(dir)) {
+        snprintf(why, size, "cannot make a directory in %s: %s", tmp, error_text(errno, said, sizeof said));
         free(dir);
         return NULL;
     }
-    if (run_program(argv) != 0) {
+    if ((out = mkstemp(output)) < 0) {
+        snprintf(why, size, "cannot make a file in %s: %s", tmp, error_text(errno, said, sizeof said));
+        remove_tree(dir);
+        free(dir);
+        return NULL;
+    }
+    unlink(output);                         /* the open file is all it needs */
+    fcntl(out, F_SETFD, FD_CLOEXEC);        /* no other thread's child inherits it */
+    status = run_program(argv, out);
+    if (status < 0)
+        snprintf(why, size, "cannot run unzip: %s", error_text(errno, said, sizeof said));
+    else if (status > 0) {
+        read_output(out, said, sizeof said);
+        snprintf(why, size, "unzip exited with %d: %s", status, said[0] ? said : "(it said nothing)");
+    }
+    close(out);
+    if (status != 0) {
         remove_tree(dir);
         free(dir);
         return NULL;
@@ -246,13 +355,16 @@ static char *unpack(const char *fmu)
 static void free_device(PMDFMUDevice *d)
 {
     PMDFMUDevice **p;
+    pthread_mutex_lock(&open_devices_lock);
     for (p = &open_devices; *p; p = &(*p)->next)
         if (*p == d) {
             *p = d->next;
             break;
         }
+    pthread_mutex_unlock(&open_devices_lock);
     if (d->instance) {
-        d->terminate(d->instance);
+        if (d->initialized)     /* FMI 2 terminates an initialized instance; a failed one is only freed */
+            d->terminate(d->instance);
         d->freeInstance(d->instance);
     }
     if (d->library)
@@ -272,28 +384,52 @@ static void load(PMDFMUDevice *d, const char *name, void *function_pointer)
     memcpy(function_pointer, &p, sizeof p);
 }
 
+/* The categories the log callback gets (PMDFMUOptions.logCategories); without a callback none,
+   though the FMU's errors still come to the logger, for the transport's line. */
+static PMDresult set_log_categories(PMDFMUDevice *d, fmi2SetDebugLoggingTYPE *setDebugLogging)
+{
+    static const char *const errorsAndWarnings[] = {"errors", "warnings", NULL};
+    const char *const *categories = d->options.logCategories ? d->options.logCategories : errorsAndWarnings;
+    size_t n = 0;
+    fmi2Status status;
+    while (categories[n])
+        n++;
+    /* FMI's SetDebugLogging reads 0 categories as all of them: an empty list is logging off */
+    if (!d->options.log || n == 0)
+        status = setDebugLogging(d->instance, fmi2False, 0, NULL);
+    else
+        status = setDebugLogging(d->instance, fmi2True, n, categories);
+    return status > fmi2Warning ? fmi_failed(d, PMD_ERR_Driver, "fmi2SetDebugLogging") : PMD_ERR_OK;
+}
+
 static PMDresult open_device(PMDFMUDevice *d, const char *fmu)
 {
     char dir[PATH_MAX], path[PATH_MAX + 512], guid[128], identifier[128], resources[PATH_MAX + 32];
     char *xml;
     struct stat st;
+    char why[PATH_MAX + 1200];
     fmi2InstantiateTYPE *instantiate;
-    static fmi2CallbackFunctions callbacks = {logger, calloc, free, NULL, NULL};
+    fmi2SetDebugLoggingTYPE *setDebugLogging;
 
     if (!fmu || stat(fmu, &st) != 0) {
         log_text(d, "no FMU: set PMDFMUOptions.fmu or PMDFMU_FMU to the .fmu file or its unpacked directory");
         return PMD_ERR_OpeningPort;
     }
     if (!S_ISDIR(st.st_mode)) {
-        d->unpacked = unpack(fmu);
+        char text[sizeof why + PATH_MAX + 32];
+        d->unpacked = unpack(fmu, why, sizeof why);
         if (!d->unpacked) {
-            log_text(d, "cannot unpack the FMU (unzip)");
+            snprintf(text, sizeof text, "cannot unpack the FMU %s: %s", fmu, why);
+            log_text(d, text);
             return PMD_ERR_OpeningPort;
         }
         fmu = d->unpacked;
     }
-    if (!realpath(fmu, dir))
+    if (!realpath(fmu, dir)) {
+        snprintf(why, sizeof why, "cannot resolve the FMU's path %s: %s", fmu, error_text(errno, path, sizeof path));
+        log_text(d, why);
         return PMD_ERR_OpeningPort;
+    }
     snprintf(path, sizeof path, "%s/modelDescription.xml", dir);
     xml = read_file(path);
     if (!xml || !attribute(xml, "guid", guid, sizeof guid) ||
@@ -317,19 +453,22 @@ static PMDresult open_device(PMDFMUDevice *d, const char *fmu)
     load(d, "fmi2GetInteger", &d->getInteger);
     load(d, "fmi2GetReal", &d->getReal);
     load(d, "fmi2GetBoolean", &d->getBoolean);
+    load(d, "fmi2SetDebugLogging", &setDebugLogging);
     if (!instantiate || !d->freeInstance || !d->terminate || !d->doStep || !d->setInteger || !d->getInteger ||
-        !d->getReal) {
+        !d->getReal || !setDebugLogging) {
         log_text(d, "the FMU binary lacks an FMI 2 function");
         return PMD_ERR_OpeningPort;
     }
     snprintf(resources, sizeof resources, "file://%s/resources", dir);
-    d->instance = instantiate("pmd", fmi2CoSimulation, guid, resources, &callbacks, fmi2False,
+    d->callbacks.logger = logger;
+    d->callbacks.allocateMemory = calloc;
+    d->callbacks.freeMemory = free;
+    d->callbacks.componentEnvironment = d;
+    d->instance = instantiate("pmd", fmi2CoSimulation, guid, resources, &d->callbacks, fmi2False,
                               d->options.log != NULL);
-    if (!d->instance) {
-        log_text(d, "fmi2Instantiate failed");
-        return PMD_ERR_OpeningPort;
-    }
-    return PMD_ERR_OK;
+    if (!d->instance)
+        return fmi_failed(d, PMD_ERR_OpeningPort, "fmi2Instantiate");
+    return set_log_categories(d, setDebugLogging);
 }
 
 /* Sets the parameters and initializes at time 0. */
@@ -352,17 +491,25 @@ static PMDresult initialize(PMDFMUDevice *d)
     load(d, "fmi2SetReal", &setReal);
     load(d, "fmi2SetBoolean", &setBoolean);
     load(d, "fmi2SetString", &setString);
-    if (!setup || !enter || !leave || !setReal || !setBoolean || !setString)
+    if (!setup || !enter || !leave || !setReal || !setBoolean || !setString) {
+        log_text(d, "the FMU binary lacks an FMI 2 function");
         return PMD_ERR_OpeningPort;
-    if (setup(d->instance, fmi2False, 0.0, 0.0, fmi2False, 0.0) > fmi2Warning ||
-        (d->options.cycleTime > 0 && setReal(d->instance, &cycleTime, 1, &d->options.cycleTime) > fmi2Warning) ||
-        (size > 0 && d->setInteger(d->instance, &memorySize, 1, &size) > fmi2Warning) ||
-        setBoolean(d->instance, &loopback, 1, &loop) > fmi2Warning ||
-        (text && setString(d->instance, &script, 1, &text) > fmi2Warning) ||
-        enter(d->instance) > fmi2Warning || leave(d->instance) > fmi2Warning) {
-        log_text(d, "the FMU refused a parameter or its initialization");
-        return PMD_ERR_Driver;
     }
+    if (setup(d->instance, fmi2False, 0.0, 0.0, fmi2False, 0.0) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2SetupExperiment");
+    if (d->options.cycleTime > 0 && setReal(d->instance, &cycleTime, 1, &d->options.cycleTime) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2SetReal of cycleTime");
+    if (size > 0 && d->setInteger(d->instance, &memorySize, 1, &size) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2SetInteger of memorySize");
+    if (setBoolean(d->instance, &loopback, 1, &loop) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2SetBoolean of loopback");
+    if (text && setString(d->instance, &script, 1, &text) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2SetString of script");
+    if (enter(d->instance) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2EnterInitializationMode");
+    if (leave(d->instance) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2ExitInitializationMode");
+    d->initialized = 1;
     return PMD_ERR_OK;
 }
 
@@ -402,8 +549,11 @@ PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumb
         return r;
     }
     d->handles = 1;
+    d->opener = pthread_self();
+    pthread_mutex_lock(&open_devices_lock);
     d->next = open_devices;
     open_devices = d;
+    pthread_mutex_unlock(&open_devices_lock);
     axis_handle->transport_data = d;
     return PMD_ERR_OK;
 }
@@ -475,18 +625,14 @@ PMDresult PMDFMU_Command(PMDAxisInterface axis_intf, PMDuint8 opcode, int chipWi
         if ((r = run_due(d)) != PMD_ERR_OK)
             return r;
     }
-    if (d->setInteger(d->instance, vrs, (size_t)n + 2, values) > fmi2Warning) {
-        log_text(d, "fmi2SetInteger of the host port failed");
-        return PMD_ERR_Driver;
-    }
+    if (d->setInteger(d->instance, vrs, (size_t)n + 2, values) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2SetInteger of the host port");
     /* a get executes the batch */
     vrs[0] = PMD_FMU_VR_HOST_ACK, vrs[1] = PMD_FMU_VR_HOST_ERROR, vrs[2] = PMD_FMU_VR_HOST_REPLY_COUNT;
     for (i = 0; i < nreply; i++)
         vrs[3 + i] = PMD_FMU_VR_HOST_REPLY + (fmi2ValueReference)i;
-    if (d->getInteger(d->instance, vrs, (size_t)nreply + 3, values) > fmi2Warning) {
-        log_text(d, "fmi2GetInteger of the host port failed");
-        return PMD_ERR_Driver;
-    }
+    if (d->getInteger(d->instance, vrs, (size_t)nreply + 3, values) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2GetInteger of the host port");
     if (values[0] != d->strobe) {
         log_text(d, "host.ack is not the strobe: the FMU did not execute the command");
         return PMD_ERR_NotResponding;
@@ -518,7 +664,7 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
         return PMD_ERR_InterfaceNotInitialized;
     d = *transport;
     if (d->getInteger(d->instance, &sizeVr, 1, &size) > fmi2Warning)
-        return PMD_ERR_Driver;
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2GetInteger of memorySize");
     if (offset > (PMDuint32)size || count > (PMDuint32)size - offset || (count && !data))
         return PMD_ERR_InvalidAddress;
     for (done = 0; done < count;) {
@@ -532,10 +678,8 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
         vrs[n + 1] = PMD_FMU_VR_MEMORY_COUNT, values[n + 1] = (fmi2Integer)n;
         vrs[n + 2] = PMD_FMU_VR_MEMORY_STROBE, values[n + 2] = d->memoryStrobe;
         if (d->setInteger(d->instance, vrs, n + 3, values) > fmi2Warning ||
-            d->getInteger(d->instance, &ackVr, 1, &ack) > fmi2Warning) {     /* a get executes the write */
-            log_text(d, "the FMU refused a dual-port write");
-            return PMD_ERR_Driver;
-        }
+            d->getInteger(d->instance, &ackVr, 1, &ack) > fmi2Warning)     /* a get executes the write */
+            return fmi_failed(d, PMD_ERR_Driver, "the dual-port write (fmi2SetInteger of memory.*)");
         done += n;
     }
     return PMD_ERR_OK;
@@ -553,33 +697,50 @@ PMDresult PMDFMU_Wait(PMDAxisInterface axis_intf, PMDuint32 microseconds)
     return run_due(d);
 }
 
+/* The first chip from d on (in the list) that the calling thread opened; under the lock. */
+static PMDFMUDevice *opened_here(PMDFMUDevice *d)
+{
+    const pthread_t self = pthread_self();
+    while (d && !pthread_equal(d->opener, self))
+        d = d->next;
+    return d;
+}
+
+/* The calling thread's chips, each stepped outside the lock (other threads open and close theirs
+   meanwhile); a chip stays in the list while it runs, since only its own thread closes it. */
 void PMDTaskWait(PMDuint32 milliseconds)
 {
     PMDFMUDevice *d;
-    for (d = open_devices; d; d = d->next) {
+    pthread_mutex_lock(&open_devices_lock);
+    d = opened_here(open_devices);
+    pthread_mutex_unlock(&open_devices_lock);
+    while (d) {
         d->hostNs += (uint64_t)milliseconds * 1000000u;
         run_due(d);
+        pthread_mutex_lock(&open_devices_lock);
+        d = opened_here(d->next);
+        pthread_mutex_unlock(&open_devices_lock);
     }
 }
 
 PMDresult PMDFMU_RunCycles(PMDAxisInterface axis_intf, PMDuint32 cycles)
 {
     PMDFMUDevice *d;
-    Grid g;
+    Grid g = {0, 0, 0};
     PMDuint32 i;
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
     for (i = 0; i < cycles; i += d->options.cycle ? 1 : cycles) {
-        if (!read_grid(d, &g))
-            return PMD_ERR_Driver;
-        if ((r = step(d, &g, d->options.cycle ? 1 : cycles)) != PMD_ERR_OK)
+        if ((r = read_grid(d, &g)) != PMD_ERR_OK || (r = step(d, &g, d->options.cycle ? 1 : cycles)) != PMD_ERR_OK)
             return r;
         if (d->options.cycle)
             d->options.cycle(d->options.cycleContext, &d->self);
     }
     /* the host clock moves to the time of the last cycle run if it was behind */
-    if (cycles && read_grid(d, &g) && to_ns(g.next) - to_ns(g.cycle) > d->hostNs)
+    if (cycles && (r = read_grid(d, &g)) != PMD_ERR_OK)
+        return r;
+    if (cycles && to_ns(g.next) - to_ns(g.cycle) > d->hostNs)
         d->hostNs = to_ns(g.next) - to_ns(g.cycle);
     return PMD_ERR_OK;
 }
@@ -615,10 +776,10 @@ PMDresult PMDFMU_GetInteger(PMDAxisInterface axis_intf, const char *name, PMDint
     if (v->type == 'B') {
         fmi2Boolean b;
         if (!d->getBoolean || d->getBoolean(d->instance, &v->vr, 1, &b) > fmi2Warning)
-            return PMD_ERR_Driver;
+            return fmi_failed(d, PMD_ERR_Driver, "fmi2GetBoolean");
         x = b ? 1 : 0;
     } else if (d->getInteger(d->instance, &v->vr, 1, &x) > fmi2Warning) {
-        return PMD_ERR_Driver;
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2GetInteger");
     }
     if (value)
         *value = x;
@@ -636,7 +797,7 @@ PMDresult PMDFMU_GetReal(PMDAxisInterface axis_intf, const char *name, double *v
     if (!v || v->type != 'R')
         return PMD_ERR_InvalidAddress;
     if (d->getReal(d->instance, &v->vr, 1, &x) > fmi2Warning)
-        return PMD_ERR_Driver;
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2GetReal");
     if (value)
         *value = x;
     return PMD_ERR_OK;

@@ -5,7 +5,9 @@
    transfer takes on the host interface (host/c/PMDhosttime.h), and the chip runs every cycle of
    its time grid that falls due meanwhile, so an unchanged polling loop ends.
 
-   POSIX only (dlopen; a .fmu file is unpacked with unzip). Not thread-safe: one thread per chip. */
+   POSIX only (dlopen, pthreads; a .fmu file is unpacked with unzip, whose output goes into the
+   log line, never onto the terminal). One thread per chip: threads may open, use and close their
+   own chips at the same time; a chip (every handle of it) is used by one thread at a time. */
 #ifndef PMD_FMU_H
 #define PMD_FMU_H
 
@@ -18,8 +20,12 @@ extern "C" {
 
 struct PMDHostInterface;    /* host/c/PMDhosttime.h */
 
-/* A message of the FMU's logger: its category ("events", "warnings" ...), its FMI status
-   (0 OK .. 4 Fatal) and its text. */
+/* A message of the FMU's logger: its category (one of the FMU's, log_categories.csv: "errors",
+   "warnings", "events" ...), its FMI status (0 OK .. 4 Fatal) and its text, e.g. a refused
+   script's "(script text):2: unknown command 'SetPositon'"; or the transport's own, category
+   "transport", status 3 (Error), when a call fails: what failed and why, the FMU's reason quoted
+   ("fmi2ExitInitializationMode failed: ... (script text):2: ..."). It runs on the thread of the
+   call that made the FMU log. */
 typedef void (*PMDFMULogCallback)(void *context, const char *category, int status, const char *message);
 
 /* Called after every chip cycle the transport runs (then it steps the FMU one cycle at a time),
@@ -36,6 +42,11 @@ typedef struct {
     const char *script;         /* the FMU parameter script; NULL: none */
     PMDFMULogCallback log;      /* NULL: no FMU logging; errors still make a call fail */
     void *logContext;
+    const char *const *logCategories;   /* the FMU's categories the log gets, NULL-terminated; an
+                                   empty list: the FMU's errors only; NULL: "errors" (the chip's
+                                   refusals) and "warnings" (a script's refused commands ...). An
+                                   unknown category fails the setup (PMD_ERR_Driver). Read by the
+                                   setup only */
     PMDFMUCycleCallback cycle;  /* NULL: none (whole runs of cycles in one doStep) */
     void *cycleContext;
     const struct PMDHostInterface *hostInterface;   /* NULL: the default, parallel16 */
@@ -46,8 +57,9 @@ void PMDFMUOptionsInit(PMDFMUOptions *options);
 
 /* Opens a new chip (FMU instance, initialized at time 0) and sets up axis_handle on its axis
    axisNumber (PMDAxis1 .. PMDAxis4). PMD_ERR_OpeningPort if the FMU cannot be found, unpacked,
-   loaded or instantiated; PMD_ERR_Driver if initialization fails (a bad parameter: the log
-   callback gets the FMU's message). */
+   loaded or instantiated; PMD_ERR_Driver if initialization fails (a bad parameter or script: the
+   log callback gets the FMU's message, then the transport's line quoting it). The chip belongs
+   to the calling thread: its PMDTaskWait advances it. */
 PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const PMDFMUOptions *options);
 
 /* C-Motion's: another axis of the same chip. */
@@ -76,7 +88,11 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
 /* Host time passes without a command (a host program's sleep): the chip runs the cycles due. */
 PMDresult PMDFMU_Wait(PMDAxisInterface axis_intf, PMDuint32 microseconds);
 
-/* C-Motion's sleep, for every open chip. */
+/* C-Motion's sleep: host time passes for every chip the calling thread opened (and not yet
+   closed), each running the cycles due, as PMDFMU_Wait does; other threads' chips do not move, so
+   a thread's results do not depend on what other threads do. A chip handed to another thread
+   stays its opener's for PMDTaskWait: that thread advances it with PMDFMU_Wait, and the opener
+   calls no PMDTaskWait while it does. */
 void PMDTaskWait(PMDuint32 milliseconds);
 
 /* Runs the next `cycles` cycles of the chip's grid now (the harness's chip.run); the host clock

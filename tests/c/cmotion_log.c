@@ -1,0 +1,57 @@
+/* The C-Motion library's log callback (PMDfmu.h): what the FMU and the transport say reaches it,
+   and nothing else reaches the terminal. tests/test_cmotion_library.py runs it.
+
+   Usage: cmotion_log script TEXT [CYCLES [CATEGORY ...]]   a chip running the script TEXT for
+                                                            CYCLES cycles, logging the categories
+          cmotion_log fmu PATH                              a chip of the FMU at PATH
+   Output: every message of the log callback on stderr, one line each:
+             L <category> <status> <message>
+           and on stdout the setup's result, then the run's:
+             S <result>
+             R <result> */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "c-motion.h"
+
+#define MAX_CATEGORIES 8
+
+static void print_message(void *context, const char *category, int status, const char *message)
+{
+    (void)context;
+    fprintf(stderr, "L %s %d %s\n", category, status, message);
+}
+
+int main(int argc, char **argv)
+{
+    PMDFMUOptions options;
+    PMDAxisHandle axis;
+    const char *categories[MAX_CATEGORIES + 1];
+    PMDresult r;
+    int i, n = 0;
+    if (argc < 3 || (strcmp(argv[1], "script") != 0 && strcmp(argv[1], "fmu") != 0) ||
+        argc > 4 + MAX_CATEGORIES) {
+        fprintf(stderr, "usage: cmotion_log script TEXT [CYCLES [CATEGORY ...]] | cmotion_log fmu PATH\n");
+        return 2;
+    }
+    PMDFMUOptionsInit(&options);
+    options.log = print_message;
+    if (strcmp(argv[1], "fmu") == 0) {
+        options.fmu = argv[2];
+    } else {
+        options.script = argv[2];
+        for (i = 4; i < argc; i++)
+            categories[n++] = argv[i];
+        categories[n] = NULL;
+        if (n)
+            options.logCategories = categories;
+    }
+    r = PMDSetupAxisInterface_FMU(&axis, PMDAxis1, &options);
+    printf("S 0x%X\n", (unsigned)r);
+    if (r != PMD_ERR_OK)
+        return 0;
+    if (argc > 3)
+        printf("R 0x%X\n", (unsigned)PMDFMU_RunCycles(&axis, (PMDuint32)strtoul(argv[3], NULL, 10)));
+    PMDCloseAxisInterface(&axis);
+    return 0;
+}
