@@ -11,17 +11,21 @@ loader and through the memory port. Part of ./dev bench.
   the same numbers; pandas is not installed).
 - Memory port: chip.write_memory of the 5 columns (C strobes through the FMU's
   own FMI functions). Baseline: the same writes by the harness's Python loop
-  (Chip._write_memory_stepwise: what write_memory did before; the ratio is the
+  (tests/stepwise.py's write_memory_stepwise: what write_memory did before; the ratio is the
   speed-up)."""
 from __future__ import annotations
 
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
 import pmdfmu
-from common import repeat, report, timed
+from common import REPO, repeat, report, timed
+
+sys.path.insert(0, str(REPO / "tests"))
+from stepwise import write_memory_stepwise  # noqa: E402  (the tests' oracle, the baseline here)
 
 SEGMENTS = 100_000
 TARGET = 2e6                  # segments/s, each path (issue 16, target 5)
@@ -68,7 +72,7 @@ def memory_port(rows: np.ndarray, version: int) -> None:
             return timed(lambda: [write(f * SEGMENTS, columns[f]) for f in range(5)])
 
         ours = repeat(lambda: upload(chip.write_memory)).rate(SEGMENTS)
-        python = repeat(lambda: upload(chip._write_memory_stepwise)).rate(SEGMENTS)
+        python = repeat(lambda: upload(lambda a, w: write_memory_stepwise(chip, a, w))).rate(SEGMENTS)
     report(f"upload {SEGMENTS} segments, memory port (write_memory), FMI {version}",
            ours.text(1e-6, "M segments/s"), f"the Python strobe loop {python.text(1e-6, 'M/s')}",
            ours.median / python.median, f">= {TARGET / 1e6:g} M/s; ratio native / Python", ours.median >= TARGET)

@@ -10,7 +10,9 @@
   independently of the C core; states.py, work below the Chip API (FMU states as
   bytes, raw host words, pending batches, an instance left in initialization);
   scenarios.py, chip set-ups several test files run (a busy chip, seed 000's
-  worked example, random external profiles).
+  worked example, random external profiles); stepwise.py, the oracles of the
+  recording and upload paths; interrupted.py, runs to interrupt; cmotion_build.py,
+  the C library's build (tests/README.md maps every topic to its files).
 
 Fixtures for what a test receives ready-made, helper modules for what it calls or
 compares with: test_suite_layout.py checks the rule.

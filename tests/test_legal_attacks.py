@@ -10,6 +10,7 @@ from fmpy.fmi2 import FMU2Slave
 import pmdfmu
 from pmdfmu import PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer
 from states import InitializationChip, command, pend_batch, snapshot, vr
+from stepwise import run_stepwise
 
 
 def errors(chip):
@@ -111,7 +112,7 @@ def test_a_script_that_makes_the_grid_finer_mid_recording_gets_a_stepping_master
     with pmdfmu.Chip(fmi_version=version, script=script) as chip, \
             pmdfmu.Chip(fmi_version=version, script=script) as stepping:
         rows = chip.run(1000, record=["axis1.commandedPosition"])
-        assert rows.tobytes() == stepping._run_stepwise(1000, ["axis1.commandedPosition"]).tobytes()
+        assert rows.tobytes() == run_stepwise(stepping, 1000, ["axis1.commandedPosition"]).tobytes()
         assert chip.cycles == stepping.cycles
 
 

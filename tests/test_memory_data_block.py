@@ -23,6 +23,7 @@ import pytest
 
 import pmdfmu
 from states import InitializationChip, snapshot
+from stepwise import write_memory_stepwise
 
 SIZE = 0x400                 # memorySize of the chips below
 WORDS = 64                   # memory.data[1..64]
@@ -290,7 +291,7 @@ def test_fmi3_refused_calls_with_the_array_change_nothing_and_say_what_fmi2_says
 @pytest.mark.parametrize("version", [2, 3])
 def test_write_memory_takes_any_array_as_the_python_loop_does(version):
     """A read-only array (its address through numpy), a strided view (copied), int32, int64 and
-    uint32 arrays, a list, an empty array: the same FMU state as Chip._write_memory_stepwise."""
+    uint32 arrays, a list, an empty array: the same FMU state as stepwise.write_memory_stepwise."""
     rng = np.random.default_rng(9)
     words = rng.integers(0, 2 ** 32, 300, dtype=np.uint64).astype(np.uint32)
     frozen = words.copy()
@@ -301,7 +302,7 @@ def test_write_memory_takes_any_array_as_the_python_loop_does(version):
                                (0x80, words.astype(np.int64)), (1, words[:70]), (SIZE, words[:0]),
                                (3, [int(w) for w in words[:65]])]:
             native.write_memory(address, given)
-            python._write_memory_stepwise(address, given)
+            write_memory_stepwise(python, address, given)
             assert snapshot(native) == snapshot(python)
         assert native.messages == python.messages
 

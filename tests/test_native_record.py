@@ -1,6 +1,6 @@
 """Chip.run(record=...) in bulk (the FMU's record.data and record.columns, FMI 2
 through pmdfmu_fmi2GetRecordData) and through the native loop (native/record.c,
-pmdfmu.recording) is the harness's cycle-by-cycle Python loop (Chip._run_stepwise,
+pmdfmu.recording) is the harness's cycle-by-cycle Python loop (tests/stepwise.py,
 kept as the reference), bit for bit: rows, errors, log messages, host clock
 (issue 16)."""
 from ctypes import CFUNCTYPE
@@ -14,6 +14,7 @@ from pmdfmu import recording
 from pmdfmu.chip import RECORDED
 from pmdfmu.profile import record_outputs
 from scenarios import busy_chip
+from stepwise import NativeLoop, Stepwise
 
 # every FMI type the rows hold: UInt32 (chipTime), Int32, Float64, UInt16 (status, an array's element with its
 # high bit set), Int16 (a negative motor command), Boolean (an input and an output)
@@ -26,16 +27,13 @@ EVERY_TYPE = ["chipTime", "axis1.commandedPosition", "axis2.commandedVelocity", 
 def reference(monkeypatch):
     """run() with the Python loop in place of the native one: everything else run() does (checks, the
     host clock) stays."""
-    def stepwise(chip, plan, out):
-        out[:] = chip._run_stepwise(len(out), out.dtype.names[1:])
-    monkeypatch.setattr(recording, "BULK", False)
-    monkeypatch.setattr(recording, "record", stepwise)
+    monkeypatch.setattr(pmdfmu.Chip, "recorder", Stepwise)
 
 
 @pytest.fixture
 def native_loop(monkeypatch):
     """run() through the native loop, as for an FMU without bulk recording of any columns."""
-    monkeypatch.setattr(recording, "BULK", False)
+    monkeypatch.setattr(pmdfmu.Chip, "recorder", NativeLoop)
 
 
 def every_type_chip(chip):
@@ -140,10 +138,8 @@ def test_an_error_mid_run_raises_as_the_python_loop_raised(version, monkeypatch)
     results = []
     for native in (True, False):
         with monkeypatch.context() as m:
-            if not native:
-                m.setattr(recording, "record", lambda chip, plan, out: chip._run_stepwise(len(out),
-                                                                                          out.dtype.names[1:]))
-            m.setattr(recording, "BULK", False)             # a doStep a cycle: the native loop's error
+            # a doStep a cycle: the native loop's error, and the Python loop's
+            m.setattr(pmdfmu.Chip, "recorder", NativeLoop if native else Stepwise)
             with pmdfmu.Chip(fmi_version=version, host_interface="parallel16") as chip:
                 busy_chip(chip)                                     # the commands' host time runs cycles
                 start = chip.cycles

@@ -1,5 +1,5 @@
 """record.columns: bulk recording of any variables in FMI 2 and FMI 3 (issue 16, target 3): the
-FMU's rows equal a master's stepping cycle by cycle (Chip._run_stepwise), bad names are refused."""
+FMU's rows equal a master's stepping cycle by cycle (tests/stepwise.py), bad names are refused."""
 from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at
 
 import numpy as np
@@ -11,6 +11,7 @@ from pmdfmu import recording
 from pmdfmu.chip import DTYPES
 from pmdfmu.profile import record_outputs
 from scenarios import busy_chip
+from stepwise import run_stepwise
 
 VERSIONS = pytest.mark.parametrize("version", (2, 3))
 
@@ -18,7 +19,7 @@ VERSIONS = pytest.mark.parametrize("version", (2, 3))
 def reference(version, names, cycles, set_up=busy_chip, **parameters):
     with pmdfmu.Chip(fmi_version=version, **parameters) as chip:
         set_up(chip)
-        return chip._run_stepwise(cycles, names)
+        return run_stepwise(chip, cycles, names)
 
 
 @VERSIONS
@@ -32,7 +33,7 @@ def test_columns_changed_between_runs_each_record_as_the_reference(version):
         for names in sets:
             rows = chip.run(1500, record=names)
             assert chip.get("record.columns") == ",".join(names)
-            assert rows.tobytes() == ref._run_stepwise(1500, names).tobytes()
+            assert rows.tobytes() == run_stepwise(ref, 1500, names).tobytes()
 
 
 @VERSIONS
@@ -183,7 +184,7 @@ def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkey
         for c in (chip, ref):
             busy_chip(c)
         rows = chip.run(2000, record=names)
-        assert rows.tobytes() == ref._run_stepwise(2000, names).tobytes()
+        assert rows.tobytes() == run_stepwise(ref, 2000, names).tobytes()
         assert [size for _, size in loans] == [700 * rows.itemsize, 700 * rows.itemsize, 600 * rows.itemsize]
         assert loans[0][0] == rows.ctypes.data and loans[2][0] == rows.ctypes.data + 1400 * rows.itemsize
         assert holds_no_loan(chip, loans)
@@ -203,7 +204,7 @@ def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(monkeypatch, tmp_path)
     with pmdfmu.Chip(fmi_version=2, script=script, **{"record.capacity": 300}) as chip, \
             pmdfmu.Chip(fmi_version=2, script=script) as ref:
         rows = chip.run(2000, record=names)
-        assert rows.tobytes() == ref._run_stepwise(2000, names).tobytes()
+        assert rows.tobytes() == run_stepwise(ref, 2000, names).tobytes()
         assert chip.cycles == ref.cycles
         assert len(loans) == 7 and holds_no_loan(chip, loans)    # 7 chunks of at most 300 cycles
 
@@ -313,7 +314,7 @@ def run_in_parts(chip, names, bulk):
     """Runs in parts with commands between them (motor off and on, a breakpoint armed, then none):
     the bulk rows or the stepwise ones."""
     def part(cycles):
-        return chip.run(cycles, record=names) if bulk else chip._run_stepwise(cycles, names)
+        return chip.run(cycles, record=names) if bulk else run_stepwise(chip, cycles, names)
     rows = [part(700)]
     chip.axis(1).SetMotorMode(pmdfmu.PMDMotorOff)     # the trapezoid's motor off: its filter runs open loop
     rows.append(part(300))
@@ -404,4 +405,4 @@ def test_a_run_of_many_chunks_holds_the_stepwise_rows(version, names):
         for c in (chip, ref):
             motors_and_idle_axes(c)
         rows = chip.run(1500, record=names)
-        assert rows.tobytes() == ref._run_stepwise(1500, names).tobytes()
+        assert rows.tobytes() == run_stepwise(ref, 1500, names).tobytes()

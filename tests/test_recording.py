@@ -7,6 +7,7 @@ from fmpy.fmi1 import FMICallException
 import pmdfmu
 from pmdfmu.chip import RECORDED
 from scenarios import busy_chip
+from stepwise import run_stepwise
 
 
 def test_bulk_recording_equals_cycle_by_cycle_recording_through_fmi2():
@@ -62,6 +63,6 @@ def test_a_script_changing_the_sample_time_during_a_bulk_recording_is_recorded_a
     with pmdfmu.Chip(fmi_version=version, script=script) as bulk, \
             pmdfmu.Chip(fmi_version=version, script=script) as stepping:
         rows = bulk.run(100, record=RECORDED)
-        expected = stepping._run_stepwise(100, RECORDED)
+        expected = run_stepwise(stepping, 100, RECORDED)
         assert rows.tobytes() == expected.tobytes() and len(rows) == 100
         assert bulk.cycles == stepping.cycles == 100

@@ -1,5 +1,5 @@
 """Upload (issue 16, target 5): write_memory's strobes run in C (native/memory.c)
-and leave the FMU exactly as the harness's Python loop did (Chip._write_memory_stepwise,
+and leave the FMU exactly as the harness's Python loop did (stepwise.write_memory_stepwise,
 kept as the reference): the same FMU state byte for byte (memory, the port's
 variables), the same messages, and where an FMI call is refused part-way the same
 blocks written and the same exception. The segment-table loader reads a row of
@@ -14,6 +14,7 @@ from fmpy.fmi1 import FMICallException
 import pmdfmu
 from pmdfmu import FMUError
 from states import snapshot
+from stepwise import write_memory_stepwise
 
 VERSIONS = pytest.mark.parametrize("version", [2, 3])
 SIZE = 0x400                 # memorySize of the chips below
@@ -43,7 +44,7 @@ def test_native_and_python_writes_leave_the_same_fmu_state(version, n):
             data = words(n, seed=k)
             given = [int(w) - (1 << 32) if w >> 31 else int(w) for w in data] if kind is list else data.astype(kind)
             native.write_memory(address, given)
-            python._write_memory_stepwise(address, given)
+            write_memory_stepwise(python, address, given)
             assert snapshot(native) == snapshot(python)
             assert np.array_equal(memory(native)[address:address + n], data)
         assert native.messages == python.messages
@@ -60,7 +61,7 @@ def test_the_strobe_wraps_at_2_to_the_31_as_before(version):
         assert start == snapshot(python)
         data = words(200, seed=7)
         native.write_memory(5, data)
-        python._write_memory_stepwise(5, data)
+        write_memory_stepwise(python, 5, data)
         assert snapshot(native) == snapshot(python)
 
 
@@ -107,7 +108,7 @@ def test_a_call_refused_part_way_leaves_what_the_python_loop_left_and_raises_the
     with native, python:
         data = words(300, seed=3)
         raised = []
-        for chip, write in ((native, native.write_memory), (python, python._write_memory_stepwise)):
+        for chip, write in ((native, native.write_memory), (python, lambda a, w: write_memory_stepwise(python, a, w))):
             failing = FailingCall(chip.fmu, name, fail, PROTOTYPES[name], chip.variables["host.ack"].valueReference)
             with monkeypatch.context() as m:
                 m.setitem(chip.fmu._functions, name, failing.function)
@@ -125,7 +126,7 @@ def test_a_write_the_fmu_refuses_raises_the_fmi_error_and_writes_nothing(version
     native, python = pair(version)
     with native, python:
         raised = []
-        for chip, write in ((native, native.write_memory), (python, python._write_memory_stepwise)):
+        for chip, write in ((native, native.write_memory), (python, lambda a, w: write_memory_stepwise(python, a, w))):
             chip.fmu.terminate()
             with pytest.raises(FMICallException) as info:
                 write(0, [1, 2, 3])

@@ -13,7 +13,6 @@ void pmd_chip_init(PmdChip *chip, uint32_t *memory, uint32_t memorySize)
 {
     chip->memory = memory;
     chip->memorySize = memorySize;
-    chip->avx = (unsigned char)pmd_processor_has_avx();
     pmd_chip_reset(chip);
 }
 

@@ -18,7 +18,6 @@ struct PmdChip {
     PmdLogger logger;
     void *logContext;
     unsigned logMask;        /* bit per PmdLogCategory: format messages only when someone listens */
-    unsigned char avx;       /* the processor runs AVX (pmd_commanded_reals' form), asked by pmd_chip_init */
 };
 
 /* Logging: pmd_log formats only when the category is enabled. */

@@ -2,9 +2,6 @@
  * (reference 2.1-2.3, 4.5): read by the host, the cycle, breakpoints and the
  * trace; they change nothing. */
 #include <string.h>
-#if defined(__GNUC__) && defined(__x86_64__)
-#include <cpuid.h>
-#endif
 
 #include "status.h"
 
@@ -98,9 +95,11 @@ static void wide_reals(const PmdChip *chip, double cycleTime, unsigned wideVeloc
  * in U converted (in_u), divided by U, the velocity then by the cycle time
  * and the acceleration by its square, the position's whole counts added. The
  * twenty divisions of a row are the cost; where the compiler has vector types
- * (GCC, Clang) they run as packed ones: two lanes a division in the form every
- * processor runs (SSE2, NEON), four with AVX (x86-64, PmdChip.avx). IEEE 754
- * rounds each lane as the scalar division, so every form gives the same
+ * (GCC, Clang) they run as packed ones: two lanes a division, the form every
+ * processor the FMU is built for runs (SSE2, NEON; a four-lane AVX form bought
+ * ~2 ns of a ~46 ns row and asked the host processor what it runs, which a
+ * model of the chip should not). IEEE 754
+ * rounds each lane as the scalar division, so both forms give the same
  * doubles, bit for bit (tests/test_exact_arithmetic.py checks them against the
  * scalar expressions; PMD_PORTABLE_LANES builds the plain C form). The lanes
  * are built from registers and stored whole: a vector loaded from scalars just
@@ -112,6 +111,8 @@ static void wide_reals(const PmdChip *chip, double cycleTime, unsigned wideVeloc
 
 #if defined(__GNUC__) && !defined(PMD_PORTABLE_LANES)
 typedef double Pair __attribute__((vector_size(2 * sizeof(double))));
+/* the pair form takes the axes two at a time (a C99 static assertion: a negative array size if not) */
+typedef char PmdAxesInPairs[PMD_AXES % 2 == 0 ? 1 : -1];
 /* the lanes of axes k and k + 1, F(k) each: F has no side effect but a function call's (a vector's
  * initializers are not sequenced with each other; calls are) */
 #define PAIR(F, k) ((Pair){F(k), F((k) + 1)})
@@ -134,27 +135,6 @@ static void commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedR
         wide_reals(chip, cycleTime, wideVelocity, wideAcceleration, r);
 }
 
-#if defined(__x86_64__)
-typedef double Quad __attribute__((vector_size(PMD_AXES * sizeof(double))));
-#define QUAD(F) ((Quad){F(0), F(1), F(2), F(3)})
-#define QUAD_OF(x) ((Quad){(x), (x), (x), (x)})
-
-__attribute__((target("avx"))) static void commanded_reals_avx(const PmdChip *chip, double cycleTime,
-                                                               PmdCommandedReals *r)
-{
-    unsigned wideVelocity = 0, wideAcceleration = 0;
-    Quad u = QUAD_OF((double)PMD_U_PER_COUNT);
-    Quad position = QUAD(FRACTION) / u + QUAD(WHOLE);
-    Quad velocity = QUAD(VELOCITY) / u / QUAD_OF(cycleTime);
-    Quad acceleration = QUAD(ACCELERATION) / u / QUAD_OF(cycleTime * cycleTime);
-    memcpy(r->position, &position, sizeof position);
-    memcpy(r->velocity, &velocity, sizeof velocity);
-    memcpy(r->acceleration, &acceleration, sizeof acceleration);
-    if (wideVelocity | wideAcceleration)
-        wide_reals(chip, cycleTime, wideVelocity, wideAcceleration, r);
-}
-#define HAS_AVX_FORM 1
-#endif
 
 #else
 static void commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r)
@@ -171,33 +151,7 @@ static void commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedR
 }
 #endif
 
-#if defined(__GNUC__) && defined(__x86_64__)
-/* CPUID 1 says AVX and OSXSAVE, and XCR0 that the system saves the XMM and YMM
- * registers: what __builtin_cpu_supports("avx") tells, without the
- * process-wide variables of libgcc it reads. */
-int pmd_processor_has_avx(void)
-{
-    unsigned a, b, c, d, low, high;
-    if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_AVX) || !(c & bit_OSXSAVE))
-        return 0;
-    __asm__ volatile("xgetbv" : "=a"(low), "=d"(high) : "c"(0));
-    (void)high;
-    return (low & 6u) == 6u;
-}
-#else
-int pmd_processor_has_avx(void)
-{
-    return 0;
-}
-#endif
-
 void pmd_commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r)
 {
-#ifdef HAS_AVX_FORM
-    if (chip->avx) {
-        commanded_reals_avx(chip, cycleTime, r);
-        return;
-    }
-#endif
     commanded_reals(chip, cycleTime, r);
 }

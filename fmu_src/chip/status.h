@@ -58,8 +58,5 @@ typedef struct {
     double position[PMD_AXES], velocity[PMD_AXES], acceleration[PMD_AXES];
 } PmdCommandedReals;
 void pmd_commanded_reals(const PmdChip *chip, double cycleTime, PmdCommandedReals *r);
-/* Whether the processor runs AVX and the operating system keeps its registers: asked per instance
- * (PmdChip.avx), so that the FMU holds no process-wide state for it. */
-int pmd_processor_has_avx(void);
 
 #endif

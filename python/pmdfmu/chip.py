@@ -12,7 +12,7 @@ import shutil
 import tempfile
 import textwrap
 import threading
-from ctypes import POINTER, Array, byref, c_char, c_double, c_int32, c_uint16, c_uint32
+from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint16, c_uint32
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -25,6 +25,7 @@ from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, 
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3True, fmi3ValueReference
 
 from . import hosttime, memory_port, recording, tables
+from .recording import RECORDED  # noqa: F401  (chip.RECORDED, as users and docs name it)
 from .fixed import integer, to_word
 from .hosttime import HostInterface
 from .tables import Command, Field
@@ -91,8 +92,6 @@ DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32":
 CYCLE = ("cycle", np.uint32)
 # the commands by opcode: a timed batch is split into its commands as the FMU's dispatcher splits it
 OPCODES: Dict[int, Command] = {c.opcode: c for c in COMMANDS.values()}
-# FMI 2 reads unsigned registers as signed Integers: these masks give back their bits
-UNSIGNED = {n: (1 << 8 * t.itemsize) - 1 for n, t in DTYPES.items() if t.kind == "u"}
 # the width of each integer variable's word (FMI 3 type), by FMI 2 name and by FMI 3 array name: set()
 # takes -2^(w-1) .. 2^w-1 for it, in both FMI versions
 WIDTHS: Dict[str, int] = {}
@@ -126,11 +125,6 @@ def _array_elements(variables, name: str) -> List[str]:
     while f"{name}[{len(out) + 1}]" in variables:
         out.append(f"{name}[{len(out) + 1}]")
     return out
-
-# record.data's columns after the chip time (FMI 3 bulk recording)
-RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
-            for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
-
 
 class PMDError(Exception):
     """A command the chip refused, with its host I/O error code (pmd-reference 2.4)."""
@@ -465,13 +459,17 @@ class Chip:
     modelDescription/host_interfaces.csv) or a pmdfmu.HostInterface makes each
     command take its transfer time, the chip running the cycles that fall due."""
 
+    # how run(record=...) records: a class made per run with (chip, names, where, dtype), whose run(cycles)
+    # returns the rows (a test sets another on an instance: its oracle)
+    recorder = recording.Recorder
+
     def __init__(self, fmi_version: int = 2, fmu: Union[str, Path, None] = None, *,
                  log_categories: Union[bool, Iterable[str]] = False,
                  host_interface: Union[None, str, HostInterface] = None, **parameters):
         if fmi_version not in (2, 3):
             raise ValueError(f"fmi_version is 2 or 3, not {fmi_version}")
         self.host_interface = hosttime.host_interface(host_interface)
-        self._recording = False     # a recording run has turned record.enabled on (_close_recording)
+        self._recording = False     # a recording run has turned record.enabled on (recording.close)
         self._host_ns = 0           # the host clock, whole ns since the chip's time 0
         self.fmi_version = fmi_version
         self.path = Path(fmu) if fmu else default_fmu(fmi_version)
@@ -696,7 +694,7 @@ class Chip:
         status (OK, or Warning: a grid change inside a recording step); FMPy raises
         for an Error. A recording run an interrupt left open is closed first."""
         if self._recording:
-            self._close_recording()
+            recording.close(self)
         return self._do_step(cycles)
 
     def _step_span(self, cycles: int) -> Tuple[float, float]:
@@ -819,132 +817,6 @@ class Chip:
                  (fmi3ValueReference * 2)(vr["host.error"], vr["host.reply"])),
                 (c_int32 * 2)())
 
-    def _run_recorded(self, cycles: int, names: Sequence[str], lend, where, dtype: np.dtype) -> np.ndarray:
-        """run() through the FMU's record.data (lend: pmdfmu.recording.lender): one doStep and one read
-        per chunk of record.capacity cycles instead of FMI calls every cycle. Only commanded outputs
-        (RECORDED): record.data's default rows; else record.columns names the columns. A chunk in which
-        a script step may change the grid (SetSampleTime) starts from a saved FMU state and is redone
-        cycle by cycle if it did, so that its rows are those of a master stepping cycle by cycle."""
-        commanded = set(names) <= set(RECORDED)
-        if "record.columns" in self.variables:
-            self.set("record.columns", "" if commanded else ",".join(names))
-        if commanded:
-            # record.data's words go straight into one table of 32-bit words, whose rows are the result's records
-            table = np.empty((cycles, 1 + len(names)), dtype=np.int32)
-            # the wanted columns as runs of adjacent ones (table column, record column, width): whole
-            # runs copy as blocks, and all of record.data as one
-            columns, runs = [0] + [1 + RECORDED.index(n) for n in names], []
-            for i, c in enumerate(columns):
-                if runs and runs[-1][1] + runs[-1][2] == c:
-                    runs[-1][2] += 1
-                else:
-                    runs.append([i, c, 1])
-            row = np.dtype((np.int32, 1 + len(RECORDED)))
-        else:
-            # the FMU's packed little-endian row is the result's: the chip time, then each column in its
-            # FMI 3 type's width; whole rows copy as one block
-            out = np.empty(cycles, dtype=dtype)         # every byte of every row is written below
-            row = np.dtype((np.uint8, dtype.itemsize))
-            if row.itemsize != self.get("record.rowSize"):
-                raise FMUError(f"record.rowSize is {self.get('record.rowSize')}, not the {row.itemsize} bytes of "
-                               f"a row of {len(names)} columns: the FMU's record.columns is another")
-        capacity = self.get("record.capacity")
-        # the script's steps run up to its last @ line: past it no step can change the grid; a chip without a
-        # script's call (script.axes 0) has no step at all, and its chunks need no saved FMU state
-        script_end = float("inf")
-        if "script.lastCycle" in self.variables:
-            script_end = self.get("script.lastCycle") if self.get("script.axes") else -1
-        # FMI 2: the FMU writes the rows straight into the result, lent for one doStep at a time, no copy
-        step_into = None if commanded else recording.lent_stepper(self)
-        # record.enabled stays on for the run: _close_recording turns it off on every way out, interrupts included
-        self._recording = True
-        try:
-            self.set("record.enabled", True)
-            done = 0
-            while done < cycles:
-                n = min(capacity, cycles - done)
-                before = self.cycles if script_end >= 0 else None
-                state = None if before is None or before > script_end else self.fmu.getFMUState()
-                try:
-                    logged = len(self.messages)
-                    if step_into:
-                        status, lent = step_into(out.ctypes.data + done * row.itemsize, n * row.itemsize,
-                                                 *self._step_span(n))
-                    else:
-                        status = self._do_step(n)           # Warning if the step's cycles changed
-                    redo = state is not None and self.cycles - before != n
-                    if status and not redo:
-                        # a grid change with no saved state to redo the chunk from (or a Warning the harness
-                        # does not know): the rows would not be a stepping master's
-                        raise RuntimeError(f"the recording step of {n} cycles ran other cycles than its rows "
-                                           f"(doStep's Warning: {self.messages[-1].message if self.messages else ''})")
-                    if redo:
-                        # the grid changed in the chunk: back to its start, and the chunk runs as a master
-                        # stepping cycle by cycle runs it (the native loop: Chip._run_stepwise's rows)
-                        self.fmu.setFMUState(state)
-                        del self.messages[logged:]
-                        self.set("record.enabled", False)
-                        part = np.zeros(n, dtype=dtype)
-                        recording.record(self, recording.Plan(self, where, dtype), part)
-                        if commanded:                   # the same 32-bit fields as the table's row
-                            table[done:done + n] = part.view(np.int32).reshape(n, 1 + len(names))
-                        else:
-                            out[done:done + n] = part
-                        self.set("record.enabled", True)
-                finally:                            # a failed redo keeps no FMU state alive
-                    if state is not None:
-                        self.fmu.freeFMUState(state)
-                if redo:
-                    done += n
-                    continue
-                if step_into:
-                    if lent != n * row.itemsize:
-                        raise RuntimeError(f"the lent memory holds {lent // row.itemsize} cycles, not {n}: {lent} "
-                                           f"bytes, rows of {row.itemsize} bytes")
-                    done += n                           # the rows are in place
-                    continue
-                # record.data is the FMU's own buffer, lent until the next call: read in place, once, as
-                # many whole rows as it holds, never more
-                address, size = lend()
-                held = size // row.itemsize
-                if held != n or size % row.itemsize:
-                    # the step ran its cycles, but record.data does not hold their rows: never read past it
-                    raise RuntimeError(f"record.data holds {held} cycles, not {n}: {size} bytes, rows of "
-                                       f"{row.itemsize} bytes")
-                rows = np.frombuffer((c_char * size).from_address(address), dtype=row)
-                if commanded:
-                    for at, column, width in runs:
-                        table[done:done + n, at:at + width] = rows[:, column:column + width]
-                else:
-                    out.view((np.uint8, dtype.itemsize))[done:done + n] = rows
-                done += n
-        except BaseException:
-            self._close_recording(quiet=True)      # the error that stopped the run is the one to see
-            raise
-        self._close_recording()
-        if commanded:
-            return table.view([CYCLE] + [(n, DTYPES[n]) for n in names]).reshape(cycles)
-        return out
-
-    def _close_recording(self, quiet: bool = False) -> None:
-        """Turns record.enabled off once a recording run ends, on every way out of it: retried until it has run
-        through when a KeyboardInterrupt lands in it (raised after), and, should one land where no retry can
-        catch it, by the next doStep (_step). quiet: an FMU that refuses is left for that next doStep to try
-        again, with no exception of its own (another one is on its way)."""
-        interrupted: Optional[BaseException] = None
-        while self._recording:
-            try:
-                self.set("record.enabled", False)
-                self._recording = False
-            except KeyboardInterrupt as e:
-                interrupted = e
-            except Exception:
-                if not quiet:
-                    raise
-                break
-        if interrupted is not None:
-            raise interrupted
-
     @_refusals
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
         """Executes one C-Motion call; raises PMDError if the chip refuses it.
@@ -987,18 +859,6 @@ class Chip:
         if address < 0 or address + n > size:
             raise ValueError(f"write_memory: {n} words at address {address} leave the {size}-word memory "
                              f"(memorySize; addresses 0 .. {size - 1}); nothing was written")
-
-    def _write_memory_stepwise(self, address: int, words: Sequence[int]) -> None:
-        """write_memory block by block in Python through FMPy: what it did before the native loop
-        (pmdfmu.memory_port), kept as its reference (tests/test_memory_port.py)."""
-        data = self._memory_words(words)
-        address = integer(address, "write_memory: address")
-        self._memory_fits(address, len(data), self.get("memorySize"))
-        strobe = self.get("memory.strobe")
-        for start in range(0, len(data), BATCH_WORDS):
-            strobe = (strobe + 1) & 0x7FFFFFFF
-            self._memory_strobe(address + start, data[start:start + BATCH_WORDS], strobe)
-            self.get("host.ack")                      # executes the write now
 
     @staticmethod
     def _memory_words(words: Sequence[int]) -> np.ndarray:
@@ -1161,10 +1021,11 @@ class Chip:
         runs the harness's native loop (native/record.c: per cycle one doStep and one
         get per FMI type of the FMU's own functions). Commanded positions, velocities
         and accelerations only (chip.RECORDED) are fastest; docs/performance.md,
-        "Recording".
-        A failed FMI call raises FMPy's FMICallException (the FMU's messages in
-        chip.messages); a name given twice or not an FMU variable raises ValueError
-        before any cycle runs."""
+        "Recording" (pmdfmu.recording.Recorder).
+        A failed FMI call raises FMURefusal (FMPy's FMICallException, with the FMU's
+        messages); a name given twice or not an FMU variable raises ValueError
+        before any cycle runs. Interrupted (Ctrl-C), the chip stays exact: its next
+        run records what a fresh chip at the same cycle records."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         try:
@@ -1179,15 +1040,7 @@ class Chip:
                 self._step(cycles)
             return np.zeros(0, dtype=[CYCLE])
         names = list(record)
-        where, dtype = self._columns(names)
-        lend = recording.lender(self)
-        # in bulk where the FMU records the columns: the commanded outputs always, any others with
-        # record.columns (not `time`, the same for all the cycles of a doStep)
-        if lend and (set(names) <= set(RECORDED) or ("record.columns" in self.variables and "time" not in names)):
-            return self._run_recorded(cycles, names, lend, where, dtype)
-        out = np.zeros(cycles, dtype=dtype)
-        recording.record(self, recording.Plan(self, where, dtype), out)
-        return out
+        return self.recorder(self, names, *self._columns(names)).run(cycles)
 
     def _columns(self, names: List[str]) -> Tuple[Dict[str, Tuple[str, int]], np.dtype]:
         """run(record=names)'s checks, before any cycle runs: where each column is read (variable,
@@ -1209,33 +1062,3 @@ class Chip:
             self._recorded.clear()
         self._recorded[key] = known
         return known
-
-    def _run_stepwise(self, cycles: int, record: Sequence[str]) -> np.ndarray:
-        """run(cycles, record) cycle by cycle in Python through FMPy: what run() did before the native
-        loop (pmdfmu.recording), kept as its reference (tests/test_native_record.py)."""
-        names = list(record)
-        where, dtype = self._columns(names)
-        out = np.zeros(cycles, dtype=dtype)
-        # one get per FMI type a cycle: the type's variables (each array once), and each column's
-        # place among the values it returns
-        groups = []
-        for t, get in self._getters.items():
-            ns = [n for n in names if self.variables[where[n][0]].type == t]
-            read = list(dict.fromkeys(where[n][0] for n in ns))
-            if not ns:
-                continue
-            offsets = np.cumsum([0] + [self._size(r) for r in read])
-            places = [int(offsets[read.index(where[n][0])]) + where[n][1] for n in ns]
-            vrs = [self._vr[r] for r in read]
-            if self.fmi_version == 3 and offsets[-1] != len(read):
-                get = (lambda g, total: lambda vrs: g(vrs, nValues=total))(get, int(offsets[-1]))
-            groups.append((get, ns, vrs, places))
-        get_time, time_vr = self._getters[self.variables["chipTime"].type], [self._vr["chipTime"]]
-        for i in range(cycles):
-            self._step(1)
-            out["cycle"][i] = get_time(time_vr)[0] & 0xFFFFFFFF      # FMI 2 Integer: the same 32 bits
-            for get, ns, vrs, places in groups:
-                values = get(vrs)
-                for n, p in zip(ns, places):
-                    out[n][i] = values[p] & UNSIGNED[n] if n in UNSIGNED else values[p]
-        return out

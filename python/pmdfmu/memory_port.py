@@ -2,7 +2,7 @@
 per block of 64 words one set of memory.data, .address, .count and a new
 .strobe, then a get of host.ack that executes the write, through the FMU's own
 FMI functions with the arguments the harness's Python loop passed
-(Chip._write_memory_stepwise, kept as the reference)."""
+(tests/stepwise.py, kept as the reference)."""
 from __future__ import annotations
 
 from ctypes import POINTER, Array, Structure, addressof, c_char, c_int, c_int32, c_size_t, c_uint32, c_void_p

@@ -1,19 +1,21 @@
-"""How Chip.run(cycles, record=names) records (docs/performance.md, "Recording").
+"""How Chip.run(cycles, record=names) records (docs/performance.md, "Recording"):
+a Recorder, made per run by Chip.run (Chip.recorder: the class, another one for
+a test's oracle).
 
-In bulk, the FMU's way (Chip._run_recorded): the FMU writes each cycle's row into
-record.data itself (record.columns names the columns), one doStep and one read
-per record.capacity cycles; FMI 2 reads record.data through the FMU's extension
-function pmdfmu_fmi2GetRecordData. `lender` finds how an FMU lends it.
+In bulk, the FMU's way: the FMU writes each cycle's row into record.data itself
+(record.columns names the columns), one doStep and one read per record.capacity
+cycles; FMI 2 reads record.data through the FMU's extension function
+pmdfmu_fmi2GetRecordData (`lender`), or has the FMU write the rows straight into
+the result, lent for one doStep inside one native call (`lent_stepper`).
 
 Cycle by cycle in the harness's native library (native/record.c), for an FMU
 without bulk recording of the columns (an older build) or a run that records
 `time`: per cycle one doStep to the next cycle of the FMU's grid and one get per
-FMI type, through the FMU's own FMI functions with the arguments the harness's
-Python loop passed (Chip._run_stepwise, kept as the reference), the columns
-converted as that loop converted them."""
+FMI type, through the FMU's own FMI functions, with the arguments a Python loop
+over FMPy passes (tests/stepwise.py, the reference)."""
 from __future__ import annotations
 
-from ctypes import POINTER, Structure, byref, c_double, c_int, c_size_t, c_uint32, c_void_p
+from ctypes import POINTER, Structure, byref, c_char, c_double, c_int, c_size_t, c_uint32, c_void_p
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -21,8 +23,9 @@ from fmpy.fmi1 import FMICallException
 
 from . import native
 
-# False: every recording runs cycle by cycle in the native loop (tests pin that loop with it)
-BULK = True
+# record.data's default row after the chip time: the commanded outputs (Chip.run records them fastest)
+RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
+            for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
 
 # record.h's PmdRecordType, by the FMU's type (FMI 2 and FMI 3 names) and by a row's numpy type
 DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
@@ -127,9 +130,7 @@ def extension(chip, name: str, argtypes: list):
 def lender(chip) -> Optional[Callable[[], Tuple[int, int]]]:
     """A function returning record.data's (address, size in bytes) as the FMU lends it after a doStep
     (valid until its next call), or None: an FMI 2 FMU without pmdfmu_fmi2GetRecordData (an older
-    build), or BULK off."""
-    if not BULK:
-        return None
+    build)."""
     if chip.fmi_version == 3:
         from fmpy.fmi3 import fmi3Binary, fmi3ValueReference
         vrs, size, value = (fmi3ValueReference * 1)(chip._vr["record.data"]), (c_size_t * 1)(), (fmi3Binary * 1)()
@@ -157,8 +158,8 @@ def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int,
     memory is lent (pmdfmu_fmi2SetRecordBuffer), the step run and the loan ended in one native call
     (native pmd_record_step_lent), so no Python code, a KeyboardInterrupt included, runs while the FMU
     holds a pointer into the caller's memory. Spares the copy of record.data into the result. None where
-    the FMU has no such function (FMI 3: its binary exports the FMI 3 functions only) or BULK is off."""
-    if not BULK or chip.fmi_version != 2:
+    the FMU has no such function (FMI 3: its binary exports the FMI 3 functions only)."""
+    if chip.fmi_version != 2:
         return None
     pointers = [c_void_p, c_void_p, c_size_t]
     lend = extension(chip, "pmdfmu_fmi2SetRecordBuffer", pointers)
@@ -179,3 +180,172 @@ def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int,
             raise FMICallException(function=names[call.value], status=status)
         return status, recorded.value
     return step_into
+
+
+class _Commanded:
+    """The result of a run recording commanded outputs only: record.data's default rows of 32-bit words
+    (the chip time, then RECORDED) go into a table of 32-bit words whose rows are the result's records."""
+    lendable = False
+
+    def __init__(self, names: Sequence[str], dtype: np.dtype, cycles: int):
+        self.dtype, self.cycles = dtype, cycles
+        self.table = np.empty((cycles, 1 + len(names)), dtype=np.int32)
+        self.row = np.dtype((np.int32, 1 + len(RECORDED)))
+        # the wanted columns as runs of adjacent ones (table column, record column, width): whole runs copy
+        # as blocks, and all of record.data as one
+        columns, self.runs = [0] + [1 + RECORDED.index(n) for n in names], []
+        for i, c in enumerate(columns):
+            if self.runs and self.runs[-1][1] + self.runs[-1][2] == c:
+                self.runs[-1][2] += 1
+            else:
+                self.runs.append([i, c, 1])
+
+    def put(self, done: int, rows: np.ndarray) -> None:
+        for at, column, width in self.runs:
+            self.table[done:done + len(rows), at:at + width] = rows[:, column:column + width]
+
+    def put_records(self, done: int, part: np.ndarray) -> None:
+        """Records of the result's type (the native loop's): the same 32-bit fields as the table's row."""
+        self.table[done:done + len(part)] = part.view(np.int32).reshape(len(part), self.table.shape[1])
+
+    def result(self) -> np.ndarray:
+        return self.table.view(self.dtype).reshape(self.cycles)
+
+
+class _Columns:
+    """The result of a run recording record.columns: the FMU's packed little-endian row is the result's
+    record (the chip time, then each column in its FMI 3 type's width), whole rows copied as one block,
+    or written in place by the FMU (FMI 2, lendable)."""
+    lendable = True
+
+    def __init__(self, dtype: np.dtype, cycles: int):
+        self.out = np.empty(cycles, dtype=dtype)         # every byte of every row is written
+        self.row = np.dtype((np.uint8, dtype.itemsize))
+
+    def address(self, done: int) -> int:
+        return self.out.ctypes.data + done * self.row.itemsize
+
+    def put(self, done: int, rows: np.ndarray) -> None:
+        self.out.view(self.row)[done:done + len(rows)] = rows
+
+    def put_records(self, done: int, part: np.ndarray) -> None:
+        self.out[done:done + len(part)] = part
+
+    def result(self) -> np.ndarray:
+        return self.out
+
+
+class Recorder:
+    """One Chip.run(cycles, record=names), after Chip._columns's checks (where: each column's variable and
+    element, dtype: the rows' type). In bulk through record.data where the FMU records the columns (the
+    commanded outputs always, any others with record.columns, not `time`: the same for all the cycles of a
+    doStep), else cycle by cycle in the native loop."""
+
+    def __init__(self, chip, names: Sequence[str], where: Dict[str, Tuple[str, int]], dtype: np.dtype):
+        self.chip, self.names, self.where, self.dtype = chip, list(names), where, dtype
+        self.commanded = set(self.names) <= set(RECORDED)
+        self.lend = lender(chip)
+        self.bulk = bool(self.lend) and (self.commanded or ("record.columns" in chip.variables
+                                                            and "time" not in self.names))
+
+    def run(self, cycles: int) -> np.ndarray:
+        if not self.bulk:
+            return self.stepwise(cycles)
+        return self._bulk(cycles)
+
+    def stepwise(self, cycles: int) -> np.ndarray:
+        """`cycles` rows as a master stepping cycle by cycle reads them (the native loop)."""
+        out = np.zeros(cycles, dtype=self.dtype)
+        record(self.chip, Plan(self.chip, self.where, self.dtype), out)
+        return out
+
+    def _bulk(self, cycles: int) -> np.ndarray:
+        """One doStep and one read per chunk of record.capacity cycles instead of FMI calls every cycle. A
+        chunk in which a script step may change the grid (SetSampleTime) starts from a saved FMU state and is
+        redone cycle by cycle if it did, so that its rows are those of a master stepping cycle by cycle."""
+        chip = self.chip
+        if "record.columns" in chip.variables:
+            chip.set("record.columns", "" if self.commanded else ",".join(self.names))
+        rows = _Commanded(self.names, self.dtype, cycles) if self.commanded else _Columns(self.dtype, cycles)
+        if not self.commanded and rows.row.itemsize != chip.get("record.rowSize"):
+            raise RuntimeError(f"record.rowSize is {chip.get('record.rowSize')}, not the {rows.row.itemsize} "
+                               f"bytes of a row of {len(self.names)} columns: the FMU's record.columns is another")
+        capacity = chip.get("record.capacity")
+        # the script's steps run up to its last @ line: past it no step can change the grid; a chip without a
+        # script's call (script.axes 0) has no step at all, and its chunks need no saved FMU state
+        script_end = float("inf")
+        if "script.lastCycle" in chip.variables:
+            script_end = chip.get("script.lastCycle") if chip.get("script.axes") else -1
+        # FMI 2: the FMU writes the rows straight into the result, lent for one doStep at a time, no copy
+        step_into = lent_stepper(chip) if rows.lendable else None
+        # record.enabled stays on for the run: close() turns it off on every way out, interrupts included
+        chip._recording = True
+        try:
+            chip.set("record.enabled", True)
+            done = 0
+            while done < cycles:
+                n = min(capacity, cycles - done)
+                before = chip.cycles if script_end >= 0 else None
+                state = None if before is None or before > script_end else chip.fmu.getFMUState()
+                try:
+                    logged = len(chip.messages)
+                    if step_into:
+                        status, lent = step_into(rows.address(done), n * rows.row.itemsize, *chip._step_span(n))
+                    else:
+                        status = chip._do_step(n)           # Warning if the step's cycles changed
+                    redo = state is not None and chip.cycles - before != n
+                    if status and not redo:
+                        # a grid change with no saved state to redo the chunk from (or a Warning the harness
+                        # does not know): the rows would not be a stepping master's
+                        raise RuntimeError(f"the recording step of {n} cycles ran other cycles than its rows "
+                                           f"(doStep's Warning: {chip.messages[-1].message if chip.messages else ''})")
+                    if redo:
+                        # the grid changed in the chunk: back to its start, and the chunk runs as a master
+                        # stepping cycle by cycle runs it
+                        chip.fmu.setFMUState(state)
+                        del chip.messages[logged:]
+                        chip.set("record.enabled", False)
+                        rows.put_records(done, self.stepwise(n))
+                        chip.set("record.enabled", True)
+                finally:                            # a failed redo keeps no FMU state alive
+                    if state is not None:
+                        chip.fmu.freeFMUState(state)
+                if not redo and step_into:
+                    if lent != n * rows.row.itemsize:
+                        raise RuntimeError(f"the lent memory holds {lent // rows.row.itemsize} cycles, not {n}: "
+                                           f"{lent} bytes, rows of {rows.row.itemsize} bytes")
+                elif not redo:
+                    # record.data is the FMU's own buffer, lent until the next call: read in place, once, as
+                    # many whole rows as it holds, never more
+                    address, size = self.lend()
+                    if size != n * rows.row.itemsize:
+                        # the step ran its cycles, but record.data does not hold their rows: never read past it
+                        raise RuntimeError(f"record.data holds {size // rows.row.itemsize} cycles, not {n}: "
+                                           f"{size} bytes, rows of {rows.row.itemsize} bytes")
+                    rows.put(done, np.frombuffer((c_char * size).from_address(address), dtype=rows.row))
+                done += n
+        except BaseException:
+            close(chip, quiet=True)                 # the error that stopped the run is the one to see
+            raise
+        close(chip)
+        return rows.result()
+
+
+def close(chip, quiet: bool = False) -> None:
+    """Turns record.enabled off once a recording run ends, on every way out of it: retried until it has run
+    through when a KeyboardInterrupt lands in it (raised after), and, should one land where no retry can
+    catch it, by the chip's next doStep (Chip._step). quiet: an FMU that refuses is left for that next
+    doStep to try again, with no exception of its own (another one is on its way)."""
+    interrupted: Optional[BaseException] = None
+    while chip._recording:
+        try:
+            chip.set("record.enabled", False)
+            chip._recording = False
+        except KeyboardInterrupt as e:
+            interrupted = e
+        except Exception:
+            if not quiet:
+                raise
+            break
+    if interrupted is not None:
+        raise interrupted

@@ -40,7 +40,7 @@ from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import profile
+from . import extras, profile
 from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
@@ -179,9 +179,7 @@ class SweepResult:
         self.plot(out / "summary.png")
 
     def plot(self, path: Union[str, Path]) -> None:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = extras.pyplot("SweepResult.plot")
         ok = [r for r in self.rows if r["status"] == "ok"]
         fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 8))
         for r in ok:
@@ -275,7 +273,7 @@ def _batches(cases: Sequence[Case], threads: int) -> List[List[Case]]:
 
 def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]]:
     """The cases' results, run on the client's cluster; each batch's taken as soon as it is done."""
-    from distributed import as_completed
+    as_completed = extras.require("distributed", "sweep", "a sweep on a cluster").as_completed
     threads = sum(client.nthreads().values()) or 1
     root = handoff_root()
     _remove_orphans(root)
@@ -336,7 +334,7 @@ def _remove_orphans(root: str) -> None:
 def _current_client(address: str):
     """This process's default distributed.Client if it is connected to the scheduler at address
     (e.g. one the user made with Client(address)), else None."""
-    from distributed import Client
+    Client = extras.require("distributed", "sweep", "a sweep on a scheduler's address").Client
     from distributed.comm import resolve_address
     try:
         current = Client.current()
@@ -364,7 +362,8 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
     if isinstance(scheduler, str) and scheduler == "serial":
         results = run_cases(cases)
     elif scheduler is None:
-        from dask.distributed import Client, LocalCluster
+        distributed = extras.require("distributed", "sweep", "a sweep on a local cluster (scheduler=None)")
+        Client, LocalCluster = distributed.Client, distributed.LocalCluster
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                           dashboard_address=None) as cluster, Client(cluster) as client:
             results = _on(client, cases)
@@ -373,7 +372,7 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
         if current is not None:
             results = _on(current, cases)
         else:
-            from dask.distributed import Client
+            Client = extras.require("distributed", "sweep", "a sweep on a scheduler's address").Client
             with Client(scheduler, set_as_default=False) as client:
                 results = _on(client, cases)
     else:

@@ -1,0 +1,114 @@
+"""Recording runs to interrupt, and the checks after an interrupt (tests/test_interrupts.py; a helper
+module, not a test file: conftest.py). A real Ctrl-C raises KeyboardInterrupt in the main thread at the
+next point where Python checks for signals: Interrupter puts it there, counting the lines the harness
+and FMPy run and calling _thread.interrupt_main() at chosen counts, as a SIGINT's arrival does."""
+import _thread
+import signal
+import sys
+from pathlib import Path
+
+import fmpy
+
+import pmdfmu
+from pmdfmu.chip import RECORDED
+from pmdfmu.profile import record_outputs
+from scenarios import busy_chip
+
+WATCHED = (str(Path(pmdfmu.__file__).parent), str(Path(fmpy.__file__).parent))
+CAPACITY = 60
+CYCLES = 400            # 7 chunks
+
+
+class Interrupter:
+    """A trace function that interrupts the main thread at the given counts of lines run in the harness and
+    FMPy (None: count only)."""
+
+    def __init__(self, at=()):
+        self.at, self.lines = set(at), 0
+
+    def __enter__(self):
+        # Python's own handler, which raises KeyboardInterrupt (another test may have left another one)
+        self.handler = signal.signal(signal.SIGINT, signal.default_int_handler)
+        sys.settrace(self.call)
+        return self
+
+    def __exit__(self, *exc):
+        sys.settrace(None)
+        signal.signal(signal.SIGINT, self.handler)
+
+    def call(self, frame, event, arg):
+        return self.line if frame.f_code.co_filename.startswith(WATCHED) else None
+
+    def line(self, frame, event, arg):
+        if event == "line":
+            self.lines += 1
+            if self.lines in self.at:
+                _thread.interrupt_main()
+        return self.line
+
+
+def checkpoint():
+    """A Python call: a pending interrupt is raised here at the latest."""
+
+
+def script(tmp_path):
+    path = tmp_path / "finer.pmd"
+    path.write_text("@150\nSetSampleTime(Axis1, 50);\n@260\nSetSampleTime(Axis1, 100);\n")
+    return path
+
+
+# (FMI version, recorded names, with a script whose SetSampleTime makes chunks redone cycle by cycle)
+RUNS = {"lent columns": (2, record_outputs(range(2)), False),
+        "copied columns": (3, record_outputs(range(2)), False),
+        "commanded table": (2, RECORDED[:6], False),
+        "redone chunks": (2, record_outputs([0]), True),
+        "redone chunks fmi3": (3, RECORDED[:3], True)}
+
+
+def chip_for(run, tmp_path):
+    version, _names, scripted = RUNS[run]
+    extra = {"script": script(tmp_path)} if scripted else {}
+    chip = pmdfmu.Chip(fmi_version=version, **{"record.capacity": CAPACITY}, **extra)
+    busy_chip(chip)
+    return chip
+
+
+def interrupted_run(chip, names, at) -> bool:
+    """Runs the recording with interrupts at the given line counts; True if one landed in it."""
+    try:
+        with Interrupter(at):
+            chip.run(CYCLES, record=names)
+            checkpoint()
+        checkpoint()
+    except KeyboardInterrupt:
+        return True
+    return False
+
+
+def assert_intact(chip, run, tmp_path):
+    """The interrupted chip records as a fresh one at the same cycle, and the FMU holds no loan."""
+    version, names, _ = RUNS[run]
+    ran = chip.get("chipTime")
+    with chip_for(run, tmp_path) as fresh:
+        while fresh.get("chipTime") < ran:          # cycle by cycle: a run of n cycles is n on the grid at its start
+            fresh.run(1)
+        assert fresh.cycles == chip.cycles
+        chip.run(2 * CAPACITY)                       # an unrecorded step longer than record.capacity runs
+        fresh.run(2 * CAPACITY)
+        assert not chip.get("record.enabled")
+        assert chip.run(150, record=names).tobytes() == fresh.run(150, record=names).tobytes()
+        assert chip.cycles == fresh.cycles
+    if version == 2:
+        # a loan the FMU still held would limit this step's rows to what it holds: rows wider than the run's
+        # do not fit, and the step would be refused ("the memory lent by pmdfmu_fmi2SetRecordBuffer holds")
+        chip.set("record.columns", ",".join(record_outputs(range(4))))
+        chip.set("record.enabled", True)
+        chip._step(CAPACITY)
+        chip.set("record.enabled", False)
+        assert not [m for m in chip.messages if m.status == "Error"]
+
+
+def line_count(run, tmp_path):
+    with chip_for(run, tmp_path) as chip, Interrupter() as counter:
+        chip.run(CYCLES, record=RUNS[run][1])
+    return counter.lines
