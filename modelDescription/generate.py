@@ -19,6 +19,7 @@ Usage: generate.py OUTDIR [C source file names of the FMUs' sources/ ...]
 import csv
 import hashlib
 import importlib.util
+import re
 import sys
 import uuid
 from fnmatch import fnmatchcase
@@ -31,6 +32,16 @@ tables = importlib.util.module_from_spec(_spec)
 sys.modules["tables"] = tables
 _spec.loader.exec_module(tables)
 
+def package_version() -> str:
+    """The project's one version, python/pmdfmu/__init__.py's __version__ (pyproject.toml reads it
+    there too): the model descriptions' version and generationTool."""
+    text = (Path(__file__).resolve().parent.parent / "python" / "pmdfmu" / "__init__.py").read_text()
+    return re.search(r'^__version__ = "([^"]+)"$', text, re.M).group(1)
+
+
+VERSION = package_version()
+# the model descriptions' metadata (FMI 2 and 3 alike): LICENSE's
+METADATA = f'version="{VERSION}" license="BSD-2-Clause" copyright="Copyright (c) 2026 pmdfmu authors" author="pmdfmu authors"'
 MODEL_IDENTIFIER = "PMDMotionProcessor"
 
 
@@ -167,7 +178,7 @@ def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{token}"',
         '  description="PMD Navigator/Pilot-class motion processor: external profile engine, buffer memory, host interface"',
-        '  generationTool="pmdfmu modelDescription/generate.py" variableNamingConvention="structured"',
+        f'  {METADATA} generationTool="pmdfmu {VERSION}" variableNamingConvention="structured"',
         '  numberOfEventIndicators="0">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
         ' canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true">',
@@ -229,7 +240,7 @@ def fmi3_xml(variables3, token: str, dependencies=None) -> str:
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="3.0" modelName="{MODEL_IDENTIFIER}" instantiationToken="{token}"',
         '  description="PMD Navigator/Pilot-class motion processor: external profile engine, buffer memory, host interface"',
-        '  generationTool="pmdfmu modelDescription/generate.py" variableNamingConvention="structured">',
+        f'  {METADATA} generationTool="pmdfmu {VERSION}" variableNamingConvention="structured">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
         f' fixedInternalStepSize="{cycle_time(variables3)}" canGetAndSetFMUState="true" canSerializeFMUState="true"'
         ' hasEventMode="false" providesIntermediateUpdate="false"/>',

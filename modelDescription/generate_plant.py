@@ -26,13 +26,13 @@ import uuid
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from generate import build_description     # the chip's generator, beside this one
+from generate import METADATA, VERSION, build_description     # the chip's generator, beside this one
 
 HERE = Path(__file__).resolve().parent
 MODEL_IDENTIFIER = "pmdplant"
 DESCRIPTION = ("DC motor with amplifier, armature resistance, back-EMF, inertia, viscous and Coulomb friction, "
                "and a quadrature encoder: a plant for the PMD motion processor's servo loop")
-GENERATION_TOOL = "pmdfmu modelDescription/generate_plant.py"
+GENERATION_TOOL = f"pmdfmu {VERSION}"
 # (name, description): errors are always logged, whatever SetDebugLogging says
 LOG_CATEGORIES = [("errors", "Refused calls and values, with the function, the variable and the reason")]
 BASE_UNITS = ("kg", "m", "s", "A", "rad")
@@ -111,7 +111,7 @@ def fmi2_xml(variables, units, token: str, sources) -> str:
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{token}"',
         f"  description={quoteattr(DESCRIPTION)}",
-        f'  generationTool="{GENERATION_TOOL}" variableNamingConvention="flat" numberOfEventIndicators="0">',
+        f'  {METADATA} generationTool="{GENERATION_TOOL}" variableNamingConvention="flat" numberOfEventIndicators="0">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
         ' canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true">',
         "    <SourceFiles>",
@@ -148,7 +148,7 @@ def fmi3_xml(variables, units, token: str) -> str:
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="3.0" modelName="{MODEL_IDENTIFIER}" instantiationToken="{token}"',
         f"  description={quoteattr(DESCRIPTION)}",
-        f'  generationTool="{GENERATION_TOOL}" variableNamingConvention="flat">',
+        f'  {METADATA} generationTool="{GENERATION_TOOL}" variableNamingConvention="flat">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
         f' fixedInternalStepSize="{internal_step(variables)}" canGetAndSetFMUState="true"'
         ' canSerializeFMUState="true" hasEventMode="false" providesIntermediateUpdate="false"/>',

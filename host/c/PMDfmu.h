@@ -11,6 +11,9 @@
 #ifndef PMD_FMU_H
 #define PMD_FMU_H
 
+/* The project's one version (python/pmdfmu/__init__.py; tests/test_version.py checks this copy) */
+#define PMDFMU_VERSION "0.1.0"
+
 #include <stdint.h>
 #include "PMDtypes.h"
 
