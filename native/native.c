@@ -2,10 +2,38 @@
  * loops that would cost a Python call per cycle or per word, run in C over
  * the FMU's own FMI functions. Not part of any FMU: it calls an FMU only
  * through the function pointers and instance the harness hands it. */
+#include <stddef.h>
+
+#include "memory_port.h"
 #include "native.h"
+#include "record_loop.h"
 
 /* The harness checks it loaded a library of its own version. */
 int pmd_native_abi(void)
 {
     return PMD_NATIVE_ABI;
+}
+
+#define SIZE(type) sizeof(type)
+#define AT(type, member) offsetof(type, member)
+
+size_t pmd_native_layout(size_t *out, size_t n)
+{
+    /* python/pmdfmu/native.py LAYOUT lists the same, in this order */
+    const size_t layout[] = {
+        SIZE(PmdStop), AT(PmdStop, done), AT(PmdStop, call), AT(PmdStop, status),
+        SIZE(PmdLoopGroup), AT(PmdLoopGroup, get), AT(PmdLoopGroup, vrs), AT(PmdLoopGroup, n_vrs),
+        AT(PmdLoopGroup, n_values), AT(PmdLoopGroup, type), AT(PmdLoopGroup, values),
+        SIZE(PmdLoopColumn), AT(PmdLoopColumn, source), AT(PmdLoopColumn, offset), AT(PmdLoopColumn, size),
+        AT(PmdLoopColumn, truth),
+        SIZE(PmdMemoryPort), AT(PmdMemoryPort, data), AT(PmdMemoryPort, address), AT(PmdMemoryPort, count),
+        AT(PmdMemoryPort, strobe), AT(PmdMemoryPort, ack),
+        PMD_LOOP_DOUBLE, PMD_LOOP_INT32, PMD_LOOP_UINT32, PMD_LOOP_UINT16, PMD_LOOP_INT16, PMD_LOOP_INT, PMD_LOOP_BOOL,
+        PMD_MEMORY_SET, PMD_MEMORY_SET_INT32, PMD_MEMORY_GET,
+        PMD_STEP_LEND, PMD_STEP_DO_STEP, PMD_STEP_GET_DATA, PMD_STEP_END_LOAN,
+    };
+    size_t i, count = sizeof layout / sizeof layout[0];
+    for (i = 0; i < count && i < n; i++)
+        out[i] = layout[i];
+    return count;
 }

@@ -11,6 +11,27 @@
 #define PMD_NATIVE_EXPORT __attribute__((visibility("default")))
 #endif
 
+#include <stddef.h>
+
+/* An FMI function of the FMU, any signature (ISO C converts function pointers among themselves only) */
+typedef void (*PmdFmiFunction)(void);
+
+/* FMPy raises for any status above Warning (Discard, Error, Fatal, Pending): so do the loops */
+#define PMD_FAILED(status) ((status) > 1)
+
+/* Where a loop stopped early: after `done` whole rows (record_loop.h) or blocks (memory_port.h), a
+ * call (the loop's own numbering) returned `status` > Warning. */
+typedef struct {
+    size_t done;
+    int call;
+    int status;
+} PmdStop;
+
 PMD_NATIVE_EXPORT int pmd_native_abi(void);
+
+/* The layout of every struct and enum the harness mirrors with ctypes (python/pmdfmu/native.py): their
+ * sizes, their members' offsets and the enums' values, in the order native.c lists them; writes at most
+ * n and returns how many there are. The harness refuses a library whose layout is not its own. */
+PMD_NATIVE_EXPORT size_t pmd_native_layout(size_t *out, size_t n);
 
 #endif

@@ -844,7 +844,7 @@ class Chip:
         that does not fit 32 bits, a float, a negative address, a block leaving the
         memory) raises ValueError naming it before anything is written.
 
-        The strobes run in C (the harness's native library, native/memory.c), each
+        The strobes run in C (the harness's native library, native/memory_port.c), each
         one the FMI calls a master makes; a call the FMU refuses raises FMPy's
         FMICallException, the blocks before it written (docs/performance.md,
         "Upload and streaming")."""
@@ -1018,7 +1018,7 @@ class Chip:
         the rows are what a master stepping cycle by cycle would read, also where a
         script's SetSampleTime changes the grid (that chunk is redone cycle by cycle
         from a saved FMU state). Recording `time`, or an FMU without record.columns,
-        runs the harness's native loop (native/record.c: per cycle one doStep and one
+        runs the harness's native loop (native/record_loop.c: per cycle one doStep and one
         get per FMI type of the FMU's own functions). Commanded positions, velocities
         and accelerations only (chip.RECORDED) are fastest; docs/performance.md,
         "Recording" (pmdfmu.recording.Recorder).

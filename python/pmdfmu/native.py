@@ -1,10 +1,13 @@
 """The harness's native library (native/*.c, built by CMake beside the FMUs):
 loops over an FMU's own FMI functions that would cost a Python call per cycle
 or per word. Found like the FMUs (chip.default_fmu): $PMDFMU_FMU_DIR/native,
-the installed package's native/, the source tree's build/native."""
+the installed package's native/, the source tree's build/native. The structs
+and enums it shares with the harness are mirrored here with ctypes, and the
+library's own layout of them (pmd_native_layout) is checked at load."""
 from __future__ import annotations
 
 import ctypes
+from ctypes import POINTER, Structure, c_int, c_size_t, c_uint32, c_void_p
 import os
 import sys
 from functools import lru_cache
@@ -14,6 +17,43 @@ PACKAGE = Path(__file__).resolve().parent
 REPO = PACKAGE.parent.parent
 ABI = 4                  # native/native.h PMD_NATIVE_ABI
 NAME = {"win32": "pmdnative.dll", "darwin": "libpmdnative.dylib"}.get(sys.platform, "libpmdnative.so")
+BLOCK_WORDS = 64         # memory.data[64]: the words one strobe writes
+
+# record_loop.h's PmdLoopType: the C type of a getter's values
+DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
+# memory_port.h's calls, record_loop.h's calls of pmd_record_step_lent, in their order
+MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET = range(3)
+STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN = range(4)
+
+
+class Stop(Structure):
+    """native.h's PmdStop: where a loop stopped (after `done` rows or blocks, call `call` returned `status`)."""
+    _fields_ = [("done", c_size_t), ("call", c_int), ("status", c_int)]
+
+
+class Group(Structure):
+    """record_loop.h's PmdLoopGroup: one get a cycle."""
+    _fields_ = [("get", c_void_p), ("vrs", POINTER(c_uint32)), ("n_vrs", c_size_t), ("n_values", c_size_t),
+                ("type", c_int), ("values", c_void_p)]
+
+
+class Column(Structure):
+    """record_loop.h's PmdLoopColumn: one field of a row."""
+    _fields_ = [("source", c_void_p), ("offset", c_size_t), ("size", c_size_t), ("truth", c_int)]
+
+
+class Port(Structure):
+    """memory_port.h's PmdMemoryPort: the value references a strobe uses."""
+    _fields_ = [("data", c_uint32 * BLOCK_WORDS), ("address", c_uint32), ("count", c_uint32),
+                ("strobe", c_uint32), ("ack", c_uint32)]
+
+
+def layout() -> list:
+    """What pmd_native_layout returns for a library built with this harness: native.c's order."""
+    out = []
+    for struct in (Stop, Group, Column, Port):
+        out += [ctypes.sizeof(struct)] + [getattr(struct, name).offset for name, _type in struct._fields_]
+    return out + list(range(7)) + list(range(3)) + list(range(4))
 
 
 @lru_cache(maxsize=None)
@@ -27,6 +67,14 @@ def library() -> ctypes.CDLL:
             if lib.pmd_native_abi() != ABI:
                 raise ImportError(f"{path} is of ABI {lib.pmd_native_abi()}, the harness wants {ABI}: rebuild it "
                                   "(pip install . or cmake --build build)")
+            lib.pmd_native_layout.restype = c_size_t
+            lib.pmd_native_layout.argtypes = [POINTER(c_size_t), c_size_t]
+            want = layout()
+            got = (c_size_t * len(want))()
+            count = lib.pmd_native_layout(got, len(want))
+            if count != len(want) or list(got) != want:
+                raise ImportError(f"{path} lays out its structs and enums otherwise than the harness's ctypes "
+                                  f"(native.py; {list(got)[:count]} against {want}): rebuild it or fix native.py")
             return lib
     raise FileNotFoundError(f"{NAME} not found in {', '.join(map(str, candidates))}: build it first "
                             "(pip install . or cmake -S . -B build && cmake --build build)")

@@ -8,14 +8,14 @@ cycles; FMI 2 reads record.data through the FMU's extension function
 pmdfmu_fmi2GetRecordData (`lender`), or has the FMU write the rows straight into
 the result, lent for one doStep inside one native call (`lent_stepper`).
 
-Cycle by cycle in the harness's native library (native/record.c), for an FMU
+Cycle by cycle in the harness's native library (native/record_loop.c), for an FMU
 without bulk recording of the columns (an older build) or a run that records
 `time`: per cycle one doStep to the next cycle of the FMU's grid and one get per
 FMI type, through the FMU's own FMI functions, with the arguments a Python loop
 over FMPy passes (tests/stepwise.py, the reference)."""
 from __future__ import annotations
 
-from ctypes import POINTER, Structure, byref, c_char, c_double, c_int, c_size_t, c_uint32, c_void_p
+from ctypes import POINTER, byref, c_char, c_double, c_int, c_size_t, c_uint32, c_void_p
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -27,27 +27,14 @@ from . import native
 RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
             for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
 
-# record.h's PmdRecordType, by the FMU's type (FMI 2 and FMI 3 names) and by a row's numpy type
-DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
-SOURCE = {2: {"Real": DOUBLE, "Integer": INT32, "Boolean": INT},
-          3: {"Float64": DOUBLE, "Int32": INT32, "UInt32": UINT32, "UInt16": UINT16, "Int16": INT16,
-              "Boolean": BOOL}}
-CTYPE = {DOUBLE: np.float64, INT32: np.int32, UINT32: np.uint32, UINT16: np.uint16, INT16: np.int16,
-         INT: np.intc, BOOL: np.bool_}
+# the C type of a getter's values (native.py's PmdLoopType), by the FMU's type (FMI 2 and FMI 3 names), and
+# a row's numpy type of each
+SOURCE = {2: {"Real": native.DOUBLE, "Integer": native.INT32, "Boolean": native.INT},
+          3: {"Float64": native.DOUBLE, "Int32": native.INT32, "UInt32": native.UINT32, "UInt16": native.UINT16,
+              "Int16": native.INT16, "Boolean": native.BOOL}}
+CTYPE = {native.DOUBLE: np.float64, native.INT32: np.int32, native.UINT32: np.uint32, native.UINT16: np.uint16,
+         native.INT16: np.int16, native.INT: np.intc, native.BOOL: np.bool_}
 GRID = ("time", "nextCycleTime", "activeCycleTime")
-
-
-class Group(Structure):
-    _fields_ = [("get", c_void_p), ("vrs", POINTER(c_uint32)), ("n_vrs", c_size_t), ("n_values", c_size_t),
-                ("type", c_int), ("values", c_void_p)]
-
-
-class Column(Structure):
-    _fields_ = [("source", c_void_p), ("offset", c_size_t), ("size", c_size_t), ("truth", c_int)]
-
-
-class Stop(Structure):
-    _fields_ = [("cycles", c_size_t), ("call", c_int), ("status", c_int)]
 
 
 def _function(fmu, name: str):
@@ -90,13 +77,13 @@ class Plan:
                 # or of an fmi2Boolean (an int: the field is value != 0)
                 field_type, offset = dtype.fields[f][:2]
                 source = values.ctypes.data + values.itemsize * (int(offsets[read.index(var)]) + element)
-                columns.append(Column(source, offset, field_type.itemsize,
+                columns.append(native.Column(source, offset, field_type.itemsize,
                                       int(values.dtype != field_type and field_type.kind == "b")))
-            groups.append(Group(native.address(_function(chip.fmu, name)), vrs, len(read), int(offsets[-1]),
+            groups.append(native.Group(native.address(_function(chip.fmu, name)), vrs, len(read), int(offsets[-1]),
                                 SOURCE[version][t], values.ctypes.data))
             self.names.append(name)
-        self.groups = (Group * len(groups))(*groups)
-        self.columns = (Column * len(columns))(*columns)
+        self.groups = (native.Group * len(groups))(*groups)
+        self.columns = (native.Column * len(columns))(*columns)
         self.do_step = f"fmi{version}DoStep"
 
 
@@ -107,9 +94,9 @@ def record(chip, plan: Plan, out: np.ndarray) -> None:
     lib = native.library()
     fn = lib.pmd_record_fmi2 if plan.version == 2 else lib.pmd_record_fmi3
     fn.restype = c_int
-    fn.argtypes = [c_void_p, c_void_p, POINTER(Group), c_size_t, c_size_t, c_size_t, POINTER(Column), c_size_t,
-                   c_void_p, c_size_t, c_size_t, POINTER(Stop)]
-    stop = Stop()
+    fn.argtypes = [c_void_p, c_void_p, POINTER(native.Group), c_size_t, c_size_t, c_size_t, POINTER(native.Column),
+                   c_size_t, c_void_p, c_size_t, c_size_t, POINTER(native.Stop)]
+    stop = native.Stop()
     if fn(native.address(_function(chip.fmu, plan.do_step)), chip.fmu.component, plan.groups, len(plan.groups),
           plan.grid_group, 0, plan.columns, len(plan.columns), out.ctypes.data, out.dtype.itemsize, len(out), stop):
         raise FMICallException(function=plan.do_step if stop.call < 0 else plan.names[stop.call], status=stop.status)
@@ -172,7 +159,8 @@ def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int,
                    POINTER(c_size_t), POINTER(c_int)]
     functions = native.address(lend), native.address(get), native.address(_function(chip.fmu, "fmi2DoStep"))
     recorded, call = c_size_t(), c_int()
-    names = ("pmdfmu_fmi2SetRecordBuffer", "fmi2DoStep", "pmdfmu_fmi2GetRecordData", "pmdfmu_fmi2SetRecordBuffer")
+    names = {native.STEP_LEND: "pmdfmu_fmi2SetRecordBuffer", native.STEP_DO_STEP: "fmi2DoStep",
+             native.STEP_GET_DATA: "pmdfmu_fmi2GetRecordData", native.STEP_END_LOAN: "pmdfmu_fmi2SetRecordBuffer"}
 
     def step_into(address: int, size: int, now: float, step: float) -> Tuple[int, int]:
         status = fn(*functions, chip.fmu.component, now, step, address, size, byref(recorded), byref(call))

@@ -1,4 +1,4 @@
-/* Chip.run(cycles, record=names) in C (record.h): the loop the harness ran in
+/* Chip.run(cycles, record=names) in C (record_loop.h): the loop the harness ran in
  * Python (a grid read, a doStep of one cycle, one get per FMI type, every
  * cycle), over the same FMI functions of the FMU with the same arguments, so
  * that the rows and the FMU's log are the same, at the cost of the FMU's own
@@ -8,32 +8,33 @@
 
 #include "fmi2FunctionTypes.h"
 #include "fmi3FunctionTypes.h"
-#include "record.h"
+#include "record_loop.h"
 
-/* FMPy raises for any status above Warning (Discard, Error, Fatal, Pending) */
-#define FAILED(status) ((status) > 1)
 
-static int get_fmi2(const PmdRecordGroup *g, void *instance)
+static int get_fmi2(const PmdLoopGroup *g, void *instance)
 {
     switch (g->type) {
-    case PMD_RECORD_DOUBLE: return ((fmi2GetRealTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
-    case PMD_RECORD_INT32: return ((fmi2GetIntegerTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
-    default: return ((fmi2GetBooleanTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
+    case PMD_LOOP_DOUBLE: return ((fmi2GetRealTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
+    case PMD_LOOP_INT32: return ((fmi2GetIntegerTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
+    case PMD_LOOP_INT: return ((fmi2GetBooleanTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values);
+    default: return fmi2Error;              /* no FMI 2 getter has these values' type */
     }
 }
 
-static int get_fmi3(const PmdRecordGroup *g, void *instance)
+static int get_fmi3(const PmdLoopGroup *g, void *instance)
 {
     switch (g->type) {
-    case PMD_RECORD_DOUBLE:
+    case PMD_LOOP_DOUBLE:
         return ((fmi3GetFloat64TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
-    case PMD_RECORD_INT32: return ((fmi3GetInt32TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
-    case PMD_RECORD_UINT32:
+    case PMD_LOOP_INT32: return ((fmi3GetInt32TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    case PMD_LOOP_UINT32:
         return ((fmi3GetUInt32TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
-    case PMD_RECORD_UINT16:
+    case PMD_LOOP_UINT16:
         return ((fmi3GetUInt16TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
-    case PMD_RECORD_INT16: return ((fmi3GetInt16TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
-    default: return ((fmi3GetBooleanTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    case PMD_LOOP_INT16: return ((fmi3GetInt16TYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    case PMD_LOOP_BOOL:
+        return ((fmi3GetBooleanTYPE *)g->get)(instance, g->vrs, g->n_vrs, g->values, g->n_values);
+    default: return fmi3Error;              /* no FMI 3 getter has these values' type */
     }
 }
 
@@ -43,7 +44,7 @@ static int get_fmi3(const PmdRecordGroup *g, void *instance)
 #endif
 
 /* A field of a packed row (numpy's structured arrays align nothing): memcpy of a fixed size. */
-static void store(unsigned char *row, const PmdRecordColumn *c)
+static void store(unsigned char *row, const PmdLoopColumn *c)
 {
     unsigned char *field = row + c->offset;
     if (c->truth) {
@@ -60,7 +61,7 @@ static void store(unsigned char *row, const PmdRecordColumn *c)
     }
 }
 
-static int do_step(int fmi3, PmdRecordFunction fn, void *instance, double now, double step)
+static int do_step(int fmi3, PmdFmiFunction fn, void *instance, double now, double step)
 {
     if (fmi3) {
         /* FMPy's doStep passes these and ignores what they return; so did the harness */
@@ -72,17 +73,17 @@ static int do_step(int fmi3, PmdRecordFunction fn, void *instance, double now, d
     return ((fmi2DoStepTYPE *)fn)(instance, now, step, fmi2True);
 }
 
-static int stopped(PmdRecordStop *stop, size_t cycles, int call, int status)
+static int stopped(PmdStop *stop, size_t cycles, int call, int status)
 {
-    stop->cycles = cycles;
+    stop->done = cycles;
     stop->call = call;
     stop->status = status;
     return 1;
 }
 
-static inline int record(int fmi3, PmdRecordFunction do_step_fn, void *instance, const PmdRecordGroup *groups, size_t n_groups,
-                         size_t grid_group, size_t grid_place, const PmdRecordColumn *columns, size_t n_columns,
-                         void *rows, size_t row_bytes, size_t cycles, PmdRecordStop *stop)
+static inline int record(int fmi3, PmdFmiFunction do_step_fn, void *instance, const PmdLoopGroup *groups, size_t n_groups,
+                         size_t grid_group, size_t grid_place, const PmdLoopColumn *columns, size_t n_columns,
+                         void *rows, size_t row_bytes, size_t cycles, PmdStop *stop)
 {
     const double *grid = (const double *)groups[grid_group].values + grid_place;
     unsigned char *row = rows;
@@ -91,17 +92,17 @@ static inline int record(int fmi3, PmdRecordFunction do_step_fn, void *instance,
     if (cycles == 0)
         return 0;
     status = fmi3 ? get_fmi3(&groups[grid_group], instance) : get_fmi2(&groups[grid_group], instance);
-    if (FAILED(status))
+    if (PMD_FAILED(status))
         return stopped(stop, 0, (int)grid_group, status);
     for (i = 0; i < cycles; i++, row += row_bytes) {
         /* Chip._step(1): from the last communication point to the end of the next cycle; the
          * expression as Python evaluated it, (next - now) + 1 * cycleTime */
         status = do_step(fmi3, do_step_fn, instance, grid[0], (grid[1] - grid[0]) + grid[2]);
-        if (FAILED(status))
+        if (PMD_FAILED(status))
             return stopped(stop, i, -1, status);
         for (g = 0; g < n_groups; g++) {
             status = fmi3 ? get_fmi3(&groups[g], instance) : get_fmi2(&groups[g], instance);
-            if (FAILED(status))
+            if (PMD_FAILED(status))
                 return stopped(stop, i, (int)g, status);
         }
         for (c = 0; c < n_columns; c++)
@@ -110,23 +111,23 @@ static inline int record(int fmi3, PmdRecordFunction do_step_fn, void *instance,
     return 0;
 }
 
-int pmd_record_fmi2(PmdRecordFunction do_step_fn, void *instance, const PmdRecordGroup *groups, size_t n_groups,
-                    size_t grid_group, size_t grid_place, const PmdRecordColumn *columns, size_t n_columns,
-                    void *rows, size_t row_bytes, size_t cycles, PmdRecordStop *stop)
+int pmd_record_fmi2(PmdFmiFunction do_step_fn, void *instance, const PmdLoopGroup *groups, size_t n_groups,
+                    size_t grid_group, size_t grid_place, const PmdLoopColumn *columns, size_t n_columns,
+                    void *rows, size_t row_bytes, size_t cycles, PmdStop *stop)
 {
     return record(0, do_step_fn, instance, groups, n_groups, grid_group, grid_place, columns, n_columns, rows,
                   row_bytes, cycles, stop);
 }
 
-int pmd_record_fmi3(PmdRecordFunction do_step_fn, void *instance, const PmdRecordGroup *groups, size_t n_groups,
-                    size_t grid_group, size_t grid_place, const PmdRecordColumn *columns, size_t n_columns,
-                    void *rows, size_t row_bytes, size_t cycles, PmdRecordStop *stop)
+int pmd_record_fmi3(PmdFmiFunction do_step_fn, void *instance, const PmdLoopGroup *groups, size_t n_groups,
+                    size_t grid_group, size_t grid_place, const PmdLoopColumn *columns, size_t n_columns,
+                    void *rows, size_t row_bytes, size_t cycles, PmdStop *stop)
 {
     return record(1, do_step_fn, instance, groups, n_groups, grid_group, grid_place, columns, n_columns, rows,
                   row_bytes, cycles, stop);
 }
 
-int pmd_record_step_lent(PmdRecordFunction set_buffer, PmdRecordFunction get_data, PmdRecordFunction do_step_fn,
+int pmd_record_step_lent(PmdFmiFunction set_buffer, PmdFmiFunction get_data, PmdFmiFunction do_step_fn,
                          void *instance, double now, double step, void *rows, size_t size, size_t *recorded, int *call)
 {
     const void *data = NULL;
@@ -135,13 +136,13 @@ int pmd_record_step_lent(PmdRecordFunction set_buffer, PmdRecordFunction get_dat
     *recorded = 0;
     *call = PMD_STEP_LEND;
     status = ((PmdSetRecordBuffer *)set_buffer)(instance, rows, size);
-    if (FAILED(status))
+    if (PMD_FAILED(status))
         return status;
     *call = PMD_STEP_DO_STEP;
     status = do_step(0, do_step_fn, instance, now, step);
-    if (!FAILED(status)) {
+    if (!PMD_FAILED(status)) {
         got = ((PmdGetRecordData *)get_data)(instance, &data, &bytes);
-        if (FAILED(got)) {
+        if (PMD_FAILED(got)) {
             *call = PMD_STEP_GET_DATA;
             status = got;
         } else {
@@ -150,7 +151,7 @@ int pmd_record_step_lent(PmdRecordFunction set_buffer, PmdRecordFunction get_dat
     }
     /* the loan ends whatever happened: the FMU keeps no pointer into the caller's memory */
     ended = ((PmdSetRecordBuffer *)set_buffer)(instance, NULL, 0);
-    if (FAILED(ended) && !FAILED(status)) {
+    if (PMD_FAILED(ended) && !PMD_FAILED(status)) {
         *call = PMD_STEP_END_LOAN;
         return ended;
     }

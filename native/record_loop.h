@@ -1,5 +1,5 @@
-#ifndef PMD_NATIVE_RECORD_H
-#define PMD_NATIVE_RECORD_H
+#ifndef PMD_NATIVE_RECORD_LOOP_H
+#define PMD_NATIVE_RECORD_LOOP_H
 
 /* Recording a run cycle by cycle through an FMU's own FMI functions
  * (Chip.run(cycles, record=names), python/pmdfmu/chip.py): per cycle, one
@@ -10,31 +10,28 @@
 
 #include "native.h"
 
-/* An FMI function of the FMU, any signature (ISO C converts function pointers among themselves only) */
-typedef void (*PmdRecordFunction)(void);
-
 /* The C type of a getter's values. */
 typedef enum {
-    PMD_RECORD_DOUBLE,      /* fmi2Real, fmi3Float64 */
-    PMD_RECORD_INT32,       /* fmi2Integer, fmi3Int32 */
-    PMD_RECORD_UINT32,      /* fmi3UInt32 */
-    PMD_RECORD_UINT16,      /* fmi3UInt16 */
-    PMD_RECORD_INT16,       /* fmi3Int16 */
-    PMD_RECORD_INT,         /* fmi2Boolean (an int) */
-    PMD_RECORD_BOOL         /* fmi3Boolean (a bool, one byte: 0 or 1) */
-} PmdRecordType;
+    PMD_LOOP_DOUBLE,      /* fmi2Real, fmi3Float64 */
+    PMD_LOOP_INT32,       /* fmi2Integer, fmi3Int32 */
+    PMD_LOOP_UINT32,      /* fmi3UInt32 */
+    PMD_LOOP_UINT16,      /* fmi3UInt16 */
+    PMD_LOOP_INT16,       /* fmi3Int16 */
+    PMD_LOOP_INT,         /* fmi2Boolean (an int) */
+    PMD_LOOP_BOOL         /* fmi3Boolean (a bool, one byte: 0 or 1) */
+} PmdLoopType;
 
 /* One get a cycle: the FMU's fmi2Get<Type> or fmi3Get<Type> of these value
  * references, into `values` (FMI 3 arrays are read whole: n_values counts
  * their elements; in FMI 2, n_values == n_vrs). */
 typedef struct {
-    PmdRecordFunction get;
+    PmdFmiFunction get;
     const unsigned int *vrs;
     size_t n_vrs;
     size_t n_values;
-    int type;               /* PmdRecordType of values */
+    int type;               /* PmdLoopType of values */
     void *values;
-} PmdRecordGroup;
+} PmdLoopGroup;
 
 /* One field of a row: `size` bytes at `offset` from the row's start, copied
  * from a value in a group's buffer (`source`, its address). An integer field
@@ -46,30 +43,23 @@ typedef struct {
     size_t offset;
     size_t size;            /* 1, 2, 4 or 8 */
     int truth;              /* the source is an fmi2Boolean (int), the field numpy's one-byte bool */
-} PmdRecordColumn;
-
-/* Where a recording stopped early: after `cycles` whole rows, a call (-1 the
- * doStep, else the group's index) returned `status` > Warning. */
-typedef struct {
-    size_t cycles;
-    int call;
-    int status;
-} PmdRecordStop;
+} PmdLoopColumn;
 
 /* Records `cycles` rows of `row_bytes` each into `rows`. The grid group's
  * values at grid_place .. grid_place + 2 are the FMU's time, nextCycleTime and
  * activeCycleTime (doubles): read once before the first cycle, then with the
  * columns after each doStep, each doStep going from time to the next cycle's
  * end, (nextCycleTime - time) + activeCycleTime. Returns 0, or 1 and *stop
- * filled if a call failed. */
-PMD_NATIVE_EXPORT int pmd_record_fmi2(PmdRecordFunction do_step, void *instance, const PmdRecordGroup *groups, size_t n_groups,
-                                      size_t grid_group, size_t grid_place, const PmdRecordColumn *columns,
+ * filled if a call failed: after `done` whole rows, the call `call` (-1 the
+ * doStep, else the group's index) returned `status` > Warning. */
+PMD_NATIVE_EXPORT int pmd_record_fmi2(PmdFmiFunction do_step, void *instance, const PmdLoopGroup *groups, size_t n_groups,
+                                      size_t grid_group, size_t grid_place, const PmdLoopColumn *columns,
                                       size_t n_columns, void *rows, size_t row_bytes, size_t cycles,
-                                      PmdRecordStop *stop);
-PMD_NATIVE_EXPORT int pmd_record_fmi3(PmdRecordFunction do_step, void *instance, const PmdRecordGroup *groups, size_t n_groups,
-                                      size_t grid_group, size_t grid_place, const PmdRecordColumn *columns,
+                                      PmdStop *stop);
+PMD_NATIVE_EXPORT int pmd_record_fmi3(PmdFmiFunction do_step, void *instance, const PmdLoopGroup *groups, size_t n_groups,
+                                      size_t grid_group, size_t grid_place, const PmdLoopColumn *columns,
                                       size_t n_columns, void *rows, size_t row_bytes, size_t cycles,
-                                      PmdRecordStop *stop);
+                                      PmdStop *stop);
 
 /* The FMU's extension functions beside the FMI 2 ones (fmu_src/fmi/fmi2.c) */
 typedef int PmdSetRecordBuffer(void *instance, void *rows, size_t size);
@@ -86,8 +76,8 @@ enum { PMD_STEP_LEND, PMD_STEP_DO_STEP, PMD_STEP_GET_DATA, PMD_STEP_END_LOAN };
  * exception) runs while the FMU holds a pointer into the caller's memory, so
  * the loan cannot outlive it. Returns the doStep's status (Warning: a grid
  * change inside the step), or that of the first call that failed (*call). */
-PMD_NATIVE_EXPORT int pmd_record_step_lent(PmdRecordFunction set_buffer, PmdRecordFunction get_data,
-                                           PmdRecordFunction do_step, void *instance, double now, double step,
+PMD_NATIVE_EXPORT int pmd_record_step_lent(PmdFmiFunction set_buffer, PmdFmiFunction get_data,
+                                           PmdFmiFunction do_step, void *instance, double now, double step,
                                            void *rows, size_t size, size_t *recorded, int *call);
 
 #endif

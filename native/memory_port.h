@@ -1,5 +1,5 @@
-#ifndef PMD_NATIVE_MEMORY_H
-#define PMD_NATIVE_MEMORY_H
+#ifndef PMD_NATIVE_MEMORY_PORT_H
+#define PMD_NATIVE_MEMORY_PORT_H
 
 /* Writing external memory through the FMU's memory port (Chip.write_memory,
  * python/pmdfmu/chip.py): per block of up to 64 words one set of
@@ -13,9 +13,6 @@
 
 #include "native.h"
 
-/* An FMI function of the FMU, any signature (ISO C converts function pointers among themselves only) */
-typedef void (*PmdMemoryFunction)(void);
-
 /* The value references a strobe uses. FMI 2: memory.data[1] .. [64] (each
  * element its own Integer variable); FMI 3: data[0] is the UInt32 array
  * memory.data, the others unused. */
@@ -27,17 +24,11 @@ typedef struct {
     unsigned int ack;               /* host.ack: the get that executes the write */
 } PmdMemoryPort;
 
-/* Where a write stopped: in block `blocks` (the blocks before it written), a
+/* Where a write stopped (PmdStop): in block `done` (the blocks before it written), a
  * call returned `status` > Warning; call is PMD_MEMORY_SET (fmi2SetInteger,
  * fmi3SetUInt32), PMD_MEMORY_SET_INT32 (fmi3SetInt32: count and strobe) or
  * PMD_MEMORY_GET (the get of host.ack). */
 enum { PMD_MEMORY_SET, PMD_MEMORY_SET_INT32, PMD_MEMORY_GET };
-
-typedef struct {
-    size_t blocks;
-    int call;
-    int status;
-} PmdMemoryStop;
 
 /* Writes words[0 .. n) at address.., 64 a block, block k with memory.strobe
  * (strobe + k + 1) & 0x7FFFFFFF (strobe: the value memory.strobe holds).
@@ -46,12 +37,12 @@ typedef struct {
  * and memory.address), set_int32 fmi3SetInt32 (count, strobe), get
  * fmi3GetInt32. Returns 0, or 1 with *stop filled at the first call that
  * failed (nothing after it is called). */
-PMD_NATIVE_EXPORT int pmd_memory_write_fmi2(PmdMemoryFunction set, PmdMemoryFunction get, void *instance,
+PMD_NATIVE_EXPORT int pmd_memory_write_fmi2(PmdFmiFunction set, PmdFmiFunction get, void *instance,
                                             const PmdMemoryPort *port, uint32_t address, const uint32_t *words,
-                                            size_t n, int32_t strobe, PmdMemoryStop *stop);
-PMD_NATIVE_EXPORT int pmd_memory_write_fmi3(PmdMemoryFunction set, PmdMemoryFunction set_int32,
-                                            PmdMemoryFunction get, void *instance, const PmdMemoryPort *port,
+                                            size_t n, int32_t strobe, PmdStop *stop);
+PMD_NATIVE_EXPORT int pmd_memory_write_fmi3(PmdFmiFunction set, PmdFmiFunction set_int32,
+                                            PmdFmiFunction get, void *instance, const PmdMemoryPort *port,
                                             uint32_t address, const uint32_t *words, size_t n, int32_t strobe,
-                                            PmdMemoryStop *stop);
+                                            PmdStop *stop);
 
 #endif

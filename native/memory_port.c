@@ -1,4 +1,4 @@
-/* Chip.write_memory's strobes in C (memory.h): the calls the harness made
+/* Chip.write_memory's strobes in C (memory_port.h): the calls the harness made
  * from Python per block of 64 words, the same FMI functions with the same
  * arguments in the same order, so that the memory, the port's variables and
  * the FMU's log are the same, at the cost of the FMU's own calls alone. */
@@ -6,16 +6,14 @@
 
 #include "fmi2FunctionTypes.h"
 #include "fmi3FunctionTypes.h"
-#include "memory.h"
+#include "memory_port.h"
 
 #define BLOCK_WORDS 64       /* memory.data[64]: the words one strobe writes */
 
-/* FMPy raises for any status above Warning (Discard, Error, Fatal, Pending) */
-#define FAILED(status) ((status) > 1)
 
-static int stopped(PmdMemoryStop *stop, size_t blocks, int call, int status)
+static int stopped(PmdStop *stop, size_t blocks, int call, int status)
 {
-    stop->blocks = blocks;
+    stop->done = blocks;
     stop->call = call;
     stop->status = status;
     return 1;
@@ -27,8 +25,8 @@ static int32_t next_strobe(int32_t strobe)
     return (int32_t)(((uint32_t)strobe + 1) & 0x7FFFFFFF);
 }
 
-int pmd_memory_write_fmi2(PmdMemoryFunction set, PmdMemoryFunction get, void *instance, const PmdMemoryPort *port,
-                          uint32_t address, const uint32_t *words, size_t n, int32_t strobe, PmdMemoryStop *stop)
+int pmd_memory_write_fmi2(PmdFmiFunction set, PmdFmiFunction get, void *instance, const PmdMemoryPort *port,
+                          uint32_t address, const uint32_t *words, size_t n, int32_t strobe, PmdStop *stop)
 {
     /* one fmi2SetInteger: the block's data elements first, then address, count, strobe */
     fmi2ValueReference vrs[BLOCK_WORDS + 3];
@@ -47,18 +45,18 @@ int pmd_memory_write_fmi2(PmdMemoryFunction set, PmdMemoryFunction get, void *in
         values[count + 1] = (fmi2Integer)count;
         values[count + 2] = strobe;
         status = ((fmi2SetIntegerTYPE *)set)(instance, vrs, count + 3, values);
-        if (FAILED(status))
+        if (PMD_FAILED(status))
             return stopped(stop, block, PMD_MEMORY_SET, status);
         status = ((fmi2GetIntegerTYPE *)get)(instance, &port->ack, 1, &ack);
-        if (FAILED(status))
+        if (PMD_FAILED(status))
             return stopped(stop, block, PMD_MEMORY_GET, status);
     }
     return 0;
 }
 
-int pmd_memory_write_fmi3(PmdMemoryFunction set, PmdMemoryFunction set_int32, PmdMemoryFunction get, void *instance,
+int pmd_memory_write_fmi3(PmdFmiFunction set, PmdFmiFunction set_int32, PmdFmiFunction get, void *instance,
                           const PmdMemoryPort *port, uint32_t address, const uint32_t *words, size_t n,
-                          int32_t strobe, PmdMemoryStop *stop)
+                          int32_t strobe, PmdStop *stop)
 {
     /* memory.data is one UInt32 array of 64 set whole (a short block's tail 0), memory.address after it */
     const fmi3ValueReference data[2] = {port->data[0], port->address}, control[2] = {port->count, port->strobe};
@@ -73,15 +71,15 @@ int pmd_memory_write_fmi3(PmdMemoryFunction set, PmdMemoryFunction set_int32, Pm
         memset(values + count, 0, (BLOCK_WORDS - count) * sizeof *values);
         values[BLOCK_WORDS] = address + (uint32_t)start;
         status = ((fmi3SetUInt32TYPE *)set)(instance, data, 2, values, BLOCK_WORDS + 1);
-        if (FAILED(status))
+        if (PMD_FAILED(status))
             return stopped(stop, block, PMD_MEMORY_SET, status);
         counted[0] = (fmi3Int32)count;
         counted[1] = strobe;
         status = ((fmi3SetInt32TYPE *)set_int32)(instance, control, 2, counted, 2);
-        if (FAILED(status))
+        if (PMD_FAILED(status))
             return stopped(stop, block, PMD_MEMORY_SET_INT32, status);
         status = ((fmi3GetInt32TYPE *)get)(instance, &port->ack, 1, &ack, 1);
-        if (FAILED(status))
+        if (PMD_FAILED(status))
             return stopped(stop, block, PMD_MEMORY_GET, status);
     }
     return 0;
