@@ -202,21 +202,28 @@ static int switches_idle(const PmdAxis *ax)
              ax->inNegativeLimit | ax->homeWasActive | (ax->signalSense != 0));
 }
 
-/* A run is quiet when no geared axis, armed breakpoint, active or armed trace
- * and no switch activity can need its per-cycle work. Only commands and the
- * plant's inputs change that, never a cycle, so a run decides it once. */
-static int run_is_quiet(const PmdChip *chip)
+PmdRunFacts pmd_chip_run_facts(const PmdChip *chip)
 {
-    int n;
-    if (chip->s.trace.active || chip->s.trace.start)
-        return 0;
+    PmdRunFacts facts;
+    int trace = chip->s.trace.active || chip->s.trace.start, n;
+    unsigned busy = 0, ideal = 0, unskippable = 0;
     for (n = 0; n < PMD_AXES; n++) {
         const PmdAxis *ax = &chip->s.axis[n];
-        if (ax->motion == PMD_MOTION_GEAR || ax->breakpoint[0].trigger || ax->breakpoint[1].trigger ||
-            !switches_idle(ax))
-            return 0;
+        unsigned bit = 1u << n;
+        int armed = ax->breakpoint[0].trigger != PMDBreakpointDisable ||
+                    ax->breakpoint[1].trigger != PMDBreakpointDisable;
+        if (chip->s.loopback && ax->motorOn)
+            ideal |= bit;
+        if (armed || ax->motion == PMD_MOTION_GEAR || !switches_idle(ax))
+            busy |= bit;
+        if (armed || ax->motionCompletePending ||
+            (ax->motion != PMD_MOTION_IDLE && (ax->motion != PMD_MOTION_EXTERNAL || !(ideal & bit))))
+            unskippable |= bit;
     }
-    return 1;
+    facts.quiet = !trace && !busy;
+    facts.deferredFilters = facts.quiet ? ideal : 0;
+    facts.skippable = !trace && !unskippable;
+    return facts;
 }
 
 /* The servo side of axis n's cycle: position error, settling. */
@@ -244,7 +251,7 @@ static inline void record_axis(const PmdChip *chip, int n, int32_t *row)
 }
 
 /* A row holds trajectory registers only: within a quiet run an ideal servo's
- * filter is brought up to date at the run's end (closed_form_axes), so its
+ * filter is brought up to date at the run's end (PmdRunFacts.deferredFilters), so its
  * output is not a column a row could show cycle by cycle. */
 void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
 {
@@ -280,7 +287,7 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
 #endif
 
 /* One chip cycle; with row, the cycle's record row (pmd_chip_record). In a
- * quiet run (run_is_quiet) nothing couples the axes and the checks that cannot
+ * quiet run (PmdRunFacts.quiet) nothing couples the axes and the checks that cannot
  * fire are left out: each axis runs its cycle in turn, and its columns of the
  * row are final once it has (stored while its registers are at hand). The
  * servo filter runs once the cycle's events have acted on the axis (a motion
@@ -349,22 +356,12 @@ void pmd_chip_cycle(PmdChip *chip)
     pmd_chip_run(chip, 1, NULL);
 }
 
-/* The axes whose servo filter a run may leave to one closed-form step at its
- * end (pmd_servo_advance): in a quiet run an ideal servo's axis (loopback,
+/* An ideal servo's filter left to one closed-form step at a quiet run's end
+ * (PmdRunFacts.deferredFilters): in a quiet run an ideal servo's axis (loopback,
  * motor on) keeps its motor on - its position error, 0 every cycle, cannot
  * raise a motion error, and no breakpoint or command can act - so its filter
  * sees the error 0 throughout and its output depends only on the last
  * cycle's commanded velocity and acceleration. */
-static unsigned closed_form_axes(const PmdChip *chip, int quiet, int loopback)
-{
-    unsigned axes = 0;
-    int n;
-    if (quiet && loopback)
-        for (n = 0; n < PMD_AXES; n++)
-            if (chip->s.axis[n].motorOn)
-                axes |= 1u << n;
-    return axes;
-}
 
 /* An ideal servo's axis at rest in a quiet run's middle cycles: check_servo
  * with its error 0 (sampled first), as quiet_axis_cycle. */
@@ -446,7 +443,7 @@ static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopba
 
 unsigned pmd_chip_deferred_axes(const PmdChip *chip)
 {
-    return closed_form_axes(chip, run_is_quiet(chip), chip->s.loopback);
+    return pmd_chip_run_facts(chip).deferredFilters;
 }
 
 /* Every cycle through cycle(), as pmd_chip_run runs a run of one or two
@@ -456,8 +453,9 @@ unsigned pmd_chip_deferred_axes(const PmdChip *chip)
  * of the axes in closedForm lag behind a row. */
 void pmd_chip_run_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context), void *context)
 {
-    int quiet = run_is_quiet(chip), loopback = chip->s.loopback, n;
-    unsigned closedForm = closed_form_axes(chip, quiet, loopback);
+    PmdRunFacts facts = pmd_chip_run_facts(chip);
+    int quiet = facts.quiet, loopback = chip->s.loopback, n;
+    unsigned closedForm = facts.deferredFilters;
     int64_t k;
     for (k = 0; k < cycles; k++) {
         cycle(chip, quiet, loopback, closedForm, NULL);
@@ -478,8 +476,9 @@ void pmd_chip_run_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context)
  * (GetActualVelocity) and the actual position as every cycle would have. */
 void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
 {
-    int quiet = run_is_quiet(chip), loopback = chip->s.loopback, n;
-    unsigned closedForm = closed_form_axes(chip, quiet, loopback);
+    PmdRunFacts facts = pmd_chip_run_facts(chip);
+    int quiet = facts.quiet, loopback = chip->s.loopback, n;
+    unsigned closedForm = facts.deferredFilters;
     int64_t k;
     for (k = 0; k < cycles; k++) {
         if (k == 1 && quiet && cycles > 2) {

@@ -31,6 +31,23 @@
 void pmd_chip_init(PmdChip *chip, uint32_t *memory, uint32_t memorySize);
 void pmd_chip_reset(PmdChip *chip);
 
+/* What can happen in the coming cycles: the one description every path that
+ * leaves work out reads (pmd_chip_run, pmd_chip_run_rows, the fast-forward and
+ * its policy). Only commands and the plant's inputs change it, and a cycle's
+ * events (a motion-complete pending, a breakpoint's action): so a run decides
+ * it once, the policy before each attempt. Bit n of a mask: axis n. */
+typedef struct {
+    int quiet;                  /* no trace, no axis geared, with a breakpoint armed or a switch active or
+                                 * latched: no coupling of the axes and none of those checks can fire */
+    unsigned deferredFilters;   /* in a quiet run, the axes of an ideal servo (loopback, motor on): the
+                                 * position error stays 0, so one closed-form step at the run's end
+                                 * brings the filter up to date (pmd_servo_advance) */
+    int skippable;              /* no trace, no breakpoint armed, no motion complete pending, every axis at
+                                 * rest or in an external segment with an ideal servo: the closed form of
+                                 * the segments may skip cycles (pmd_chip_fast_forward) */
+} PmdRunFacts;
+PmdRunFacts pmd_chip_run_facts(const PmdChip *chip);
+
 /* Runs one chip cycle: every axis's trajectory, then the status registers,
  * the breakpoints and the interrupt line. */
 void pmd_chip_cycle(PmdChip *chip);

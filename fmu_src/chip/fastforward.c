@@ -140,24 +140,18 @@ static void advance(PmdTrajectory *t, int64_t k)
     t->acceleration.fraction = (int64_t)((uint64_t)a & (uint64_t)(PMD_FIXED_ONE - 1));
 }
 
-/* The cycles (at most max) that can be skipped now. */
+/* The cycles (at most max) that can be skipped now: PmdRunFacts.skippable, and
+ * the exact bounds of every moving axis's segment. */
 static int64_t skippable(const PmdChip *chip, int64_t max)
 {
-    int n, i;
+    int n;
     int64_t k = max;
-    if (chip->s.trace.active || chip->s.trace.start)
+    if (!pmd_chip_run_facts(chip).skippable)
         return 0;
     for (n = 0; n < PMD_AXES && k > 0; n++) {
         const PmdAxis *ax = &chip->s.axis[n];
-        for (i = 0; i < 2; i++)
-            if (ax->breakpoint[i].trigger != PMDBreakpointDisable)
-                return 0;
-        if (ax->motionCompletePending)
-            return 0;
         if (ax->motion == PMD_MOTION_IDLE)
             continue;
-        if (ax->motion != PMD_MOTION_EXTERNAL || !chip->s.loopback || !ax->motorOn)
-            return 0;
         if ((int64_t)ax->segmentTime < k)       /* the cycle with segment time 0 reads: not skipped */
             k = ax->segmentTime;
         if (k > 0) {
@@ -221,23 +215,17 @@ int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
 #define BATCH_MAX ((int64_t)1 << 20)
 
 /* A cheap upper bound on what pmd_chip_fast_forward could skip now (at most
- * max): skippable's conditions but for the exact bounds, and the least
- * remaining segment time of the moving axes; 0 when it cannot apply. */
+ * max): PmdRunFacts.skippable and the least remaining segment time of the
+ * moving axes, without the exact bounds; 0 when it cannot apply. */
 static int64_t fast_forward_bound(const PmdChip *chip, int64_t max)
 {
     int64_t k = max;
     int n;
-    if (chip->s.trace.active || chip->s.trace.start)
+    if (!pmd_chip_run_facts(chip).skippable)
         return 0;
     for (n = 0; n < PMD_AXES; n++) {
         const PmdAxis *ax = &chip->s.axis[n];
-        if (ax->breakpoint[0].trigger | ax->breakpoint[1].trigger || ax->motionCompletePending)
-            return 0;
-        if (ax->motion == PMD_MOTION_IDLE)      /* at rest any servo does: loopback or not (skippable) */
-            continue;
-        if (ax->motion != PMD_MOTION_EXTERNAL || !chip->s.loopback || !ax->motorOn)
-            return 0;
-        if ((int64_t)ax->segmentTime < k)
+        if (ax->motion != PMD_MOTION_IDLE && (int64_t)ax->segmentTime < k)
             k = ax->segmentTime;
     }
     return k;
