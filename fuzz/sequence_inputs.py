@@ -662,6 +662,14 @@ def regressions():
     out["recording-coarse-step-made-finer-past-lent-memory"] = (
         Seq().reinitialize(cycle_time=0.065535, record=True).columns("valid", ["loopback"])
         .lend("bytes", 6552 * 5).sample_time(1, pending=True).step(6552).record_data().step(1))
+    # 12. (found by this fuzzer's columns) In initialization mode, record.enabled set, then record.capacity 0:
+    #    a valid record.columns was refused ("record.enabled: record.capacity is 0"), the buffer sized as if
+    #    a step recorded now.
+    for fmi3 in (False, True):
+        out[f"record-columns-in-initialization-with-capacity-0{'-fmi3' if fmi3 else ''}"] = (
+            Seq(fmi3=fmi3).enter_initialization().record(True).parameter("record.capacity", 0)
+            .columns("valid", ["loopback", "axis1.commandedPosition"]).parameter("record.capacity", 10)
+            .exit_initialization().step(10).record_data())
     return out
 
 

@@ -379,6 +379,28 @@ def test_a_set_call_naming_memory_size_twice_takes_the_last(fmi_version, sizes):
         chip.free()
 
 
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_record_columns_are_set_before_the_end_of_initialization_whatever_the_capacity(fmi_version):
+    """(found by the sequence fuzzer's record.columns) record.enabled set, then record.capacity 0: a valid
+    record.columns was refused ("record.enabled: record.capacity is 0"), as if the step recorded now; the end
+    of initialization sizes the buffer for the columns and the capacity as they stand then."""
+    chip = InitializationChip(fmi_version)
+    try:
+        chip.set("record.enabled", True)
+        chip.set("record.capacity", 0)
+        chip.fmu.setString([vr(chip, "record.columns")], ["loopback,axis1.commandedPosition"])
+        columns = chip.fmu.getString([vr(chip, "record.columns")])[0]
+        assert (columns.decode() if isinstance(columns, bytes) else columns) == "loopback,axis1.commandedPosition"
+        assert chip.get("record.rowSize") == 4 + 1 + 4
+        chip.set("record.capacity", 10)
+        chip.fmu.exitInitializationMode()
+        chip.fmu.doStep(0.0, 10 * 1e-4)
+        if fmi_version == 3:
+            assert len(chip.fmu.getBinary([vr(chip, "record.data")])[0]) == 10 * 9
+    finally:
+        chip.free()
+
+
 def test_a_restored_recording_state_records_into_a_buffer_of_the_current_capacity():
     with pmdfmu.Chip(fmi_version=3, **{"record.capacity": 64}) as chip:
         chip.set("record.enabled", True)
