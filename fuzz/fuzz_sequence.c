@@ -26,7 +26,16 @@
  *     output, restore (the state is then the saved one, byte for byte), run
  *     the same steps: the same outputs and the same serialized state
  *     (op_replay). The stack is painted anew before every call (paint_stack),
- *     so that uninitialized bytes in the state show as a difference.
+ *     so that uninitialized bytes in the state show as a difference;
+ *   - recording (op_columns, op_lend, op_record_data): record.columns and
+ *     record.rowSize read back as set, a refused value leaves both as they
+ *     were; FMI 2 memory lent by pmdfmu_fmi2SetRecordBuffer is written only
+ *     inside the bytes lent, and only while lent (the rest of the fuzzer's
+ *     area, guard bytes, is checked after every call); record.data holds
+ *     whole rows of the last step that ran, of consecutive chip times, in the
+ *     memory lent if it was lent then;
+ *   - memory.data set as a block (op_memory_block) reads back as set, word by
+ *     word, as a master setting it value by value would leave it.
  *
  * fuzz/sequence_inputs.py encodes the hand-built seeds and regression inputs
  * in this format; keep the two in step. FUZZ_SEQUENCE_TRACE=1 prints every
@@ -59,6 +68,14 @@ enum { OK = 0, ERROR = 3 };          /* fmi2Status and fmi3Status agree on these
 #define CYCLE_BUDGET 3000000         /* chip cycles (estimated) one input may run outside fast-forward */
 #define MAX_MEMORY 0x10000           /* memorySize the fuzzer sets: every call may snapshot the memory */
 #define MAX_CAPACITY (1 << 17)       /* record.capacity it sets: ASan poisons a new record.data block whole */
+#define LEND_AREA 0x8000             /* bytes of the memory it may lend (op_lend), guard bytes around the loan */
+#define PAINT 0xA5                   /* what the lend area holds where the FMU has no loan */
+#define MAX_COLUMNS 8                /* names of a record.columns value it sets */
+#define DEFAULT_ROW_BYTES (4 * PMD_RECORD_WORDS)     /* a row of record.columns "" */
+
+/* pmdfmu's FMI 2 extension (fmi2.c, docs/performance.md "Recording"): no header declares it */
+fmi2Status pmdfmu_fmi2GetRecordData(fmi2Component c, const void **data, size_t *size);
+fmi2Status pmdfmu_fmi2SetRecordBuffer(fmi2Component c, void *rows, size_t size);
 
 static int tracing;                  /* FUZZ_SEQUENCE_TRACE */
 static const char *known;            /* FUZZ_SEQUENCE_KNOWN */
@@ -156,7 +173,16 @@ typedef struct {
     Slot slot[2];         /* states saved by op_save */
     void *probe;          /* the state object the properties snapshot into */
     void *saved, *restored;   /* op_replay's and op_restore's states (here: freed after a known finding) */
+    /* recording as the sequence set it up (the FMU's getters are checked against it) */
+    int lending;          /* FMI 2: lendArea[lentAt, lentAt + lentSize) is lent to the FMU */
+    size_t lentAt, lentSize;
+    char columns[MAX_COLUMNS * 64];   /* record.columns as last set ("" after a reset) */
+    uint32_t rowBytes;    /* record.rowSize it makes */
+    uint32_t stepRowBytes;    /* record.rowSize at the last step that ran: record.data's rows */
+    int scripted;         /* a script runs (its Reset or SetTime may make record.data's chip times jump) */
 } Fuzz;
+
+static unsigned char lendArea[LEND_AREA];
 
 static Bytes before, after;          /* serialized states around a call that may fail */
 
@@ -201,6 +227,7 @@ static const char *vr_name(unsigned v)
 
 static struct {
     unsigned time, cycleTime, memorySize, loopback, script, recordEnabled, recordCapacity;
+    unsigned recordData, recordColumns, recordRowSize;
     unsigned hostWord, hostWordCount, hostStrobe, hostReply, hostReplyCount, hostError;
     unsigned memoryAddress, memoryCount, memoryStrobe, memoryData, chipTime;
     unsigned actualPosition, positiveLimit, negativeLimit, home;   /* of axis 1; + 100 per axis */
@@ -215,6 +242,9 @@ static void find_value_references(void)
     VR.script = vr("script");
     VR.recordEnabled = vr("record.enabled");
     VR.recordCapacity = vr("record.capacity");
+    VR.recordData = vr("record.data");
+    VR.recordColumns = vr("record.columns");
+    VR.recordRowSize = vr("record.rowSize");
     VR.hostWord = vr("host.word[1]");
     VR.hostWordCount = vr("host.wordCount");
     VR.hostStrobe = vr("host.strobe");
@@ -363,7 +393,25 @@ static int do_step(Fuzz *f, double t, double h)
     }
 }
 
-static int reset(Fuzz *f) { say("  reset\n"); return f->fmi3 ? fmi3Reset(f->c) : fmi2Reset(f->c); }
+/* The instance as instantiated: nothing lent (the FMU forgets the loan), record.columns "". */
+static void forget_recording(Fuzz *f)
+{
+    f->lending = 0;
+    memset(lendArea, PAINT, sizeof lendArea);
+    f->columns[0] = '\0';
+    f->rowBytes = DEFAULT_ROW_BYTES;
+    f->scripted = 0;
+}
+
+static int reset(Fuzz *f)
+{
+    int s;
+    say("  reset\n");
+    s = f->fmi3 ? fmi3Reset(f->c) : fmi2Reset(f->c);
+    if (s == OK)
+        forget_recording(f);
+    return s;
+}
 static int terminate(Fuzz *f) { say("  terminate\n"); return f->fmi3 ? fmi3Terminate(f->c) : fmi2Terminate(f->c); }
 static int exit_initialization(Fuzz *f)
 {
@@ -495,10 +543,26 @@ static Expect property_before(Fuzz *f, Expect expect)
     return expect;
 }
 
+/* The lend area as the FMU must leave it outside a loan: PAINT throughout. */
+static unsigned char painted[LEND_AREA];
+
+/* The FMU wrote into the lend area only inside the loan (the memory it may write into). */
+static void property_lent(const Fuzz *f, const char *call)
+{
+    size_t from = f->lending ? f->lentAt : LEND_AREA, to = f->lending ? f->lentAt + f->lentSize : LEND_AREA, i;
+    if (memcmp(lendArea, painted, from) == 0 && memcmp(lendArea + to, painted, LEND_AREA - to) == 0)
+        return;
+    for (i = 0; i < LEND_AREA && ((i >= from && i < to) || lendArea[i] == PAINT); i++)
+        ;
+    fail("%s wrote byte %zu of the lend area (0x%02X), outside the %zu bytes lent at %zu%s", call, i, lendArea[i],
+         to - from, from, f->lending ? "" : " (nothing is lent)");
+}
+
 /* A legal call succeeds; an illegal one fails; a failed one changed nothing. */
 static int property_after(Fuzz *f, Expect expect, const char *call, int status)
 {
     say("    -> %d\n", status);
+    property_lent(f, call);
     if (expect == MUST_SUCCEED && status != OK)
         fail("%s returned %d, but the call is legal", call, status);
     if (expect == MUST_FAIL && status != ERROR)
@@ -582,14 +646,13 @@ static void read_outputs(Fuzz *f, Bytes *out, int record)
 
 /* ---- stepping within the budget ------------------------------------------------ */
 
-/* Whether doStep may run any number of cycles in O(1): fast-forward skips
- * everything while every axis idles, nothing per-cycle is armed and nothing
- * records. */
-static int chip_idle(const PmdInstance *inst)
+/* Whether fast-forward skips any number of cycles in O(1): every axis idles,
+ * nothing per-cycle is armed, no script step is due. */
+static int chip_quiet(const PmdInstance *inst)
 {
     const PmdChipState *s = &inst->chip.s;
     int n;
-    if (inst->s.recordEnabled || inst->s.scriptNext < inst->script.count || s->trace.active || s->trace.start)
+    if (inst->s.scriptNext < inst->script.count || s->trace.active || s->trace.start)
         return 0;
     for (n = 0; n < PMD_AXES; n++) {
         const PmdAxis *ax = &s->axis[n];
@@ -598,6 +661,12 @@ static int chip_idle(const PmdInstance *inst)
             return 0;
     }
     return 1;
+}
+
+/* Whether doStep may run any number of cycles in O(1): the chip is quiet and nothing records. */
+static int chip_idle(const PmdInstance *inst)
+{
+    return !inst->s.recordEnabled && chip_quiet(inst);
 }
 
 /* The pending host batch (written, not yet executed): the smallest
@@ -666,6 +735,10 @@ static int step(Fuzz *f, double cycles)
     if (inst->s.scriptNext < inst->script.count)     /* the script may set any sample time */
         fastest = 1e-6;
     estimate = h / fastest;
+    /* a recording step of a quiet chip runs its rows one by one, the cycles past their room (a grid made
+     * finer inside the step) as an unrecorded step runs them: fast-forwarded */
+    if (inst->s.recordEnabled && harmless && chip_quiet(inst) && estimate > (double)inst->recordCapacity)
+        estimate = inst->recordCapacity;
     if (estimate > (double)f->budget && !(harmless && chip_idle(inst))) {
         estimate = f->budget > 1 ? (double)f->budget : 1;
         h = estimate * fastest;
@@ -674,8 +747,10 @@ static int step(Fuzz *f, double cycles)
         h = fastest;
     f->budget -= estimate < (double)f->budget ? (int64_t)estimate : f->budget;
     status = CALL(f, MAY_FAIL, do_step(f, f->t, h));
-    if (status < ERROR)                              /* OK, or a Warning: the step ran */
+    if (status < ERROR) {                            /* OK, or a Warning: the step ran */
         f->t += h;
+        f->stepRowBytes = f->rowBytes;
+    }
     return status;
 }
 
@@ -1287,6 +1362,7 @@ static void op_script(Fuzz *f, Reader *r)
         CALL(f, MUST_SUCCEED, reset(f));
         initialize_defaults(f);
     }
+    f->scripted = status == OK;
 }
 
 /* The plant's inputs: an encoder position, or a limit or home switch. */
@@ -1377,6 +1453,273 @@ static void op_refused(Fuzz *f, Reader *r)
     }
 }
 
+/* ---- recording ----------------------------------------------------------------------- */
+
+/* The variables a record.columns column may name: numbers, but not the independent variable (record.c). */
+static short recordable[PMD_VARIABLE_COUNT];
+static size_t recordables;
+
+/* Names that record.columns refuses: unknown, a prefix or an extension of a name, of the wrong type, the
+ * independent variable, an array without its element or past its end, an empty column. */
+static const char *const bad_columns[] = {
+    "axis1.nothing", "axis1.commandedPositio", "axis1.commandedPositionX", "AXIS1.commandedPosition",
+    "axis5.commandedPosition", "script", "record.columns", "record.data", "time", "memory.data",
+    "io.output[0]", "io.output[17]", "host.word[65]", "axis1.commandedPosition[1]", "", " ",
+};
+
+static int set_strings(Fuzz *f, unsigned v, size_t n, const char *const *text)
+{
+    fmi2ValueReference vrs[2] = {v, v};
+    size_t i;
+    say("  set %s", vr_name(v));
+    for (i = 0; i < n; i++)
+        say(" \"%.80s%s\"", text[i], strlen(text[i]) > 80 ? "..." : "");
+    say("\n");
+    return f->fmi3 ? fmi3SetString(f->c, vrs, n, text, n) : fmi2SetString(f->c, vrs, n, text);
+}
+
+static int get_string(Fuzz *f, unsigned v, const char **text)
+{
+    say("  get %s\n", vr_name(v));
+    return f->fmi3 ? fmi3GetString(f->c, &v, 1, text, 1) : fmi2GetString(f->c, &v, 1, text);
+}
+
+/* A value of 1..MAX_COLUMNS names of recordable[], some with blanks around them, and the row it makes;
+ * with bad, one name of bad_columns[] in place of one of them. */
+static uint32_t column_list(Reader *r, char *text, size_t size, int bad)
+{
+    unsigned n = 1 + below(r, MAX_COLUMNS), at = below(r, n), k;
+    const char *wrong = bad_columns[below(r, sizeof bad_columns / sizeof bad_columns[0])];
+    uint32_t row = sizeof(uint32_t);                       /* the chip time */
+    size_t used = 0;
+    text[0] = '\0';
+    for (k = 0; k < n; k++) {
+        const PmdVariable *v = &pmd_variables[recordable[bytes(r, 2) % recordables]];
+        unsigned blanks = byte(r);
+        used += (size_t)snprintf(text + used, size - used, "%s%s%s%s", k ? "," : "", blanks & 1 ? " " : "",
+                                 bad && k == at ? wrong : v->name, blanks & 2 ? "  " : "");
+        row += v->bytes;
+    }
+    return row;
+}
+
+/* Property: record.columns and record.rowSize read back as the sequence set them (not in Instantiated, where
+ * gets are refused; a get executes what is pending on the ports, hence only when the operation asks). */
+static void property_columns(Fuzz *f, const char *after)
+{
+    const char *text = "";
+    int64_t row = 0;
+    if (instance(f)->s.state == PMD_INSTANTIATED)
+        return;
+    CALL(f, MUST_SUCCEED, get_string(f, VR.recordColumns, &text));
+    CALL(f, MUST_SUCCEED, get_ints(f, VR.recordRowSize, 1, &row));
+    if (strcmp(text, f->columns) != 0 || row != (int64_t)f->rowBytes)
+        fail("after %s, record.columns reads \"%.100s\" (record.rowSize %lld) where \"%.100s\" (%u) was set", after,
+             text, (long long)row, f->columns, (unsigned)f->rowBytes);
+}
+
+/* record.columns: a valid list, the empty one, a list with a refused name, two values in one set call (the
+ * last counts; one refused refuses both), or 4097 empty columns (more than a row may hold); flags bit 0:
+ * read record.columns and record.rowSize back. A refused value must leave both as they were. */
+static void op_columns(Fuzz *f, Reader *r)
+{
+    static char text[2][sizeof f->columns];
+    static char many[4097 + 1];
+    unsigned kind = below(r, 5), check = byte(r) & 1;
+    int settable = instance(f)->s.state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE), ok = 1;
+    const char *values[2];
+    uint32_t row[2];
+    size_t n = 1, k;
+    switch (kind) {
+    case 0: row[0] = column_list(r, text[0], sizeof text[0], 0); break;
+    case 1: text[0][0] = '\0'; row[0] = DEFAULT_ROW_BYTES; break;
+    case 2: row[0] = column_list(r, text[0], sizeof text[0], 1); ok = 0; break;
+    case 3:
+        n = 2;
+        for (k = 0; k < 2; k++) {
+            unsigned which = below(r, 3);               /* valid, empty, refused */
+            text[k][0] = '\0';
+            row[k] = which == 1 ? DEFAULT_ROW_BYTES : column_list(r, text[k], sizeof text[k], which == 2);
+            ok &= which != 2;
+        }
+        break;
+    default:
+        memset(many, ',', sizeof many - 1);
+        many[sizeof many - 2] = '\0';                   /* 4096 commas: 4097 columns */
+        values[0] = many;
+        if (CALL(f, MUST_FAIL, set_strings(f, VR.recordColumns, 1, values)) == OK)
+            return;
+        if (check)
+            property_columns(f, "a refused record.columns of 4097 columns");
+        return;
+    }
+    values[0] = text[0];
+    values[1] = text[1];
+    if (CALL(f, !settable || !ok ? MUST_FAIL : MUST_SUCCEED, set_strings(f, VR.recordColumns, n, values)) == OK) {
+        snprintf(f->columns, sizeof f->columns, "%s", values[n - 1]);
+        f->rowBytes = row[n - 1];
+    }
+    if (check)
+        property_columns(f, "setting record.columns");
+}
+
+static int lend(Fuzz *f, void *rows, size_t size)
+{
+    say("  pmdfmu_fmi2SetRecordBuffer(%s + %zu, %zu bytes)\n", rows ? "area" : "NULL",
+        rows ? (size_t)((unsigned char *)rows - lendArea) : 0, size);
+    return pmdfmu_fmi2SetRecordBuffer(f->c, rows, size);
+}
+
+/* FMI 2: memory of the fuzzer's lend area lent for the rows (pmdfmu_fmi2SetRecordBuffer): whole rows of
+ * record.columns as they stand (at any byte offset: the default rows need 4-byte alignment, a step refuses
+ * others), any number of bytes, NULL (record.data's own buffer again), or 0 bytes. The area outside the loan
+ * holds PAINT, checked after every call (property_lent). */
+static void op_lend(Fuzz *f, Reader *r)
+{
+    unsigned kind = below(r, 4);
+    size_t at = below(r, 8), p = bytes(r, 2), size;
+    if (f->fmi3)
+        return;
+    size = kind == 0 ? p % 512 * f->rowBytes : kind == 1 ? p : 0;
+    if (size > LEND_AREA - at)
+        size = LEND_AREA - at;
+    memset(lendArea, PAINT, sizeof lendArea);          /* the rows of an earlier loan are no longer lent */
+    f->lending = kind != 2;
+    f->lentAt = at;
+    f->lentSize = size;
+    CALL(f, MUST_SUCCEED, lend(f, kind == 2 ? NULL : lendArea + at, size));
+}
+
+static int record_data(Fuzz *f, const unsigned char **data, size_t *size)
+{
+    say("  get record.data\n");
+    if (!f->fmi3)
+        return pmdfmu_fmi2GetRecordData(f->c, (const void **)data, size);
+    {
+        fmi3ValueReference ref = VR.recordData;
+        fmi3Binary binary = NULL;
+        int s = fmi3GetBinary(f->c, &ref, 1, size, &binary, 1);
+        *data = binary;
+        return s;
+    }
+}
+
+/* record.data (FMI 2: pmdfmu_fmi2GetRecordData). Property: it holds whole rows of the last step that ran
+ * (record.rowSize as it stood then), of consecutive chip times (unless a script runs: its Reset may restart
+ * the time), and lies in the memory lent if something is lent, else outside the lend area. */
+static void op_record_data(Fuzz *f, Reader *r)
+{
+    const unsigned char *data = NULL;
+    size_t size = 0, rows, k;
+    int legal = instance(f)->s.state != PMD_INSTANTIATED;
+    uint32_t first, time;
+    (void)r;
+    if (CALL(f, legal ? MUST_SUCCEED : MUST_FAIL, record_data(f, &data, &size)) != OK || size == 0)
+        return;
+    say("    %zu bytes\n", size);
+    if (f->lending ? data != lendArea + f->lentAt || size > f->lentSize
+                   : data + size > lendArea && data < lendArea + LEND_AREA)
+        fail("record.data's %zu bytes at area + %td are not %s", size, data - lendArea,
+             f->lending ? "the memory lent" : "outside the lend area (nothing is lent)");
+    if (size % f->stepRowBytes)
+        fail("record.data holds %zu bytes: not whole rows of %u bytes", size, (unsigned)f->stepRowBytes);
+    rows = size / f->stepRowBytes;
+    memcpy(&first, data, sizeof first);
+    for (k = 1; k < rows && !f->scripted; k++) {
+        memcpy(&time, data + k * f->stepRowBytes, sizeof time);
+        if (time != first + (uint32_t)k)
+            fail("record.data's row %zu has chip time %u, row 0 %u", k, (unsigned)time, (unsigned)first);
+    }
+}
+
+/* ---- memory.data as a block ------------------------------------------------------------ */
+
+/* memory.data set in one call as a block (pmd_set_memory_data). FMI 2: a run of consecutive memory.data[k]
+ * value references from any element, maybe past memory.data[64] (refused), maybe split by a missing element,
+ * maybe with an element again after it (the last value counts), maybe after memory.address or memory.count
+ * in the same call. FMI 3: the memory.data array, maybe after memory.address, maybe twice, maybe with a
+ * wrong nValues (refused). Flags bit 0: read memory.data back before and after (a get executes what is
+ * pending on the ports) and compare with the words as set. */
+static void op_memory_block(Fuzz *f, Reader *r)
+{
+    unsigned bits = byte(r), first = below(r, PMD_BATCH_WORDS), n = 1 + below(r, PMD_BATCH_WORDS + 2), i;
+    uint32_t seed = bytes(r, 4), word[2 * PMD_BATCH_WORDS + 2], expected[PMD_BATCH_WORDS];
+    int64_t prefix = bits & 4 ? value(f, r, 0, PMD_BATCH_WORDS) : ADDRESS(f, r), read[PMD_BATCH_WORDS];
+    int check = bits & 1 && instance(f)->s.state != PMD_INSTANTIATED, status;
+    int settable = instance(f)->s.state & (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE);
+    Expect expect = settable ? MUST_SUCCEED : MUST_FAIL;
+    size_t count = 0;
+    for (i = 0; i < sizeof word / sizeof word[0]; i++)
+        word[i] = seed + 0x9E3779B9u * i;
+    if (check) {
+        CALL(f, MUST_SUCCEED, get_ints(f, VR.memoryData, PMD_BATCH_WORDS, read));
+        for (i = 0; i < PMD_BATCH_WORDS; i++)
+            expected[i] = (uint32_t)read[i];
+    }
+    if (!f->fmi3) {
+        fmi2ValueReference vrs[2 * PMD_BATCH_WORDS + 2];
+        fmi2Integer values[2 * PMD_BATCH_WORDS + 2];
+        unsigned gap = bits & 8 && n > 2 ? first + n / 2 : PMD_BATCH_WORDS + 2;
+        if (bits & 2) {                                   /* memory.count or memory.address first */
+            vrs[count] = bits & 4 ? VR.memoryCount : VR.memoryAddress;
+            values[count++] = (fmi2Integer)prefix;
+            expect = MAY_FAIL;                            /* refused with a pending write it would not fit */
+        }
+        for (i = first; i < first + n; i++) {
+            if (i == gap)
+                continue;
+            vrs[count] = VR.memoryData + i;
+            values[count] = pmd_int32(word[count]);
+            if (i < PMD_BATCH_WORDS)
+                expected[i] = word[count];
+            count++;
+        }
+        if (bits & 16) {                                  /* the run's first element again */
+            vrs[count] = VR.memoryData + first;
+            values[count] = pmd_int32(word[count]);
+            expected[first] = word[count];
+            count++;
+        }
+        if (first + n > PMD_BATCH_WORDS + (gap == PMD_BATCH_WORDS))   /* value reference 1565 on: none */
+            expect = MUST_FAIL;
+        say("  set memory.data block: %zu values from %s, memory.data[%u] .. [%u]%s\n", count, vr_name(vrs[0]),
+            first + 1, first + n, bits & 16 ? " and its first again" : "");
+        status = CALL(f, expect, fmi2SetInteger(f->c, vrs, count, values));
+    } else {
+        fmi3ValueReference vrs[3];
+        fmi3UInt32 values[2 * PMD_BATCH_WORDS + 2];
+        size_t nvr = 0, nValues;
+        unsigned kind = bits >> 1 & 3, copies = kind == 2 ? 2 : 1, c;
+        if (kind == 1) {
+            vrs[nvr++] = VR.memoryAddress;
+            values[count++] = (fmi3UInt32)prefix;
+            expect = MAY_FAIL;
+        }
+        for (c = 0; c < copies; c++) {
+            vrs[nvr++] = VR.memoryData;
+            for (i = 0; i < PMD_BATCH_WORDS; i++, count++) {
+                values[count] = word[count];
+                expected[i] = word[count];
+            }
+        }
+        nValues = count;
+        if (kind == 3) {                                  /* 63 or 65 values for the array's 64 */
+            nValues = bits & 32 ? count + 1 : count - 1;
+            expect = MUST_FAIL;
+        }
+        say("  fmi3SetUInt32 %zu value references, %zu values%s\n", nvr, nValues,
+            kind == 1 ? " (memory.address first)" : "");
+        status = CALL(f, expect, fmi3SetUInt32(f->c, vrs, nvr, values, nValues));
+    }
+    if (check && status == OK) {
+        CALL(f, MUST_SUCCEED, get_ints(f, VR.memoryData, PMD_BATCH_WORDS, read));
+        for (i = 0; i < PMD_BATCH_WORDS; i++)
+            if ((uint32_t)read[i] != expected[i])
+                fail("memory.data[%u] reads 0x%08X after a block set, 0x%08X was set", i + 1, (unsigned)read[i],
+                     (unsigned)expected[i]);
+    }
+}
+
 typedef struct {
     const char *name;
     void (*run)(Fuzz *f, Reader *r);
@@ -1409,6 +1752,10 @@ static const Operation OPS[] = {
     {"parameter", op_parameter},              /* 23 */
     {"exit_initialization", op_exit_initialization},   /* 24 */
     {"axis_setup", op_axis_setup},            /* 25 */
+    {"columns", op_columns},                  /* 26 */
+    {"lend", op_lend},                        /* 27 */
+    {"record_data", op_record_data},          /* 28 */
+    {"memory_block", op_memory_block},        /* 29 */
 };
 #define N_OPS (sizeof OPS / sizeof OPS[0])
 
@@ -1426,6 +1773,12 @@ static void configure(void)
         skipped[k] = at && (at == skip || at[-1] == ',') && (at[n] == '\0' || at[n] == ',');
     }
     find_value_references();
+    memset(painted, PAINT, sizeof painted);
+    for (k = 0; k < PMD_VARIABLE_COUNT; k++) {
+        const PmdVariable *v = &pmd_variables[k];
+        if (v->type != PMD_STRING && v->type != PMD_BINARY && v->family != VAR_time)
+            recordable[recordables++] = (short)k;
+    }
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -1440,6 +1793,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         configured = 1;
     }
     memset(&f, 0, sizeof f);
+    forget_recording(&f);
+    f.stepRowBytes = DEFAULT_ROW_BYTES;
     f.fmi3 = byte(&r) & 1;
     f.budget = CYCLE_BUDGET;
     say("== FMI %d\n", f.fmi3 ? 3 : 2);

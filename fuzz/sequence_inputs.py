@@ -8,10 +8,13 @@ replays both folders (tests/test_determinism.py).
     python fuzz/sequence_inputs.py        (re)writes the files named below
 
 Seq mirrors the byte layout that fuzz_sequence.c decodes, operation by
-operation: change both together. To see what an input does, run it traced:
+operation: change both together. The list of operations is read from
+fuzz_sequence.c's OPS[] (read_ops); tests/test_determinism.py checks that Seq
+encodes each of them and that a seed or regression input uses each. To see what an input does, run it traced:
 FUZZ_SEQUENCE_TRACE=1 build/fuzz/fuzz_sequence FILE.
 """
 import importlib.util
+import re
 import sys
 from pathlib import Path
 
@@ -24,15 +27,27 @@ _spec.loader.exec_module(tables)
 COMMANDS = tables.read_commands(HERE.parent / "modelDescription" / "commands.csv")
 COMMAND_INDEX = {c.name: i for i, c in enumerate(COMMANDS)}
 
-# the rows of OPS[] in fuzz_sequence.c, in order
-OPS = ["command", "buffer", "write_buffer", "buffer_index", "external_profile", "move", "trace", "breakpoint",
-       "sample_time", "stop", "chip_reset", "memory", "step", "replay", "save", "restore", "reinitialize", "input",
-       "record", "logging", "refused", "script", "enter_initialization", "parameter", "exit_initialization",
-       "axis_setup"]
+
+
+def read_ops(source: Path = HERE / "fuzz_sequence.c"):
+    """The names of the rows of OPS[] in fuzz_sequence.c, in order (each row {"name", op_name})."""
+    text = source.read_text()
+    table = text[text.index("static const Operation OPS[] = {"):]
+    rows = re.findall(r'\{"(\w+)", op_(\w+)\}', table[:table.index("};")])
+    assert rows and all(name == function for name, function in rows), rows
+    return [name for name, _ in rows]
+
+
+# the rows of OPS[] in fuzz_sequence.c, in order: an operation's byte is its index
+OPS = read_ops()
 
 # value(): selector bytes for symbolic values (M is the memory size)
 SYMBOLS = {"lo": 0, "lo+1": 1, "hi": 2, "hi-1": 3, "zero": 4, "one": 5, "M": 6, "M-1": 7, "M+1": 8}
 EXACT = 11
+
+# the variables a record.columns column may name, in variables.csv's order (fuzz_sequence.c's recordable[])
+RECORDABLE = [v.name for v in tables.read_variables(HERE.parent / "modelDescription" / "variables.csv")
+              if v.type not in ("String", "Binary") and v.name != "time"]
 
 CYCLE_TIMES = [1e-4, 1e-6, 0.065535, 1e-3, 2.5e-5, 3e-4, 0.065534, 2e-6]
 START_TIMES = [0, 1, 0.5, -1, 1e3, 1e-4]
@@ -337,6 +352,79 @@ class Seq:
         self.op("exit_initialization")
         return self
 
+    def columns(self, kind, *lists, check=True):
+        """record.columns: kind "valid" (lists[0]: names, blanks as (name, before, after)), "empty", "bad"
+        (lists[0]: names, lists[1]: (position, bad_columns index)), "two" (lists: two values, each a list of
+        names, [] for "", or ("bad", names, position, bad index)), "many" (4097 empty columns); check: read
+        record.columns and record.rowSize back."""
+        self.op("columns")
+        self.byte(["valid", "empty", "bad", "two", "many"].index(kind))
+        self.byte(1 if check else 0)
+        if kind == "valid":
+            self._column_list(lists[0])
+        elif kind == "bad":
+            self._column_list(lists[0], *lists[1])
+        elif kind == "two":
+            for value in lists:
+                if value == []:
+                    self.byte(1)
+                elif value[0] == "bad":
+                    self.byte(2)
+                    self._column_list(value[1], value[2], value[3])
+                else:
+                    self.byte(0)
+                    self._column_list(value)
+        return self
+
+    def _column_list(self, names, at=0, bad=0):
+        """column_list(): the count, the bad name's position and index, then per name its index among the
+        recordable variables (RECORDABLE) and its blanks byte."""
+        assert 1 <= len(names) <= 8
+        self.byte(len(names) - 1)
+        self.byte(at)
+        self.byte(bad)
+        for name in names:
+            blanks = 0
+            if isinstance(name, tuple):
+                name, before, after = name
+                blanks = (1 if before else 0) | (2 if after else 0)
+            self.data += RECORDABLE.index(name).to_bytes(2, "big")
+            self.byte(blanks)
+
+    def lend(self, kind, rows_or_bytes=0, offset=0):
+        """FMI 2's pmdfmu_fmi2SetRecordBuffer: kind "rows" (whole rows of record.columns as they stand),
+        "bytes", "null", "empty" (0 bytes), at offset 0..7 into the fuzzer's lend area."""
+        self.op("lend")
+        self.byte(["rows", "bytes", "null", "empty"].index(kind))
+        self.byte(offset)
+        self.data += rows_or_bytes.to_bytes(2, "big")
+        return self
+
+    def record_data(self):
+        self.op("record_data")
+        return self
+
+    def memory_block(self, first=0, n=64, seed=1, check=True, prefix=None, prefix_value=0, gap=False,
+                     again=False, fmi3_kind=None, more=False):
+        """memory.data as a block: FMI 2 the run memory.data[first + 1] .. [first + n] (first 0..63, n 1..65),
+        prefix "count" or "address" (prefix_value) first, gap: without its middle element, again: its first
+        element once more at the end; FMI 3 (fmi3_kind): "array", "address" (memory.address first), "twice",
+        "count" (a wrong nValues: 65 with more, else 63)."""
+        bits = (1 if check else 0) | (16 if again else 0) | (8 if gap else 0) | (32 if more else 0)
+        if fmi3_kind is not None:
+            bits |= ["array", "address", "twice", "count"].index(fmi3_kind) << 1
+            if fmi3_kind == "address":
+                prefix = "address"
+        elif prefix is not None:
+            bits |= 2 | (4 if prefix == "count" else 0)
+        self.op("memory_block")
+        self.byte(bits)
+        self.byte(first)
+        self.byte(n - 1)
+        self.data += (seed & 0xFFFFFFFF).to_bytes(4, "big")
+        self.value(prefix_value)
+        return self
+
     def axis_setup(self, error_limit, settle_time, settle_window, tracking_window, signal_sense, interrupt_mask,
                    auto_stop=False, settled_complete=False, limits=True, capture_home=False, motor_off=False,
                    axis=0, pending=False):
@@ -432,6 +520,45 @@ def seeds():
         .command("ResetEventStatus", 0).command("SetMotorMode", 1).move(0, 0, 0x20000, 0x1000).step(5)
         .input(0, "actualPosition", 5).step(40).input(0, "negativeLimit", True).step(2)
         .move(0, -100, 0x10000, 0x1000).refused(9).refused(10).replay(4))
+    # record.columns as users set them: valid lists (blanks around names), "", refused names, two values in
+    # one call, too many columns; recording steps in between, record.data read after each, FMI 2 and 3
+    wide = ["axis1.position", "axis1.velocity", "axis1.acceleration", "axis1.motorOutput", "nextCycleTime",
+            "axis2.activityStatus", "io.output[3]", "host.interrupt"]
+    for fmi3 in (False, True):
+        out[f"record-columns-set-refused-and-read-fmi{3 if fmi3 else 2}"] = (
+            Seq(fmi3=fmi3).reinitialize(capacity=500, record=True).move(1, 0, 0x30000, 0x1000, axis=1)
+            .columns("valid", ["axis2.commandedPosition", ("axis2.velocity", True, True), "host.interrupt"])
+            .step(40).record_data()
+            .columns("bad", ["axis1.commandedPosition", "axis1.velocity"], (1, 1)).record_data()
+            .columns("two", ["axis1.motorCommand"], wide).step(30).record_data()
+            .columns("two", wide, ("bad", ["axis1.position"], 0, 8)).columns("many").step(3).record_data()
+            .columns("empty").sample_time(20, pending=True).step(10).record_data()
+            .columns("valid", wide).save(0).step(5).restore(0).record_data().step(7).replay(4, 2))
+    # FMI 2's lent memory: lent while recording, columns widened while lent, the grid made finer, a state
+    # saved and restored while lent, memory too small (refused), misaligned (default rows), 0 bytes, NULL,
+    # then lent again and forgotten by a reset
+    out["record-buffer-lent-widened-restored-reset"] = (
+        Seq().record(True).move(1, 0, 0x20000, 0x800, axis=1).lend("rows", 100)
+        .step(50).record_data().columns("valid", ["axis2.velocity", "axis2.commandedPosition"]).step(60)
+        .record_data().columns("valid", wide).step(90).sample_time(10, pending=True).step(5).record_data()
+        .save(1).step(3).restore(1, via_bytes=True).record_data().step(2).record_data().replay(2, 1)
+        .lend("bytes", 12, offset=3).step(3).columns("empty").step(1).lend("bytes", 1000, offset=2).step(1)
+        .lend("empty").step(1).lend("null").step(20).record_data()
+        .lend("rows", 300, offset=4).step(10).reinitialize(capacity=200, record=True).step(10).record_data())
+    # memory.data as a block: FMI 2 runs from any element, past memory.data[64], split, with an element
+    # twice, after memory.count or memory.address; FMI 3 the array, after memory.address, twice, a wrong
+    # nValues; a write of the block's words after each
+    s = Seq().memory_block(0, 64, 7).memory_block(5, 10, 9).memory_block(60, 5, 1).memory_block(63, 1, 3)
+    s.memory_block(40, 30, 5, gap=True).memory_block(3, 20, 6, again=True).memory_block(0, 64, 8, prefix="count",
+                                                                                     prefix_value=64)
+    s.memory_block(0, 16, 2, prefix="address", prefix_value=0x100, check=False).memory("strobe").step(1)
+    s.memory_block(10, 12, 4, gap=True, again=True).memory("write", 0x200, 64, 11).step(1)
+    out["memory-data-blocks-fmi2"] = s
+    out["memory-data-blocks-fmi3"] = (
+        Seq(fmi3=True).memory_block(fmi3_kind="array", seed=7).memory_block(fmi3_kind="twice", seed=9)
+        .memory_block(fmi3_kind="address", seed=2, prefix_value=0x80).memory_block(fmi3_kind="count", seed=3)
+        .memory_block(fmi3_kind="count", more=True, seed=4).memory("strobe").step(2)
+        .memory_block(fmi3_kind="array", seed=5, check=False).memory("write", ("M-", 64), 64, 1).step(1))
     return out
 
 
@@ -521,6 +648,28 @@ def regressions():
     # 10. A get refused for an unknown value reference while a batch is pending executes nothing.
     out["refused-get-keeps-the-pending-batch"] = (
         Seq().command("SetPosition", 99, pending=True).refused(0).step(1))
+    # 11. cycleTime 65.535 ms, record.capacity N, recording, SetSampleTime(1) pending, a doStep of N cycles:
+    #    it passed the capacity check and ran N * 65 535 cycles of 1 us, those past the N rows kept one by
+    #    one (N = 100 000: 6.6 * 10^9 cycles, hours) where an unrecorded step fast-forwards them.
+    out["recording-coarse-step-made-finer-past-capacity"] = (
+        Seq().reinitialize(cycle_time=0.065535, capacity=100_000, record=True)
+        .sample_time(1, pending=True).step("capacity").record_data().step(1))
+    out["recording-coarse-step-made-finer-past-capacity-columns-fmi3"] = (
+        Seq(fmi3=True).reinitialize(cycle_time=0.065535, capacity=100_000, record=True)
+        .columns("valid", ["axis1.commandedPosition", "host.interrupt"])
+        .sample_time(1, pending=True).step("capacity").record_data().step(1))
+    #    The same with FMI 2's lent memory as the limit: 6552 rows of 5 bytes lent, a step of 6552 cycles.
+    out["recording-coarse-step-made-finer-past-lent-memory"] = (
+        Seq().reinitialize(cycle_time=0.065535, record=True).columns("valid", ["loopback"])
+        .lend("bytes", 6552 * 5).sample_time(1, pending=True).step(6552).record_data().step(1))
+    # 12. (found by this fuzzer's columns) In initialization mode, record.enabled set, then record.capacity 0:
+    #    a valid record.columns was refused ("record.enabled: record.capacity is 0"), the buffer sized as if
+    #    a step recorded now.
+    for fmi3 in (False, True):
+        out[f"record-columns-in-initialization-with-capacity-0{'-fmi3' if fmi3 else ''}"] = (
+            Seq(fmi3=fmi3).enter_initialization().record(True).parameter("record.capacity", 0)
+            .columns("valid", ["loopback", "axis1.commandedPosition"]).parameter("record.capacity", 10)
+            .exit_initialization().step(10).record_data())
     return out
 
 

@@ -1,6 +1,7 @@
 """Determinism (issue 6): the same scripted profile run 10 times, and through
 FMI 2 and FMI 3, gives byte-identical CSVs."""
 import hashlib
+import importlib.util
 import os
 import shutil
 import subprocess
@@ -90,3 +91,30 @@ def test_regression_inputs_run_clean_under_valgrind(tmp_path):
             if out.returncode != 0:
                 failed.append(f"{path.relative_to(ROOT)}:\n{out.stderr[-1500:]}")
     assert not failed, f"{len(failed)} regression inputs fail under valgrind:\n" + "\n".join(failed)
+
+
+def load_sequence_inputs():
+    spec = importlib.util.spec_from_file_location("sequence_inputs", ROOT / "fuzz" / "sequence_inputs.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_every_sequence_fuzzer_operation_has_an_encoder_and_a_saved_input_that_uses_it(monkeypatch):
+    """fuzz/sequence_inputs.py reads the operations from fuzz_sequence.c's OPS[]: each needs a Seq method of
+    its name (the bytes it reads), and some seed or regression input must run it; the saved files are the
+    ones the script writes."""
+    inputs = load_sequence_inputs()
+    ops = inputs.read_ops()
+    assert ops == inputs.OPS and len(ops) == len(set(ops))
+    missing = [name for name in ops if not callable(getattr(inputs.Seq, name, None))]
+    assert not missing, f"operations of fuzz_sequence.c's OPS[] without a Seq method: {missing}"
+    used = set()
+    real_op = inputs.Seq.op
+    monkeypatch.setattr(inputs.Seq, "op", lambda self, name: (used.add(name), real_op(self, name))[1])
+    written = {("corpus", name): s for name, s in inputs.seeds().items()}
+    written.update({("regressions", name): s for name, s in inputs.regressions().items()})
+    assert not set(ops) - used, f"operations no saved input runs: {sorted(set(ops) - used)}"
+    for (folder, name), seq in written.items():
+        path = ROOT / "fuzz" / folder / "sequence" / name
+        assert path.read_bytes() == seq.bytes(), f"{path.relative_to(ROOT)}: run fuzz/sequence_inputs.py"

@@ -1,7 +1,11 @@
 """Issue 11: short sequences of legal calls that corrupted memory, overflowed or
 changed state they were refused. Each runs through the real FMU in FMI 2 and
 FMI 3; a refused call must leave the FMU state byte for byte as it was."""
+import json
 import math
+import subprocess
+import sys
+from pathlib import Path
 
 import pytest
 from fmpy.fmi1 import FMICallException
@@ -114,6 +118,111 @@ def test_a_script_that_makes_the_grid_finer_mid_recording_gets_a_stepping_master
         rows = chip.run(1000, record=["axis1.commandedPosition"])
         assert rows.tobytes() == run_stepwise(stepping, 1000, ["axis1.commandedPosition"]).tobytes()
         assert chip.cycles == stepping.cycles
+
+
+# A recording step of n cycles at the coarsest cycle time whose grid a SetSampleTime(1) makes 65 535 times
+# finer (pending, or a script's at @0): its n * 65 535 cycles in a child process, which must finish within a
+# minute where running the cycles past the room one by one takes several. The child prints what it found.
+COARSE_STEP = r"""
+import json, sys
+from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at
+sys.path.insert(0, sys.argv[2])
+import numpy as np
+import pmdfmu
+from pmdfmu.profile import load_external_profile, start_external_profile
+from states import command, pend_batch, snapshot, vr
+
+version, how, columns, n, script = json.loads(sys.argv[1])
+COARSE = 0.065535
+
+
+def chip_of(record, capacity):
+    parameters = {"cycleTime": COARSE, "record.capacity": capacity}
+    if how == "script":
+        parameters["script"] = script
+    chip = pmdfmu.Chip(fmi_version=version, log_categories=["warnings"], **parameters)
+    # axis 1 integrates one long external segment throughout: fast-forward has work to do
+    load_external_profile(chip, {0: [(0, 0x345, 0, 0, 0xFFFFFFFF), (0, 0, 0, 0, 0)]})
+    start_external_profile(chip, [0])
+    chip.set("record.columns", columns)
+    if record:
+        chip.set("record.enabled", True)
+    row_size = chip.get("record.rowSize")        # (a get: before the batch, which the next get would run)
+    if how != "script":
+        pend_batch(chip, command("SetSampleTime", 1))
+    chip.messages.clear()
+    return chip, row_size
+
+
+def extension(chip, name, *argtypes):
+    f = getattr(chip.fmu.dll, name)
+    f.restype, f.argtypes = c_int, [c_void_p, *argtypes]
+    return f
+
+
+def rows_of(chip):
+    if version == 3:
+        return bytes(chip.fmu.getBinary([vr(chip, "record.data")])[0])
+    data, size = c_void_p(), c_size_t()
+    get = extension(chip, "pmdfmu_fmi2GetRecordData", POINTER(c_void_p), POINTER(c_size_t))
+    assert get(chip.fmu.component, byref(data), byref(size)) == 0
+    return string_at(data.value, size.value) if size.value else b""
+
+
+recorded, size = chip_of(True, n if how != "lent" else 65536)
+guard = 64
+if how == "lent":                   # the memory lent holds n rows, record.capacity more
+    lent = np.full(n * size + 2 * guard, 0xA5, dtype=np.uint8)
+    lend = extension(recorded, "pmdfmu_fmi2SetRecordBuffer", c_void_p, c_size_t)
+    assert lend(recorded.fmu.component, lent.ctypes.data + guard, n * size) == 0
+recorded.fmu.doStep(0.0, n * COARSE)
+rows = rows_of(recorded)
+warnings = [m.message for m in recorded.messages if m.status == "Warning"]
+recorded.set("record.enabled", False)       # the one field of the state that then differs
+
+plain = chip_of(False, n)[0]
+plain.fmu.doStep(0.0, n * COARSE)
+# the rows kept: the first n cycles of the finer grid, as a recording step of just those n cycles has them
+first = chip_of(True, n)[0]
+first.fmu.doStep(0.0, n * 1e-6)
+print(json.dumps({
+    "chipTime": [c.get("chipTime") for c in (recorded, plain)],
+    "position": [c.get("axis1.commandedPosition") for c in (recorded, plain)],
+    "same state": snapshot(recorded) == snapshot(plain),
+    "rows": len(rows) // size,
+    "rows as a step of n cycles": rows == rows_of(first),
+    "warnings": warnings,
+    "guards": how != "lent" or bool((lent[:guard] == 0xA5).all() and (lent[guard + n * size:] == 0xA5).all()),
+}))
+"""
+
+
+@pytest.mark.parametrize("fmi_version,how,columns", [
+    (2, "pending", ""), (3, "pending", "axis1.commandedPosition,axis2.activityStatus"),
+    (3, "script", ""), (2, "script", "axis1.position,axis1.motorCommand"),
+    (2, "lent", ""), (2, "lent", "axis1.commandedPosition,axis2.activityStatus")])
+def test_cycles_past_a_recording_steps_room_run_as_an_unrecorded_step_does(tmp_path, fmi_version, how, columns):
+    """The rows past record.capacity (or the memory lent by pmdfmu_fmi2SetRecordBuffer) are not kept: they
+    run as a step that records nothing runs them, fast-forwarded (60 000 coarse cycles: 4 * 10^9 fine ones,
+    minutes one by one). The step ends where the unrecorded one does, the rows kept are the first ones."""
+    n = 60_000
+    script = tmp_path / "fine.pmd"
+    script.write_text("@0\nSetSampleTime(Axis1, 1);\n")
+    try:
+        child = subprocess.run([sys.executable, "-c", COARSE_STEP, json.dumps([fmi_version, how, columns, n,
+                                str(script)]), str(Path(__file__).resolve().parent)],
+                               capture_output=True, text=True, timeout=60)
+    except subprocess.TimeoutExpired:
+        pytest.fail("the recording step ran on for more than 60 s: the cycles past its room went one by one")
+    assert child.returncode == 0, child.stderr[-2000:]
+    found = json.loads(child.stdout)
+    assert [t & 0xFFFFFFFF for t in found["chipTime"]] == [n * 65535 - 1] * 2      # (FMI 2: an Integer)
+    assert found["position"][0] == found["position"][1] != 0
+    assert found["same state"], "the recorded step ended elsewhere than the unrecorded one"
+    assert found["rows"] == n and found["rows as a step of n cycles"]
+    limit = "the memory lent by pmdfmu_fmi2SetRecordBuffer" if how == "lent" else "record.capacity"
+    assert any(f"record.data holds the first {n} ({limit})" in w for w in found["warnings"]), found["warnings"]
+    assert found["guards"], "a row was written outside the memory lent"
 
 
 # ---- 4. a refused set changes nothing ----
@@ -267,6 +376,28 @@ def test_a_set_call_naming_memory_size_twice_takes_the_last(fmi_version, sizes):
         chip.fmu.exitInitializationMode()
         chip.fmu.doStep(0.0, 1e-3)
         assert chip.get("chipTime") == 9
+    finally:
+        chip.free()
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_record_columns_are_set_before_the_end_of_initialization_whatever_the_capacity(fmi_version):
+    """(found by the sequence fuzzer's record.columns) record.enabled set, then record.capacity 0: a valid
+    record.columns was refused ("record.enabled: record.capacity is 0"), as if the step recorded now; the end
+    of initialization sizes the buffer for the columns and the capacity as they stand then."""
+    chip = InitializationChip(fmi_version)
+    try:
+        chip.set("record.enabled", True)
+        chip.set("record.capacity", 0)
+        chip.fmu.setString([vr(chip, "record.columns")], ["loopback,axis1.commandedPosition"])
+        columns = chip.fmu.getString([vr(chip, "record.columns")])[0]
+        assert (columns.decode() if isinstance(columns, bytes) else columns) == "loopback,axis1.commandedPosition"
+        assert chip.get("record.rowSize") == 4 + 1 + 4
+        chip.set("record.capacity", 10)
+        chip.fmu.exitInitializationMode()
+        chip.fmu.doStep(0.0, 10 * 1e-4)
+        if fmi_version == 3:
+            assert len(chip.fmu.getBinary([vr(chip, "record.data")])[0]) == 10 * 9
     finally:
         chip.free()
 

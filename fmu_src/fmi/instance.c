@@ -451,20 +451,22 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
             continue;
         }
         if (inst->s.recordEnabled) {               /* every cycle recorded: no fast-forward */
-            /* rows past record.capacity are not recorded: the grid may have restarted finer inside the step */
+            /* Rows past the room (record.capacity, or the memory lent) are not recorded: the grid may have
+             * restarted finer inside the step, up to 65 535 cycles for each one the room was checked for.
+             * Those cycles record nothing, so they run as an unrecorded step runs them, fast-forwarded where
+             * that pays: one by one, a step that passed the check could run for days. */
             int64_t k = cycles_to_skip(inst, end), room = pmd_record_room(inst) - recorded;
             int64_t r = k < room ? k : room;
             inst->recordRowBytes = inst->columns.rowBytes;
             if (inst->columns.count) {             /* record.columns: cycle by cycle (record.c) */
-                pmd_record_cycles(inst, r, recorded);
-                pmd_chip_run(&inst->chip, k - r, NULL);
+                pmd_record_cycles(inst, r, recorded);     /* nextCycle advanced row by row */
                 inst->s.nextCycle += k - r;
             } else {
                 /* the rows are int32 words: record.data's buffer is aligned, lent memory was checked above */
                 pmd_chip_run(&inst->chip, r, (int32_t *)(void *)pmd_record_rows(inst) + (size_t)recorded * PMD_RECORD_WORDS);
-                pmd_chip_run(&inst->chip, k - r, NULL);
                 inst->s.nextCycle += k;
             }
+            pmd_chip_advance(&inst->chip, k - r);
             recorded += r;
             ran += k;
         } else {                                   /* nothing recorded: fast-forward where it pays */

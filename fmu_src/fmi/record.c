@@ -200,8 +200,11 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
         memset(&c, 0, sizeof c);
         if (pmd_record_columns_compile(inst, fn, text, &c) != PMD_OK)
             return PMD_ERROR;
-        /* recording goes on with the new rows: the buffer grows now, so that applying cannot fail */
-        if (inst->s.recordEnabled && record_reserve(inst, fn, c.rowBytes) != PMD_OK) {
+        /* recording goes on with the new rows: the buffer grows now, so that applying cannot fail; before
+         * step mode nothing records until the end of initialization sizes the buffer for the columns and the
+         * record.capacity then (which may still be 0 now) */
+        if (inst->s.recordEnabled && inst->s.state == PMD_STEP_MODE &&
+            record_reserve(inst, fn, c.rowBytes) != PMD_OK) {
             pmd_record_columns_free(&c);
             return PMD_ERROR;
         }
