@@ -69,9 +69,10 @@ def benchmarks(tmp: Path) -> None:
                 ours, theirs = a.run(2000, record=names), simulate(b, names, 2000)
                 assert len(theirs) == 2001 and all((ours[n] == theirs[n][1:]).all() for n in names)
             for cycles in CYCLES:
-                run = measure(version, table, lambda chip: chip.run(cycles, record=names))
+                run = measure(version, table, lambda chip, cycles=cycles, names=names: chip.run(cycles, record=names))
                 sim_runs = SIMULATE_RUNS.get(cycles, common.RUNS)
-                sim = measure(version, table, lambda chip: simulate(chip, names, cycles), sim_runs)
+                sim = measure(version, table, lambda chip, cycles=cycles, names=names: simulate(chip, names, cycles),
+                              sim_runs)
                 axis_cycles = AXES * cycles
                 name = f"chip.run(record) FMI {version}, {label}, {cycles:,} cycles"
                 common.report(name + ": rate", run.rate(axis_cycles).text(1e-6, "M axis-cycles/s", ".1f"),
@@ -98,7 +99,7 @@ def lending(table) -> None:
                 recording.lent_stepper = stepper
                 try:
                     with prepared(2, table) as chip:
-                        times.append(common.timed(lambda: chip.run(cycles, record=names)))
+                        times.append(common.timed(lambda chip=chip, cycles=cycles: chip.run(cycles, record=names)))
                 finally:
                     recording.lent_stepper = real
         lent_f, copied_f = common.Figure.of(lent), common.Figure.of(copied)

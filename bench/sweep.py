@@ -37,7 +37,7 @@ def heavy_cases(tmp: Path, fmu: str):
         result = pmdfmu.sweep([case], scheduler="serial")
         if result.rows[0]["status"] != "ok" or result.rows[0]["cycles"] < cycles:
             raise RuntimeError(f"the speed-up's case fails: {result.rows[0]}")
-        took = min(timed(lambda: pmdfmu.sweep([case], scheduler="serial")) for _ in range(2))
+        took = min(timed(lambda case=case: pmdfmu.sweep([case], scheduler="serial")) for _ in range(2))
         if took >= HEAVY_SECONDS:
             return [Case(f"long{k}", script=case.script, fmu=fmu, max_cycles=case.max_cycles)
                     for k in range(HEAVY)], took

@@ -245,12 +245,13 @@ def test_unsupported_functions_say_so(raw):
     assert any("fmi2CancelStep: not supported" in m for m in raw.messages)
 
 
-def test_a_wrong_guid_is_refused():
+def test_a_wrong_guid_is_refused(capfd):
     path = str(pmdfmu.default_fmu())
     fmu = FMU2Slave(guid="{00000000-0000-0000-0000-000000000000}", unzipDirectory=extract(path),
                     modelIdentifier="PMDMotionProcessor", instanceName="wrong")
-    with pytest.raises(Exception):
+    with pytest.raises(Exception, match="Failed to instantiate"):     # FMPy's own Exception for a NULL instance
         fmu.instantiate()
+    assert "fmi2Instantiate: the GUID does not match this binary's" in capfd.readouterr().out
 
 
 @pytest.mark.parametrize("start", [math.nan, math.inf, 1e300])

@@ -86,10 +86,10 @@ def test_event_mode_and_model_exchange_are_refused():
     md = read_model_description(str(FMU3))
     d = extract(str(FMU3))
     fmu = FMU3Slave(guid=md.guid, unzipDirectory=d, modelIdentifier="PMDMotionProcessor", instanceName="x")
-    with pytest.raises(Exception):
+    with pytest.raises(Exception, match="Failed to instantiate"):     # FMPy's own Exception for a NULL instance
         fmu.instantiate(eventModeUsed=True)
     fmu = FMU3Slave(guid="{0}", unzipDirectory=d, modelIdentifier="PMDMotionProcessor", instanceName="x")
-    with pytest.raises(Exception):
+    with pytest.raises(Exception, match="Failed to instantiate"):
         fmu.instantiate()
     shutil.rmtree(d, ignore_errors=True)
 

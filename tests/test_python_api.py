@@ -95,7 +95,7 @@ def test_chip_command_still_takes_a_name_and_an_argument_list(chip):
 
 def test_an_unknown_method_says_it_is_not_a_command(chip):
     with pytest.raises(AttributeError, match="SetWarpSpeed is not a command of this chip"):
-        chip.axis(0).SetWarpSpeed
+        _ = chip.axis(0).SetWarpSpeed
 
 
 def test_a_batch_the_fmu_did_not_acknowledge_raises_fmu_error(chip, monkeypatch):

@@ -245,7 +245,7 @@ def test_a_grid_change_the_harness_cannot_redo_raises(monkeypatch, tmp_path):
     for version in (2, 3):
         with pmdfmu.Chip(fmi_version=version, script=script, **{"record.capacity": 500}) as chip:
             real = chip.get
-            monkeypatch.setattr(chip, "get", lambda name: 0 if name == "script.axes" else real(name))
+            monkeypatch.setattr(chip, "get", lambda name, real=real: 0 if name == "script.axes" else real(name))
             with pytest.raises(RuntimeError, match="ran other cycles than its rows"):
                 chip.run(400, record=record_outputs([0]))
 

@@ -281,7 +281,7 @@ def test_open_loop_sends_the_motor_command_register_without_bias_or_limit():
         rig.update()
         rig.bias(500)
         rig.limit(1000)
-        for k in range(5):
+        for _ in range(5):
             rig.cycle(-20)
         rig.motor(False)
         rig.set(motor_command=-20000)
@@ -305,7 +305,7 @@ def test_a_motor_off_breakpoint_switches_the_output_in_the_cycle_it_fires():
         rig.ax.SetBreakpointValue(0, 10)
         rig.ax.SetBreakpoint(0, 0, PMDBreakpointActionMotorOff, PMDBreakpointGreaterOrEqualCommandedPosition)
         outputs = []
-        for k in range(14):
+        for _ in range(14):
             chip.set("axis1.actualPosition", 0)
             chip.run(1)
             outputs.append((rig.registers()[0], chip.get("axis1.motorCommand")))
@@ -345,7 +345,7 @@ def test_loopback_keeps_the_ideal_servo_and_outputs_feedforward_and_bias():
         start_trapezoid(ax, -3000, 0x28000, 0x3000)
         ax.Update()
         model.update()
-        for k in range(300):
+        for _ in range(300):
             chip.run(1)
             c, v, a = (chip.get(f"axis2.{q}") for q in ("commandedPosition", "commandedVelocity",
                                                          "commandedAcceleration"))
@@ -371,7 +371,7 @@ def test_motor_on_after_an_open_loop_move_in_loopback_gives_one_derivative_sampl
         assert ax.GetPositionError() == -400
         ax.SetMotorMode(PMDMotorOn)
         seen = []
-        for k in range(12):
+        for _ in range(12):
             chip.run(1)
             seen.append((ax.GetDerivative(), chip.get("axis1.motorCommand")))
         # samples at the 5th and 10th closed-loop cycles: 0 - 400, then 0 - 0
@@ -393,7 +393,7 @@ def test_trace_variables_7_10_11_sample_the_filter_every_cycle():
         ax.SetTraceStart(0, PMDTraceConditionImmediate, 0, 0)
         expected = []
         rng = random.Random(5)
-        for k in range(60):
+        for _ in range(60):
             rig.cycle(rng.randrange(-80, 80), check_gets=False)
             expected.append((rig.model.output, rig.model.integral, rig.model.derivative))
         values = [pmdfmu.signed(ax.ReadBuffer(0)) for _ in range(180)]

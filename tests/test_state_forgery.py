@@ -76,8 +76,8 @@ def test_every_member_of_the_instance_structs_is_declared(generated, declared, t
                     found[name] = [c.attributes["DW_AT_name"].value.decode() for c in target.iter_children()
                                    if c.tag == "DW_TAG_member"]
     assert set(found) == set(declared[2]), "every struct the list describes appears in the debug information"
-    for struct, names in found.items():
-        assert names == declared[2][struct], f"{struct}: the struct's members (left) and state_fields.c's list"
+    for name, members in found.items():
+        assert members == declared[2][name], f"{name}: the struct's members (left) and state_fields.c's list"
 
 
 def rich_state_chip(fmi_version):

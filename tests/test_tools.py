@@ -289,7 +289,7 @@ def maestro_run(fmi_version, names, tmp_path, packed):
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
 def test_maestro_runs_the_fmu_with_the_script_as_fmpy_does(fmi_version, tmp_path, packed):
-    for how, (times, values) in maestro_run(fmi_version, INTEGERS + REALS, tmp_path, packed).items():
+    for _how, (times, values) in maestro_run(fmi_version, INTEGERS + REALS, tmp_path, packed).items():
         # Maestro's first row is the outputs after initialization, at time 0, as FMPy's
         assert_equals_fmpy(fmi_version, times, values, first_row=0)
 
@@ -464,8 +464,8 @@ def test_maestro_closes_the_loop_as_a_jacobi_master(masters, tmp_path):
     column = {c: "{%s}.%s.%s" % (c.split(".")[0], c[0], c.split(".", 1)[1]) for c in LOOP_COLUMNS}
     values = {c: [float(r[column[c]]) if c == "plant.angle" else int(r[column[c]]) for r in rows] for c in LOOP_COLUMNS}
     assert_same_run(values, masters["jacobi"])
-    assert not re.search(r"algebraic|\bloop\b", "\n".join(l for l in (out.stdout + out.stderr).splitlines()
-                                                         if " DEBUG " not in l), re.I)
+    assert not re.search(r"algebraic|\bloop\b", "\n".join(line for line in (out.stdout + out.stderr).splitlines()
+                                                         if " DEBUG " not in line), re.I)
 
 
 @pytest.mark.parametrize("sequential", [False, True], ids=["default", "sequential"])

@@ -1,7 +1,6 @@
 """pmdfmu.verify (issue 17; docs/verify.md): a run against a golden trace and assertions, in Python.
 Goldens are written by the same run (`pmdfmu run`'s profile.run_profile), then the profile or the
 limits are changed and the failure must name the right cycle, column, segment and values."""
-import shutil
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -149,7 +148,7 @@ def test_a_velocity_limit_reports_axis_cycle_value_and_limit(script_run, units, 
     first = int(np.argmax(values > limit))
     assert (f.axis, f.row, f.cycle, f.value, f.limit) == (2, first, int(script_run["cycle"][first]),
                                                           float(script_run[f"axis2.{column}"][first]), limit)
-    assert f"axis 2: |velocity| " in f.message and f"at cycle {f.cycle}" in f.message
+    assert "axis 2: |velocity| " in f.message and f"at cycle {f.cycle}" in f.message
 
 
 def test_acceleration_and_jerk_limits(script_run):

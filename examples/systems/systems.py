@@ -156,7 +156,7 @@ def build_ssp(out: Path) -> Path:
     out.parent.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
         z.write(SSD, "SystemStructure.ssd")
-        for name, source in system.components.items():
+        for source in system.components.values():
             z.write(fmu_of(source, 2), source)
         for name, values in parameters().items():
             z.writestr(bindings[name].get("source"), ssv(name, values))

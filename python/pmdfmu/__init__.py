@@ -25,5 +25,5 @@ globals().update(CONSTANTS)
 __version__ = "0.1.0"
 __all__ = ["Chip", "Axis", "HostInterface", "PMDError", "FMUError", "FMURefusal", "LogMessage", "Case", "SweepResult", "read_cases", "sweep",
            "verify", "verify_cases", "VerifyResult",
-           "COMMANDS", "CONSTANTS", "FIELDS", "field_ex", "field_dp", "default_fmu",
+           "COMMANDS", "CONSTANTS", "FIELDS", "field_ex", "field_dp", "default_fmu", "tables_dir",
            "to_fixed", "from_fixed", "signed", "fixed_16_16", "fixed_0_32", "fixed_32_0", *CONSTANTS]

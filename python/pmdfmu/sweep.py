@@ -72,7 +72,7 @@ def read_cases(path: Union[str, Path]) -> List[Case]:
     cases = []
     with open(path, newline="") as f:
         for n, row in enumerate(csv.DictReader(f), start=2):
-            def resolve(key):
+            def resolve(key, row=row):
                 value = (row.get(key) or "").strip()
                 return str((path.parent / value).resolve()) if value else None
             params = []
