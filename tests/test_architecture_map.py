@@ -28,3 +28,10 @@ def test_the_readme_layout_names_every_top_level_folder():
     top, fmu = folders()
     missing = [f for f in top + fmu if f"`{f}/" not in layout]
     assert not missing, f"the README's Layout table does not name {missing}"
+
+
+def test_the_docs_index_lists_every_page():
+    index = (REPO / "docs" / "README.md").read_text()
+    pages = sorted(p.name for p in (REPO / "docs").glob("*.md") if p.name != "README.md")
+    missing = [p for p in pages if f"]({p})" not in index]
+    assert not missing, f"docs/README.md does not list {missing}"

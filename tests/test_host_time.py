@@ -1,4 +1,4 @@
-"""Host time (issue 15, section 2; README "Host time", docs/decisions.md "Host time"):
+"""Host time (issue 15, section 2; docs/host-time.md, docs/decisions.md "Host time"):
 each command takes its transfer time on the host interface, the chip runs the
 cycles that fall due meanwhile, so an unchanged polling loop ends at the cycle it
 would on hardware. The transfer times are checked against values worked by hand,
@@ -384,11 +384,10 @@ def test_set_state_and_reinitialize_put_the_host_clock_at_the_chip():
 
 
 def test_readme_example_prints_what_it_says(capsys):
-    """README "Host time": its example runs and prints the values its comments give."""
-    text = (REPO / "README.md").read_text()
-    section = text.split("## Host time\n", 1)[1].split("\n## ", 1)[0]
+    """docs/host-time.md: its example runs and prints the values its comments give."""
+    section = (REPO / "docs" / "host-time.md").read_text()
     code = section.split("```python\n", 1)[1].split("```", 1)[0]
-    exec(compile(code, "README.md (Host time)", "exec"), {})
+    exec(compile(code, "docs/host-time.md", "exec"), {})
     printed = capsys.readouterr().out.split("\n")
     said = [line.split("# -> ", 1)[1].strip() for line in code.split("\n") if "# -> " in line]
     assert printed[:len(said)] == said

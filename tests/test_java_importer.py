@@ -33,8 +33,8 @@ def fmi4j_run():
 @needs_java
 @pytest.mark.parametrize("packed", [False, True], ids=["parameter", "packed"])
 def test_fmi4j_runs_the_scripted_profile_and_its_csv_equals_fmpys(tmp_path, packed, fmi4j_run):
-    """The script as the `script` parameter, or packed into the FMU (`pmdfmu pack`, README
-    "Scripts") with no parameter set: the same run."""
+    """The script as the `script` parameter, or packed into the FMU (`pmdfmu pack`,
+    docs/scripts.md) with no parameter set: the same run."""
     fmu = pmdfmu.default_fmu(2)
     with pmdfmu.Chip(script=SCRIPT) as chip:
         vrs = {n: chip.variables[n].valueReference for n in NAMES}

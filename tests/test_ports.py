@@ -19,7 +19,7 @@ import pmdfmu
 from pmdfmu import PMDError
 from states import InitializationChip, command, pend_batch, snapshot, vr
 
-README = Path(__file__).resolve().parent.parent / "README.md"
+FMU_PAGE = Path(__file__).resolve().parent.parent / "docs" / "fmu.md"
 AXES = range(1, 5)
 # name: (FMI 2 type, FMI 3 type, causality, start, elements, value reference of axis 1 / element 1)
 PER_AXIS = {"motorCommand": ("Integer", "Int16", "output", None, 1, 108),
@@ -360,10 +360,10 @@ def test_write_io_outputs_go_to_zero_on_reset_and_come_back_with_an_fmu_state(an
     assert any_chip.get("io.output[2]") == 0x1234
 
 
-# ---- the README ----
+# ---- docs/fmu.md ----
 
-def test_the_readme_peripheral_snippet_runs(tmp_path):
-    text = README.read_text()
+def test_the_docs_peripheral_snippet_runs(tmp_path):
+    text = FMU_PAGE.read_text()
     section = text[text.index("**Peripheral inputs.**"):]
     snippet = re.search(r"```python\n(.*?)```", section, re.S).group(1)
     (tmp_path / "snippet.py").write_text(snippet)

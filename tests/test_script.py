@@ -1,4 +1,4 @@
-"""Stand-alone scripts: the `script` parameter (issue 4; README, "Scripts")."""
+"""Stand-alone scripts: the `script` parameter (issue 4; docs/scripts.md)."""
 import os
 import threading
 from pathlib import Path

@@ -1,4 +1,4 @@
-"""Profiles that travel with the FMU (issue 14, section 2; README, "Scripts").
+"""Profiles that travel with the FMU (issue 14, section 2; docs/scripts.md).
 
 The `script` parameter: a value holding a line feed is the script's text; a
 relative path is looked for in the FMU's resources folder (FMI 2's
@@ -528,8 +528,8 @@ def test_a_start_value_holding_text_survives_the_xml(built, version):
     assert set_script_start(edited, "") == xml
 
 
-def test_the_readmes_pack_example_runs_as_written(tmp_path):
-    text = (REPO / "README.md").read_text()
+def test_the_docs_pack_example_runs_as_written(tmp_path):
+    text = (REPO / "docs" / "scripts.md").read_text()
     section = text[text.index("**A profile inside the FMU: `pmdfmu pack`.**"):]
     block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
     commands = [line for line in block.splitlines() if line and not line.startswith("#")]

@@ -1,7 +1,7 @@
 """Sweeps on a running cluster (issue 16, target 6): a Client passed in is used as it is and
 stays open, its workers keep their FMU instances from sweep to sweep; an address goes through
 this process's client of it; cases in batches and in several threads of a worker give exactly
-the serial run; a rewritten FMU file is a new instance. README "Sweeps on Dask": its example runs."""
+the serial run; a rewritten FMU file is a new instance. docs/sweeps.md: its example runs."""
 import importlib
 import shutil
 import zipfile
@@ -99,11 +99,10 @@ def test_a_rewritten_fmu_file_is_a_new_instance(tmp_path):
 
 
 def test_readme_reuse_example_prints_what_it_says(capsys, monkeypatch):
-    text = (REPO / "README.md").read_text()
-    section = text.split("## Sweeps on Dask\n", 1)[1].split("\n## ", 1)[0]
+    section = (REPO / "docs" / "sweeps.md").read_text()
     code = next(block.split("```", 1)[0] for block in section.split("```python\n")[1:] if "LocalCluster" in block)
     monkeypatch.chdir(REPO)
-    exec(compile(code, "README.md (Sweeps on Dask)", "exec"), {})
+    exec(compile(code, "docs/sweeps.md", "exec"), {})
     printed = capsys.readouterr().out.split("\n")
     said = [line.split("# -> ", 1)[1].strip() for line in code.split("\n") if "# -> " in line]
     assert printed[:len(said)] == said

@@ -96,7 +96,7 @@ def test_fmutool_check_passes(fmi_version):
 
 # The profile reaches the FMU two ways, both run in every tool: "parameter", the built FMU with the
 # `script` parameter set to examples/two_axis.script; "packed", `pmdfmu pack`'s copy of the FMU with
-# the script inside (README, "Scripts") and no parameter set at all. Both must give FMPy's run of
+# the script inside (docs/scripts.md) and no parameter set at all. Both must give FMPy's run of
 # the first.
 HOW = ["parameter", "packed"]
 

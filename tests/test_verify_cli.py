@@ -163,9 +163,9 @@ def test_from_a_shell(tmp_path):
 
 
 def test_readme_example_runs(tmp_path):
-    """README "Verify in CI": its shell lines, run in a copy of the repository's examples."""
+    """README "A first CI gate": its shell lines, run in a copy of the repository's examples."""
     text = (REPO / "README.md").read_text()
-    section = text.split("## Verify in CI\n", 1)[1].split("\n## ", 1)[0]
+    section = text.split("## A first CI gate\n", 1)[1].split("\n## ", 1)[0]
     code = section.split("```sh\n", 1)[1].split("```", 1)[0]
     # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR), this interpreter's scripts first
     env = dict(os.environ, PATH=os.path.dirname(sys.executable) + os.pathsep + os.environ["PATH"])
@@ -183,12 +183,12 @@ def test_readme_example_runs(tmp_path):
 
 
 def test_readme_python_example_runs(monkeypatch):
-    """README "Verify in CI": its Python lines pass (paths relative to the repository)."""
+    """README "A first CI gate": its Python lines pass (paths relative to the repository)."""
     text = (REPO / "README.md").read_text()
-    section = text.split("## Verify in CI\n", 1)[1].split("\n## ", 1)[0]
+    section = text.split("## A first CI gate\n", 1)[1].split("\n## ", 1)[0]
     code = section.split("```python\n", 1)[1].split("```", 1)[0]
     monkeypatch.chdir(REPO)
-    exec(compile(code, "README.md (Verify in CI)", "exec"), {})
+    exec(compile(code, "README.md (A first CI gate)", "exec"), {})
 
 
 def test_the_sample_ci_jobs_parse_and_their_commands_pass(tmp_path):

@@ -7,7 +7,7 @@
    Unchanged host code: chip time passes only as the host talks (each command takes its transfer
    time on the host interface, parallel16 by default), so the polling loops end.
 
-   Build and run (README, "C-Motion in C"):
+   Build and run (docs/c-motion.md):
      cmake -S . -B build && cmake --build build
      build/cmotion/cmotion_example                  # the build tree's FMU; or PMDFMU_FMU=path.fmu */
 #include <stdio.h>

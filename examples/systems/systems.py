@@ -44,7 +44,7 @@ MASTERS = ("gauss-seidel", "jacobi", "fmpy-ssp", "libcosim", "container")
 
 def script_value() -> str:
     """The chip's `script` parameter for the profile: move.script's text (a value
-    holding a line feed is the script itself, README "Scripts"), so the parameter
+    holding a line feed is the script itself, docs/scripts.md), so the parameter
     set carries the whole profile and no path has to exist where the system runs."""
     return SCRIPT.read_text()
 

@@ -347,7 +347,7 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
         places.resources = inst->resources;
         places.noResources = inst->noResources;
         if (pmd_script_compile(value, &places, (uint32_t)inst->s.memorySize, &script, error, sizeof error)) {
-            /* a path holding a line feed is read as text too: say why it was (README "Scripts") */
+            /* a path holding a line feed is read as text too: say why it was (docs/scripts.md) */
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: script refused: %s%s", fn, error,
                              pmd_script_is_text(value) ? " (the value holds a line feed, so it was read as script "
                              "text)" : "");

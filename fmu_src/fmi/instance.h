@@ -76,7 +76,7 @@ typedef struct {
     unsigned categories;             /* bit per PmdLogCategory enabled by SetDebugLogging */
 
     /* the script parameter, compiled at the end of initialization: a path or the
-     * script's text (README, "Scripts"); NULL: its start value, scriptStart (a
+     * script's text (docs/scripts.md); NULL: its start value, scriptStart (a
      * packed FMU's, read from its resources at instantiation) or "" */
     char *scriptPath;
     char *scriptStart;

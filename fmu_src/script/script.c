@@ -1,4 +1,4 @@
-/* Command scripts (README, "Scripts"): C-Motion calls grouped by the chip
+/* Command scripts (docs/scripts.md): C-Motion calls grouped by the chip
  * cycle at which they run, compiled at initialization into host-command
  * words and memory blocks.
  *

@@ -40,7 +40,7 @@ typedef struct {
 } PmdScript;
 
 /* The `script` parameter's value is the script's text itself when it holds a
- * line feed, else the path of a script file (README, "Scripts"): a path never
+ * line feed, else the path of a script file (docs/scripts.md): a path never
  * holds one, and a one-line script is that line and its line feed. */
 int pmd_script_is_text(const char *value);
 #define PMD_SCRIPT_TEXT_NAME "(script text)"

@@ -1,6 +1,6 @@
 /* The host timing model: how long a command's transfer takes on the host interface, in whole
-   nanoseconds, and which chip cycles fall due by the host clock (issue 15, section 2; README
-   "Host time", docs/decisions.md "Host time"). Plain C99, no FMI: the C-Motion transport
+   nanoseconds, and which chip cycles fall due by the host clock (docs/host-time.md,
+   docs/decisions.md "Host time"). Plain C99, no FMI: the C-Motion transport
    (PMDfmu.c) calls it; python/pmdfmu/hosttime.py is the same formula, and
    tests/test_host_time.py compares the two on every interface.
 

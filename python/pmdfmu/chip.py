@@ -453,7 +453,7 @@ class Chip:
     enables FMU logging (True for all, or a list such as ["warnings", "events"]);
     messages collect in chip.messages, errors always.
 
-    host_interface turns on host time (README "Host time"): None (the default, the
+    host_interface turns on host time (docs/host-time.md): None (the default, the
     kind "none") sends commands in no chip time, as before; a kind's name
     ("parallel16", "parallel8", "serial", "spi", "fixed", with the defaults of
     modelDescription/host_interfaces.csv) or a pmdfmu.HostInterface makes each
@@ -537,7 +537,7 @@ class Chip:
             text = os.fspath(value)
             if "\n" in text:
                 raise ValueError(f"script: the path {text!r} holds a line feed, and the FMU reads a script value "
-                                 "holding one as the script's text (README \"Scripts\"): rename the file or its folder")
+                                 "holding one as the script's text (docs/scripts.md): rename the file or its folder")
         text = str(value) if value else ""
         if not text or "\n" in text:
             return text
@@ -903,7 +903,7 @@ class Chip:
             self.fmu.fmi3SetUInt32(self.fmu.component, vrs, 2, words.ctypes.data_as(POINTER(c_uint32)), BATCH_WORDS + 1)
             self.fmu.setInt32([vr["memory.count"], vr["memory.strobe"]], [n, strobe])
 
-    # ---- host time (README "Host time", docs/decisions.md "Host time") ----
+    # ---- host time (docs/host-time.md, docs/decisions.md "Host time") ----
 
     def _grid_ns(self) -> Tuple[int, int]:
         """(the next cycle's time, the cycle time) in whole ns. The grid's times are whole
