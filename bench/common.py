@@ -1,4 +1,4 @@
-"""What every benchmark module shares (issue 16): runs repeated, figures as
+"""What every benchmark module shares: runs repeated, figures as
 min / median, a report table. Benchmarks, not tests: nothing asserts a time.
 
 A benchmark module (bench/<topic>.py) defines benchmarks(tmp: Path) -> None,

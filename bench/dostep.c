@@ -1,4 +1,4 @@
-/* Benchmark 2 (issue 16, target 2): one doStep of many cycles through the
+/* Benchmark 2: one doStep of many cycles through the
  * FMU's real FMI 3 binary (dlopen), recorded (record.enabled, every cycle's
  * row in record.data) and not recorded (fast-forward where it pays), from the
  * same state (an FMU state taken after initialization), in turns.

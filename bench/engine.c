@@ -1,4 +1,4 @@
-/* Benchmark 1 (issue 16, target 1): the chip core running external profiles
+/* Benchmark 1: the chip core running external profiles
  * on 4 axes, every cycle's commanded position, velocity and acceleration
  * stored (pmd_chip_run's record rows, as a recording doStep stores them),
  * against a bare C loop of the same exact recurrence storing the same rows,

@@ -1,4 +1,4 @@
-"""The engine and doStep (issue 16, targets 1 and 2). Part of ./dev bench (bench/run.py).
+"""The engine and doStep. Part of ./dev bench (bench/run.py).
 
 1a/1b  bench/engine.c: the chip core running random, never repeating external profiles on 4 axes,
        every cycle's row stored, against a bare C loop of the same exact recurrence storing the same

@@ -1,4 +1,4 @@
-"""The FMU as any importer sees it (issue 5): the cost of one FMI step through
+"""The FMU as any importer sees it: the cost of one FMI step through
 FMPy against a do-nothing FMU with the same variables, and the heap an
 instance holds. Part of ./dev bench (bench/run.py)."""
 from __future__ import annotations

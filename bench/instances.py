@@ -1,4 +1,4 @@
-"""Instances (issue 16, target 4): pmdfmu.Chip() after the first of an FMU file, against the
+"""Instances: pmdfmu.Chip() after the first of an FMU file, against the
 first Chip of a file (what every Chip() cost before: extract the FMU, read its 480 KB model
 description, declare FMPy's FMI prototypes, instantiate, initialize). Part of ./dev bench."""
 from __future__ import annotations
@@ -11,7 +11,7 @@ import pmdfmu
 from common import repeat, report, timed
 
 LATER = 50            # instances made per timed run of the later Chip()
-TARGET = 2e-3         # s: a later Chip() (issue 16, target 4)
+TARGET = 2e-3         # s: a later Chip()
 
 
 def folders(chip: pmdfmu.Chip) -> int:

@@ -1,4 +1,4 @@
-/* Benchmark 6 (issue 5): the heap one FMU instance holds, and what its doSteps
+/* Benchmark 6: the heap one FMU instance holds, and what its doSteps
  * allocate. Drives the real FMI 2 binary (dlopen) and counts, from outside,
  * every malloc, calloc and realloc the FMU makes (this program's own
  * definitions take the FMU's calls: linked with -rdynamic; glibc's

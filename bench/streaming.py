@@ -1,4 +1,4 @@
-"""Streaming (issue 16, target 5): a host streams a long external profile into
+"""Streaming: a host streams a long external profile into
 circular buffers by read index (seed 000, section 1.3: the read index tells which entries may be overwritten): run the
 cycles the unread segments cover, read GetBufferReadIndex, write the freed
 entries of every column with write_memory, repeat. The figure is the share of
@@ -23,7 +23,7 @@ from common import RUNS, Figure, report
 ENTRIES = 4096               # buffer entries per column (the seed's buffer_length)
 SEGMENTS = 50_000            # segments streamed per run (plus the time-0 row that ends the profile)
 BASE = 0x200                 # the columns' buffers: BASE + f * ENTRIES
-TARGET = 0.30                # the share of a streamed run spent refilling (issue 16, target 5)
+TARGET = 0.30                # the share of a streamed run spent refilling
 TAIL = 64                    # cycles run past the profile's segment times: it has stopped by then
 RECORD = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration"]
 

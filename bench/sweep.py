@@ -1,4 +1,4 @@
-"""Sweeps (issue 16, target 6): the per-case overhead of a sweep, on a running 2-worker local
+"""Sweeps: the per-case overhead of a sweep, on a running 2-worker local
 cluster (its client reused, workers warm) and in this process, with cases that do next to
 nothing; and the speed-up of 8 cases of at least 0.2 s each on that cluster over the same cases
 run serially in this process. Part of ./dev bench."""
@@ -16,7 +16,7 @@ from pmdfmu.sweep import Case
 EMPTY = 64              # cases per timed sweep of empty cases
 HEAVY = 8               # cases of the speed-up
 HEAVY_SECONDS = 0.25    # each heavy case's serial time, at least (the target asks >= 0.2 s)
-OVERHEAD = 2e-3         # s per case (issue 16, target 6)
+OVERHEAD = 2e-3         # s per case
 SPEED_UP = 1.8          # on 2 workers
 
 

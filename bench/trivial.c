@@ -1,4 +1,4 @@
-/* Benchmark 3's baseline (issue 5): an FMI 2.0 Co-Simulation FMU with the same
+/* Benchmark 3's baseline: an FMI 2.0 Co-Simulation FMU with the same
  * variables as PMDMotionProcessor that does nothing: Set stores, Get returns,
  * DoStep returns. The bench packs it with the real modelDescription.xml. */
 #include <stdlib.h>

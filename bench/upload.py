@@ -1,4 +1,4 @@
-"""Upload (issue 16, target 5): 100 000 segments (5 words each: position,
+"""Upload: 100 000 segments (5 words each: position,
 velocity, acceleration, jerk, time) into the chip's memory, through the script
 loader and through the memory port. Part of ./dev bench.
 
@@ -28,7 +28,7 @@ sys.path.insert(0, str(REPO / "tests"))
 from stepwise import write_memory_stepwise  # noqa: E402  (the tests' oracle, the baseline here)
 
 SEGMENTS = 100_000
-TARGET = 2e6                  # segments/s, each path (issue 16, target 5)
+TARGET = 2e6                  # segments/s, each path
 HEADER = "position,velocity,acceleration,jerk,time"
 
 

@@ -1,4 +1,4 @@
-/* Fuzz target: random FMI 2.0 call sequences on two instances (issue 6):
+/* Fuzz target: random FMI 2.0 call sequences on two instances:
  * set/get of every type with random value references and values, doStep
  * with random times and sizes (NaN, negative, huge), FMU state get/set/
  * serialize/deserialize with random blobs, reset, terminate. Nothing may

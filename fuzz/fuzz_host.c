@@ -1,6 +1,6 @@
 /* Fuzz target: the host port. The input is a stream of 16-bit words, fed to
- * the chip as command batches of random sizes, with chip cycles in between
- * (issue 6). Nothing may crash, and the chip must stay consistent. */
+ * the chip as command batches of random sizes, with chip cycles in between.
+ * Nothing may crash, and the chip must stay consistent. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>

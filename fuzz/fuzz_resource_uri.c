@@ -1,6 +1,6 @@
 /* Fuzz target: FMI 2's fmuResourceLocation, a file URI decoded into the
- * resources folder where relative script and table paths are looked for
- * (issue 14). The decoder, resources_of, is static in fmi2.c: this file
+ * resources folder where relative script and table paths are looked for.
+ * The decoder, resources_of, is static in fmi2.c: this file
  * includes fmi2.c so that it can call it as well as fmi2Instantiate (run.py
  * then leaves fmi2.c out of the target's sources).
  *

@@ -1,4 +1,4 @@
-/* Fuzz target: the script parser. The input is a script (issue 6); it loads a
+/* Fuzz target: the script parser. The input is a script; it loads a
  * table "t.csv" when it asks for one, which the fuzzer writes next to it. */
 #include <stdint.h>
 #include <stdio.h>

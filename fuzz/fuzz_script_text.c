@@ -1,4 +1,4 @@
-/* Fuzz target: a script given as text (issue 14: the `script` parameter's
+/* Fuzz target: a script given as text (the `script` parameter's
  * value is the script itself when it holds a line feed), compiled by
  * pmd_script_compile with a resources folder as the FMU gives it.
  *

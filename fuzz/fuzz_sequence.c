@@ -1,4 +1,4 @@
-/* Fuzz target: sequences of legal operations (issue 11).
+/* Fuzz target: sequences of legal operations.
  *
  * The other targets feed random words and random FMI calls, and mostly meet
  * refusals. The bugs found by review were reached by short sequences of legal

@@ -1,18 +1,18 @@
 #!/usr/bin/env python3
 """Builds the fuzz targets with clang's libFuzzer (+ ASan + UBSan) and runs each
-for a while (issue 6). A crash leaves its input in fuzz/findings/; copy it into
+for a while. A crash leaves its input in fuzz/findings/; copy it into
 fuzz/regressions/TARGET/ and the test suite replays it from then on.
 
     python fuzz/run.py [--seconds 60] [--out DIR] [target ...]
                        targets: host fmi script sequence script_text resource_uri
 
-sequence (fuzz_sequence.c, issue 11) decodes its input as a sequence of legal
+sequence (fuzz_sequence.c) decodes its input as a sequence of legal
 operations through FMI 2 or 3 and checks properties after every call (see the
 head of that file: the input format, the properties, FUZZ_SEQUENCE_TRACE=1 to
 print a crash file's calls); fuzz/sequence_inputs.py writes its hand-built
 seeds and regression inputs.
 
-script_text (fuzz_script_text.c, issue 14) compiles a script given as text
+script_text (fuzz_script_text.c) compiles a script given as text
 (the script parameter's value holding a line feed) with a resources folder,
 and checks it against the same bytes compiled as a file there; resource_uri
 (fuzz_resource_uri.c) decodes FMI 2's fmuResourceLocation against a reference

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Hand-built inputs of the sequence fuzzer (fuzz/fuzz_sequence.c, issue 11):
+"""Hand-built inputs of the sequence fuzzer (fuzz/fuzz_sequence.c):
 seeds that reach deep states (fuzz/corpus/sequence/), one regression input
 per bug reached by legal calls (fuzz/regressions/sequence/), and the bad
-script and table files of issue 11 for fuzz_script.c (fuzz/regressions/script/). The test suite
+script and table files the attack with legal calls found, for fuzz_script.c (fuzz/regressions/script/). The test suite
 replays both folders (tests/test_determinism.py).
 
     python fuzz/sequence_inputs.py        (re)writes the files named below
@@ -440,7 +440,7 @@ class Seq:
 
 def seeds():
     out = {}
-    # a trace armed to start on the next Update, buffer 0 then changed, then Update (issue 11, item 1's shape)
+    # a trace armed to start on the next Update, buffer 0 then changed, then Update (the first legal-call finding's shape)
     out["trace-start-on-update-then-buffer0-changes"] = (
         Seq().trace(0x100, 8, [(0, 2), (0, 3)], 1, 1, (0, 1, 0, 0))
         .buffer(0, 0x200, 3)
@@ -562,7 +562,7 @@ def seeds():
     return out
 
 
-# ---- regressions: the legal-call bugs of issue 11 ---------------------------------------
+# ---- regressions: the legal-call bugs an attack found ---------------------------------------
 
 def regressions():
     out = {}
@@ -624,7 +624,7 @@ def regressions():
     #    negative start time (legal: -1 s) leaves time before the grid's anchor (0), which the state
     #    check refuses: "time -1 is not within 2^53 cycles after anchorTime 0".
     out["restore-refuses-negative-start-time"] = Seq().reinitialize(start=-1).replay(1)
-    # The other findings of issue 11, so that the fuzzer starts from each of them:
+    # The other findings of that attack, so that the fuzzer starts from each of them:
     # 4b. A memory write leaving the memory asked for by the strobe alone: refused, the old strobe stays.
     out["refused-memory-strobe-keeps-its-value"] = (
         Seq().memory("address", ("M-", 16)).memory("count", 0, 64).memory("strobe").step(1))
@@ -673,7 +673,7 @@ def regressions():
     return out
 
 
-# ---- script regressions: the file findings of issue 11 (fuzz_script.c: the first half of an
+# ---- script regressions: the file findings of that attack (fuzz_script.c: the first half of an
 # input is the script, the second half the table t.csv it may load) --------------------------
 
 def script_input(script: str, table: str = "") -> bytes:

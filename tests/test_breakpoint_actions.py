@@ -1,5 +1,5 @@
 """Every breakpoint action in every profile mode acts as the host's own command
-sent at the cycle the breakpoint fires (issue 13, section 3; reference 2.5).
+sent at the cycle the breakpoint fires (reference 2.5).
 
 Two instances run the same set-up. In one a breakpoint fires at the end of
 cycle k and acts; in the other the host, after cycle k, sends what the action

@@ -1,4 +1,4 @@
-"""The chip core is built in layers (issue 12, item 7; the map in fmu_src/chip/chip.h):
+"""The chip core is built in layers (the map in fmu_src/chip/chip.h):
 each C file calls only functions of its own layer and the layers below, so
 there is no circle. The compiler's object files say what each file defines and
 what it needs, whatever the headers claim."""

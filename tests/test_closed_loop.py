@@ -1,4 +1,4 @@
-"""The servo loop closed through a plant (issue 13, section 2): examples/closed_loop.py's
+"""The servo loop closed through a plant: examples/closed_loop.py's
 DC motor and inertia, integrated here cycle by cycle, takes axis1.motorOutput and sends its
 encoder count back to axis1.actualPosition with `loopback` false (docs/servo.md). The
 suggested gains settle a trapezoidal move in the settle window; an unstable gain set raises

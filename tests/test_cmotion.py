@@ -1,4 +1,4 @@
-"""C-Motion in C (issue 15, section 1): the library of host/c over the FMU runs seed 000's
+"""C-Motion in C: the library of host/c over the FMU runs seed 000's
 sample code, sections 1.1-1.6, compiled as printed (tests/c/seed_1_*.c), and examples/c.
 
 Each seed program prints the chip's outputs after every cycle (tests/c/seed_support.h); here

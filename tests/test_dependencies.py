@@ -1,4 +1,4 @@
-"""Dependencies that tell the truth (issue 14, section 1): the dependencies both model
+"""Dependencies that tell the truth: the dependencies both model
 descriptions declare, against what the FMU does, through FMPy in FMI 2 and FMI 3.
 
 variables.csv's `dependencies` column says, for each output, which knowns it depends on without
@@ -469,7 +469,7 @@ def test_fmi2_declares_time_as_the_standard_says_which_fmi_library_misreads():
     2.0.5, 2.2.7: an independent variable "must be defined as Real without a start attribute"
     (and no initial): the FMU keeps it so, since InitialUnknowns name it (nextCycle and
     nextCycleTime depend on the start time); FMI Library's check is its defect (fmi-library
-    issue 21, fixed by its pull request 129), docs/tools.md says so."""
+    reported and fixed upstream), docs/tools.md says so."""
     md = model_description(2)
     time = md.modelVariables[0]
     assert (time.name, time.causality, time.variability, time.type) == ("time", "independent", "continuous", "Real")

@@ -1,4 +1,4 @@
-"""Determinism (issue 6): the same scripted profile run 10 times, and through
+"""Determinism: the same scripted profile run 10 times, and through
 FMI 2 and FMI 3, gives byte-identical CSVs."""
 import hashlib
 import importlib.util

@@ -258,6 +258,6 @@ def test_a_wrong_guid_is_refused(capfd):
 def test_a_start_time_off_the_cycle_grid_is_refused(raw, start):
     """Found by fuzzing: a NaN or huge start time must not reach the cycle index."""
     with pytest.raises(FMICallException):
-        raw.setupExperiment(startTime=start)          # refused where it arrives (issue 11: no state holds it)
+        raw.setupExperiment(startTime=start)          # refused where it arrives (no state holds it)
         raw.enterInitializationMode()
     assert any("fmi2SetupExperiment: time" in m and "2^53 cycles" in m for m in raw.messages)

@@ -1,4 +1,4 @@
-"""An FMU file is extracted once per process (issue 16, target 4): every Chip of the
+"""An FMU file is extracted once per process: every Chip of the
 file shares its folder, model description and FMI prototypes; a rewritten file is
 extracted anew; instances of the shared folder give exactly what an instance of a
 fresh extract gives; closing one leaves the others working; the folder goes when

@@ -1,5 +1,5 @@
 """Coarse doSteps fast-forward through external-profile segments in closed form;
-the result is bit-identical to stepping cycle by cycle (issue 5)."""
+the result is bit-identical to stepping cycle by cycle."""
 import random
 
 import pmdfmu

@@ -1,4 +1,4 @@
-"""FMI 3.0 Co-Simulation: the same core, names and timing as FMI 2 (issue 4)."""
+"""FMI 3.0 Co-Simulation: the same core, names and timing as FMI 2."""
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET

@@ -1,4 +1,4 @@
-"""FMU state: get, set, free, serialize, deserialize (issue 4)."""
+"""FMU state: get, set, free, serialize, deserialize."""
 import subprocess
 import sys
 import textwrap

@@ -1,4 +1,4 @@
-"""The harness never rounds or masks what the user passes (issue 11, item 9): a value
+"""The harness never rounds or masks what the user passes: a value
 that does not fit is refused with a ValueError naming it, before anything reaches the
 FMU; the in-range boundary values do exactly what they say, through FMI 2 and FMI 3."""
 import re

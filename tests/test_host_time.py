@@ -1,4 +1,4 @@
-"""Host time (issue 15, section 2; docs/host-time.md, docs/decisions.md "Host time"):
+"""Host time (docs/host-time.md, docs/decisions.md "Host time"):
 each command takes its transfer time on the host interface, the chip runs the
 cycles that fall due meanwhile, so an unchanged polling loop ends at the cycle it
 would on hardware. The transfer times are checked against values worked by hand,

@@ -1,4 +1,4 @@
-"""Instances from C (issue 6): four instances stepped concurrently from four
+"""Instances from C: four instances stepped concurrently from four
 threads give exactly the sequential results; 1000 rounds of instantiate, run,
 save/restore state and free under valgrind leak nothing and raise no error."""
 import os
@@ -77,7 +77,7 @@ def test_a_thousand_rounds_under_valgrind_leak_nothing(tmp_path):
 @pytest.mark.skipif(bool(os.environ.get("PMDFMU_SANITIZED")), reason="the driver's malloc would bypass ASan's")
 def test_an_instance_holds_at_most_memory_plus_64_kib_and_dosteps_allocate_nothing(tmp_path):
     """bench/memory.c counts the FMU's allocations from outside: 250 doSteps of a running
-    script, 50 of them recording, allocate nothing (CONTRACT; issue 5, target 6)."""
+    script, 50 of them recording, allocate nothing (CONTRACT 2: no allocation in doStep)."""
     exe = tmp_path / "memory"
     subprocess.run(["cc", "-O1", "-std=c99", f"-I{HEADERS}", str(SOURCE.parent.parent.parent / "bench" / "memory.c"),
                     "-rdynamic", "-ldl", "-o", str(exe)], check=True)

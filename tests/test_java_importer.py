@@ -1,6 +1,6 @@
 """A second, independent importer: FMI4j (Java, from Maven Central) runs the
-FMI 2.0 FMU with the example script; its CSV equals FMPy's (issue 4), with the script as the
-parameter or packed inside the FMU with no parameter set (issue 14)."""
+FMI 2.0 FMU with the example script; its CSV equals FMPy's, with the script as the
+parameter or packed inside the FMU with no parameter set."""
 import csv
 import os
 import shutil

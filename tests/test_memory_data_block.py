@@ -1,4 +1,4 @@
-"""The FMU's block path for memory.data (issue 16, target 5): fmi2SetInteger takes
+"""The FMU's block path for memory.data: fmi2SetInteger takes
 a run of consecutive memory.data[k] value references, and fmi3SetUInt32 the
 memory.data array, as one block (pmd_set_memory_data) instead of value by value.
 It must leave the FMU exactly as the per-value path does: the same memory, the

@@ -2,7 +2,7 @@
 through pmdfmu_fmi2GetRecordData) and through the native loop (native/record_loop.c,
 pmdfmu.recording) is the harness's cycle-by-cycle Python loop (tests/stepwise.py,
 kept as the reference), bit for bit: rows, errors, log messages, host clock
-(issue 16)."""
+."""
 from ctypes import CFUNCTYPE
 
 import numpy as np

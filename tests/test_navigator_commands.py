@@ -1,4 +1,4 @@
-"""Every command a Navigator accepts is accepted (issue 13, section 1): the
+"""Every command a Navigator accepts is accepted: the
 command table is the Navigator set of the MC2440's C-Motion (pmd-reference S3),
 each command runs through the harness and as raw host words, the hardware
 registers keep what they are set to across their ranges and refuse the rest
@@ -27,7 +27,7 @@ NAVIGATOR = {
 # pmd-reference 1.2, "opcode gaps": the Magellan's opcodes the Navigator lacks
 MAGELLAN_GAPS = {*range(0x02, 0x0E), 0x1B, 0x1C, *range(0x40, 0x4A), 0x53, 0x55, 0x57, 0x5A, 0x5E, 0x5F,
                  *range(0x60, 0x69), 0x6C, 0x6D, 0x71, 0x73, 0x74, 0xF6, 0xF7, *range(0xF9, 0xFD)} - NAVIGATOR
-# the commands out_of_scope.csv listed before issue 13: the filter group's and the motor's (a4cb061), then the
+# the commands out_of_scope.csv listed before the Navigator set was complete: the filter group's and the motor's (a4cb061), then the
 # hardware's (all of which hardware.csv describes)
 FILTER_OPCODES = {0x25, 0x50, 0x26, 0x51, 0x27, 0x52, 0x2B, 0x54, 0x93, 0x94, 0x9E, 0x9F, 0x95, 0x96, 0x9C, 0x9D,
                   0x77, 0x69, 0x3A, 0x9A, 0x9B, 0x06, 0x07, 0x0F, 0x2D}

@@ -1,4 +1,4 @@
-"""The motor output and the peripheral bus as FMU variables (issue 13): every
+"""The motor output and the peripheral bus as FMU variables: every
 axis's `motorCommand` (GetCurrentMotorCommand, Int16) and `motorOutput` (the
 fraction of full scale, Float64), the analog inputs `analog[1..8]` that
 ReadAnalog reads, and the I/O bus `io.input[1..16]` (ReadIO) and

@@ -1,4 +1,4 @@
-"""The profile decisions of issue 13, section 3, each pinned by the test named
+"""The profile decisions of docs/decisions.md, each pinned by the test named
 after it (docs/decisions.md, "Breakpoint actions and profile decisions"):
 (a) where an external profile starts reading, (b) an Update while an external
 profile runs and a restart after it stopped, (c) when Update takes effect,

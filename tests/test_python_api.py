@@ -121,7 +121,7 @@ def test_no_assert_statement_does_a_runtime_check_in_the_package():
         assert not asserts, f"{path.name}: assert at lines {asserts} (python -O drops it): raise instead"
 
 
-# ---- the harness keeps no copy of what the FMU knows (issue 12, items 2 and 6) ----
+# ---- the harness keeps no copy of what the FMU knows ----
 
 def test_get_state_is_the_fmus_serialized_state_as_it_is(any_chip):
     busy_chip(any_chip)
@@ -161,7 +161,7 @@ def test_no_module_of_the_package_parses_scripts_again():
         assert "re" not in imported, f"{name} imports re: ask the compiled script (script.axes, script.lastCycle)"
 
 
-# ---- register fields: declared once, in constants.csv (issue 12, item 3) ----
+# ---- register fields: declared once, in constants.csv ----
 
 def test_field_ex_reads_a_field_of_a_word_or_of_a_recorded_column(chip):
     assert pmdfmu.field_ex(pmdfmu.PMDActivityProfileSegmentMask, "PMDActivityProfileSegment") == 7

@@ -1,4 +1,4 @@
-"""record.columns: bulk recording of any variables in FMI 2 and FMI 3 (issue 16, target 3): the
+"""record.columns: bulk recording of any variables in FMI 2 and FMI 3: the
 FMU's rows equal a master's stepping cycle by cycle (tests/stepwise.py), bad names are refused."""
 from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at
 

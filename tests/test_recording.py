@@ -1,4 +1,4 @@
-"""Bulk recording through FMI 3 record.data (issue 5): the same rows as
+"""Bulk recording through FMI 3 record.data: the same rows as
 recording cycle by cycle, far fewer FMI calls."""
 import numpy as np
 import pytest

@@ -1,5 +1,5 @@
 """Register fields are declared once, as the *Mask constants of constants.csv
-(issue 12, item 3): the command table's packed values name them, and the C
+: the command table's packed values name them, and the C
 header the FMU's sources carry derives NAME_SHIFT and NAME_LENGTH from them."""
 import re
 import zipfile

@@ -1,4 +1,4 @@
-"""The register table (modelDescription/registers.csv, issue 12 item 4): every
+"""The register table (modelDescription/registers.csv): every
 plain stored register resets to its row's value, keeps what its Set stores,
 refuses a value outside its range with its row's error code and message, and
 has no hand-written handler."""

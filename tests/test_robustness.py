@@ -1,4 +1,4 @@
-"""Every class of bad input of docs/robustness.md (issue 6): instance A gets it
+"""Every class of bad input of docs/robustness.md: instance A gets it
 while it runs a busy profile; instance B runs the same profile untouched. A
 refused FMI call leaves A's FMU state byte for byte as it was; a refused chip
 command is not executed: A's next 400 cycles equal B's. B never notices."""

@@ -1,4 +1,4 @@
-"""Stand-alone scripts: the `script` parameter (issue 4; docs/scripts.md)."""
+"""Stand-alone scripts: the `script` parameter (docs/scripts.md)."""
 import os
 import threading
 from pathlib import Path
@@ -109,7 +109,7 @@ def test_pmdfmu_run_a_script_writes_csv_and_plot(tmp_path):
     assert len(lines) > 3000 and (tmp_path / "o.png").stat().st_size > 10_000
 
 
-# ---- files that are not a script or a table (issue 11: hangs and silent acceptance) ----
+# ---- files that are not a script or a table (hangs and silent acceptance once) ----
 
 def refusal(version, script, seconds=60):
     """What the FMU says when it refuses the script; a hang fails the test instead of stalling the suite."""

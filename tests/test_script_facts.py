@@ -1,4 +1,4 @@
-"""What the compiled script knows about itself (issue 12, item 6): the axes its
+"""What the compiled script knows about itself: the axes its
 calls address (script.axes) and the time of its last @ line (script.lastCycle),
 as FMU outputs, so that no one parses a script again to find them."""
 from pathlib import Path

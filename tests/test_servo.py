@@ -1,4 +1,4 @@
-"""The servo filter and the motor output (issue 13, section 2): docs/decisions.md's
+"""The servo filter and the motor output: docs/decisions.md's
 "Servo filter and motor output", pinned cycle by cycle against tests/reference.py's
 ServoFilter (written from that page), with `loopback` false and a scripted encoder;
 double buffering, open loop, the ideal servo and coarse steps."""

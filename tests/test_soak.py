@@ -1,4 +1,4 @@
-"""Soak (issue 6): 10^9 cycles of an external profile streamed through the
+"""Soak: 10^9 cycles of an external profile streamed through the
 dual-port memory port, refilled behind the read position, checked against the
 exact closed form at every checkpoint, with flat memory."""
 import os

@@ -1,6 +1,6 @@
 """Source FMU: sources/ is self-contained; FMPy's build support rebuilds the
 binary from it (FMI 2 SourceFiles, FMI 3 buildDescription.xml) and the rebuilt
-FMU runs the seed's worked example (issue 4)."""
+FMU runs the seed's worked example."""
 import shutil
 import zipfile
 

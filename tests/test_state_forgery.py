@@ -1,4 +1,4 @@
-"""Forged FMU states (issue 11): a snapshot whose checksum was recomputed after a
+"""Forged FMU states: a snapshot whose checksum was recomputed after a
 field was changed must still be refused when the field holds a value the model
 never gives it, with a message naming the field, and the instance must stay as
 it was. The declared field list (fmu_src/fmi/state_fields.c) drives the forger;
@@ -205,7 +205,7 @@ FORGERIES = {                    # finding: the fields changed, and what the mes
 
 @pytest.mark.parametrize("finding", FORGERIES)
 def test_the_forgeries_found_by_review_are_refused(rich, declared, finding):
-    """Issue 11 item 3: each of these was accepted and then read or wrote out of bounds."""
+    """Each of these was accepted and then read or wrote out of bounds."""
     leaves = {path: (offset, size) for path, offset, size, *_ in declared[1]}
     edits, expected = FORGERIES[finding]
     data = snapshot(rich)

@@ -1,4 +1,4 @@
-"""Sweeps on Dask (issue 7): a 2-worker local cluster gives exactly the serial
+"""Sweeps on Dask: a 2-worker local cluster gives exactly the serial
 run, row for row; failing cases are rows with their reasons."""
 from pathlib import Path
 

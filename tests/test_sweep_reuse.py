@@ -1,4 +1,4 @@
-"""Sweeps on a running cluster (issue 16, target 6): a Client passed in is used as it is and
+"""Sweeps on a running cluster: a Client passed in is used as it is and
 stays open, its workers keep their FMU instances from sweep to sweep; an address goes through
 this process's client of it; cases in batches and in several threads of a worker give exactly
 the serial run; a rewritten FMU file is a new instance. docs/sweeps.md: its example runs."""

@@ -1,4 +1,4 @@
-"""Chip + plant as a system (issue 14, section 3; docs/systems.md): the servo loop of
+"""Chip + plant as a system (docs/systems.md): the servo loop of
 examples/systems/SystemStructure.ssd closed through the plant FMU, as an SSP run by
 FMPy's SSP support and by libcosim, as a container FMU run by FMPy, and by a plain
 FMPy master stepping Gauss-Seidel or Jacobi.

@@ -1,4 +1,4 @@
-"""Issue 14, section 4: the FMU in the co-simulation tools engineers use.
+"""The FMU in the co-simulation tools engineers use.
 
 Each tool runs the FMU with examples/two_axis.script for a few hundred chip cycles, one cycle
 per communication step, and its result must equal FMPy's (fmpy.simulate_fmu) bit for bit:

@@ -1,4 +1,4 @@
-"""Upload (issue 16, target 5): write_memory's strobes run in C (native/memory_port.c)
+"""Upload: write_memory's strobes run in C (native/memory_port.c)
 and leave the FMU exactly as the harness's Python loop did (stepwise.write_memory_stepwise,
 kept as the reference): the same FMU state byte for byte (memory, the port's
 variables), the same messages, and where an FMI call is refused part-way the same

@@ -1,4 +1,4 @@
-"""Every variable through every getter and setter (issue 12, item 5): for each row
+"""Every variable through every getter and setter: for each row
 of modelDescription/variables.csv (every axis, every array element in FMI 2, every
 array whole in FMI 3), through FMI 2 and FMI 3, a get and a set of EVERY type. The
 variable's own type works (the get answers the documented value, the set works

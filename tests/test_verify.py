@@ -1,4 +1,4 @@
-"""pmdfmu.verify (issue 17; docs/verify.md): a run against a golden trace and assertions, in Python.
+"""pmdfmu.verify (docs/verify.md): a run against a golden trace and assertions, in Python.
 Goldens are written by the same run (`pmdfmu run`'s profile.run_profile), then the profile or the
 limits are changed and the failure must name the right cycle, column, segment and values."""
 import xml.etree.ElementTree as ET

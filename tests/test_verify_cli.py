@@ -1,4 +1,4 @@
-"""`pmdfmu verify` from the command line (issue 17; docs/verify.md): exit status 0 pass, 1 fail,
+"""`pmdfmu verify` from the command line (docs/verify.md): exit status 0 pass, 1 fail,
 2 malformed input; JUnit XML and Markdown files; batches of a case table on Dask; README's example."""
 import os
 import subprocess

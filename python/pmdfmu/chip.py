@@ -346,7 +346,7 @@ for _command in COMMANDS.values():
 del _command
 
 
-# ---- an FMU file, unpacked once per process (issue 16): every Chip of the file shares it ----
+# ---- an FMU file, unpacked once per process: every Chip of the file shares it ----
 
 class _SharedPrototypes:
     """FMPy's slave classes with the FMI functions' ctypes prototypes taken from the FMU file's

@@ -1,5 +1,5 @@
 """The host timing model: how long each command's transfer takes on the host
-interface, in whole nanoseconds (issue 15, section 2; docs/host-time.md,
+interface, in whole nanoseconds (docs/host-time.md,
 docs/decisions.md "Host time").
 
 The interface kinds, their parameters and defaults are modelDescription/

@@ -1,4 +1,4 @@
-"""Parameter and profile studies on Dask (issue 7).
+"""Parameter and profile studies on Dask.
 
 A sweep runs a table of cases - FMU parameters, a script or a segment table,
 an FMI version - and collects each case's recorded outputs and summary figures

@@ -1,4 +1,4 @@
-/* Drives the real FMU binary (dlopen) through FMI 2.0 from C (issue 6).
+/* Drives the real FMU binary (dlopen) through FMI 2.0 from C.
  *
  *   instances FMU.so GUID SCENARIO threads   four instances, each running the scenario with its own
  *                                            offset, sequentially and then from four threads at once:
