@@ -16,11 +16,16 @@ import argparse
 import math
 import os
 import re
+import signal
 import subprocess
 import sys
 import zipfile
 from pathlib import Path
 from typing import Iterable, List, Optional, Tuple
+
+# lxml (FMPy's XML parser, which imports it on first use) loses a KeyboardInterrupt that lands while its
+# module initializes, and the command would run on to its end: it is imported with the program instead
+import lxml.etree  # noqa: F401,E402
 
 from . import files, profile
 from .chip import COMMANDS, REPO, FMUError, PMDError, default_fmu
@@ -48,7 +53,7 @@ def one_line(error: BaseException) -> str:
     `file:line: reason`; the lines of a message of several joined by "; "; a line feed in a file name
     written as \\n."""
     if isinstance(error, OSError) and error.filename is not None:
-        text = f"{str(error.filename).replace(chr(10), chr(92) + 'n')}: {error.strerror or error}"
+        text = f"{files.shown_path(error.filename)}: {error.strerror or error}"
     else:
         text = str(error) if not isinstance(error, KeyError) else str(error.args[0])
     lines = [_SCRIPT_REFUSED.sub("", line.strip()) for line in text.splitlines() if line.strip()]
@@ -60,7 +65,7 @@ def _script_file(path: Path) -> Path:
     holding a line feed is the script's text to the FMU (README, "Scripts"), so such a path cannot be
     given to it."""
     if "\n" in str(path):
-        raise CommandLineError(f"{files.shown(str(path))}: the script's path holds a line feed; the FMU reads "
+        raise CommandLineError(f"{files.shown_path(path)}: the script's path holds a line feed; the FMU reads "
                                "a `script` value holding one as the script's text, so it cannot be given this "
                                "file: rename it (pmdfmu pack packs it under another name)")
     return path
@@ -325,16 +330,26 @@ class _Parser(argparse.ArgumentParser):
 def main(argv: Optional[List[str]] = None) -> int:
     """The command; exit status 0 done, 1 failed (verify: a check failed; validate: problems found), 2 an input
     error (one line: INPUT_ERRORS), 130 interrupted (one line)."""
-    args = _parser().parse_args(argv)
+    command = "pmdfmu"
     try:
+        args = _parser().parse_args(argv)
+        command = f"pmdfmu {args.command}"
         return args.func(args)
     except INPUT_ERRORS as e:
-        print(f"pmdfmu {args.command}: {one_line(e)}", file=sys.stderr)
+        print(f"{command}: {one_line(e)}", file=sys.stderr)
         return EXIT_INPUT
     except KeyboardInterrupt:
         # a file being written is removed (files.replaced); what was written whole stays
-        print(f"pmdfmu {args.command}: interrupted", file=sys.stderr)
+        print(f"{command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+
+
+def console() -> None:
+    """The `pmdfmu` program: main, then exit with its status. Its files are written once main returns, so a
+    Ctrl-C from then on is ignored, not left to kill Python's exit by SIGINT."""
+    status = main()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    sys.exit(status)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -423,4 +438,4 @@ def _parser() -> argparse.ArgumentParser:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    console()

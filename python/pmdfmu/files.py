@@ -84,6 +84,11 @@ def shown(value, limit: int = 40) -> str:
     return text if len(text) <= limit else f"{text[:limit]}... ({len(text)} characters)"
 
 
+def shown_path(path: PathLike) -> str:
+    """A path for a one-line message: a line feed in a name written as \\n."""
+    return str(path).replace("\n", "\\n")
+
+
 @contextmanager
 def replaced(path: PathLike, text: bool = False) -> Iterator[IO]:
     """A new file (binary, or text with newline="") that becomes path when the block ends without an
@@ -109,4 +114,4 @@ def replaced(path: PathLike, text: bool = False) -> Iterator[IO]:
         raise
 
 
-__all__ = ["read_bytes", "read_text", "check_regular", "replaced", "shown", "NotRegularFile", "PARTIAL"]
+__all__ = ["read_bytes", "read_text", "check_regular", "replaced", "shown", "shown_path", "NotRegularFile", "PARTIAL"]

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import Iterator, List, Optional, Tuple, Union
 
-from .files import replaced
+from .files import replaced, shown_path
 from .chip import Chip, FMUError, default_fmu
 
 PROFILE = "profile"                  # resources/profile/: the script and its tables
@@ -180,12 +180,7 @@ def _refuse_overwriting(out: Path, inputs: List[Tuple[Path, str]]) -> None:
         except OSError:                 # a dangling link: replacing it overwrites nothing
             continue
         if same:
-            raise PackError(f"{out}: the packed FMU must not overwrite {what}, {_shown(path)}")
-
-
-def _shown(path: Union[str, Path]) -> str:
-    """A path for a one-line message: a line feed in a name written as \\n."""
-    return str(path).replace("\n", "\\n")
+            raise PackError(f"{out}: the packed FMU must not overwrite {what}, {shown_path(path)}")
 
 
 @contextmanager
@@ -200,7 +195,7 @@ def _by_a_name_the_fmu_reads_as_a_path(script: Path) -> Iterator[Path]:
     folder = script.parent
     name = script.name.replace("\n", "_")
     if name != script.name and (folder / name).exists():
-        raise PackError(f"{_shown(script)}: its name holds a line feed and {name} is beside it: rename the script")
+        raise PackError(f"{shown_path(script)}: its name holds a line feed and {name} is beside it: rename the script")
     with tempfile.TemporaryDirectory(prefix="pmdfmu-pack-") as mirror:
         for entry in os.listdir(folder):
             if "\n" not in entry and entry != name:
@@ -226,8 +221,8 @@ def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
         try:
             read, unzipdir = _compile(fmi_version, base, given)
         except FMUError as e:
-            raise PackError(f"{_shown(script)}: the FMU refuses the script: "
-                            f"{str(e).replace(str(given), _shown(script))}") from None
+            raise PackError(f"{shown_path(script)}: the FMU refuses the script: "
+                            f"{str(e).replace(str(given), shown_path(script))}") from None
         _refuse_overwriting(out, [(path, f"the table {name} the script loads (line {line})")
                                   for line, name, path in read.tables])
         root, files = _layout(read, unzipdir)

@@ -260,6 +260,17 @@ def _line_of(text: Optional[str], key: str) -> str:
     return ""
 
 
+LIMIT_RANGE = 2**63 - 1      # a limit is compared with int64 columns: beyond it, no column's value
+
+
+def _limit_number(value) -> bool:
+    """A limit or tolerance: a TOML integer or float, finite, within +-LIMIT_RANGE (TOML integers have no
+    bound in tomllib: 10**400 would overflow the float a comparison makes of it)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    return abs(value) <= LIMIT_RANGE if isinstance(value, int) else math.isfinite(value)
+
+
 def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[str] = None) -> Assertions:
     """Assertions from the TOML file's shape (a dict); where/text name the source in messages."""
     def bad(key, message, named=None):        # named: the key as the file writes it, to find its line
@@ -283,7 +294,7 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
     for column, value in tolerance.items():
         if column != "cycle" and column not in DTYPES:
             raise bad(column, "unknown column: not an output of the FMU (pmdfmu info lists them)", column)
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
+        if not _limit_number(value) or value < 0:
             raise bad(column, f"the tolerance {shown(value)} is not a finite number >= 0", column)
         result.tolerance[column] = float(value)
     for name in ("all_axes", "axis1", "axis2", "axis3", "axis4"):
@@ -308,12 +319,11 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
                 unknown = [v for v in value if v not in EVENTS]
                 if unknown:
                     raise bad(f"{name}.{key}", f"unknown event {shown(unknown[0])} (known: {', '.join(EVENTS)})")
-            elif isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or \
-                    (kind is int and not float(value).is_integer()):
+            elif not _limit_number(value) or (kind is int and not float(value).is_integer()):
                 # nan would pass every comparison, inf is no limit: both refused
                 number = not isinstance(value, bool) and isinstance(value, (int, float))
-                want = ("a number" if not number else "a finite number" if not math.isfinite(value)
-                        else "a whole number")
+                want = ("a number" if not number else f"a finite number in {-LIMIT_RANGE}..{LIMIT_RANGE}"
+                        if not _limit_number(value) else "a whole number")
                 raise bad(f"{name}.{key}", f"{shown(value)} is not {want}")
             else:
                 value = kind(value)
@@ -768,8 +778,8 @@ class VerifyCase:
 
 def read_case_table(path: PathLike) -> Tuple[list, List[dict]]:
     """A case table as sweep.read_cases reads it, and its rows; InputError for a table it cannot read or a
-    case that cannot run as written: no case, an FMI version other than 2 or 3, max_cycles below 1, a
-    script path holding a line feed (the FMU reads a `script` value holding one as the script's text)."""
+    case that cannot run as written: no case, a case with no script or table or both, an FMI version other
+    than 2 or 3, max_cycles below 1, a script path holding a line feed (the FMU reads a `script` value holding one as the script's text)."""
     from .sweep import read_cases
     path = Path(path)
     try:
@@ -781,6 +791,8 @@ def read_case_table(path: PathLike) -> Tuple[list, List[dict]]:
     if not cases:
         raise InputError(f"{path}: no case (a header and one row per case)")
     for line, case in enumerate(cases, start=2):
+        if bool(case.script) == bool(case.table):
+            raise InputError(f"{path}:{line}: case {shown(case.name)}: a case names a script or a table")
         if case.fmi_version not in (2, 3):
             raise InputError(f"{path}:{line}: case {shown(case.name)}: fmi_version {case.fmi_version} is not 2 or 3")
         if case.max_cycles < 1:
