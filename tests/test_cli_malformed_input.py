@@ -73,6 +73,19 @@ def test_pack_never_writes_through_a_planted_partial_name(profile, capsys):
     assert not [p for p in profile.parent.iterdir() if p.name.startswith(".x.fmu.")]
 
 
+def test_run_and_verify_write_no_output_over_an_input(profile, capsys):
+    script = profile.read_bytes()
+    assert_one_line(cli(capsys, "run", profile, "--csv", profile), "run", "--csv", "names the input")
+    changed = profile.parent / "changed.csv"
+    changed.write_text(SQUARE.read_text().replace("2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500"))
+    golden = shutil.copy(GOLDEN, profile.parent / "changed.actual.csv")     # a copied actual, as a golden
+    assert_one_line(cli(capsys, "verify", changed, "--against", golden, "--out", profile.parent), "verify",
+                    "would write its recording over the input")
+    assert_one_line(cli(capsys, "verify", changed, "--against", GOLDEN, "--junit", changed), "verify",
+                    "--junit", "names the input")
+    assert profile.read_bytes() == script and Path(golden).read_bytes() == GOLDEN.read_bytes()
+
+
 # ---- 3: verify's own malformed inputs ----------------------------------------------------------------
 
 def _npz(path, **dtypes):

@@ -15,7 +15,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import re
 import signal
 import subprocess
 import sys
@@ -44,8 +43,18 @@ class CommandLineError(ValueError):
 INPUT_ERRORS = (CommandLineError, InputError, profile.TableError, PackError, FMUError, PMDError, OSError,
                 zipfile.BadZipFile)
 EXIT_INTERRUPTED = 130          # 128 + SIGINT: what a shell reports for a command ended by Ctrl-C
-# how the FMU's initialization error begins (fmu_src/fmi/instance.c): its file:line: reason follows
-_SCRIPT_REFUSED = re.compile(r"\bfmi[23]\w+: script refused: ")
+# what the FMU's initialization error says after the FMI function's name (fmu_src/fmi/instance.c); its
+# file:line: reason follows
+_SCRIPT_REFUSED = ": script refused: "
+
+
+def _without_function(line: str) -> str:
+    """line without `fmi2ExitInitializationMode: script refused: ` before the FMU's file:line: reason."""
+    head, found, reason = line.partition(_SCRIPT_REFUSED)
+    before, _, function = head.rpartition(" ")
+    if not found or not function.startswith(("fmi2", "fmi3")):
+        return line
+    return f"{before} {reason}" if before else reason
 
 
 def one_line(error: BaseException) -> str:
@@ -56,7 +65,7 @@ def one_line(error: BaseException) -> str:
         text = f"{files.shown_path(error.filename)}: {error.strerror or error}"
     else:
         text = str(error) if not isinstance(error, KeyError) else str(error.args[0])
-    lines = [_SCRIPT_REFUSED.sub("", line.strip()) for line in text.splitlines() if line.strip()]
+    lines = [_without_function(line.strip()) for line in text.splitlines() if line.strip()]
     return "; ".join(lines) or type(error).__name__
 
 

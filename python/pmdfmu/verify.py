@@ -702,6 +702,24 @@ def _name_of(source) -> str:
     return Path(str(source)).stem if isinstance(source, (str, Path)) else "profile"
 
 
+def _failure_files(name: str, out: Optional[PathLike], golden_path: Optional[PathLike]) -> List[Path]:
+    """The files a golden's failure writes to out: NAME.actual.csv|npz and NAME.diff.png."""
+    if out is None or golden_path is None:
+        return []
+    return [Path(out) / f"{name}.actual{Path(golden_path).suffix.lower()}", Path(out) / f"{name}.diff.png"]
+
+
+def _refuse_writing_over_inputs(name: str, out: Optional[PathLike], inputs: Sequence[Optional[PathLike]]) -> None:
+    """A failure's files must not be the golden or another input (`--out` the golden's folder and the
+    golden named NAME.actual.npz, as a copied actual is): InputError before anything runs."""
+    for written in _failure_files(name, out, inputs[0]):
+        for path in inputs:
+            if path is not None and written.exists() and Path(path).exists() and written.samefile(path):
+                raise InputError(f"{written}: a failure of case {name} would write its "
+                                 f"{'recording' if '.actual' in written.name else 'plot'} over the input {path}: "
+                                 "give another --out")
+
+
 def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], golden_path: Optional[Path],
             required: Sequence[str], out: Optional[PathLike], cycle_time: float) -> None:
     """On a golden's failure: the diff plot and the run's own recording, in the golden's format, to `out`."""
@@ -712,9 +730,8 @@ def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], g
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     columns = list(dict.fromkeys([*required, *golden.dtype.names]))
-    result.actual = out / f"{result.name}.actual{golden_path.suffix.lower() if golden_path else '.csv'}"
+    result.actual, result.plot = _failure_files(result.name, out, golden_path)
     write_recording(result.actual, rec[[c for c in columns if c in rec.dtype.names]])
-    result.plot = out / f"{result.name}.diff.png"
     plot_diff(result.plot, golden, rec, failing, cycle_time, title=f"pmdfmu verify {result.name}: {result.source}")
 
 
@@ -734,6 +751,8 @@ def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathL
     if isinstance(max_cycles, bool) or not isinstance(max_cycles, int) or max_cycles < 1:
         raise InputError(f"max_cycles {max_cycles!r}: a run records at least 1 cycle")
     name = name or _name_of(source)
+    _refuse_writing_over_inputs(name, out, [against, assertions if isinstance(assertions, (str, Path)) else None,
+                                            source if isinstance(source, (str, Path)) else None])
     args = dict(source=source, fmu=fmu, fmi_version=fmi_version, cycle_time=cycle_time, upload=upload,
                 parameters=parameters)
     extra = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()), *spec.columns()]))
@@ -838,6 +857,7 @@ def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, w
         data, where, text = _assertion_data(vc.assertions)
         specs.append(parse_assertions(_merge(base, data), where, text))     # the case's file over the common
         goldens.append(read_recording(vc.golden) if vc.golden else None)
+        _refuse_writing_over_inputs(vc.case.name, out, [vc.golden, vc.assertions, vc.case.script or vc.case.table])
     run_cases = []
     for vc, spec, golden in zip(vcases, specs, goldens):
         extra_columns = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()),
