@@ -139,6 +139,7 @@ def test_verify_answers_a_malformed_golden_or_assertion_file_with_status_2(tmp_p
     ("a golden .npz as the script", "g.npz:1: NUL byte in the line"),
     ("a misspelt header", "t.csv:1: column 3: 'velocty' is not one of axis, position, velocity"),
     ("a decimal in a raw table", "t.csv:3: column position: '1.5' is not an integer"),
+    ("a first position out of reach", "t.csv: the initial move (axis 1 to 2147483647) is not complete after"),
     ("a missing FMU", "nope.fmu: No such file or directory"),
     ("a script as the FMU", "s.script: not an FMU"),
 ])
@@ -156,6 +157,9 @@ def test_run_answers_a_common_mistake_with_one_line(tmp_path, capsys, mistake, e
         argv = ["run", table]
     elif mistake == "a decimal in a raw table":
         table.write_text("# a comment line\naxis,position,velocity,acceleration,jerk,time\n1,1.5,0,0,0,100\n")
+        argv = ["run", table]
+    elif mistake == "a first position out of reach":
+        table.write_text("axis,position,velocity,acceleration,jerk,time\n1,0x7FFFFFFF,0,0,0,100\n")
         argv = ["run", table]
     elif mistake == "a missing FMU":
         argv = ["run", SCRIPT, "--fmu", tmp_path / "nope.fmu"]

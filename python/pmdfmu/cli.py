@@ -117,9 +117,10 @@ def _write_run(run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Opt
         print(f"wrote {plot_path}")
 
 
-def _run_table(tables, fmu: Optional[str], cycle_time: float, upload: str, max_cycles: int,
+def _run_table(source, fmu: Optional[Path], cycle_time: float, upload: str, max_cycles: int,
                csv_path: Optional[Path], plot_path: Optional[Path], title: str, fmi_version: int = 2) -> None:
-    run = profile.run_profile(tables, fmu, fmi_version, cycle_time, upload, max_cycles)
+    """source: a segment table's file, or its tables read already (profile.run_profile)."""
+    run = profile.run_profile(source, fmu, fmi_version, cycle_time, upload, max_cycles)
     _write_run(run, csv_path, plot_path, title)
     rec = run.recording
     for axis in run.axes:
@@ -160,7 +161,7 @@ def cmd_run(args) -> int:
     _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path)], [path, fmu])
     title = f"pmdfmu run {path}"
     if profile.is_segment_table(path):
-        _run_table(profile.read_segment_table(path), fmu, args.cycle_time, args.upload, args.max_cycles,
+        _run_table(path, fmu, args.cycle_time, args.upload, args.max_cycles,
                    csv_path, plot_path, title, args.fmi_version)
         return 0
     run = profile.run_profile(_script_file(path), fmu, args.fmi_version, args.cycle_time, args.upload,

@@ -126,7 +126,8 @@ def load_external_profile(chip: Chip, tables: Dict[int, Sequence[Row]], memory_s
 def move_to(chip: Chip, positions: Dict[int, int], velocity: int, acceleration: int,
             max_cycles: int = 10_000_000, step: int = 256) -> int:
     """Trapezoidal moves of the given axes to their positions (seed 000, 1.4);
-    runs until all are at rest. Returns the cycles it took."""
+    runs until all are at rest. Returns the cycles it took; TimeoutError after
+    max_cycles."""
     for axis, position in positions.items():
         ax = chip.axis(axis)
         ax.SetProfileMode(CONSTANTS["PMDTrapezoidalProfile"])
@@ -137,7 +138,8 @@ def move_to(chip: Chip, positions: Dict[int, int], velocity: int, acceleration: 
     start = chip.cycles
     while any(chip.axis(a).GetActivityStatus() & CONSTANTS["PMDActivityInMotionMask"] for a in positions):
         if chip.cycles - start > max_cycles:
-            raise RuntimeError(f"initial move not complete after {max_cycles} cycles")
+            targets = ", ".join(f"axis {a + 1} to {p}" for a, p in positions.items())
+            raise TimeoutError(f"the initial move ({targets}) is not complete after {max_cycles} cycles")
         chip.run(step)
     return chip.cycles - start
 
@@ -311,6 +313,9 @@ def run_profile(source: Union[str, Path, Dict[int, Sequence[Row]]], fmu: Optiona
                 rec = run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles, record=record)
             except (PMDError, FMUError) as e:       # the chip refused the table's set-up (it does not fit, ...)
                 raise TableError(f"{path or 'segment tables'}: {e}") from None
+            except TimeoutError as e:               # a first row's position too far away
+                raise TableError(f"{path or 'segment tables'}: {e}: an axis starts at its first row's position") \
+                    from None
         else:
             axes = script_axes(chip)
             rec = run_script(chip, axes, max_cycles=max_cycles, record=record)
