@@ -221,7 +221,7 @@ HUGE = st.sampled_from(["1" * 40, "-" + "9" * 25, "0x" + "F" * 20, "9" * 5000, "
 CELL = st.one_of(HUGE, st.text(max_size=8), st.just("1" * 140_000), st.just("\x00"), st.just('"'),
                  st.sampled_from(["1.5", "0x", "0x+7", " ", "", "1,2", "'", "\u2028"]))
 GARBAGE = st.one_of(st.binary(max_size=300), st.just(b""), st.just(b"\xff\xfe" + "axis".encode("utf-16-le")),
-                    st.just("é,ü\n".encode("latin-1")), st.just(b"\x00" * 64))
+                    st.just("\u00e9,\u00fc\n".encode("latin-1")), st.just(b"\x00" * 64))
 
 
 def _written(path: Path, content) -> Path:
@@ -286,8 +286,9 @@ def test_pack_of_a_malformed_script_answers_with_one_line(tmp_path_factory, caps
 @GENERATED
 @given(content=malformed_file(GOLDEN.read_text()))
 def test_verify_of_a_malformed_golden_csv_exits_2(tmp_path_factory, capsys, content):
-    path = _written(tmp_path_factory.mktemp("golden") / "g.csv", content)
-    status, out, err = cli(capsys, "verify", SQUARE, "--against", path)
+    folder = tmp_path_factory.mktemp("golden")
+    path = _written(folder / "g.csv", content)
+    status, out, err = cli(capsys, "verify", SQUARE, "--against", path, "--out", folder / "out")
     assert "Traceback" not in err
     if status == 1:             # a cell replaced by another number: a golden that reads, and differs
         assert "FAIL square" in out and not err
@@ -311,7 +312,7 @@ def test_verify_of_a_malformed_golden_npz_exits_2(tmp_path_factory, capsys, dtyp
     np.savez_compressed(path, recording=rec)
     if cut is not None:
         path.write_bytes(path.read_bytes()[:cut])
-    status, _out, err = cli(capsys, "verify", SQUARE, "--against", path)
+    status, _out, err = cli(capsys, "verify", SQUARE, "--against", path, "--out", folder / "out")
     assert status == 2 and err.count("\n") == 1 and err.startswith("pmdfmu verify: "), err
 
 

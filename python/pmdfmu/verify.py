@@ -137,13 +137,13 @@ def _read_npz(path: Path) -> np.ndarray:
 
 def _check_npz_type(path: Path, i: int, name: str, dtype: np.dtype, values: np.ndarray) -> None:
     """A golden's column holds what a recording's does: integers for `cycle` and the registers (within the
-    register's values), float64 (the FMU's Reals) or integers for a Real. float16/32 cannot hold the FMU's
-    values, complex numbers, strings and sub-arrays are no recording's."""
+    register's values), float64 for a Real (the FMU's type). float16/32 cannot hold the FMU's values;
+    complex numbers, strings and sub-arrays are no recording's."""
     where = f"{path}: column {i} ({name})"
     integer = name == "cycle" or np.dtype(DTYPES[name]).kind in "iub"
-    if dtype.shape or not (dtype.kind in "iub" or (not integer and dtype.kind == "f" and dtype.itemsize == 8)):
+    if dtype.shape or not (dtype.kind in "iub" if integer else dtype.kind == "f" and dtype.itemsize == 8):
         raise InputError(f"{where}: {dtype.str if not dtype.shape else dtype} is not a recording's type "
-                         f"({'integers' if integer else 'float64 or integers'})")
+                         f"({'integers' if integer else 'float64'})")
     if integer and len(values):
         low, high = _range_of(name)
         lowest, highest = int(values.min()), int(values.max())
