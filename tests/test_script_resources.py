@@ -504,7 +504,7 @@ def test_pack_refuses_what_would_not_travel(tmp_path, capsys):
     script.write_text("Frobnicate(Axis1)\n")
     with pytest.raises(PackError, match="the FMU refuses the script: .*'Frobnicate' is not a command"):
         pack(script, tmp_path / "p.fmu")
-    assert main(["pack", str(script), "--out", str(tmp_path / "p.fmu")]) == 1
+    assert main(["pack", str(script), "--out", str(tmp_path / "p.fmu")]) == 2
     assert "pmdfmu pack: " in capsys.readouterr().err
     packed = pack(SCRIPT, tmp_path / "p.fmu")
     with pytest.raises(PackError, match="is a packed FMU already"):

@@ -13,13 +13,95 @@
 from __future__ import annotations
 
 import argparse
+import math
+import os
+import signal
 import subprocess
 import sys
+import zipfile
 from pathlib import Path
-from typing import List, Optional
+from typing import Iterable, List, Optional, Tuple
 
-from . import profile
-from .chip import COMMANDS, REPO, default_fmu
+# lxml (FMPy's XML parser, which imports it on first use) loses a KeyboardInterrupt that lands while its
+# module initializes, and the command would run on to its end: it is imported with the program instead
+import lxml.etree  # noqa: F401,E402
+
+from . import files, profile
+from .chip import COMMANDS, REPO, FMUError, PMDError, default_fmu
+from .pack import PackError
+from .verify import EXIT_INPUT, InputError
+
+
+class CommandLineError(ValueError):
+    """A file or value on the command line the harness cannot take."""
+
+
+# What a user's input can make the harness raise (a file that is missing or no regular file, a script the
+# FMU refuses, a table, golden, assertion file or case table that is malformed, a command the chip refuses):
+# main answers each with one line, `pmdfmu CMD: file:line: reason`, and exit status 2. Anything else is a
+# bug of pmdfmu and keeps its traceback.
+INPUT_ERRORS = (CommandLineError, InputError, profile.TableError, PackError, FMUError, PMDError, OSError,
+                zipfile.BadZipFile)
+EXIT_INTERRUPTED = 130          # 128 + SIGINT: what a shell reports for a command ended by Ctrl-C
+# what the FMU's initialization error says after the FMI function's name (fmu_src/fmi/instance.c); its
+# file:line: reason follows
+_SCRIPT_REFUSED = ": script refused: "
+
+
+def _without_function(line: str) -> str:
+    """line without `fmi2ExitInitializationMode: script refused: ` before the FMU's file:line: reason."""
+    head, found, reason = line.partition(_SCRIPT_REFUSED)
+    before, _, function = head.rpartition(" ")
+    if not found or not function.startswith(("fmi2", "fmi3")):
+        return line
+    return f"{before} {reason}" if before else reason
+
+
+def one_line(error: BaseException) -> str:
+    """An input error as one line: an OSError as `file: reason`, the FMU's refusal of a script as its
+    `file:line: reason`; the lines of a message of several joined by "; "; a line feed in a file name
+    written as \\n."""
+    if isinstance(error, OSError) and error.filename is not None:
+        text = f"{files.shown_path(error.filename)}: {error.strerror or error}"
+    else:
+        text = str(error) if not isinstance(error, KeyError) else str(error.args[0])
+    lines = [_without_function(line.strip()) for line in text.splitlines() if line.strip()]
+    return "; ".join(lines) or type(error).__name__
+
+
+def _script_file(path: Path) -> Path:
+    """A script named on the command line, for the FMU's `script` parameter: a file, never text. A value
+    holding a line feed is the script's text to the FMU (README, "Scripts"), so such a path cannot be
+    given to it."""
+    if "\n" in str(path):
+        raise CommandLineError(f"{files.shown_path(path)}: the script's path holds a line feed; the FMU reads "
+                               "a `script` value holding one as the script's text, so it cannot be given this "
+                               "file: rename it (pmdfmu pack packs it under another name)")
+    return path
+
+
+def _fmu_file(path: Optional[Path]) -> Optional[Path]:
+    """--fmu FMU: a regular file whose model description FMPy reads (else one line, exit status 2)."""
+    if path is None:
+        return None
+    from fmpy import read_model_description
+    files.check_regular(path)
+    try:
+        read_model_description(str(path))
+    except Exception as e:                  # whatever FMPy finds wrong with the user's file
+        raise CommandLineError(f"{path}: not an FMU: {one_line(e)}") from None
+    return path
+
+
+def _refuse_overwriting(outputs: Iterable[Tuple[str, Optional[Path]]], inputs: Iterable[Optional[Path]]) -> None:
+    """No output names an input (the same file: also through a symlink or a hard link)."""
+    inputs = [p for p in inputs if p is not None]
+    for flag, out in outputs:
+        if out is None or not out.exists():
+            continue
+        for path in inputs:
+            if path.exists() and os.path.samefile(out, path):
+                raise CommandLineError(f"{flag} {out}: names the input {path}; nothing overwrites an input")
 
 
 def _write_run(run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Optional[Path], title: str) -> None:
@@ -35,9 +117,10 @@ def _write_run(run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Opt
         print(f"wrote {plot_path}")
 
 
-def _run_table(tables, fmu: Optional[str], cycle_time: float, upload: str, max_cycles: int,
+def _run_table(source, fmu: Optional[Path], cycle_time: float, upload: str, max_cycles: int,
                csv_path: Optional[Path], plot_path: Optional[Path], title: str, fmi_version: int = 2) -> None:
-    run = profile.run_profile(tables, fmu, fmi_version, cycle_time, upload, max_cycles)
+    """source: a segment table's file, or its tables read already (profile.run_profile)."""
+    run = profile.run_profile(source, fmu, fmi_version, cycle_time, upload, max_cycles)
     _write_run(run, csv_path, plot_path, title)
     rec = run.recording
     for axis in run.axes:
@@ -47,23 +130,25 @@ def _run_table(tables, fmu: Optional[str], cycle_time: float, upload: str, max_c
 
 
 def cmd_build(args) -> int:
-    source = Path(args.source)
-    build = Path(args.build_dir)
-    subprocess.run(["cmake", "-S", str(source), "-B", str(build), f"-DPython3_EXECUTABLE={sys.executable}"],
-                   check=True)
-    subprocess.run(["cmake", "--build", str(build)], check=True)
+    source, build = args.source, args.build_dir
+    for command in (["cmake", "-S", str(source), "-B", str(build), f"-DPython3_EXECUTABLE={sys.executable}"],
+                    ["cmake", "--build", str(build)]):
+        status = subprocess.run(command).returncode
+        if status:                          # cmake has said why
+            print(f"pmdfmu build: {' '.join(command[:2])} ... failed with exit status {status}", file=sys.stderr)
+            return 1
     print(f"built {build / 'PMDMotionProcessor-fmi2.fmu'}")
     return 0
 
 
 def cmd_demo(args) -> int:
     from .demo import circle_table
-    out = Path(args.out)
+    out = args.out
     out.mkdir(parents=True, exist_ok=True)
     tables = circle_table()
     profile.write_segment_table(out / "demo_table.csv", tables)
     print(f"wrote {out / 'demo_table.csv'}")
-    _run_table(tables, args.fmu, args.cycle_time, "memory", 1_000_000, out / "demo.csv", out / "demo.png",
+    _run_table(tables, _fmu_file(args.fmu), args.cycle_time, "memory", 1_000_000, out / "demo.csv", out / "demo.png",
                "pmdfmu demo: 2-axis external profile (circle)")
     return 0
 
@@ -71,14 +156,16 @@ def cmd_demo(args) -> int:
 def cmd_run(args) -> int:
     """A .csv file is a segment table; anything else is a script (README, "Scripts"). profile.run_profile
     runs either, as `pmdfmu verify` does."""
-    path = Path(args.file)
-    csv_path, plot_path = (Path(args.csv) if args.csv else None), (Path(args.plot) if args.plot else None)
-    title = f"pmdfmu run {args.file}"
+    path, fmu = args.file, _fmu_file(args.fmu)
+    csv_path, plot_path = args.csv, args.plot
+    _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path)], [path, fmu])
+    title = f"pmdfmu run {path}"
     if profile.is_segment_table(path):
-        _run_table(profile.read_segment_table(path), args.fmu, args.cycle_time, args.upload, args.max_cycles,
+        _run_table(path, fmu, args.cycle_time, args.upload, args.max_cycles,
                    csv_path, plot_path, title, args.fmi_version)
         return 0
-    run = profile.run_profile(path, args.fmu, args.fmi_version, args.cycle_time, args.upload, args.max_cycles)
+    run = profile.run_profile(_script_file(path), fmu, args.fmi_version, args.cycle_time, args.upload,
+                              args.max_cycles)
     for m in run.messages:
         print(f"{m.status}: {m.message}", file=sys.stderr)
     _write_run(run, csv_path, plot_path, title)
@@ -86,8 +173,9 @@ def cmd_run(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .sweep import read_cases, sweep
-    result = sweep(read_cases(args.cases), scheduler=args.scheduler, workers=args.workers)
+    from .sweep import sweep
+    from .verify import read_case_table
+    result = sweep(read_case_table(args.cases)[0], scheduler=args.scheduler, workers=args.workers)
     result.write(args.out)
     failed = [r for r in result.rows if r["status"] != "ok"]
     print(f"{len(result.rows) - len(failed)} of {len(result.rows)} cases ran; wrote {args.out}/summary.csv, "
@@ -105,8 +193,6 @@ LIMIT_FLAGS = {"max_velocity": ("max_velocity",), "max_acceleration": ("max_acce
 
 def _limit_flags(args) -> dict:
     """The command line's limits in the assertion file's shape (verify.parse_assertions checks them)."""
-    from .verify import InputError
-
     def table(axis: str) -> str:
         axis = axis.strip().lower()
         if axis in ("all", "all_axes"):
@@ -152,34 +238,34 @@ def cmd_verify(args) -> int:
     own (golden, assertion file, case table, flags) -- docs/verify.md."""
     from . import verify as _  # noqa: F401  (pmdfmu.verify is the function; the module is in sys.modules)
     v = sys.modules[__package__ + ".verify"]
-    try:
-        extra = _limit_flags(args)
-        if bool(args.file) == bool(args.cases):
-            raise v.InputError("command line: give a script or segment table, or --cases CASES.csv")
-        if args.cases:
-            if args.against:
-                raise v.InputError("command line: --against names one golden; a case table has a golden column")
-            result = v.verify_cases(args.cases, scheduler=args.scheduler, workers=args.workers,
-                                    assertions=args.assertions, extra=extra, out=args.out)
-        else:
-            if not (args.against or args.assertions or extra.keys() - {"units", "tolerance"}):
-                raise v.InputError("command line: nothing to verify: give --against GOLDEN, --assertions FILE "
-                                   "or a limit (--max-velocity, ...)")
-            result = v.verify(args.file, args.against, v.load_assertions(args.assertions, extra), fmu=args.fmu,
-                              fmi_version=args.fmi_version, cycle_time=args.cycle_time, upload=args.upload,
-                              max_cycles=args.max_cycles, out=args.out)
-    except v.InputError as e:
-        print(f"pmdfmu verify: {e}", file=sys.stderr)
-        return v.EXIT_INPUT
+    extra = _limit_flags(args)
+    if bool(args.file) == bool(args.cases):
+        raise InputError("command line: give a script or segment table, or --cases CASES.csv")
+    _refuse_overwriting([("--junit", args.junit), ("--summary", args.summary if args.summary != Path("-") else None)],
+                        [args.file, args.cases, args.against, args.assertions, _fmu_file(args.fmu)])
+    if args.cases:
+        if args.against:
+            raise InputError("command line: --against names one golden; a case table has a golden column")
+        result = v.verify_cases(args.cases, scheduler=args.scheduler, workers=args.workers,
+                                assertions=args.assertions, extra=extra, out=args.out)
+    else:
+        if not (args.against or args.assertions or extra.keys() - {"units", "tolerance"}):
+            raise InputError("command line: nothing to verify: give --against GOLDEN, --assertions FILE "
+                             "or a limit (--max-velocity, ...)")
+        source = args.file if profile.is_segment_table(args.file) else _script_file(args.file)
+        result = v.verify(source, args.against, v.load_assertions(args.assertions, extra), fmu=args.fmu,
+                          fmi_version=args.fmi_version, cycle_time=args.cycle_time, upload=args.upload,
+                          max_cycles=args.max_cycles, out=args.out)
     print(result.report(), end="")
     if args.junit:
-        Path(args.junit).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.junit).write_text(result.to_junit())
+        args.junit.parent.mkdir(parents=True, exist_ok=True)
+        with files.replaced(args.junit, text=True) as f:
+            f.write(result.to_junit())
         print(f"wrote {args.junit}")
-    if args.summary == "-":
+    if args.summary == Path("-"):
         print(result.to_markdown(), end="")
     elif args.summary:
-        with open(args.summary, "a") as f:        # GITHUB_STEP_SUMMARY is appended to
+        with open(args.summary, "a") as f:        # GITHUB_STEP_SUMMARY is appended to, in one write
             f.write(result.to_markdown())
         print(f"wrote {args.summary}")
     return result.exit_status
@@ -187,12 +273,8 @@ def cmd_verify(args) -> int:
 
 def cmd_pack(args) -> int:
     """The script and its tables inside a copy of the FMU, `script` starting at it (pack.py)."""
-    from .pack import PackError, pack
-    try:
-        packed = pack(args.script, args.out, args.fmi_version, args.fmu)
-    except PackError as e:
-        print(f"pmdfmu pack: {e}", file=sys.stderr)
-        return 1
+    from .pack import pack
+    packed = pack(args.script, args.out, args.fmi_version, _fmu_file(args.fmu))
     print(f"wrote {packed.fmu} (FMI {args.fmi_version}): script starts at {packed.start!r}")
     for name in packed.files:
         print(f"  {name}")
@@ -203,8 +285,9 @@ def cmd_validate(args) -> int:
     """fmpy.validation on the given FMU, or on both built ones."""
     from fmpy.validation import validate_fmu
     failed = 0
-    for path in [args.fmu] if args.fmu else [str(default_fmu(2)), str(default_fmu(3))]:
-        problems = validate_fmu(path)
+    for path in [args.fmu] if args.fmu else [default_fmu(2), default_fmu(3)]:
+        files.check_regular(path)
+        problems = validate_fmu(str(path))
         for p in problems:
             print(p)
         print(f"{path}: {'valid' if not problems else f'{len(problems)} problems'}")
@@ -214,8 +297,8 @@ def cmd_validate(args) -> int:
 
 def cmd_info(args) -> int:
     from fmpy import read_model_description
-    path = args.fmu or str(default_fmu())
-    md = read_model_description(path)
+    path = _fmu_file(args.fmu) or default_fmu()
+    md = read_model_description(str(path))
     print(f"{path}\n  FMI {md.fmiVersion}, modelIdentifier {md.coSimulation.modelIdentifier}, guid {md.guid}\n")
     print("Variables:")
     for v in md.modelVariables:
@@ -229,48 +312,98 @@ def cmd_info(args) -> int:
     return 0
 
 
+def _positive_int(text: str) -> int:
+    value = int(text, 0)
+    if value < 1:
+        raise ValueError(text)
+    return value
+
+
+def _cycle_time(text: str) -> float:
+    value = float(text)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(text)
+    return value
+
+
+_positive_int.__name__ = "whole number >= 1"      # argparse's message: "invalid whole number >= 1 value"
+_cycle_time.__name__ = "cycle time (s, > 0)"
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, its errors on one line as every other input error's: `pmdfmu CMD: reason`."""
+
+    def error(self, message: str):
+        self.exit(EXIT_INPUT, f"{self.prog}: {message} ({self.prog} --help)\n")
+
+
 def main(argv: Optional[List[str]] = None) -> int:
-    parser = argparse.ArgumentParser(prog="pmdfmu", description=__doc__,
+    """The command; exit status 0 done, 1 failed (verify: a check failed; validate: problems found), 2 an input
+    error (one line: INPUT_ERRORS), 130 interrupted (one line)."""
+    command = "pmdfmu"
+    try:
+        args = _parser().parse_args(argv)
+        command = f"pmdfmu {args.command}"
+        return args.func(args)
+    except INPUT_ERRORS as e:
+        print(f"{command}: {one_line(e)}", file=sys.stderr)
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        # a file being written is removed (files.replaced); what was written whole stays
+        print(f"{command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def console() -> None:
+    """The `pmdfmu` program: main, then exit with its status. Its files are written once main returns, so a
+    Ctrl-C from then on is ignored, not left to kill Python's exit by SIGINT."""
+    status = main()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    sys.exit(status)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="pmdfmu", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("build", help="build the FMU with CMake")
-    p.add_argument("--source", default=str(REPO))
-    p.add_argument("--build-dir", default=str(REPO / "build"))
+    p.add_argument("--source", type=Path, default=REPO)
+    p.add_argument("--build-dir", type=Path, default=REPO / "build")
     p.set_defaults(func=cmd_build)
 
     for name, func, help_ in (("demo", cmd_demo, "run the bundled 2-axis demo"),
                               ("run", cmd_run, "run a segment table")):
         p = sub.add_parser(name, help=help_)
-        p.add_argument("--fmu", help="FMU to use (default: the built one)")
-        p.add_argument("--cycle-time", type=float, default=1e-4, help="chip cycle time in s (default 1e-4)")
+        p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
+        p.add_argument("--cycle-time", type=_cycle_time, default=1e-4, help="chip cycle time in s (default 1e-4)")
         p.set_defaults(func=func)
         if name == "demo":
-            p.add_argument("--out", default="demo-out", help="output folder (default demo-out)")
+            p.add_argument("--out", type=Path, default=Path("demo-out"), help="output folder (default demo-out)")
         else:
-            p.add_argument("file", help="a script, or a CSV segment table (axis,position,velocity,acceleration,"
+            p.add_argument("file", type=Path, help="a script, or a CSV segment table (axis,position,velocity,acceleration,"
                                         "jerk,time in raw units)")
             p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
-            p.add_argument("--csv", help="write the recorded outputs here (a golden trace for pmdfmu verify; "
+            p.add_argument("--csv", type=Path, help="write the recorded outputs here (a golden trace for pmdfmu verify; "
                                          "a .npz name writes compressed numpy)")
-            p.add_argument("--plot", help="write a PNG plot here")
+            p.add_argument("--plot", type=Path, help="write a PNG plot here")
             p.add_argument("--upload", choices=("memory", "command"), default="memory",
                            help="fill the buffers through the dual-port memory or with WriteBuffer")
-            p.add_argument("--max-cycles", type=int, default=1_000_000)
+            p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
 
     p = sub.add_parser("sweep", help="run a table of cases on Dask")
-    p.add_argument("cases", help="CSV: name, script or table, fmi_version, max_cycles, FMU parameters")
-    p.add_argument("--out", default="sweep-out", help="output folder (default sweep-out)")
+    p.add_argument("cases", type=Path, help="CSV: name, script or table, fmi_version, max_cycles, FMU parameters")
+    p.add_argument("--out", type=Path, default=Path("sweep-out"), help="output folder (default sweep-out)")
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'serial' (default: a local cluster)")
-    p.add_argument("--workers", type=int, default=2, help="local cluster processes (default 2)")
+    p.add_argument("--workers", type=_positive_int, default=2, help="local cluster processes (default 2)")
     p.set_defaults(func=cmd_sweep)
 
     p = sub.add_parser("verify", help="check a run against a golden trace and assertions (CI)",
                        description="Runs a script or segment table as `pmdfmu run` does (or a case table on Dask) "
                                    "and checks it; exit status 0 pass, 1 fail, 2 malformed input. docs/verify.md.")
-    p.add_argument("file", nargs="?", help="a script, or a CSV segment table (as pmdfmu run)")
-    p.add_argument("--against", metavar="GOLDEN", help="golden trace: `pmdfmu run --csv` output, .csv or .npz")
-    p.add_argument("--assertions", metavar="FILE", help="limits on the trajectory, TOML (docs/verify.md)")
+    p.add_argument("file", nargs="?", type=Path, help="a script, or a CSV segment table (as pmdfmu run)")
+    p.add_argument("--against", type=Path, metavar="GOLDEN", help="golden trace: `pmdfmu run --csv` output, .csv or .npz")
+    p.add_argument("--assertions", type=Path, metavar="FILE", help="limits on the trajectory, TOML (docs/verify.md)")
     p.add_argument("--tolerance", action="append", metavar="COLUMN=TOL",
                    help="absolute tolerance of a column (default: exact), e.g. axis1.velocity=1e-9")
     for flag, keys in LIMIT_FLAGS.items():
@@ -282,38 +415,37 @@ def main(argv: Optional[List[str]] = None) -> int:
     p.add_argument("--no-host-errors", action="store_true", help="no command refused with a host I/O error")
     p.add_argument("--units", choices=("counts", "raw"), help="units of velocity/acceleration/jerk limits "
                                                                "(default counts: counts/s, counts/s^2, counts/s^3)")
-    p.add_argument("--cases", help="a case table (pmdfmu sweep's, with golden and assertions columns)")
+    p.add_argument("--cases", type=Path, help="a case table (pmdfmu sweep's, with golden and assertions columns)")
     p.add_argument("--scheduler", help="with --cases: a Dask scheduler address, or 'serial'")
-    p.add_argument("--workers", type=int, default=2, help="with --cases: local cluster processes (default 2)")
-    p.add_argument("--junit", metavar="FILE", help="write JUnit XML here")
-    p.add_argument("--summary", metavar="FILE", help="append a Markdown summary here ('-': print it), e.g. "
+    p.add_argument("--workers", type=_positive_int, default=2, help="with --cases: local cluster processes (default 2)")
+    p.add_argument("--junit", type=Path, metavar="FILE", help="write JUnit XML here")
+    p.add_argument("--summary", type=Path, metavar="FILE", help="append a Markdown summary here ('-': print it), e.g. "
                                                      "$GITHUB_STEP_SUMMARY")
-    p.add_argument("--out", default="verify-out", help="where a failure's diff plot and recording go "
+    p.add_argument("--out", type=Path, default=Path("verify-out"), help="where a failure's diff plot and recording go "
                                                        "(default verify-out)")
-    p.add_argument("--fmu", help="FMU to use (default: the built one)")
+    p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
     p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
-    p.add_argument("--cycle-time", type=float, default=1e-4, help="chip cycle time in s (default 1e-4)")
+    p.add_argument("--cycle-time", type=_cycle_time, default=1e-4, help="chip cycle time in s (default 1e-4)")
     p.add_argument("--upload", choices=("memory", "command"), default="memory")
-    p.add_argument("--max-cycles", type=int, default=1_000_000)
+    p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
     p.set_defaults(func=cmd_verify)
 
     p = sub.add_parser("pack", help="write an FMU that runs a script profile with no parameter set")
-    p.add_argument("script", help="the script; the segment tables it loads go with it")
-    p.add_argument("--out", required=True, help="the FMU to write, e.g. my-profile.fmu")
+    p.add_argument("script", type=Path, help="the script; the segment tables it loads go with it")
+    p.add_argument("--out", type=Path, required=True, help="the FMU to write, e.g. my-profile.fmu")
     p.add_argument("--fmi", "--fmi-version", dest="fmi_version", type=int, choices=(2, 3), default=2,
                    help="FMI version (default 2)")
-    p.add_argument("--fmu", help="the FMU to copy (default: the built one of that FMI version)")
+    p.add_argument("--fmu", type=Path, help="the FMU to copy (default: the built one of that FMI version)")
     p.set_defaults(func=cmd_pack)
 
     for name, func, help_ in (("validate", cmd_validate, "validate the FMU"),
                               ("info", cmd_info, "list variables and commands")):
         p = sub.add_parser(name, help=help_)
-        p.add_argument("fmu", nargs="?")
+        p.add_argument("fmu", nargs="?", type=Path)
         p.set_defaults(func=func)
 
-    args = parser.parse_args(argv)
-    return args.func(args)
+    return parser
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    console()

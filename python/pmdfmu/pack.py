@@ -16,13 +16,16 @@ from __future__ import annotations
 
 import os
 import re
+import tempfile
 import xml.etree.ElementTree as ET
 import xml.parsers.expat
 import zipfile
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
-from typing import List, Optional, Tuple, Union
+from typing import Iterator, List, Optional, Tuple, Union
 
+from .files import replaced, shown_path
 from .chip import Chip, FMUError, default_fmu
 
 PROFILE = "profile"                  # resources/profile/: the script and its tables
@@ -165,48 +168,84 @@ def _layout(read: _Read, unzipdir: Path) -> Tuple[Path, List[Tuple[Path, str]]]:
     return root, [(f, PurePosixPath(*f.relative_to(root).parts).as_posix()) for f in files]
 
 
+def _refuse_overwriting(out: Path, inputs: List[Tuple[Path, str]]) -> None:
+    """out must be none of the files pack reads (by identity: a symlink or a hard link to one is one)."""
+    if not os.path.lexists(out):
+        return
+    if out.is_dir():
+        raise PackError(f"{out} is a folder: --out names the FMU file to write")
+    for path, what in inputs:
+        try:
+            same = os.path.samefile(out, path)
+        except OSError:                 # a dangling link: replacing it overwrites nothing
+            continue
+        if same:
+            raise PackError(f"{out}: the packed FMU must not overwrite {what}, {shown_path(path)}")
+
+
+@contextmanager
+def _by_a_name_the_fmu_reads_as_a_path(script: Path) -> Iterator[Path]:
+    """script as a path the FMU can be given: a `script` value holding a line feed is the script's text
+    (README, "Scripts"), so a script whose path holds one is compiled through a temporary folder that
+    mirrors the script's folder by symbolic links, the script itself under its name with each line
+    feed as "_". A table beside the script or below its folder is found as from the script itself."""
+    if "\n" not in str(script):
+        yield script
+        return
+    folder = script.parent
+    name = script.name.replace("\n", "_")
+    if name != script.name and (folder / name).exists():
+        raise PackError(f"{shown_path(script)}: its name holds a line feed and {name} is beside it: rename the script")
+    with tempfile.TemporaryDirectory(prefix="pmdfmu-pack-") as mirror:
+        for entry in os.listdir(folder):
+            if "\n" not in entry and entry != name:
+                os.symlink(folder / entry, Path(mirror, entry))
+        os.symlink(script, Path(mirror, name))
+        yield Path(mirror, name)
+
+
 def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
          fmu: Union[str, Path, None] = None) -> Packed:
     """Writes out: a copy of fmu (default: the built FMU of fmi_version) with script and every
     table it loads under resources/profile/ and `script` starting at it; then initializes the
-    copy without parameters and checks that it compiled the same script from inside itself."""
+    copy without parameters and checks that it compiled the same script from inside itself.
+    out is never one of these inputs; it is written whole or not at all (files.replaced)."""
     script, out = Path(script).resolve(), Path(out)
     base = Path(fmu) if fmu else default_fmu(fmi_version)
-    if out.resolve() == base.resolve():
-        raise PackError(f"{out}: the packed FMU must not overwrite the FMU it copies")
+    _refuse_overwriting(out, [(base, "the FMU it copies"), (script, "the script")])
     with zipfile.ZipFile(base) as z:
         names = z.namelist()
     if f"resources/{START_FILE}" in names:
         raise PackError(f"{base} is a packed FMU already: pack onto the built FMU")
-    try:
-        read, unzipdir = _compile(fmi_version, base, script)
-    except FMUError as e:
-        raise PackError(f"{script}: the FMU refuses the script: {e}") from None
-    root, files = _layout(read, unzipdir)
-    start = f"{PROFILE}/{files[0][1]}"
+    with _by_a_name_the_fmu_reads_as_a_path(script) as given:
+        try:
+            read, unzipdir = _compile(fmi_version, base, given)
+        except FMUError as e:
+            raise PackError(f"{shown_path(script)}: the FMU refuses the script: "
+                            f"{str(e).replace(str(given), shown_path(script))}") from None
+        _refuse_overwriting(out, [(path, f"the table {name} the script loads (line {line})")
+                                  for line, name, path in read.tables])
+        root, files = _layout(read, unzipdir)
+        start = f"{PROFILE}/{files[0][1]}"
 
-    out.parent.mkdir(parents=True, exist_ok=True)
-    partial = out.with_name(out.name + ".partial")
-    with zipfile.ZipFile(base) as zin, zipfile.ZipFile(partial, "w") as zout:
-        for info in zin.infolist():
-            data = zin.read(info)
-            if info.filename == MODEL_DESCRIPTION:
-                data = set_script_start(data, start)
-            zout.writestr(info, data)
-        added = []
-        for path, relative in files:
-            name = f"resources/{PROFILE}/{relative}"
-            zout.write(path, name, compress_type=zipfile.ZIP_DEFLATED)
-            added.append(name)
-        zout.writestr(zipfile.ZipInfo(f"resources/{START_FILE}", date_time=(1980, 1, 1, 0, 0, 0)),
-                      start.encode("utf-8"), compress_type=zipfile.ZIP_DEFLATED)
-        added.append(f"resources/{START_FILE}")
-    try:
-        _verify(partial, fmi_version, start, read)
-    except BaseException:
-        partial.unlink()
-        raise
-    os.replace(partial, out)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        with replaced(out) as partial:
+            with zipfile.ZipFile(base) as zin, zipfile.ZipFile(partial, "w") as zout:
+                for info in zin.infolist():
+                    data = zin.read(info)
+                    if info.filename == MODEL_DESCRIPTION:
+                        data = set_script_start(data, start)
+                    zout.writestr(info, data)
+                added = []
+                for path, relative in files:
+                    name = f"resources/{PROFILE}/{relative}"
+                    zout.write(path, name, compress_type=zipfile.ZIP_DEFLATED)
+                    added.append(name)
+                zout.writestr(zipfile.ZipInfo(f"resources/{START_FILE}", date_time=(1980, 1, 1, 0, 0, 0)),
+                              start.encode("utf-8"), compress_type=zipfile.ZIP_DEFLATED)
+                added.append(f"resources/{START_FILE}")
+            partial.flush()
+            _verify(Path(partial.name), fmi_version, start, read)
     return Packed(out, start, added)
 
 

@@ -10,33 +10,84 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Un
 
 import numpy as np
 
-from .chip import AXIS_MASKS, CONSTANTS, Chip, field_ex
+from . import files
+from .chip import AXIS_MASKS, CONSTANTS, Chip, FMUError, PMDError, field_ex
 
 FUNCTIONS = ("position", "velocity", "acceleration", "jerk", "time")
 Row = Tuple[int, int, int, int, int]
 
 
+class TableError(ValueError):
+    """A segment table that cannot be read or run as written: `file:line: reason`."""
+
+
+WORD = (-2**31, 2**32 - 1)      # a buffer word: a signed or an unsigned 32-bit value (encode's rule)
+
+
 def read_segment_table(path: Path) -> Dict[int, List[Row]]:
     """Reads a CSV segment table: columns axis (1..4), position, velocity,
     acceleration, jerk, time, raw chip units (32.0, 16.16, 16.16, 0.32, cycles),
-    decimal or 0x-hex; lines starting with # are comments."""
+    decimal or 0x-hex, each a buffer word; lines starting with # are comments.
+    Raises TableError naming the file and line of what it cannot take."""
+    try:
+        text = files.read_text(path)
+    except (OSError, UnicodeDecodeError) as e:
+        raise TableError(f"{path}: cannot read the segment table: {e}") from None
+    # the table's lines with their numbers in the file, comments and blank lines left out
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    kept = [(n, line) for n, line in enumerate(lines, start=1)
+            if line.strip() and not line.lstrip().startswith("#")]
+    reader = csv.reader([line for _, line in kept])
+    columns = ("axis",) + FUNCTIONS
     tables: Dict[int, List[Row]] = {}
-    with open(path, newline="") as f:
-        lines = [line for line in f if line.strip() and not line.lstrip().startswith("#")]
-    for n, row in enumerate(csv.DictReader(lines), start=2):
-        try:
-            axis = int(row["axis"], 0)
-            values = tuple(int(row[name], 0) for name in FUNCTIONS)
-        except (KeyError, ValueError, TypeError) as e:
-            raise ValueError(f"{path}: row {n}: {e}") from None
-        if not 1 <= axis <= 4:
-            raise ValueError(f"{path}: row {n}: axis {axis} is not 1..4")
-        tables.setdefault(axis - 1, []).append(values)
+    header: List[str] = []
+    try:
+        for row in reader:
+            line = kept[reader.line_num - 1][0]
+            if not header:
+                header = [h.strip() for h in row]
+                for i, name in enumerate(header):
+                    if name not in columns:
+                        raise TableError(f"{path}:{line}: column {i + 1}: {files.shown(name)} is not one of "
+                                         f"{', '.join(columns)}")
+                    if name in header[:i]:
+                        raise TableError(f"{path}:{line}: column {files.shown(name)} named twice")
+                missing = [c for c in columns if c not in header]
+                if missing:
+                    raise TableError(f"{path}:{line}: no column {', '.join(map(repr, missing))} (the header "
+                                     f"names {', '.join(header)}; a table has {', '.join(columns)})")
+                continue
+            if len(row) != len(header):
+                raise TableError(f"{path}:{line}: expected {len(header)} values (one per column), found {len(row)}")
+            values = dict(zip(header, (_word(path, line, name, cell) for name, cell in zip(header, row))))
+            if not 1 <= values["axis"] <= 4:
+                raise TableError(f"{path}:{line}: axis {values['axis']} is not 1..4")
+            tables.setdefault(values["axis"] - 1, []).append(tuple(values[name] for name in FUNCTIONS))
+    except csv.Error as e:
+        raise TableError(f"{path}:{kept[reader.line_num - 1][0]}: {e}") from None
+    if not header:
+        raise TableError(f"{path}:1: no header: a segment table's first line names its columns "
+                         f"({', '.join(columns)})")
+    if not tables:
+        raise TableError(f"{path}: no segment: a row per segment follows the header")
     return tables
 
 
+def _word(path: Path, line: int, column: str, cell: str) -> int:
+    """A table cell as a buffer word (decimal or 0x hex, in WORD)."""
+    try:
+        value = int(cell.strip(), 0)
+    except ValueError:
+        raise TableError(f"{path}:{line}: column {column}: {files.shown(cell)} is not an integer: a table "
+                         "holds raw chip words (32.0, 16.16, 16.16, 0.32, cycles), decimal or 0x hex") from None
+    if not WORD[0] <= value <= WORD[1]:
+        raise TableError(f"{path}:{line}: column {column}: {files.shown(cell)} does not fit a 32-bit buffer word "
+                         f"({WORD[0]}..{WORD[1]})")
+    return value
+
+
 def write_segment_table(path: Path, tables: Dict[int, Sequence[Row]]) -> None:
-    with open(path, "w", newline="") as f:
+    with files.replaced(path, text=True) as f:
         w = csv.writer(f)
         w.writerow(("axis",) + FUNCTIONS)
         for axis, rows in sorted(tables.items()):
@@ -75,7 +126,8 @@ def load_external_profile(chip: Chip, tables: Dict[int, Sequence[Row]], memory_s
 def move_to(chip: Chip, positions: Dict[int, int], velocity: int, acceleration: int,
             max_cycles: int = 10_000_000, step: int = 256) -> int:
     """Trapezoidal moves of the given axes to their positions (seed 000, 1.4);
-    runs until all are at rest. Returns the cycles it took."""
+    runs until all are at rest. Returns the cycles it took; TimeoutError after
+    max_cycles."""
     for axis, position in positions.items():
         ax = chip.axis(axis)
         ax.SetProfileMode(CONSTANTS["PMDTrapezoidalProfile"])
@@ -86,7 +138,8 @@ def move_to(chip: Chip, positions: Dict[int, int], velocity: int, acceleration: 
     start = chip.cycles
     while any(chip.axis(a).GetActivityStatus() & CONSTANTS["PMDActivityInMotionMask"] for a in positions):
         if chip.cycles - start > max_cycles:
-            raise RuntimeError(f"initial move not complete after {max_cycles} cycles")
+            targets = ", ".join(f"axis {a + 1} to {p}" for a, p in positions.items())
+            raise TimeoutError(f"the initial move ({targets}) is not complete after {max_cycles} cycles")
         chip.run(step)
     return chip.cycles - start
 
@@ -181,7 +234,7 @@ def run_segment_table(chip: Chip, tables: Dict[int, Sequence[Row]], velocity: in
 
 def write_csv(path: Path, recorded: np.ndarray) -> None:
     names = recorded.dtype.names
-    with open(path, "w", newline="") as f:
+    with files.replaced(path, text=True) as f:
         w = csv.writer(f)
         w.writerow(names)
         for row in recorded:
@@ -215,7 +268,8 @@ def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "Exte
         xy.axis("off")
     fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(path, dpi=100)
+    with files.replaced(path) as f:
+        fig.savefig(f, format=Path(path).suffix[1:] or "png", dpi=100)
     plt.close(fig)
 
 
@@ -248,13 +302,20 @@ def run_profile(source: Union[str, Path, Dict[int, Sequence[Row]]], fmu: Optiona
     rows of a run with max_cycles=n are those of any longer run."""
     params = dict(parameters or {})
     params.setdefault("cycleTime", cycle_time)
-    table = not isinstance(source, (str, Path)) or is_segment_table(source)
-    tables = (source if not isinstance(source, (str, Path)) else read_segment_table(Path(source))) if table else None
-    params["script"] = "" if table else str(source)
+    path = Path(source) if isinstance(source, (str, Path)) else None
+    table = path is None or is_segment_table(path)
+    tables = (source if path is None else read_segment_table(path)) if table else None
+    params["script"] = "" if table else path         # a file, never a script's text (README, "Scripts")
     with Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip:
         if table:
             axes = sorted(tables)
-            rec = run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles, record=record)
+            try:
+                rec = run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles, record=record)
+            except (PMDError, FMUError) as e:       # the chip refused the table's set-up (it does not fit, ...)
+                raise TableError(f"{path or 'segment tables'}: {e}") from None
+            except TimeoutError as e:               # a first row's position too far away
+                raise TableError(f"{path or 'segment tables'}: {e}: an axis starts at its first row's position") \
+                    from None
         else:
             axes = script_axes(chip)
             rec = run_script(chip, axes, max_cycles=max_cycles, record=record)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import io
 import math
 import re
 import time
@@ -23,7 +24,8 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import profile
+from . import files, profile
+from .files import shown
 from .chip import CONSTANTS, DTYPES, field_ex
 
 EXIT_PASS, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
@@ -43,9 +45,26 @@ def write_recording(path: PathLike, recording: np.ndarray) -> None:
     column types kept), any other name profile.write_csv's CSV."""
     path = Path(path)
     if path.suffix.lower() == ".npz":
-        np.savez_compressed(path, **{NPZ_KEY: recording})
+        with files.replaced(path) as f:
+            np.savez_compressed(f, **{NPZ_KEY: recording})
     else:
         profile.write_csv(path, recording)
+
+
+def _read_input(path: Path, what: str) -> str:
+    """A file of verify's own as text: a regular file (files.read_text), else InputError."""
+    try:
+        return files.read_text(path)
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: cannot read the {what}: {e}") from None
+
+
+def _range_of(name: str) -> Tuple[int, int]:
+    """The values an integer column holds: its register's type; `cycle` is chip time, at least 0."""
+    if name == "cycle":
+        return 0, np.iinfo(np.int64).max
+    dtype = np.dtype(DTYPES[name])
+    return (0, 1) if dtype.kind == "b" else (int(np.iinfo(dtype).min), int(np.iinfo(dtype).max))
 
 
 def read_recording(path: PathLike) -> np.ndarray:
@@ -54,40 +73,43 @@ def read_recording(path: PathLike) -> np.ndarray:
     path = Path(path)
     if path.suffix.lower() == ".npz":
         return _read_npz(path)
+    reader = csv.reader(io.StringIO(_read_input(path, "golden trace"), newline=""))
     try:
-        with open(path, newline="") as f:
-            rows = list(csv.reader(f))
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"{path}: cannot read the golden trace: {e}") from None
+        rows = list(reader)
+    except csv.Error as e:                  # a field over csv's limit of 131072 characters, a NUL byte
+        raise InputError(f"{path}:{reader.line_num}: {e}") from None
     if not rows or not rows[0]:
         raise InputError(f"{path}:1: no header: a golden trace is `pmdfmu run ... --csv` output")
     header = [h.strip() for h in rows[0]]
     _check_columns(path, header)
-    # the chip's registers are integers: a golden's cell of one that is not is a malformed golden
-    integer = [h == "cycle" or np.dtype(DTYPES[h]).kind in "iub" for h in header]
+    # the chip's registers are integers: a golden's cell of one that is not, or that the register cannot
+    # hold, is a malformed golden; a Real's cell is a double's text (profile.write_csv writes its repr)
+    ranges = [_range_of(h) if h == "cycle" or np.dtype(DTYPES[h]).kind in "iub" else None for h in header]
     columns: List[list] = [[] for _ in header]
     for line, row in enumerate(rows[1:], start=2):
         if len(row) != len(header):
             raise InputError(f"{path}:{line}: {len(row)} values, the header names {len(header)} columns")
         for i, cell in enumerate(row):
-            text = cell.strip()
+            text, where = cell.strip(), f"{path}:{line}: column {i + 1} ({header[i]})"
+            if ranges[i] is None:
+                try:
+                    columns[i].append(float(text))
+                except ValueError:
+                    raise InputError(f"{where}: {shown(cell)} is not a number") from None
+                continue
             try:
                 value = int(text)
-            except ValueError:
+            except ValueError:              # also more digits than int() reads (sys.get_int_max_str_digits)
                 try:
-                    value = float(text)
+                    float(text)
                 except ValueError:
-                    raise InputError(f"{path}:{line}: column {i + 1} ({header[i]}): {cell!r} is not a number") \
-                        from None
-            if integer[i] and not isinstance(value, int):
-                raise InputError(f"{path}:{line}: column {i + 1} ({header[i]}): {cell!r} is not an integer "
-                                 "(the FMU's register is)")
+                    raise InputError(f"{where}: {shown(cell)} is not a number") from None
+                raise InputError(f"{where}: {shown(cell)} is not an integer (the FMU's register is)") from None
+            low, high = ranges[i]
+            if not low <= value <= high:
+                raise InputError(f"{where}: {shown(cell)} is outside {low}..{high}, the values the column holds")
             columns[i].append(value)
-    dtype = []
-    for name, values in zip(header, columns):
-        integer = all(isinstance(v, int) for v in values)
-        dtype.append((name, np.int64 if integer else np.float64))
-    out = np.zeros(len(rows) - 1, dtype=dtype)
+    out = np.zeros(len(rows) - 1, dtype=[(h, np.float64 if r is None else np.int64) for h, r in zip(header, ranges)])
     for name, values in zip(header, columns):
         out[name] = values
     return out
@@ -95,9 +117,10 @@ def read_recording(path: PathLike) -> np.ndarray:
 
 def _read_npz(path: Path) -> np.ndarray:
     try:
+        files.check_regular(path)           # np.load would wait on a FIFO
         with np.load(path, allow_pickle=False) as data:
             if NPZ_KEY not in data.files:
-                raise InputError(f"{path}: no array {NPZ_KEY!r} (it holds {', '.join(data.files) or 'none'}): "
+                raise InputError(f"{path}: no array {NPZ_KEY!r} (it holds {shown(', '.join(data.files) or 'none')}): "
                                  "write goldens with `pmdfmu run ... --csv NAME.npz`")
             rec = data[NPZ_KEY]
     except InputError:
@@ -107,7 +130,26 @@ def _read_npz(path: Path) -> np.ndarray:
     if rec.dtype.names is None or rec.ndim != 1:
         raise InputError(f"{path}: {NPZ_KEY!r} is not a recording (a 1-d structured array)")
     _check_columns(path, list(rec.dtype.names))
+    for i, name in enumerate(rec.dtype.names, start=1):
+        _check_npz_type(path, i, name, rec.dtype[name], rec[name])
     return rec
+
+
+def _check_npz_type(path: Path, i: int, name: str, dtype: np.dtype, values: np.ndarray) -> None:
+    """A golden's column holds what a recording's does: integers for `cycle` and the registers (within the
+    register's values), float64 for a Real (the FMU's type). float16/32 cannot hold the FMU's values;
+    complex numbers, strings and sub-arrays are no recording's."""
+    where = f"{path}: column {i} ({name})"
+    integer = name == "cycle" or np.dtype(DTYPES[name]).kind in "iub"
+    if dtype.shape or not (dtype.kind in "iub" if integer else dtype.kind == "f" and dtype.itemsize == 8):
+        raise InputError(f"{where}: {dtype.str if not dtype.shape else dtype} is not a recording's type "
+                         f"({'integers' if integer else 'float64'})")
+    if integer and len(values):
+        low, high = _range_of(name)
+        lowest, highest = int(values.min()), int(values.max())
+        if lowest < low or highest > high:
+            raise InputError(f"{where}: {lowest if lowest < low else highest} is outside {low}..{high}, "
+                             "the values the column holds")
 
 
 def _check_columns(path: Path, header: Sequence[str]) -> None:
@@ -116,10 +158,10 @@ def _check_columns(path: Path, header: Sequence[str]) -> None:
     seen = set()
     for i, name in enumerate(header, start=1):
         if name in seen:
-            raise InputError(f"{path}:1: column {i}: {name!r} named twice")
+            raise InputError(f"{path}:1: column {i}: {shown(name)} named twice")
         seen.add(name)
         if name != "cycle" and name not in DTYPES:
-            raise InputError(f"{path}:1: column {i}: {name!r} is not an output of the FMU (pmdfmu info lists them)")
+            raise InputError(f"{path}:1: column {i}: {shown(name)} is not an output of the FMU (pmdfmu info lists them)")
 
 
 # ---- assertions ---------------------------------------------------------------------------------
@@ -189,18 +231,22 @@ def _toml():
     return tomllib
 
 
+def _read_assertion_file(path: Path) -> Tuple[dict, str]:
+    """An assertion file's shape (a dict) and its text; InputError if it is no TOML file."""
+    text = _read_input(path, "assertion file")
+    tomllib = _toml()
+    try:
+        return tomllib.loads(text), text
+    except tomllib.TOMLDecodeError as e:    # its message ends "(at line L, column C)"
+        raise InputError(f"{path}: not TOML: {e}") from None
+    except RecursionError:                  # tomllib nests a Python call per [ or { of the file
+        raise InputError(f"{path}: not TOML this parser reads: arrays or tables nested too deeply") from None
+
+
 def read_assertions(path: PathLike) -> Assertions:
     """An assertion file (TOML, docs/verify.md); InputError with the file and line of what is wrong."""
     path = Path(path)
-    try:
-        text = path.read_text()
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"{path}: cannot read the assertion file: {e}") from None
-    tomllib = _toml()
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:    # its message ends "(at line L, column C)"
-        raise InputError(f"{path}: not TOML: {e}") from None
+    data, text = _read_assertion_file(path)
     return parse_assertions(data, str(path), text)
 
 
@@ -214,10 +260,22 @@ def _line_of(text: Optional[str], key: str) -> str:
     return ""
 
 
+LIMIT_RANGE = 2**63 - 1      # a limit is compared with int64 columns: beyond it, no column's value
+
+
+def _limit_number(value) -> bool:
+    """A limit or tolerance: a TOML integer or float, finite, within +-LIMIT_RANGE (TOML integers have no
+    bound in tomllib: 10**400 would overflow the float a comparison makes of it)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    return abs(value) <= LIMIT_RANGE if isinstance(value, int) else math.isfinite(value)
+
+
 def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[str] = None) -> Assertions:
     """Assertions from the TOML file's shape (a dict); where/text name the source in messages."""
     def bad(key, message, named=None):        # named: the key as the file writes it, to find its line
-        return InputError(f"{where}{_line_of(text, named or key.split('.')[-1])}: {key}: {message}")
+        shown = key if len(key) <= 60 else f"{key[:60]}... ({len(key)} characters)"
+        return InputError(f"{where}{_line_of(text, named or key.split('.')[-1])}: {shown}: {message}")
 
     result = Assertions()
     for key, value in data.items():
@@ -225,7 +283,7 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
             raise bad(key, f"unknown key (known: {', '.join(TOP_KEYS)})")
     units = data.get("units", "counts")
     if units not in UNITS:
-        raise bad("units", f"{units!r} is not one of {', '.join(UNITS)}")
+        raise bad("units", f"{shown(units)} is not one of {', '.join(UNITS)}")
     result.units = units
     if not isinstance(data.get("no_host_errors", False), bool):
         raise bad("no_host_errors", "is true or false")
@@ -236,8 +294,8 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
     for column, value in tolerance.items():
         if column != "cycle" and column not in DTYPES:
             raise bad(column, "unknown column: not an output of the FMU (pmdfmu info lists them)", column)
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
-            raise bad(column, f"the tolerance {value!r} is not a finite number >= 0", column)
+        if not _limit_number(value) or value < 0:
+            raise bad(column, f"the tolerance {shown(value)} is not a finite number >= 0", column)
         result.tolerance[column] = float(value)
     for name in ("all_axes", "axis1", "axis2", "axis3", "axis4"):
         if name not in data:
@@ -260,14 +318,13 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
                     raise bad(f"{name}.{key}", "is true or a list of event names such as [\"MotionError\"]")
                 unknown = [v for v in value if v not in EVENTS]
                 if unknown:
-                    raise bad(f"{name}.{key}", f"unknown event {unknown[0]!r} (known: {', '.join(EVENTS)})")
-            elif isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or \
-                    (kind is int and not float(value).is_integer()):
+                    raise bad(f"{name}.{key}", f"unknown event {shown(unknown[0])} (known: {', '.join(EVENTS)})")
+            elif not _limit_number(value) or (kind is int and not float(value).is_integer()):
                 # nan would pass every comparison, inf is no limit: both refused
                 number = not isinstance(value, bool) and isinstance(value, (int, float))
-                want = ("a number" if not number else "a finite number" if not math.isfinite(value)
-                        else "a whole number")
-                raise bad(f"{name}.{key}", f"{value!r} is not {want}")
+                want = ("a number" if not number else f"a finite number in {-LIMIT_RANGE}..{LIMIT_RANGE}"
+                        if not _limit_number(value) else "a whole number")
+                raise bad(f"{name}.{key}", f"{shown(value)} is not {want}")
             else:
                 value = kind(value)
             limits[key] = value
@@ -285,9 +342,9 @@ def _assertion_data(assertions: Union[None, PathLike, Mapping]) -> Tuple[dict, s
         parse_assertions(assertions)
         return dict(assertions), "assertions", None
     path = Path(assertions)
-    read_assertions(path)
-    text = path.read_text()
-    return _toml().loads(text), str(path), text
+    data, text = _read_assertion_file(path)
+    parse_assertions(data, str(path), text)
+    return data, str(path), text
 
 
 def _merge(base: Mapping, over: Mapping) -> dict:
@@ -645,6 +702,24 @@ def _name_of(source) -> str:
     return Path(str(source)).stem if isinstance(source, (str, Path)) else "profile"
 
 
+def _failure_files(name: str, out: Optional[PathLike], golden_path: Optional[PathLike]) -> List[Path]:
+    """The files a golden's failure writes to out: NAME.actual.csv|npz and NAME.diff.png."""
+    if out is None or golden_path is None:
+        return []
+    return [Path(out) / f"{name}.actual{Path(golden_path).suffix.lower()}", Path(out) / f"{name}.diff.png"]
+
+
+def _refuse_writing_over_inputs(name: str, out: Optional[PathLike], inputs: Sequence[Optional[PathLike]]) -> None:
+    """A failure's files must not be the golden or another input (`--out` the golden's folder and the
+    golden named NAME.actual.npz, as a copied actual is): InputError before anything runs."""
+    for written in _failure_files(name, out, inputs[0]):
+        for path in inputs:
+            if path is not None and written.exists() and Path(path).exists() and written.samefile(path):
+                raise InputError(f"{written}: a failure of case {name} would write its "
+                                 f"{'recording' if '.actual' in written.name else 'plot'} over the input {path}: "
+                                 "give another --out")
+
+
 def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], golden_path: Optional[Path],
             required: Sequence[str], out: Optional[PathLike], cycle_time: float) -> None:
     """On a golden's failure: the diff plot and the run's own recording, in the golden's format, to `out`."""
@@ -655,9 +730,8 @@ def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], g
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     columns = list(dict.fromkeys([*required, *golden.dtype.names]))
-    result.actual = out / f"{result.name}.actual{golden_path.suffix.lower() if golden_path else '.csv'}"
+    result.actual, result.plot = _failure_files(result.name, out, golden_path)
     write_recording(result.actual, rec[[c for c in columns if c in rec.dtype.names]])
-    result.plot = out / f"{result.name}.diff.png"
     plot_diff(result.plot, golden, rec, failing, cycle_time, title=f"pmdfmu verify {result.name}: {result.source}")
 
 
@@ -677,6 +751,8 @@ def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathL
     if isinstance(max_cycles, bool) or not isinstance(max_cycles, int) or max_cycles < 1:
         raise InputError(f"max_cycles {max_cycles!r}: a run records at least 1 cycle")
     name = name or _name_of(source)
+    _refuse_writing_over_inputs(name, out, [against, assertions if isinstance(assertions, (str, Path)) else None,
+                                            source if isinstance(source, (str, Path)) else None])
     args = dict(source=source, fmu=fmu, fmi_version=fmi_version, cycle_time=cycle_time, upload=upload,
                 parameters=parameters)
     extra = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()), *spec.columns()]))
@@ -719,17 +795,46 @@ class VerifyCase:
     assertions: Optional[str] = None
 
 
-def read_verify_cases(path: PathLike) -> List[VerifyCase]:
-    """A case table as `pmdfmu sweep` reads it (sweep.read_cases), with two more columns: golden and
-    assertions, paths relative to the table's folder (blank: none)."""
+def read_case_table(path: PathLike) -> Tuple[list, List[dict]]:
+    """A case table as sweep.read_cases reads it, and its rows; InputError for a table it cannot read or a
+    case that cannot run as written: no case, a case with no script or table or both, an FMI version other
+    than 2 or 3, max_cycles below 1, a script path holding a line feed (the FMU reads a `script` value holding one as the script's text)."""
     from .sweep import read_cases
     path = Path(path)
     try:
+        text = files.read_text(path)
         cases = read_cases(path)
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except (OSError, UnicodeDecodeError, ValueError, KeyError) as e:
-        raise InputError(f"{path}: cannot read the case table: {e}") from None
+        rows = list(csv.DictReader(io.StringIO(text, newline="")))
+    except (OSError, UnicodeDecodeError, ValueError, KeyError, csv.Error) as e:
+        raise InputError(f"{path}: cannot read the case table: {_one_line(e)}") from None
+    if not cases:
+        raise InputError(f"{path}: no case (a header and one row per case)")
+    for line, case in enumerate(cases, start=2):
+        if bool(case.script) == bool(case.table):
+            raise InputError(f"{path}:{line}: case {shown(case.name)}: a case names a script or a table")
+        if case.fmi_version not in (2, 3):
+            raise InputError(f"{path}:{line}: case {shown(case.name)}: fmi_version {case.fmi_version} is not 2 or 3")
+        if case.max_cycles < 1:
+            raise InputError(f"{path}:{line}: case {shown(case.name)}: max_cycles {case.max_cycles}: a run "
+                             "records at least 1 cycle")
+        if case.script and "\n" in case.script:
+            raise InputError(f"{path}:{line}: case {shown(case.name)}: the script's path holds a line feed; the "
+                             "FMU reads such a `script` value as the script's text, so it cannot be given this "
+                             "file: rename it")
+    return cases, rows
+
+
+def _one_line(error: BaseException) -> str:
+    """An exception's message on one line (an OSError's reason without its file, named already)."""
+    text = error.strerror if isinstance(error, OSError) and error.strerror else str(error)
+    return " ".join(text.split()) or type(error).__name__
+
+
+def read_verify_cases(path: PathLike) -> List[VerifyCase]:
+    """A case table as `pmdfmu sweep` reads it (read_case_table), with two more columns: golden and
+    assertions, paths relative to the table's folder (blank: none)."""
+    path = Path(path)
+    cases, rows = read_case_table(path)
 
     def resolve(row, key):
         value = (row.get(key) or "").strip()
@@ -752,6 +857,7 @@ def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, w
         data, where, text = _assertion_data(vc.assertions)
         specs.append(parse_assertions(_merge(base, data), where, text))     # the case's file over the common
         goldens.append(read_recording(vc.golden) if vc.golden else None)
+        _refuse_writing_over_inputs(vc.case.name, out, [vc.golden, vc.assertions, vc.case.script or vc.case.table])
     run_cases = []
     for vc, spec, golden in zip(vcases, specs, goldens):
         extra_columns = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()),

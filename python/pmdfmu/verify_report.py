@@ -9,6 +9,7 @@ from typing import List, Sequence
 
 import numpy as np
 
+from . import files
 from .verify import CaseResult, Failure, VerifyResult
 
 XML_FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
@@ -150,5 +151,6 @@ def plot_diff(path: Path, expected: np.ndarray, actual: np.ndarray, failures: Se
         title += f"\nfirst difference: cycle {first.cycle}, {first.column}"
     fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
+    with files.replaced(path) as f:
+        fig.savefig(f, format="png", dpi=90)
     plt.close(fig)

@@ -1,0 +1,127 @@
+"""Ctrl-C (SIGINT) at a random point of `pmdfmu verify --cases` and of `pmdfmu pack`: the command ends
+with exit status 130 and one line, `pmdfmu CMD: interrupted`, no traceback; every file it documents is
+there whole (as an uninterrupted run writes it) or not at all, no temporary file is left, and an older
+output is intact (README, "The command line")."""
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+EXAMPLES = REPO / "examples"
+SQUARE, GOLDEN = EXAMPLES / "square.csv", EXAMPLES / "ci" / "square.golden.csv"
+# the console script's import done first (an interrupt inside Python's own start-up is Python's), then main
+DRIVER = "from pmdfmu.cli import console; print('ready', flush=True); console()"
+TRIALS = 5
+
+
+def start(argv, cwd):
+    child = subprocess.Popen([sys.executable, "-c", DRIVER, *map(str, argv)], cwd=cwd, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+    assert child.stdout.readline() == "ready\n"
+    return child, time.perf_counter()
+
+
+def run_whole(argv, cwd):
+    """An uninterrupted run: its exit status and how long main worked (s: until its first line of output,
+    which it prints when the work is done)."""
+    child, begun = start(argv, cwd)
+    child.stdout.readline()
+    seconds = time.perf_counter() - begun
+    out, err = child.communicate(timeout=300)
+    return child.returncode, seconds, err
+
+
+def interrupted(argv, cwd, delay):
+    child, _ = start(argv, cwd)
+    time.sleep(delay)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=300)
+    return child.returncode, err
+
+
+def assert_interrupted_or_done(status, err, command, done):
+    assert "Traceback" not in err, err
+    if status == 130:
+        assert err == f"pmdfmu {command}: interrupted\n"
+    else:                                   # the signal came after the work was done
+        assert status == done, err
+
+
+def partial_files(*folders):
+    return [p for folder in folders if folder.exists() for p in folder.rglob("*")
+            if p.name.endswith(".partial")]
+
+
+def test_an_interrupted_verify_of_a_case_table_leaves_no_partial_report(tmp_path):
+    changed = tmp_path / "changed.csv"       # axis 2's return leg at half the speed: the golden fails
+    changed.write_text(SQUARE.read_text().replace("2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500"))
+    (tmp_path / "cases.csv").write_text(f"name,table,golden\ngood,{SQUARE},{GOLDEN}\nchanged,changed.csv,{GOLDEN}\n"
+                                        f"again,{SQUARE},{GOLDEN}\n")
+
+    def argv(out):
+        return ["verify", "--cases", tmp_path / "cases.csv", "--scheduler", "serial", "--out", out,
+                "--junit", out / "junit.xml"]
+    done, seconds, err = run_whole(argv(tmp_path / "whole"), tmp_path)
+    assert done == 1 and "Traceback" not in err, err
+    whole = {p.name: p.read_bytes() for p in (tmp_path / "whole").iterdir() if p.name != "junit.xml"}
+    assert sorted(whole) == ["changed.actual.csv", "changed.diff.png"]
+    rng = random.Random(17)
+    statuses = []
+    for trial in range(TRIALS):
+        out = tmp_path / f"trial{trial}"
+        status, err = interrupted(argv(out), tmp_path, rng.uniform(0, seconds))
+        assert_interrupted_or_done(status, err, "verify", done)
+        statuses.append(status)
+        assert not partial_files(out, tmp_path)
+        for path in out.iterdir() if out.exists() else ():
+            if path.name == "junit.xml":
+                assert status != 130 and ET.parse(path).getroot().get("tests")
+            else:
+                assert path.read_bytes() == whole[path.name], path
+    assert 130 in statuses
+
+
+def test_an_interrupted_pack_leaves_the_old_fmu_and_no_temporary_file(tmp_path):
+    for name in ("two_axis.script", "two_axis_table.csv"):
+        shutil.copy(EXAMPLES / name, tmp_path)
+    out = tmp_path / "p.fmu"
+    argv = ["pack", tmp_path / "two_axis.script", "--out", out]
+    done, seconds, err = run_whole(argv, tmp_path)
+    assert done == 0, err
+    new = out.read_bytes()
+    rng = random.Random(23)
+    statuses = []
+    for _ in range(TRIALS):
+        out.write_bytes(b"the old FMU")
+        status, err = interrupted(argv, tmp_path, rng.uniform(0, seconds))
+        assert_interrupted_or_done(status, err, "pack", done)
+        statuses.append(status)
+        assert out.read_bytes() == (b"the old FMU" if status == 130 else new)
+        assert not partial_files(tmp_path)
+    assert 130 in statuses
+
+
+@pytest.mark.parametrize("command", ["verify", "pack"])
+def test_an_interrupt_is_answered_with_one_line_and_130(tmp_path, command):
+    """The signal inside main's work: half-way through the time a whole run worked, then (a machine under
+    load runs faster or slower from one run to the next) a quarter, an eighth."""
+    for name in ("two_axis.script", "two_axis_table.csv"):
+        shutil.copy(EXAMPLES / name, tmp_path)
+    argv = (["pack", tmp_path / "two_axis.script", "--out", tmp_path / "p.fmu"] if command == "pack" else
+            ["verify", SQUARE, "--against", GOLDEN])
+    done, seconds, _err = run_whole(argv, tmp_path)
+    for share in (2, 4, 8, 16):
+        (tmp_path / "p.fmu").unlink(missing_ok=True)
+        status, err = interrupted(argv, tmp_path, seconds / share)
+        assert_interrupted_or_done(status, err, command, done)
+        if status == 130:
+            break
+    assert status == 130
+    assert not (tmp_path / "p.fmu").exists() and not partial_files(tmp_path)
