@@ -1,4 +1,4 @@
-"""Profiles that travel with the FMU (issue 14, section 2; docs/scripts.md).
+"""Profiles that travel with the FMU (docs/scripts.md).
 
 The `script` parameter: a value holding a line feed is the script's text; a
 relative path is looked for in the FMU's resources folder (FMI 2's
@@ -316,7 +316,7 @@ def test_a_bad_text_script_is_refused_with_line_and_reason(built, version):
     finally:
         raw.close()
     said = refusal(built[version], version, 'LoadSegmentTable(Axis1, "none.csv", 0x200, 2)\n')
-    assert f"(script text):1: cannot open segment table none.csv: not found in the FMU's resources folder (" in said
+    assert "(script text):1: cannot open segment table none.csv: not found in the FMU's resources folder (" in said
     assert f"none.csv: No such file or directory) nor in the working directory ({os.getcwd()}/none.csv: No such " \
            "file or directory)" in said
 

@@ -31,3 +31,10 @@ def test_the_model_descriptions_carry_the_version_and_licence(version):
 def test_the_c_library_header_says_the_same_version():
     header = (REPO / "host" / "c" / "PMDfmu.h").read_text()
     assert f'#define PMDFMU_VERSION "{pmdfmu.__version__}"' in header
+
+
+def test_pmdfmu_version_prints_it():
+    import subprocess
+    import sys
+    done = subprocess.run([sys.executable, "-m", "pmdfmu.cli", "--version"], capture_output=True, text=True)
+    assert done.returncode == 0 and done.stdout == f"pmdfmu {pmdfmu.__version__}\n"

@@ -26,7 +26,7 @@ from typing import Iterable, List, Optional, Tuple
 # module initializes, and the command would run on to its end: it is imported with the program instead
 import lxml.etree  # noqa: F401,E402
 
-from . import files, profile
+from . import __version__, files, profile
 from .chip import COMMANDS, REPO, FMUError, PMDError, default_fmu
 from .pack import PackError
 from .verify import EXIT_INPUT, InputError
@@ -365,6 +365,7 @@ def console() -> None:
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="pmdfmu", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"pmdfmu {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("build", help="build the FMU with CMake")

@@ -10,7 +10,7 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Un
 
 import numpy as np
 
-from . import files
+from . import extras, files
 from .chip import AXIS_MASKS, CONSTANTS, Chip, FMUError, PMDError, field_ex
 
 FUNCTIONS = ("position", "velocity", "acceleration", "jerk", "time")
@@ -244,9 +244,7 @@ def write_csv(path: Path, recorded: np.ndarray) -> None:
 def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "External profile") -> None:
     """Position, velocity and acceleration of each recorded axis over time,
     and the path of the first two axes in the plane."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = extras.pyplot("pmdfmu.profile.plot")
 
     axes = sorted({int(n[4]) for n in recorded.dtype.names if n.startswith("axis")})
     t = recorded["cycle"] * cycle_time

@@ -28,6 +28,7 @@ sweeps").
 from __future__ import annotations
 
 import csv
+import io
 import os
 import secrets
 import shutil
@@ -40,7 +41,7 @@ from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import extras, profile
+from . import extras, files, profile
 from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
@@ -67,24 +68,52 @@ class Case:
 def read_cases(path: Union[str, Path]) -> List[Case]:
     """A case table: columns name, script or table (paths relative to the
     table's folder), optional fmi_version, max_cycles, and any of the FMU
-    parameters cycleTime, memorySize, loopback, record.capacity (blank: default)."""
+    parameters cycleTime, memorySize, loopback, record.capacity (blank: default).
+    ValueError with `file:line: reason` for a table that cannot be read or a case
+    that cannot run as written: no case, a case with no script or table or both,
+    an FMI version other than 2 or 3, max_cycles below 1, a script path holding a
+    line feed (the FMU reads a `script` value holding one as the script's text)."""
     path = Path(path)
+    try:
+        cases = _cases(path, files.read_text(path))
+    except csv.Error as e:
+        raise ValueError(f"{path}: not a CSV table: {e}") from None
+    if not cases:
+        raise ValueError(f"{path}: no case (a header and one row per case)")
+    for line, case in enumerate(cases, start=2):
+        what = f"{path}:{line}: case {files.shown(case.name)}"
+        if bool(case.script) == bool(case.table):
+            raise ValueError(f"{what}: a case names a script or a table")
+        if case.fmi_version not in (2, 3):
+            raise ValueError(f"{what}: fmi_version {case.fmi_version} is not 2 or 3")
+        if case.max_cycles < 1:
+            raise ValueError(f"{what}: max_cycles {case.max_cycles}: a run records at least 1 cycle")
+        if case.script and "\n" in case.script:
+            raise ValueError(f"{what}: the script's path holds a line feed; the FMU reads such a `script` value "
+                             "as the script's text, so it cannot be given this file: rename it")
+    return cases
+
+
+def _cases(path: Path, text: str) -> List[Case]:
+    """read_cases' rows, each made a Case; ValueError naming the row for a value that is no number."""
     cases = []
-    with open(path, newline="") as f:
-        for n, row in enumerate(csv.DictReader(f), start=2):
-            def resolve(key, row=row):
-                value = (row.get(key) or "").strip()
-                return str((path.parent / value).resolve()) if value else None
+    for n, row in enumerate(csv.DictReader(io.StringIO(text, newline="")), start=2):
+        def resolve(key, row=row):
+            value = (row.get(key) or "").strip()
+            return str((path.parent / value).resolve()) if value else None
+        if not (row.get("name") or "").strip():
+            raise ValueError(f"{path}:{n}: a case needs a name")
+        try:
             params = []
             for name in PARAMETERS:
                 value = (row.get(name) or "").strip()
                 if value:
                     params.append((name, value.lower() in ("1", "true", "yes") if name == "loopback"
                                    else float(value) if name == "cycleTime" else int(value, 0)))
-            if not (row.get("name") or "").strip():
-                raise ValueError(f"{path}: row {n}: a case needs a name")
             cases.append(Case(row["name"].strip(), resolve("script"), resolve("table"), tuple(params),
                               int(row.get("fmi_version") or 2), int(row.get("max_cycles") or 1_000_000)))
+        except ValueError as e:
+            raise ValueError(f"{path}:{n}: {e}") from None
     return cases
 
 
@@ -138,7 +167,7 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
     try:
         if bool(case.script) == bool(case.table):
             raise ValueError("a case names a script or a table")
-        parameters["script"] = case.script or ""
+        parameters["script"] = Path(case.script) if case.script else ""      # a file, never text
         key, chip = _instance(case, parameters)
         try:
             if case.script:
@@ -170,7 +199,7 @@ class SweepResult:
         """summary.csv, CASE.csv per successful case, summary.png."""
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
-        with open(out / "summary.csv", "w", newline="") as f:
+        with files.replaced(out / "summary.csv", text=True) as f:
             w = csv.DictWriter(f, fieldnames=list(self.rows[0]))
             w.writeheader()
             w.writerows(self.rows)
@@ -199,7 +228,8 @@ class SweepResult:
         bottom.set_ylabel("peak velocity [counts/s] (red: failed)")
         fig.suptitle(f"pmdfmu sweep: {len(ok)} of {len(self.rows)} cases ran")
         fig.tight_layout()
-        fig.savefig(path, dpi=100)
+        with files.replaced(path) as f:
+            fig.savefig(f, format=Path(path).suffix[1:] or "png", dpi=100)
         plt.close(fig)
 
 

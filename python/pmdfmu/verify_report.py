@@ -9,8 +9,8 @@ from typing import List, Sequence
 
 import numpy as np
 
-from . import files
-from .verify import CaseResult, Failure, VerifyResult
+from . import extras, files
+from .verify import Failure, VerifyResult
 
 XML_FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
@@ -121,9 +121,7 @@ def plot_diff(path: Path, expected: np.ndarray, actual: np.ndarray, failures: Se
               cycle_time: float, title: str = "pmdfmu verify") -> None:
     """Per differing column (at most 4, the first diverging first): expected and actual over the row,
     and actual - expected; a line at the first diverging row."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = extras.pyplot("the verify report plot")
 
     first = next((f for f in failures if f.column and f.row is not None and f.check == "golden"), None)
     n = min(len(expected), len(actual))
@@ -142,7 +140,7 @@ def plot_diff(path: Path, expected: np.ndarray, actual: np.ndarray, failures: Se
         left.legend(fontsize="small")
         diff = actual[c][:n].astype(np.float64) - expected[c][:n].astype(np.float64)
         right.plot(np.arange(n), diff, color="tab:red")
-        right.set_ylabel(f"difference (actual - expected)")
+        right.set_ylabel("difference (actual - expected)")
         for panel in (left, right):
             panel.set_xlabel("row (cycles since the recording's first)")
             if first:
