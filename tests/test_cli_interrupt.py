@@ -13,6 +13,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
 SQUARE, GOLDEN = EXAMPLES / "square.csv", EXAMPLES / "ci" / "square.golden.csv"

@@ -23,7 +23,8 @@ PMD_ERR_Driver, PMD_ERR_OpeningPort = 0x1208, 0x1205      # host/c/PMDtypes.h
 pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 
 
-@pytest.fixture(scope="module", params=FLAVOURS)
+@pytest.fixture(scope="module", params=[f if f == "plain" else pytest.param(f, marks=pytest.mark.sanitize)
+                                         for f in FLAVOURS])
 def flavour(request):
     if request.param not in ("plain", *SANITIZERS):
         pytest.fail(f"PMDFMU_C_SANITIZERS: unknown sanitizer {request.param!r} (thread, address)")

@@ -35,6 +35,7 @@ def sanitizers_available(tmp_path) -> bool:
     return built.returncode == 0 and subprocess.run([str(tmp_path / "probe")], capture_output=True).returncode == 0
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
     """Every input in fuzz/corpus and fuzz/regressions runs through its target,
@@ -65,6 +66,8 @@ def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
     assert not failed, f"{len(failed)} saved fuzz inputs fail:\n" + "\n".join(failed)
 
 
+@pytest.mark.slow
+@pytest.mark.sanitize
 @pytest.mark.skipif(not (shutil.which("cc") and shutil.which("valgrind")), reason="no C compiler or valgrind")
 def test_regression_inputs_run_clean_under_valgrind(tmp_path):
     """Every regression input (the findings of issues 6 and 11) once more under

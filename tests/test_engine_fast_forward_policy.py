@@ -3,6 +3,8 @@ bound says it can skip many (fastforward.c, pmd_chip_advance). Whatever way
 the cycles go, the outputs and the state are those of a recorded doStep (every cycle run) and of
 cycle by cycle; a doStep over long segments stays O(segments). Pinned by outputs, never by time."""
 import random
+import re
+from pathlib import Path
 
 import pmdfmu
 from pmdfmu import PMDBreakpointActionAbruptStop, PMDBreakpointTime, PMDTraceCommandedPosition, PMDTraceTime
@@ -10,7 +12,9 @@ from pmdfmu.profile import load_external_profile, start_external_profile
 from reference import wrap32
 from scenarios import REAL
 
-FAST_FORWARD_MIN = 64          # fastforward.c: the least skip worth an attempt
+# fastforward.c's least skip worth an attempt, read from the source the FMU is built from
+FAST_FORWARD_MIN = int(re.search(r"^#define FAST_FORWARD_MIN (\d+)$", (Path(__file__).resolve().parent.parent / "fmu_src" /
+                                 "chip" / "fastforward.c").read_text(), re.M).group(1))
 OUT = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
                                                       "commandedAcceleration", "activityStatus", "eventStatus")]
 

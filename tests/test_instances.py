@@ -61,6 +61,8 @@ def test_four_instances_in_four_threads_equal_the_sequential_run(tmp_path):
     assert "4 threads = sequential" in out.stdout
 
 
+@pytest.mark.slow
+@pytest.mark.sanitize
 @pytest.mark.skipif(not shutil.which("valgrind") and not os.environ.get("CI"), reason="valgrind not installed")
 def test_a_thousand_rounds_under_valgrind_leak_nothing(tmp_path):
     scenario(tmp_path / "s.txt", steps=4, cycles=25)

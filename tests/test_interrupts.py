@@ -64,6 +64,8 @@ signal.signal(signal.SIGINT, signal.default_int_handler)      # as in a terminal
 sys.path.insert(0, {tests!r})
 import interrupted as t
 import pathlib
+
+pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
 tmp = pathlib.Path({tmp!r})
 for run in sorted(t.RUNS):
     with t.chip_for(run, tmp) as chip:

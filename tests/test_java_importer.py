@@ -12,6 +12,8 @@ import pytest
 import pmdfmu
 from pmdfmu.pack import pack
 
+pytestmark = [pytest.mark.slow, pytest.mark.tools]          # tests/README.md: ./dev test -m "not slow" leaves them out
+
 ROOT = Path(__file__).resolve().parent.parent
 PROJECT = ROOT / "importers" / "fmi4j"
 SCRIPT = ROOT / "examples" / "two_axis.script"

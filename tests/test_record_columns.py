@@ -388,7 +388,7 @@ def test_a_set_sample_time_inside_a_recording_step_records_the_cycles_stepwise(v
         chip.set("record.columns", ",".join(names))
         chip.set("record.enabled", True)
         chip._step(300)
-        address, size = recording.lender(chip)()
+        address, size = recording.record_data(chip)()
         rows = np.frombuffer(string_at(address, size), dtype=dtype)
         assert size == len(rows) * dtype.itemsize and set(rows["activeCycleTime"]) == {1e-4, 2e-4, 5e-4}
     ref = reference(version, names, len(rows), script=script)

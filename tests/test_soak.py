@@ -8,6 +8,9 @@ from math import floor
 
 import pmdfmu
 from reference import wrap32
+import pytest
+
+pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
 
 T = 100_000                    # cycles per segment
 L = 64                         # buffer entries

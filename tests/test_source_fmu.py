@@ -11,6 +11,8 @@ from fmpy.util import create_zip_archive
 import pmdfmu
 from scenarios import WORKED_TABLE, run_worked_example
 
+pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+
 
 @pytest.mark.skipif(not shutil.which("cmake"), reason="cmake not installed")
 @pytest.mark.parametrize("version", [2, 3])

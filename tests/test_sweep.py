@@ -8,6 +8,8 @@ import pytest
 import pmdfmu
 from pmdfmu.cli import main
 
+pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 

@@ -15,6 +15,8 @@ from dask.distributed import Client, LocalCluster
 import pmdfmu
 from pmdfmu.sweep import Case
 
+pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+
 sweeps = importlib.import_module("pmdfmu.sweep")         # the module (pmdfmu.sweep is also the function)
 
 REPO = Path(__file__).resolve().parent.parent

@@ -30,6 +30,8 @@ import pytest
 
 import pmdfmu
 
+pytestmark = [pytest.mark.slow, pytest.mark.tools]          # tests/README.md: ./dev test -m "not slow" leaves them out
+
 ROOT = Path(__file__).resolve().parent.parent
 SCRIPT = ROOT / "examples" / "two_axis.script"
 CYCLE = 1e-4                 # the FMU's default cycleTime: one chip cycle per communication step

@@ -32,7 +32,6 @@ from .tables import Command, Field
 
 PACKAGE = Path(__file__).resolve().parent
 REPO = PACKAGE.parent.parent
-BATCH_WORDS = 64
 STATUS_NAMES = ["OK", "Warning", "Discard", "Error", "Fatal"]
 
 
@@ -90,6 +89,11 @@ DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32":
                                for v in tables.read_variables(tables_dir() / "variables.csv")
                                if v.fmi3Type not in ("String", "Binary")}
 CYCLE = ("cycle", np.uint32)
+_VARIABLES = {v.name: v for v in tables.read_variables(tables_dir() / "variables.csv")}
+# the host port's words a batch holds (host.word[1..n], the C side's PMD_BATCH_WORDS), and the cycle time
+# an FMU starts with: variables.csv's
+BATCH_WORDS = sum(1 for name in _VARIABLES if name.startswith("host.word["))
+DEFAULT_CYCLE_TIME = float(_VARIABLES["cycleTime"].start)
 # the commands by opcode: a timed batch is split into its commands as the FMU's dispatcher splits it
 OPCODES: Dict[int, Command] = {c.opcode: c for c in COMMANDS.values()}
 # the width of each integer variable's word (FMI 3 type), by FMI 2 name and by FMI 3 array name: set()

@@ -27,7 +27,7 @@ from typing import Iterable, List, Optional, Tuple
 import lxml.etree  # noqa: F401,E402
 
 from . import __version__, files, profile
-from .chip import COMMANDS, REPO, FMUError, PMDError, default_fmu
+from .chip import COMMANDS, DEFAULT_CYCLE_TIME, REPO, FMUError, PMDError, default_fmu
 from .pack import PackError
 from .verify import EXIT_INPUT, InputError
 
@@ -377,7 +377,7 @@ def _parser() -> argparse.ArgumentParser:
                               ("run", cmd_run, "run a segment table")):
         p = sub.add_parser(name, help=help_)
         p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
-        p.add_argument("--cycle-time", type=_cycle_time, default=1e-4, help="chip cycle time in s (default 1e-4)")
+        p.add_argument("--cycle-time", type=_cycle_time, default=DEFAULT_CYCLE_TIME, help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})")
         p.set_defaults(func=func)
         if name == "demo":
             p.add_argument("--out", type=Path, default=Path("demo-out"), help="output folder (default demo-out)")
@@ -426,7 +426,7 @@ def _parser() -> argparse.ArgumentParser:
                                                        "(default verify-out)")
     p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
     p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
-    p.add_argument("--cycle-time", type=_cycle_time, default=1e-4, help="chip cycle time in s (default 1e-4)")
+    p.add_argument("--cycle-time", type=_cycle_time, default=DEFAULT_CYCLE_TIME, help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})")
     p.add_argument("--upload", choices=("memory", "command"), default="memory")
     p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
     p.set_defaults(func=cmd_verify)

@@ -11,7 +11,7 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Un
 import numpy as np
 
 from . import extras, files
-from .chip import AXIS_MASKS, CONSTANTS, Chip, FMUError, PMDError, field_ex
+from .chip import AXIS_MASKS, CONSTANTS, DEFAULT_CYCLE_TIME, Chip, FMUError, PMDError, field_ex
 
 FUNCTIONS = ("position", "velocity", "acceleration", "jerk", "time")
 Row = Tuple[int, int, int, int, int]
@@ -289,7 +289,7 @@ def is_segment_table(path: Union[str, Path]) -> bool:
 
 
 def run_profile(source: Union[str, Path, Dict[int, Sequence[Row]]], fmu: Optional[str] = None,
-                fmi_version: int = 2, cycle_time: float = 1e-4, upload: str = "memory",
+                fmi_version: int = 2, cycle_time: float = DEFAULT_CYCLE_TIME, upload: str = "memory",
                 max_cycles: int = 1_000_000, record: Sequence[str] = (),
                 parameters: Optional[dict] = None, inspect: Optional[Callable[[Chip], None]] = None) -> ProfileRun:
     """Runs a script file, a segment table file (is_segment_table) or tables

@@ -5,7 +5,7 @@ a test's oracle).
 In bulk, the FMU's way: the FMU writes each cycle's row into record.data itself
 (record.columns names the columns), one doStep and one read per record.capacity
 cycles; FMI 2 reads record.data through the FMU's extension function
-pmdfmu_fmi2GetRecordData (`lender`), or has the FMU write the rows straight into
+pmdfmu_fmi2GetRecordData (`record_data`), or has the FMU write the rows straight into
 the result, lent for one doStep inside one native call (`lent_stepper`).
 
 Cycle by cycle in the harness's native library (native/record_loop.c), for an FMU
@@ -114,29 +114,29 @@ def extension(chip, name: str, argtypes: list):
     return chip._extensions[name]
 
 
-def lender(chip) -> Optional[Callable[[], Tuple[int, int]]]:
-    """A function returning record.data's (address, size in bytes) as the FMU lends it after a doStep
-    (valid until its next call), or None: an FMI 2 FMU without pmdfmu_fmi2GetRecordData (an older
+def record_data(chip) -> Optional[Callable[[], Tuple[int, int]]]:
+    """A function returning where record.data's rows lie after a doStep, (address, size in bytes), in the
+    FMU's own buffer (valid until its next call), or None: an FMI 2 FMU without pmdfmu_fmi2GetRecordData (an older
     build)."""
     if chip.fmi_version == 3:
         from fmpy.fmi3 import fmi3Binary, fmi3ValueReference
         vrs, size, value = (fmi3ValueReference * 1)(chip._vr["record.data"]), (c_size_t * 1)(), (fmi3Binary * 1)()
 
-        def lend3() -> Tuple[int, int]:
+        def read3() -> Tuple[int, int]:
             chip.fmu.fmi3GetBinary(chip.fmu.component, vrs, 1, size, value, 1)
             return c_void_p.from_buffer(value).value or 0, size[0]
-        return lend3
+        return read3
     get = extension(chip, "pmdfmu_fmi2GetRecordData", [c_void_p, POINTER(c_void_p), POINTER(c_size_t)])
     if get is None:
         return None
     data, nbytes = c_void_p(), c_size_t()
 
-    def lend2() -> Tuple[int, int]:
+    def read2() -> Tuple[int, int]:
         status = get(chip.fmu.component, byref(data), byref(nbytes))
         if status > 1:                                  # as FMPy raises for an FMI function
             raise FMICallException(function="pmdfmu_fmi2GetRecordData", status=status)
         return data.value or 0, nbytes.value
-    return lend2
+    return read2
 
 
 def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int, int]]]:
@@ -232,8 +232,8 @@ class Recorder:
     def __init__(self, chip, names: Sequence[str], where: Dict[str, Tuple[str, int]], dtype: np.dtype):
         self.chip, self.names, self.where, self.dtype = chip, list(names), where, dtype
         self.commanded = set(self.names) <= set(RECORDED)
-        self.lend = lender(chip)
-        self.bulk = bool(self.lend) and (self.commanded or ("record.columns" in chip.variables
+        self.record_data = record_data(chip)
+        self.bulk = bool(self.record_data) and (self.commanded or ("record.columns" in chip.variables
                                                             and "time" not in self.names))
 
     def run(self, cycles: int) -> np.ndarray:
@@ -303,9 +303,9 @@ class Recorder:
                         raise RuntimeError(f"the lent memory holds {lent // rows.row.itemsize} cycles, not {n}: "
                                            f"{lent} bytes, rows of {rows.row.itemsize} bytes")
                 elif not redo:
-                    # record.data is the FMU's own buffer, lent until the next call: read in place, once, as
+                    # record.data is the FMU's own buffer, valid until the next call: read in place, once, as
                     # many whole rows as it holds, never more
-                    address, size = self.lend()
+                    address, size = self.record_data()
                     if size != n * rows.row.itemsize:
                         # the step ran its cycles, but record.data does not hold their rows: never read past it
                         raise RuntimeError(f"record.data holds {size // rows.row.itemsize} cycles, not {n}: "

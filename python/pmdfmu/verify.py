@@ -26,7 +26,7 @@ import numpy as np
 
 from . import files, profile
 from .files import shown
-from .chip import CONSTANTS, DTYPES, field_ex
+from .chip import CONSTANTS, DEFAULT_CYCLE_TIME, DTYPES, field_ex
 
 EXIT_PASS, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
 NPZ_KEY = "recording"           # the one array of a .npz golden: the structured array `pmdfmu run` records
@@ -738,7 +738,7 @@ def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], g
 def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathLike] = None,
            assertions: Union[None, PathLike, Mapping, Assertions] = None,
            tolerance: Optional[Mapping[str, float]] = None, *, fmu: Optional[str] = None, fmi_version: int = 2,
-           cycle_time: float = 1e-4, upload: str = "memory", max_cycles: int = 1_000_000,
+           cycle_time: float = DEFAULT_CYCLE_TIME, upload: str = "memory", max_cycles: int = 1_000_000,
            parameters: Optional[dict] = None, out: Optional[PathLike] = None, name: Optional[str] = None,
            locate: bool = True) -> VerifyResult:
     """Runs a script or segment table (a path, or tables) exactly as `pmdfmu run` does and checks it against
@@ -865,8 +865,8 @@ def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, w
         params = dict(case.parameters)
         axes = [a for a in range(4) if row.get(f"axis{a + 1}.finalPosition", "") != ""]    # the profile's own
         locate_args = dict(source=source, fmu=case.fmu, fmi_version=case.fmi_version,
-                           cycle_time=float(params.pop("cycleTime", 1e-4)), upload="memory",
+                           cycle_time=float(params.pop("cycleTime", DEFAULT_CYCLE_TIME)), upload="memory",
                            parameters=params, record=case.record) if locate else None
-        _evaluate(result, rec, axes, float(dict(case.parameters).get("cycleTime", 1e-4)), golden, vc.golden, spec,
+        _evaluate(result, rec, axes, float(dict(case.parameters).get("cycleTime", DEFAULT_CYCLE_TIME)), golden, vc.golden, spec,
                   warnings=row.get("warnings"), locate_args=locate_args, out=out)
     return VerifyResult(results)
