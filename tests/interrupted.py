@@ -5,6 +5,7 @@ and FMPy run and calling _thread.interrupt_main() at chosen counts, as a SIGINT'
 import _thread
 import signal
 import sys
+import time
 from pathlib import Path
 
 import fmpy
@@ -20,21 +21,30 @@ CYCLES = 400            # 7 chunks
 
 
 class Interrupter:
-    """A trace function that interrupts the main thread at the given counts of lines run in the harness and
-    FMPy (None: count only)."""
+    """A trace function that interrupts the main thread at the given count of lines run in the harness and
+    FMPy (None: count only), and, with `then`, once more `then` seconds later by a real signal (SIGALRM,
+    raising KeyboardInterrupt): the first interrupt unsets the trace function (Python unsets one an
+    exception passes through), and the second lands wherever the first one's cleanup is by then."""
 
-    def __init__(self, at=()):
-        self.at, self.lines = set(at), 0
+    def __init__(self, at=None, then=None):
+        self.at, self.then, self.lines, self.fired = at, then, 0, 0
 
     def __enter__(self):
         # Python's own handler, which raises KeyboardInterrupt (another test may have left another one)
-        self.handler = signal.signal(signal.SIGINT, signal.default_int_handler)
+        self.handlers = (signal.signal(signal.SIGINT, signal.default_int_handler),
+                         signal.signal(signal.SIGALRM, self.alarm))
         sys.settrace(self.call)
         return self
 
     def __exit__(self, *exc):
         sys.settrace(None)
-        signal.signal(signal.SIGINT, self.handler)
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGINT, self.handlers[0])
+        signal.signal(signal.SIGALRM, self.handlers[1])
+
+    def alarm(self, signum, frame):
+        self.fired += 1
+        raise KeyboardInterrupt
 
     def call(self, frame, event, arg):
         return self.line if frame.f_code.co_filename.startswith(WATCHED) else None
@@ -42,9 +52,30 @@ class Interrupter:
     def line(self, frame, event, arg):
         if event == "line":
             self.lines += 1
-            if self.lines in self.at:
+            if self.lines == self.at:
+                self.fired += 1
+                if self.then:
+                    signal.setitimer(signal.ITIMER_REAL, self.then)
                 _thread.interrupt_main()
         return self.line
+
+
+def interrupted_run(chip, names, at, then=None) -> int:
+    """Runs the recording with an interrupt at line count `at` (and a second one `then` s later); returns
+    how many interrupts landed (a second one still pending after the first lands in the wait below)."""
+    with Interrupter(at, then) as interrupter:
+        try:
+            try:
+                chip.run(CYCLES, record=names)
+                checkpoint()
+            except KeyboardInterrupt:
+                deadline = time.monotonic() + 1
+                while then and interrupter.fired < 2 and time.monotonic() < deadline:
+                    time.sleep(then)             # the second one, if it did not land in the cleanup
+            checkpoint()
+        except KeyboardInterrupt:
+            pass
+    return interrupter.fired
 
 
 def checkpoint():
@@ -74,18 +105,6 @@ def chip_for(run, tmp_path):
     chip = pmdfmu.Chip(fmi_version=version, **{"record.capacity": CAPACITY}, **extra)
     busy_chip(chip)
     return chip
-
-
-def interrupted_run(chip, names, at) -> bool:
-    """Runs the recording with interrupts at the given line counts; True if one landed in it."""
-    try:
-        with Interrupter(at):
-            chip.run(CYCLES, record=names)
-            checkpoint()
-        checkpoint()
-    except KeyboardInterrupt:
-        return True
-    return False
 
 
 def assert_intact(chip, run, tmp_path):

@@ -213,6 +213,28 @@ def test_pack_packs_a_script_whose_name_holds_a_line_feed(tmp_path, capsys):
     assert packed.read("resources/profile/two_axis_table.csv") == TABLE.read_bytes()
 
 
+def test_pack_of_a_line_feed_script_refuses_a_table_outside_its_folder(tmp_path, capsys):
+    """Such a script is compiled through a mirror of its folder in the temporary folder: a table named
+    `../t.csv` would be looked for beside the mirror (where anyone may plant one), so it is refused."""
+    folder = tmp_path / "work"
+    folder.mkdir()
+    script = folder / "dir\nnew.script"
+    script.write_text(SCRIPT.read_text().replace(TABLE.name, f"../{TABLE.name}"))
+    shutil.copy(TABLE, tmp_path)
+    import tempfile
+    planted = Path(tempfile.gettempdir()) / TABLE.name
+    planted_here = not planted.exists()
+    if planted_here:
+        shutil.copy(TABLE, planted)                     # the table the mirror would find
+    try:
+        status, out, err = cli(capsys, "pack", script, "--out", tmp_path / "p.fmu")
+    finally:
+        if planted_here:
+            planted.unlink()
+    assert status == 2 and "lies outside the script's folder" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "p.fmu").exists()
+
+
 # ---- 6: generated malformed inputs ---------------------------------------------------------------------
 
 GENERATED = settings(max_examples=30, deadline=None, derandomize=True,
@@ -358,3 +380,35 @@ def test_verify_of_a_malformed_case_table_exits_2(tmp_path_factory, capsys, cont
     path = _written(tmp_path_factory.mktemp("cases") / "cases.csv", content)
     status, _out, err = cli(capsys, "verify", "--cases", path, "--scheduler", "serial")
     assert status == 2 and err.count("\n") == 1 and err.startswith("pmdfmu verify: "), err
+
+
+def test_an_output_through_a_link_or_onto_a_device_is_written_as_asked(tmp_path):
+    """files.replaced: a symbolic link keeps naming the file, now the new one, with the old permissions;
+    a device (/dev/null, as /dev/stdout would be) is written through, never replaced by a file; a missing
+    folder or a folder as the output is named as the user named it, and nothing is left behind."""
+    import stat as stat_
+    from pmdfmu import files
+    target, link = tmp_path / "t.csv", tmp_path / "l.csv"
+    target.write_text("old")
+    target.chmod(0o640)
+    link.symlink_to(target.name)
+    with files.replaced(link, text=True) as f:
+        f.write("new")
+    assert link.is_symlink() and target.read_text() == "new" and stat_.S_IMODE(target.stat().st_mode) == 0o640
+    with files.replaced("/dev/null") as f:
+        f.write(b"x")
+    assert Path("/dev/null").is_char_device()
+    for bad, why in ((tmp_path / "none" / "x.csv", "No such file or directory"), (tmp_path, "a folder")):
+        with pytest.raises(OSError, match=why) as info:
+            with files.replaced(bad) as f:
+                f.write(b"x")
+        assert info.value.filename == str(bad)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["l.csv", "t.csv"]
+
+
+def test_a_plot_name_without_a_plot_format_and_outputs_naming_each_other_are_refused(tmp_path, capsys):
+    for args, why in ((["--plot", tmp_path / "x.txt"], "a plot is written as its suffix says"),
+                      (["--csv", tmp_path / "a.png", "--plot", tmp_path / "a.png"], "names the file --csv writes too")):
+        status, out, err = cli(capsys, "run", SCRIPT, *args)
+        assert status == 2 and why in err and len(err.strip().splitlines()) == 1, err
+    assert not list(tmp_path.iterdir())

@@ -406,3 +406,14 @@ def test_a_run_of_many_chunks_holds_the_stepwise_rows(version, names):
             motors_and_idle_axes(c)
         rows = chip.run(1500, record=names)
         assert rows.tobytes() == run_stepwise(ref, 1500, names).tobytes()
+
+
+@VERSIONS
+def test_a_chip_with_record_capacity_0_records_cycle_by_cycle(version):
+    """record.capacity 0: the FMU records nothing in bulk, so Chip.run records as a stepping master does."""
+    names = record_outputs([0])
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 0}) as chip, \
+            pmdfmu.Chip(fmi_version=version) as ref:
+        for c in (chip, ref):
+            busy_chip(c)
+        assert chip.run(300, record=names).tobytes() == run_stepwise(ref, 300, names).tobytes()

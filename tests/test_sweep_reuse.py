@@ -176,8 +176,8 @@ def test_large_recordings_on_a_cluster_equal_the_serial_run_and_leave_no_file(cl
 
 def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
     """A sweep killed outright (SIGKILL: no cleanup runs) leaves its handoff folder, holding RAM in
-    /dev/shm; the next sweep removes it, as its token names a process that is gone. A folder of a
-    process that runs (this one) is left."""
+    /dev/shm; the next sweep removes it, as no process holds the lock on its token any more. A folder
+    whose lock is held (a running sweep's) is left."""
     import glob
     import os
     import signal
@@ -212,11 +212,13 @@ def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
     alive = Path(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{os.getpid()}-test")
     alive.mkdir()
     (alive / "token").write_text(f"{os.getpid()}-abc")
+    held = sweeps._hold(alive / "token")             # as a running sweep holds it
     try:
         with Client(cluster, set_as_default=False) as client:
             pmdfmu.sweep([Case("short", script=str(long_move(tmp_path / "short.script", 100)))], scheduler=client)
         assert not Path(left[0]).exists() and alive.exists()
     finally:
+        os.close(held)
         shutil.rmtree(alive, ignore_errors=True)
 
 

@@ -257,7 +257,8 @@ static int run_program(char *const argv[], int output)
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR)
             return -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    /* killed by a signal: 128 + its number, as a shell says it */
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
 /* What a program wrote into `output`, on one line: every run of blanks and line ends one blank
@@ -335,7 +336,9 @@ static char *unpack(const char *fmu, char *why, size_t size)
         return NULL;
     }
     unlink(output);                         /* the open file is all it needs */
-    fcntl(out, F_SETFD, FD_CLOEXEC);        /* no other thread's child inherits it */
+    /* children other threads start from now on do not inherit it (one started between mkstemp and here
+       may: mkostemp's O_CLOEXEC is not POSIX) */
+    fcntl(out, F_SETFD, FD_CLOEXEC);
     status = run_program(argv, out);
     if (status < 0)
         snprintf(why, size, "cannot run unzip: %s", error_text(errno, said, sizeof said));

@@ -33,7 +33,7 @@ typedef void (*PMDFMULogCallback)(void *context, const char *category, int statu
 
 /* Called after every chip cycle the transport runs (then it steps the FMU one cycle at a time),
    with a handle of the chip (axis 1). It may read the chip's outputs (PMDFMU_GetInteger,
-   PMDFMU_GetReal) but send no command. */
+   PMDFMU_GetReal) but send no command, and close no chip (the run that calls it goes on). */
 typedef void (*PMDFMUCycleCallback)(void *context, PMDAxisInterface chip);
 
 typedef struct {

@@ -21,8 +21,9 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2True, fmi2ValueReference
-from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3True, fmi3ValueReference
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2FMUstate, fmi2True,
+                       fmi2ValueReference)
+from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3FMUState, fmi3True, fmi3ValueReference
 
 from . import hosttime, memory_port, recording, tables
 from .recording import RECORDED  # noqa: F401  (chip.RECORDED, as users and docs name it)
@@ -720,25 +721,44 @@ class Chip:
 
     # ---- FMU state ----
 
+    def _fmu_state(self):
+        """An empty FMU state pointer for the FMU to fill (through byref, before Python runs again): the
+        frame holding it frees it on every way out, an interrupt landing as the C call returns included
+        (FMPy's getFMUState holds the pointer in a local of its own until it returns)."""
+        return fmi2FMUstate() if self.fmi_version == 2 else fmi3FMUState()
+
+    def _save_fmu_state(self, state) -> None:
+        (self.fmu.fmi2GetFMUstate if self.fmi_version == 2 else self.fmu.fmi3GetFMUState)(self.fmu.component,
+                                                                                           byref(state))
+
+    def _free_fmu_state(self, state) -> None:
+        if state.value:
+            self.fmu.freeFMUState(state)
+
     @_refusals
     def get_state(self) -> bytes:
         """The whole chip as bytes: the FMU's serialized FMU state, as it is (the
         time grid is in it). Restorable with set_state in any Chip of the same FMU
         build, in this process or another."""
-        state = self.fmu.getFMUState()
+        if self._recording:                     # a recording an interrupt left open: not part of the chip
+            recording.close(self)
+        state = self._fmu_state()
         try:
+            self._save_fmu_state(state)
             return bytes(self.fmu.serializeFMUState(state))
         finally:
-            self.fmu.freeFMUState(state)
+            self._free_fmu_state(state)
 
     @_refusals
     def set_state(self, data: bytes) -> None:
         """Restores a get_state snapshot; the FMU refuses a corrupted or foreign one."""
-        state = self.fmu.deserializeFMUState(data)
+        state = self._fmu_state()
         try:
+            self.fmu.deserializeFMUState(data, state)
             self.fmu.setFMUState(state)
+            self._recording = False             # the restored chip's record.enabled is its own
         finally:
-            self.fmu.freeFMUState(state)
+            self._free_fmu_state(state)
         # the host clock is the harness's, not in the bytes: it goes to the restored chip's last cycle
         self._host_ns = self._last_cycle_ns() if self.cycles else 0
 

@@ -94,8 +94,14 @@ def _fmu_file(path: Optional[Path]) -> Optional[Path]:
 
 
 def _refuse_overwriting(outputs: Iterable[Tuple[str, Optional[Path]]], inputs: Iterable[Optional[Path]]) -> None:
-    """No output names an input (the same file: also through a symlink or a hard link)."""
+    """No output names an input (the same file: also through a symlink or a hard link), nor another output."""
     inputs = [p for p in inputs if p is not None]
+    outputs = [(flag, out) for flag, out in outputs if out is not None]
+    for i, (flag, out) in enumerate(outputs):
+        for other_flag, other in outputs[:i]:
+            if os.path.abspath(out) == os.path.abspath(other) or (out.exists() and other.exists() and
+                                                                   os.path.samefile(out, other)):
+                raise CommandLineError(f"{flag} {out}: names the file {other_flag} writes too")
     for flag, out in outputs:
         if out is None or not out.exists():
             continue
@@ -330,6 +336,20 @@ _positive_int.__name__ = "whole number >= 1"      # argparse's message: "invalid
 _cycle_time.__name__ = "cycle time (s, > 0)"
 
 
+# the file types matplotlib writes, by suffix (a plot's format is its name's)
+PLOT_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif", ".tiff", ".webp")
+
+
+def _plot_path(value: str) -> Path:
+    path = Path(value)
+    if path.suffix.lower() not in PLOT_SUFFIXES:
+        raise argparse.ArgumentTypeError(f"{value}: a plot is written as its suffix says: {', '.join(PLOT_SUFFIXES)}")
+    return path
+
+
+_plot_path.__name__ = "plot file"
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, its errors on one line as every other input error's: `pmdfmu CMD: reason`."""
 
@@ -387,7 +407,7 @@ def _parser() -> argparse.ArgumentParser:
             p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
             p.add_argument("--csv", type=Path, help="write the recorded outputs here (a golden trace for pmdfmu verify; "
                                          "a .npz name writes compressed numpy)")
-            p.add_argument("--plot", type=Path, help="write a PNG plot here")
+            p.add_argument("--plot", type=_plot_path, help="write the plot here (PNG, or PDF, SVG ... by its suffix)")
             p.add_argument("--upload", choices=("memory", "command"), default="memory",
                            help="fill the buffers through the dual-port memory or with WriteBuffer")
             p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)

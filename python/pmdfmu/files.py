@@ -12,6 +12,7 @@ planted (a symlink to another file) is never written through.
 """
 from __future__ import annotations
 
+import errno
 import os
 import secrets
 import stat
@@ -46,19 +47,22 @@ def _kind(mode: int) -> str:
 def read_bytes(path: PathLike) -> bytes:
     """The contents of the regular file path. A FIFO is opened without blocking (O_NONBLOCK) and
     refused, like a device or a folder (NotRegularFile); other OSErrors as open raises them."""
-    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
-    try:
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) |
+                 getattr(os, "O_BINARY", 0))
+    try:                                    # the descriptor is this frame's alone: closed once, on every way out
         mode = os.fstat(fd).st_mode
         if not stat.S_ISREG(mode):
             raise NotRegularFile(path, mode)
         if hasattr(os, "O_NONBLOCK"):
             os.set_blocking(fd, True)
-        with os.fdopen(fd, "rb") as f:
-            fd = -1
-            return f.read()
+        chunks = []
+        while True:
+            chunk = os.read(fd, 1 << 20)
+            if not chunk:
+                return b"".join(chunks)
+            chunks.append(chunk)
     finally:
-        if fd >= 0:
-            os.close(fd)
+        os.close(fd)
 
 
 def read_text(path: PathLike) -> str:
@@ -68,7 +72,7 @@ def read_text(path: PathLike) -> str:
 
 def check_regular(path: PathLike) -> None:
     """Raises NotRegularFile (or open's OSError) unless path is a regular file, without reading it."""
-    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
     try:
         mode = os.fstat(fd).st_mode
         if not stat.S_ISREG(mode):
@@ -91,22 +95,42 @@ def shown_path(path: PathLike) -> str:
 
 @contextmanager
 def replaced(path: PathLike, text: bool = False) -> Iterator[IO]:
-    """A new file (binary, or text with newline="") that becomes path when the block ends without an
+    """A new file (binary, or UTF-8 text with newline="") that becomes path when the block ends without an
     exception; on any exception, KeyboardInterrupt included, it is removed and path is untouched.
-    Its name while it is written is .NAME.RANDOM.partial beside path (f.name)."""
+    Its name while it is written is .NAME.RANDOM.partial beside path (f.name). A symbolic link keeps
+    pointing where it did, at the new file (the file it named is replaced); an older file's permissions
+    stay. A path that is no regular file but can be written (a FIFO, a device: /dev/stdout) is written
+    through, as asked: there is nothing to rename over."""
     path = Path(path)
+    try:
+        old = os.stat(path)                 # through a link: the file it names
+    except (FileNotFoundError, NotADirectoryError):
+        old = None
+    if old is not None and stat.S_ISDIR(old.st_mode):
+        raise IsADirectoryError(errno.EISDIR, "a folder, not a file to write", str(path))
+    if old is not None and not stat.S_ISREG(old.st_mode):
+        with (open(path, "w", newline="", encoding="utf-8") if text else open(path, "wb")) as f:
+            yield f
+        return
+    target = Path(os.path.realpath(path)) if path.is_symlink() else path
     temp = None
     try:
-        while temp is None:
-            candidate = path.with_name(f".{path.name}.{secrets.token_hex(4)}{PARTIAL}")
+        while True:
+            # named before it is made: an interrupt as the file appears still finds it to remove
+            temp = target.with_name(f".{target.name}.{secrets.token_hex(4)}{PARTIAL}")
             try:
-                f = open(candidate, "x", newline="") if text else open(candidate, "xb")
-            except FileExistsError:
-                continue
-            temp = candidate
+                f = open(temp, "x", newline="", encoding="utf-8") if text else open(temp, "xb")
+                break
+            except FileExistsError:         # another file's name: never written through
+                temp = None
+            except OSError as e:            # a missing or unwritable folder, named as the user named it
+                temp = None
+                raise OSError(e.errno, e.strerror, str(path)) from None
         with f:
             yield f
-        os.replace(temp, path)
+        if old is not None:
+            os.chmod(temp, stat.S_IMODE(old.st_mode))
+        os.replace(temp, target)
     except BaseException:
         if temp is not None:
             with suppress(FileNotFoundError):

@@ -53,7 +53,8 @@ def layout() -> list:
     out = []
     for struct in (Stop, Group, Column, Port):
         out += [ctypes.sizeof(struct)] + [getattr(struct, name).offset for name, _type in struct._fields_]
-    return out + list(range(7)) + list(range(3)) + list(range(4))
+    return out + [DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL] + [MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET] + [
+        STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN]
 
 
 @lru_cache(maxsize=None)

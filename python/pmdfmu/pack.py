@@ -186,9 +186,10 @@ def _refuse_overwriting(out: Path, inputs: List[Tuple[Path, str]]) -> None:
 @contextmanager
 def _by_a_name_the_fmu_reads_as_a_path(script: Path) -> Iterator[Path]:
     """script as a path the FMU can be given: a `script` value holding a line feed is the script's text
-    (README, "Scripts"), so a script whose path holds one is compiled through a temporary folder that
+    (docs/scripts.md), so a script whose path holds one is compiled through a temporary folder that
     mirrors the script's folder by symbolic links, the script itself under its name with each line
-    feed as "_". A table beside the script or below its folder is found as from the script itself."""
+    feed as "_". A table beside the script or below its folder is found as from the script itself; one
+    outside it (`../t.csv`) would be looked for beside the mirror, so pack refuses it (_refuse_outside)."""
     if "\n" not in str(script):
         yield script
         return
@@ -202,6 +203,17 @@ def _by_a_name_the_fmu_reads_as_a_path(script: Path) -> Iterator[Path]:
                 os.symlink(folder / entry, Path(mirror, entry))
         os.symlink(script, Path(mirror, name))
         yield Path(mirror, name)
+
+
+def _refuse_outside(script: Path, tables) -> None:
+    """A script compiled through the mirror of its folder: every table it loads must be the folder's (a
+    relative name reaching out of it would have been looked for beside the mirror, in a shared folder)."""
+    folder = script.parent.resolve()
+    for line, name, path in tables:
+        resolved = Path(path).resolve()
+        if resolved != folder and folder not in resolved.parents:
+            raise PackError(f"{shown_path(script)}:{line}: the table {name} lies outside the script's folder, which "
+                            "pack cannot reach for a script whose name holds a line feed: rename the script")
 
 
 def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
@@ -223,6 +235,8 @@ def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
         except FMUError as e:
             raise PackError(f"{shown_path(script)}: the FMU refuses the script: "
                             f"{str(e).replace(str(given), shown_path(script))}") from None
+        if given != script:
+            _refuse_outside(script, read.tables)
         _refuse_overwriting(out, [(path, f"the table {name} the script loads (line {line})")
                                   for line, name, path in read.tables])
         root, files = _layout(read, unzipdir)

@@ -252,13 +252,15 @@ class Recorder:
         chunk in which a script step may change the grid (SetSampleTime) starts from a saved FMU state and is
         redone cycle by cycle if it did, so that its rows are those of a master stepping cycle by cycle."""
         chip = self.chip
+        capacity = chip.get("record.capacity")
+        if capacity == 0:                           # the FMU records nothing: cycle by cycle, as a master would
+            return self.stepwise(cycles)
         if "record.columns" in chip.variables:
             chip.set("record.columns", "" if self.commanded else ",".join(self.names))
         rows = _Commanded(self.names, self.dtype, cycles) if self.commanded else _Columns(self.dtype, cycles)
         if not self.commanded and rows.row.itemsize != chip.get("record.rowSize"):
             raise RuntimeError(f"record.rowSize is {chip.get('record.rowSize')}, not the {rows.row.itemsize} "
                                f"bytes of a row of {len(self.names)} columns: the FMU's record.columns is another")
-        capacity = chip.get("record.capacity")
         # the script's steps run up to its last @ line: past it no step can change the grid; a chip without a
         # script's call (script.axes 0) has no step at all, and its chunks need no saved FMU state
         script_end = float("inf")
@@ -274,14 +276,16 @@ class Recorder:
             while done < cycles:
                 n = min(capacity, cycles - done)
                 before = chip.cycles if script_end >= 0 else None
-                state = None if before is None or before > script_end else chip.fmu.getFMUState()
+                state = chip._fmu_state()
                 try:
+                    if before is not None and before <= script_end:
+                        chip._save_fmu_state(state)
                     logged = len(chip.messages)
                     if step_into:
                         status, lent = step_into(rows.address(done), n * rows.row.itemsize, *chip._step_span(n))
                     else:
                         status = chip._do_step(n)           # Warning if the step's cycles changed
-                    redo = state is not None and chip.cycles - before != n
+                    redo = bool(state.value) and chip.cycles - before != n
                     if status and not redo:
                         # a grid change with no saved state to redo the chunk from (or a Warning the harness
                         # does not know): the rows would not be a stepping master's
@@ -295,9 +299,8 @@ class Recorder:
                         chip.set("record.enabled", False)
                         rows.put_records(done, self.stepwise(n))
                         chip.set("record.enabled", True)
-                finally:                            # a failed redo keeps no FMU state alive
-                    if state is not None:
-                        chip.fmu.freeFMUState(state)
+                finally:                            # a failed redo, or an interrupt, keeps no FMU state alive
+                    chip._free_fmu_state(state)
                 if not redo and step_into:
                     if lent != n * rows.row.itemsize:
                         raise RuntimeError(f"the lent memory holds {lent // rows.row.itemsize} cycles, not {n}: "

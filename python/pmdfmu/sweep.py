@@ -309,9 +309,11 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
     _remove_orphans(root)
     folder = tempfile.mkdtemp(prefix=f"{HANDOFF_PREFIX}{os.getpid()}-", dir=root)
     futures: list = []
+    lock = None
     try:
         token = f"{os.getpid()}-{secrets.token_hex(16)}"
         Path(folder, "token").write_text(token)
+        lock = _hold(Path(folder, "token"))
         futures = client.map(run_cases, _batches(cases, threads), handoff=(folder, token), pure=False)
         where = {future.key: i for i, future in enumerate(futures)}
         batches: List[list] = [[] for _ in futures]
@@ -323,6 +325,18 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
         raise
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+        if lock is not None:
+            os.close(lock)
+
+
+def _hold(token: Path) -> Optional[int]:
+    """A lock on the sweep's token file for as long as the sweep runs (_remove_orphans); its descriptor."""
+    if os.name != "posix":
+        return None
+    import fcntl
+    fd = os.open(token, os.O_RDONLY)
+    fcntl.flock(fd, fcntl.LOCK_EX)
+    return fd
 
 
 def handoff_root() -> str:
@@ -334,12 +348,14 @@ def handoff_root() -> str:
 
 
 def _remove_orphans(root: str) -> None:
-    """Removes the handoff folders of sweeps whose process is gone (killed: SIGKILL runs no cleanup), which
-    would hold their RAM in /dev/shm until a reboot: each folder's token names its sweep's process id. A
-    folder of another user, or whose process still runs (or whose id a new process took), is left. POSIX
-    only: elsewhere os.kill(pid, 0) is no question."""
+    """Removes the handoff folders of sweeps that are gone (killed: SIGKILL runs no cleanup), which would
+    hold their RAM in /dev/shm until a reboot. A running sweep holds a lock (flock) on its folder's token
+    file for as long as it runs; the kernel drops it when the process ends, however it ends. So a folder
+    whose token file this process can lock is an orphan, whatever process ids mean on this machine (a
+    /dev/shm shared across containers). A folder of another user, or a link, is left alone. POSIX only."""
     if os.name != "posix":
         return
+    import fcntl
     try:
         entries = list(os.scandir(root))
     except OSError:
@@ -350,15 +366,16 @@ def _remove_orphans(root: str) -> None:
         try:
             if entry.stat(follow_symlinks=False).st_uid != os.getuid() or not entry.is_dir(follow_symlinks=False):
                 continue
-            pid = int(Path(entry.path, "token").read_text().split("-")[0])
-        except (OSError, ValueError):
+            fd = os.open(os.path.join(entry.path, "token"), os.O_RDONLY | os.O_NOFOLLOW)
+        except OSError:
             continue
         try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            shutil.rmtree(entry.path, ignore_errors=True)
-        except OSError:                     # another user's process: it runs
-            pass
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:                     # held: its sweep runs
+            continue
+        finally:
+            os.close(fd)
+        shutil.rmtree(entry.path, ignore_errors=True)
 
 
 def _current_client(address: str):
