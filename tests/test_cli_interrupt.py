@@ -105,7 +105,8 @@ def test_an_interrupted_pack_leaves_the_old_fmu_and_no_temporary_file(tmp_path):
         status, err = interrupted(argv, tmp_path, rng.uniform(0, seconds))
         assert_interrupted_or_done(status, err, "pack", done)
         statuses.append(status)
-        assert out.read_bytes() == (b"the old FMU" if status == 130 else new)
+        # interrupted: the old FMU, or the new one whole if the signal landed once it was in place
+        assert out.read_bytes() in ((b"the old FMU", new) if status == 130 else (new,))
         assert not partial_files(tmp_path)
     assert 130 in statuses
 

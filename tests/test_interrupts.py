@@ -16,6 +16,9 @@ import pmdfmu
 from interrupted import CAPACITY, RUNS, assert_intact, chip_for, interrupted_run, line_count
 from pmdfmu import recording
 
+pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+
+
 @pytest.mark.parametrize("run", sorted(RUNS))
 def test_an_interrupt_at_any_point_of_a_recording_run_leaves_the_chip_exact(run, tmp_path):
     total = line_count(run, tmp_path)
@@ -64,8 +67,6 @@ signal.signal(signal.SIGINT, signal.default_int_handler)      # as in a terminal
 sys.path.insert(0, {tests!r})
 import interrupted as t
 import pathlib
-
-pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
 tmp = pathlib.Path({tmp!r})
 for run in sorted(t.RUNS):
     with t.chip_for(run, tmp) as chip:
