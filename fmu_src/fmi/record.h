@@ -16,7 +16,7 @@ typedef struct {
 } PmdRecordColumn;
 
 /* The value of each Real, Integer and Boolean variable: one table (family,
- * expression) per type, expanded into the getters' switches (pmd_get_real,
+ * expression) per type, expanded into the getters' switches (pmd_model2_get_real,
  * _integer, _boolean in instance.c) and into the record.columns readers'
  * (record.c), so that a getter and a column cannot disagree - the same
  * expression, hence the same floating-point operations. An expression reads
