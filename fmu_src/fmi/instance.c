@@ -603,15 +603,20 @@ int pmd_model2_given(PmdInstance *inst, const char *fn, unsigned vr, PmdFmi2Type
     return lookup(inst, fn, vr, types[type]) != NULL;
 }
 
+int pmd_variable_row(const PmdInstance *inst, const char *fn, unsigned vr, const short *of_vr, unsigned max)
+{
+    if (vr > max || of_vr[vr] < 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
+        return -1;
+    }
+    return of_vr[vr];
+}
+
 static const PmdVariable *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdType type)
 {
-    const PmdVariable *v;
-    if (vr > PMD_VR_MAX || pmd_variable_of_vr[vr] < 0) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
-        return NULL;
-    }
-    v = &pmd_variables[pmd_variable_of_vr[vr]];
-    if (v->type != type) {
+    int row = pmd_variable_row(inst, fn, vr, pmd_variable_of_vr, PMD_VR_MAX);
+    const PmdVariable *v = row < 0 ? NULL : &pmd_variables[row];
+    if (v && v->type != type) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a %s, not %s", fn, vr,
                          v->name, type_names[v->type], type_names[type]);
         return NULL;
@@ -977,7 +982,8 @@ PmdStatus pmd_model_set_string(PmdInstance *inst, const char *fn, unsigned vr, c
     return PMD_OK;
 }
 
-PmdStatus pmd_model3_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value, size_t *size)
+PmdStatus pmd_model3_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value,
+                                size_t *size)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BINARY);
     if (!v)

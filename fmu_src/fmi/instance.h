@@ -157,6 +157,11 @@ void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first);
 /* Checks that arrays holding n values are not NULL; logs and returns 0 if one is. */
 int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const void *a, const void *b);
 
+/* The row of a generated variable table that holds vr (of_vr: the row by value
+ * reference, -1 none; max: the largest value reference), or -1, logged as "no
+ * variable has value reference vr": the FMI 2 table's and variables3.h's alike. */
+int pmd_variable_row(const PmdInstance *inst, const char *fn, unsigned vr, const short *of_vr, unsigned max);
+
 /* Variable access beyond model.h's, one value at a time (model.h: a set call
  * is all or nothing). Integer values come as the FMI type holds them (FMI 3
  * UInt32 unsigned), so that a message shows the value the caller sent. */

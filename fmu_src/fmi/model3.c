@@ -29,13 +29,9 @@ static const char *const own_type_names[] = {
 
 static const PmdVariable3 *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdFmi3Type type)
 {
-    const PmdVariable3 *v;
-    if (vr > PMD_VR3_MAX || pmd_variable3_of_vr[vr] < 0) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
-        return NULL;
-    }
-    v = &pmd_variables3[pmd_variable3_of_vr[vr]];
-    if (v->type != chip_type[type]) {
+    int row = pmd_variable_row(inst, fn, vr, pmd_variable3_of_vr, PMD_VR3_MAX);
+    const PmdVariable3 *v = row < 0 ? NULL : &pmd_variables3[row];
+    if (v && v->type != chip_type[type]) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a %s, not %s", fn, vr,
                          v->name, own_type_names[v->type], type_names[type]);
         return NULL;

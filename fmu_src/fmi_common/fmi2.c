@@ -65,6 +65,15 @@ fmi2Status pmd_fmi2_unsupported(fmi2Component c, const char *fn, const char *why
     return fmi2Error;
 }
 
+/* The body of a function that hands the call to the model: fn is F's name,
+ * inst the model if F is legal in the states (else fmi2Error, logged). */
+#define CALL_MODEL(F, states, call)                                                                  \
+    do {                                                                                             \
+        static const char fn[] = #F;                                                                 \
+        PmdModel *inst = begin(c, fn, states);                                                       \
+        return inst ? status_of[call] : fmi2Error;                                                   \
+    } while (0)
+
 /* ---- inquiry, logging, life cycle ---- */
 
 const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
@@ -73,9 +82,8 @@ const char *fmi2GetVersion(void) { return fmi2Version; }
 fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
                                const fmi2String categories[])
 {
-    PmdModel *inst = begin(c, "fmi2SetDebugLogging", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_set_debug_logging(inst, "fmi2SetDebugLogging", loggingOn, nCategories, categories)]
-                : fmi2Error;
+    CALL_MODEL(fmi2SetDebugLogging, PMD_ANY_STATE,
+               pmd_model_set_debug_logging(inst, fn, loggingOn, nCategories, categories));
 }
 
 /* The resources folder of fmuResourceLocation, a file URI (RFC 8089; FMI 2.0.4
@@ -184,22 +192,19 @@ void fmi2FreeInstance(fmi2Component c)
 fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
                                fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime)
 {
-    PmdModel *inst = begin(c, "fmi2SetupExperiment", PMD_INSTANTIATED);
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    return inst ? status_of[pmd_model_setup_experiment(inst, "fmi2SetupExperiment", startTime)] : fmi2Error;
+    CALL_MODEL(fmi2SetupExperiment, PMD_INSTANTIATED, pmd_model_setup_experiment(inst, fn, startTime));
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 {
-    PmdModel *inst = begin(c, "fmi2EnterInitializationMode", PMD_INSTANTIATED);
-    return inst ? status_of[pmd_model_enter_initialization(inst, "fmi2EnterInitializationMode",
-                                                         pmd_model_time(inst))] : fmi2Error;
+    CALL_MODEL(fmi2EnterInitializationMode, PMD_INSTANTIATED,
+               pmd_model_enter_initialization(inst, fn, pmd_model_time(inst)));
 }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 {
-    PmdModel *inst = begin(c, "fmi2ExitInitializationMode", PMD_INITIALIZATION_MODE);
-    return inst ? status_of[pmd_model_exit_initialization(inst, "fmi2ExitInitializationMode")] : fmi2Error;
+    CALL_MODEL(fmi2ExitInitializationMode, PMD_INITIALIZATION_MODE, pmd_model_exit_initialization(inst, fn));
 }
 
 fmi2Status fmi2Terminate(fmi2Component c)
@@ -322,49 +327,42 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,
                       fmi2Boolean noSetFMUStatePriorToCurrentPoint)
 {
-    PmdModel *inst = begin(c, "fmi2DoStep", PMD_STEP_MODE);
     (void)noSetFMUStatePriorToCurrentPoint;
-    return inst ? status_of[pmd_model_do_step(inst, "fmi2DoStep", currentCommunicationPoint, communicationStepSize)] : fmi2Error;
+    CALL_MODEL(fmi2DoStep, PMD_STEP_MODE,
+               pmd_model_do_step(inst, fn, currentCommunicationPoint, communicationStepSize));
 }
 
 /* ---- FMU state ---- */
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
-    PmdModel *inst = begin(c, "fmi2GetFMUstate", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_get(inst, "fmi2GetFMUstate", state)] : fmi2Error;
+    CALL_MODEL(fmi2GetFMUstate, PMD_ANY_STATE, pmd_model_fmu_state_get(inst, fn, state));
 }
 
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state)
 {
-    PmdModel *inst = begin(c, "fmi2SetFMUstate", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_set(inst, "fmi2SetFMUstate", state)] : fmi2Error;
+    CALL_MODEL(fmi2SetFMUstate, PMD_ANY_STATE, pmd_model_fmu_state_set(inst, fn, state));
 }
 
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
-    PmdModel *inst = begin(c, "fmi2FreeFMUstate", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_free(inst, "fmi2FreeFMUstate", state)] : fmi2Error;
+    CALL_MODEL(fmi2FreeFMUstate, PMD_ANY_STATE, pmd_model_fmu_state_free(inst, fn, state));
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t *size)
 {
-    PmdModel *inst = begin(c, "fmi2SerializedFMUstateSize", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_size(inst, "fmi2SerializedFMUstateSize", state, size)] : fmi2Error;
+    CALL_MODEL(fmi2SerializedFMUstateSize, PMD_ANY_STATE, pmd_model_fmu_state_size(inst, fn, state, size));
 }
 
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte serializedState[], size_t size)
 {
-    PmdModel *inst = begin(c, "fmi2SerializeFMUstate", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_serialize(inst, "fmi2SerializeFMUstate", state,
-                                                    (unsigned char *)serializedState, size)] : fmi2Error;
+    CALL_MODEL(fmi2SerializeFMUstate, PMD_ANY_STATE,
+               pmd_model_fmu_state_serialize(inst, fn, state, (unsigned char *)serializedState, size));
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *state)
 {
-    PmdModel *inst = begin(c, "fmi2DeSerializeFMUstate", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_deserialize(inst, "fmi2DeSerializeFMUstate",
-                                                      (const unsigned char *)serializedState, size, state)]
-                : fmi2Error;
+    CALL_MODEL(fmi2DeSerializeFMUstate, PMD_ANY_STATE,
+               pmd_model_fmu_state_deserialize(inst, fn, (const unsigned char *)serializedState, size, state));
 }

@@ -62,6 +62,15 @@ void pmd_fmi3_refuse_instance(fmi3InstanceEnvironment environment, fmi3LogMessag
         logMessage(environment, fmi3Error, "errors", why);
 }
 
+/* The body of a function that hands the call to the model: fn is F's name,
+ * inst the model if F is legal in the states (else fmi3Error, logged). */
+#define CALL_MODEL(F, states, call)                                                                  \
+    do {                                                                                             \
+        static const char fn[] = #F;                                                                 \
+        PmdModel *inst = begin(c, fn, states);                                                       \
+        return inst ? status_of[call] : fmi3Error;                                                   \
+    } while (0)
+
 /* ---- inquiry, logging, life cycle ---- */
 
 const char *fmi3GetVersion(void) { return fmi3Version; }
@@ -69,9 +78,8 @@ const char *fmi3GetVersion(void) { return fmi3Version; }
 fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[])
 {
-    PmdModel *inst = begin(c, "fmi3SetDebugLogging", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_set_debug_logging(inst, "fmi3SetDebugLogging", loggingOn, nCategories, categories)]
-                : fmi3Error;
+    CALL_MODEL(fmi3SetDebugLogging, PMD_ANY_STATE,
+               pmd_model_set_debug_logging(inst, fn, loggingOn, nCategories, categories));
 }
 
 /* A copy of resourcePath (FMI 3.0 section 2.3.1: the absolute path of the
@@ -145,15 +153,13 @@ void fmi3FreeInstance(fmi3Instance c)
 fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefined, fmi3Float64 tolerance,
                                        fmi3Float64 startTime, fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
-    PmdModel *inst = begin(c, "fmi3EnterInitializationMode", PMD_INSTANTIATED);
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    return inst ? status_of[pmd_model_enter_initialization(inst, "fmi3EnterInitializationMode", startTime)] : fmi3Error;
+    CALL_MODEL(fmi3EnterInitializationMode, PMD_INSTANTIATED, pmd_model_enter_initialization(inst, fn, startTime));
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c)
 {
-    PmdModel *inst = begin(c, "fmi3ExitInitializationMode", PMD_INITIALIZATION_MODE);
-    return inst ? status_of[pmd_model_exit_initialization(inst, "fmi3ExitInitializationMode")] : fmi3Error;
+    CALL_MODEL(fmi3ExitInitializationMode, PMD_INITIALIZATION_MODE, pmd_model_exit_initialization(inst, fn));
 }
 
 fmi3Status fmi3Terminate(fmi3Instance c)
@@ -186,20 +192,39 @@ static fmi3Status no_such_type(fmi3Instance c, const char *fn, PmdFmi3Type type,
     return nvr == 0 || pmd_model3_no_such_type(inst, fn, type, vrs[0]) == PMD_OK ? fmi3OK : fmi3Error;
 }
 
-/* Values are counted over all elements of all the value references (an
- * array contributes all its elements). A get checks every value reference
- * before the model commits (the chip: pending port writes executed first,
- * CONTRACT 2.2): a get refused for a value reference returns no value. */
+/* The model for a call of nvr value references holding nValues values of the
+ * type, else NULL and *refusal the answer (a type the model has none of: as
+ * no_such_type answers). Values are counted over all elements of all the value
+ * references (an array contributes all its elements). sizes: GetBinary's
+ * valueSizes, checked after the values (the other calls pass vrs again). */
+static PmdModel *begin_values(fmi3Instance c, const char *fn, PmdFmi3Type type, unsigned states,
+                              const fmi3ValueReference vrs[], size_t nvr, const void *values, const void *sizes,
+                              size_t nValues, fmi3Status *refusal)
+{
+    PmdModel *inst;
+    *refusal = fmi3Error;
+    if (!pmd_model3_has(type)) {
+        *refusal = no_such_type(c, fn, type, vrs, nvr, states);
+        return NULL;
+    }
+    inst = begin(c, fn, states);
+    if (!inst || !arrays_given(inst, fn, nvr, vrs, values) || !arrays_given(inst, fn, nvr, sizes, sizes) ||
+        !pmd_model3_count(inst, fn, type, vrs, nvr, nValues))
+        return NULL;
+    return inst;
+}
+
+/* A get checks every value reference before the model commits (the chip:
+ * pending port writes executed first, CONTRACT 2.2): a get refused for a value
+ * reference returns no value. */
 static fmi3Status get_values(fmi3Instance c, const char *fn, PmdFmi3Type type, const fmi3ValueReference vrs[],
                              size_t nvr, void *values, size_t nValues)
 {
-    PmdModel *inst;
+    fmi3Status refusal;
+    PmdModel *inst = begin_values(c, fn, type, PMD_GET_STATES, vrs, nvr, values, vrs, nValues, &refusal);
     size_t i, k = 0;
-    if (!pmd_model3_has(type))
-        return no_such_type(c, fn, type, vrs, nvr, PMD_GET_STATES);
-    inst = begin(c, fn, PMD_GET_STATES);
-    if (!inst || !arrays_given(inst, fn, nvr, vrs, values) || !pmd_model3_count(inst, fn, type, vrs, nvr, nValues))
-        return fmi3Error;
+    if (!inst)
+        return refusal;
     for (i = 0; i < nvr; i++)
         if (!pmd_model3_given(inst, fn, vrs[i], type))
             return fmi3Error;
@@ -215,14 +240,12 @@ static fmi3Status get_values(fmi3Instance c, const char *fn, PmdFmi3Type type, c
 static fmi3Status set_values(fmi3Instance c, const char *fn, PmdFmi3Type type, const fmi3ValueReference vrs[],
                              size_t nvr, const void *values, size_t nValues)
 {
-    PmdModel *inst;
+    fmi3Status refusal;
+    PmdModel *inst = begin_values(c, fn, type, PMD_SET_STATES, vrs, nvr, values, vrs, nValues, &refusal);
     size_t i, k;
     int apply;
-    if (!pmd_model3_has(type))
-        return no_such_type(c, fn, type, vrs, nvr, PMD_SET_STATES);
-    inst = begin(c, fn, PMD_SET_STATES);
-    if (!inst || !arrays_given(inst, fn, nvr, vrs, values) || !pmd_model3_count(inst, fn, type, vrs, nvr, nValues))
-        return fmi3Error;
+    if (!inst)
+        return refusal;
     pmd_model_set_begin(inst);
     for (apply = 0; apply <= 1; apply++) {
         if (apply && pmd_model_set_check(inst, fn) != PMD_OK)
@@ -262,14 +285,12 @@ GETSET(fmi3Boolean, Boolean, PMD_FMI3_BOOLEAN)
 fmi3Status fmi3GetString(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, fmi3String values[],
                          size_t nValues)
 {
-    PmdModel *inst;
+    fmi3Status refusal;
+    PmdModel *inst = begin_values(c, "fmi3GetString", PMD_FMI3_STRING, PMD_GET_STATES, vrs, nvr, values, vrs,
+                                  nValues, &refusal);
     size_t i;
-    if (!pmd_model3_has(PMD_FMI3_STRING))
-        return no_such_type(c, "fmi3GetString", PMD_FMI3_STRING, vrs, nvr, PMD_GET_STATES);
-    inst = begin(c, "fmi3GetString", PMD_GET_STATES);
-    if (!inst || !arrays_given(inst, "fmi3GetString", nvr, vrs, values) ||
-        !pmd_model3_count(inst, "fmi3GetString", PMD_FMI3_STRING, vrs, nvr, nValues))
-        return fmi3Error;
+    if (!inst)
+        return refusal;
     for (i = 0; i < nvr; i++)
         if (pmd_model_get_string(inst, "fmi3GetString", vrs[i], &values[i]) != PMD_OK)
             return fmi3Error;
@@ -279,15 +300,13 @@ fmi3Status fmi3GetString(fmi3Instance c, const fmi3ValueReference vrs[], size_t 
 fmi3Status fmi3SetString(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, const fmi3String values[],
                          size_t nValues)
 {
-    PmdModel *inst;
+    fmi3Status refusal;
+    PmdModel *inst = begin_values(c, "fmi3SetString", PMD_FMI3_STRING, PMD_SET_STATES, vrs, nvr, values, vrs,
+                                  nValues, &refusal);
     size_t i;
     int apply;
-    if (!pmd_model3_has(PMD_FMI3_STRING))
-        return no_such_type(c, "fmi3SetString", PMD_FMI3_STRING, vrs, nvr, PMD_SET_STATES);
-    inst = begin(c, "fmi3SetString", PMD_SET_STATES);
-    if (!inst || !arrays_given(inst, "fmi3SetString", nvr, vrs, values) ||
-        !pmd_model3_count(inst, "fmi3SetString", PMD_FMI3_STRING, vrs, nvr, nValues))
-        return fmi3Error;
+    if (!inst)
+        return refusal;
     for (apply = 0; apply <= 1; apply++)
         for (i = 0; i < nvr; i++)
             if (pmd_model_set_string(inst, "fmi3SetString", vrs[i], values[i], apply) != PMD_OK)
@@ -298,32 +317,26 @@ fmi3Status fmi3SetString(fmi3Instance c, const fmi3ValueReference vrs[], size_t 
 fmi3Status fmi3GetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, size_t valueSizes[],
                          fmi3Binary values[], size_t nValues)
 {
-    PmdModel *inst;
+    fmi3Status refusal;
+    PmdModel *inst = begin_values(c, "fmi3GetBinary", PMD_FMI3_BINARY, PMD_GET_STATES, vrs, nvr, values,
+                                  valueSizes, nValues, &refusal);
     size_t i;
-    if (!pmd_model3_has(PMD_FMI3_BINARY))
-        return no_such_type(c, "fmi3GetBinary", PMD_FMI3_BINARY, vrs, nvr, PMD_GET_STATES);
-    inst = begin(c, "fmi3GetBinary", PMD_GET_STATES);
-    if (!inst || !arrays_given(inst, "fmi3GetBinary", nvr, vrs, values) ||
-        !arrays_given(inst, "fmi3GetBinary", nvr, valueSizes, valueSizes) ||
-        !pmd_model3_count(inst, "fmi3GetBinary", PMD_FMI3_BINARY, vrs, nvr, nValues))
-        return fmi3Error;
+    if (!inst)
+        return refusal;
     for (i = 0; i < nvr; i++)
         if (pmd_model3_get_binary(inst, "fmi3GetBinary", vrs[i], &values[i], &valueSizes[i]) != PMD_OK)
             return fmi3Error;
     return fmi3OK;
 }
 
+/* The shell checks the value references and their count only: the model says whether a Binary can be set. */
 fmi3Status fmi3SetBinary(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, const size_t valueSizes[],
                          const fmi3Binary values[], size_t nValues)
 {
-    PmdModel *inst;
-    if (!pmd_model3_has(PMD_FMI3_BINARY))
-        return no_such_type(c, "fmi3SetBinary", PMD_FMI3_BINARY, vrs, nvr, PMD_SET_STATES);
-    inst = begin(c, "fmi3SetBinary", PMD_SET_STATES);
-    if (!inst || !arrays_given(inst, "fmi3SetBinary", nvr, vrs, vrs) ||
-        !pmd_model3_count(inst, "fmi3SetBinary", PMD_FMI3_BINARY, vrs, nvr, nValues))
-        return fmi3Error;
-    return status_of[pmd_model3_set_binaries(inst, "fmi3SetBinary", vrs, nvr, valueSizes, values)];
+    fmi3Status refusal;
+    PmdModel *inst = begin_values(c, "fmi3SetBinary", PMD_FMI3_BINARY, PMD_SET_STATES, vrs, nvr, vrs, vrs, nValues,
+                                  &refusal);
+    return inst ? status_of[pmd_model3_set_binaries(inst, "fmi3SetBinary", vrs, nvr, valueSizes, values)] : refusal;
 }
 
 fmi3Status fmi3GetClock(fmi3Instance c, const fmi3ValueReference vrs[], size_t nvr, fmi3Clock values[])
@@ -365,40 +378,33 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint, fmi
 
 fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *state)
 {
-    PmdModel *inst = begin(c, "fmi3GetFMUState", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_get(inst, "fmi3GetFMUState", state)] : fmi3Error;
+    CALL_MODEL(fmi3GetFMUState, PMD_ANY_STATE, pmd_model_fmu_state_get(inst, fn, state));
 }
 
 fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState state)
 {
-    PmdModel *inst = begin(c, "fmi3SetFMUState", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_set(inst, "fmi3SetFMUState", state)] : fmi3Error;
+    CALL_MODEL(fmi3SetFMUState, PMD_ANY_STATE, pmd_model_fmu_state_set(inst, fn, state));
 }
 
 fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *state)
 {
-    PmdModel *inst = begin(c, "fmi3FreeFMUState", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_free(inst, "fmi3FreeFMUState", state)] : fmi3Error;
+    CALL_MODEL(fmi3FreeFMUState, PMD_ANY_STATE, pmd_model_fmu_state_free(inst, fn, state));
 }
 
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState state, size_t *size)
 {
-    PmdModel *inst = begin(c, "fmi3SerializedFMUStateSize", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_size(inst, "fmi3SerializedFMUStateSize", state, size)] : fmi3Error;
+    CALL_MODEL(fmi3SerializedFMUStateSize, PMD_ANY_STATE, pmd_model_fmu_state_size(inst, fn, state, size));
 }
 
 fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState state, fmi3Byte serializedState[], size_t size)
 {
-    PmdModel *inst = begin(c, "fmi3SerializeFMUState", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_serialize(inst, "fmi3SerializeFMUState", state, serializedState, size)]
-                : fmi3Error;
+    CALL_MODEL(fmi3SerializeFMUState, PMD_ANY_STATE,
+               pmd_model_fmu_state_serialize(inst, fn, state, serializedState, size));
 }
 
 fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedState[], size_t size,
                                    fmi3FMUState *state)
 {
-    PmdModel *inst = begin(c, "fmi3DeserializeFMUState", PMD_ANY_STATE);
-    return inst ? status_of[pmd_model_fmu_state_deserialize(inst, "fmi3DeserializeFMUState", serializedState, size,
-                                                      state)]
-                : fmi3Error;
+    CALL_MODEL(fmi3DeserializeFMUState, PMD_ANY_STATE,
+               pmd_model_fmu_state_deserialize(inst, fn, serializedState, size, state));
 }

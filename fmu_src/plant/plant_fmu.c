@@ -17,37 +17,17 @@
 
 const char pmd_model_token[] = PLANT_INSTANTIATION_TOKEN;
 
-static void log_message(const PlantInstance *inst, PmdStatus status, const char *format, va_list args)
-{
-    char message[1024];
-    vsnprintf(message, sizeof message, format, args);
-    inst->logger(inst->environment, inst->instanceName, status, plant_log_category_names[PLANT_LOG_ERRORS], message);
-}
-
-/* Errors are always logged, the rest only with debug logging on. */
-static void plant_log(const PlantInstance *inst, PmdStatus status, const char *format, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-static void plant_log(const PlantInstance *inst, PmdStatus status, const char *format, ...)
-{
-    va_list args;
-    if (!inst->logger || (status < PMD_ERROR && !inst->loggingOn))
-        return;
-    va_start(args, format);
-    log_message(inst, status, format, args);
-    va_end(args);
-}
-
+/* The plant logs errors only, and always. */
 void pmd_model_error(const PlantInstance *inst, const char *format, ...)
 {
+    char message[1024];
     va_list args;
     if (!inst->logger)
         return;
     va_start(args, format);
-    log_message(inst, PMD_ERROR, format, args);
+    vsnprintf(message, sizeof message, format, args);
     va_end(args);
+    inst->logger(inst->environment, inst->instanceName, PMD_ERROR, plant_log_category_names[PLANT_LOG_ERRORS], message);
 }
 
 const char *pmd_model_state_name(PmdState state)
@@ -127,7 +107,7 @@ PmdStatus pmd_model_set_debug_logging(PlantInstance *inst, const char *fn, int l
 {
     size_t i, c;
     if (nCategories > 0 && !categories) {
-        plant_log(inst, PMD_ERROR, "%s: %zu categories but the array is NULL", fn, nCategories);
+        pmd_model_error(inst, "%s: %zu categories but the array is NULL", fn, nCategories);
         return PMD_ERROR;
     }
     for (i = 0; i < nCategories; i++) {
@@ -135,11 +115,11 @@ PmdStatus pmd_model_set_debug_logging(PlantInstance *inst, const char *fn, int l
             if (categories[i] && strcmp(categories[i], plant_log_category_names[c]) == 0)
                 break;
         if (c == PLANT_LOG_CATEGORY_COUNT) {
-            plant_log(inst, PMD_ERROR, "%s: unknown log category \"%s\"", fn, categories[i] ? categories[i] : "(NULL)");
+            pmd_model_error(inst, "%s: unknown log category \"%s\"", fn, categories[i] ? categories[i] : "(NULL)");
             return PMD_ERROR;
         }
     }
-    inst->loggingOn = loggingOn != 0;
+    (void)loggingOn;                                /* the plant logs errors only: always */
     return PMD_OK;
 }
 
@@ -154,7 +134,7 @@ PmdStatus pmd_model_enter_initialization(PlantInstance *inst, const char *fn, do
 {
     (void)fn;
     if (!isfinite(startTime)) {
-        plant_log(inst, PMD_ERROR, "EnterInitializationMode: the start time %g is not finite", startTime);
+        pmd_model_error(inst, "EnterInitializationMode: the start time %g is not finite", startTime);
         return PMD_ERROR;
     }
     inst->s.m.time = startTime;
@@ -175,25 +155,25 @@ PmdStatus pmd_model_do_step(PlantInstance *inst, const char *fn, double t, doubl
 {
     PlantModel *m = &inst->s.m, before;
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
-        plant_log(inst, PMD_ERROR, "%s: communication point %g, step size %g: the step size must be finite and > 0",
-                  fn, t, h);
+        pmd_model_error(inst, "%s: communication point %g, step size %g: the step size must be finite and > 0",
+                        fn, t, h);
         return PMD_ERROR;
     }
     /* a master's communication points are sums or products of its step size */
     if (fabs(t - m->time) > 1e-6 * m->internalStep + 8 * DBL_EPSILON * fabs(m->time)) {
-        plant_log(inst, PMD_ERROR, "%s: communication point %.17g is not the current time %.17g", fn, t, m->time);
+        pmd_model_error(inst, "%s: communication point %.17g is not the current time %.17g", fn, t, m->time);
         return PMD_ERROR;
     }
     if (plant_internal_steps(m, h) > MAX_INTERNAL_STEPS) {
-        plant_log(inst, PMD_ERROR, "%s: a step of %g s is more than %g internal steps of %g s: not run", fn, h,
-                  MAX_INTERNAL_STEPS, m->internalStep);
+        pmd_model_error(inst, "%s: a step of %g s is more than %g internal steps of %g s: not run", fn, h,
+                        MAX_INTERNAL_STEPS, m->internalStep);
         return PMD_ERROR;
     }
     before = *m;
     plant_advance(m, h);
     if (!isfinite(m->angle) || !isfinite(m->speed) || !isfinite(m->current)) {
-        plant_log(inst, PMD_ERROR, "%s: the step from %.17g s leaves the motor's state not finite (angle %g, "
-                  "speed %g): not run", fn, t, m->angle, m->speed);
+        pmd_model_error(inst, "%s: the step from %.17g s leaves the motor's state not finite (angle %g, "
+                        "speed %g): not run", fn, t, m->angle, m->speed);
         *m = before;
         return PMD_ERROR;
     }
@@ -219,13 +199,13 @@ static const PlantVariable *lookup(const PlantInstance *inst, const char *fn, un
         if (v->vr != vr || (!fmi3 && v->type == PLANT_NONE))
             continue;
         if ((fmi3 ? v->type3 : v->type) != type) {
-            plant_log(inst, PMD_ERROR, "%s: value reference %u (%s) is of type %s", fn, vr, v->name,
-                      fmi3 ? type3_names[v->type3] : type_names[v->type]);
+            pmd_model_error(inst, "%s: value reference %u (%s) is of type %s", fn, vr, v->name,
+                            fmi3 ? type3_names[v->type3] : type_names[v->type]);
             return NULL;
         }
         return v;
     }
-    plant_log(inst, PMD_ERROR, "%s: no variable has value reference %u", fn, vr);
+    pmd_model_error(inst, "%s: no variable has value reference %u", fn, vr);
     return NULL;
 }
 
@@ -273,21 +253,21 @@ static PmdStatus check(const PlantInstance *inst, const char *fn, const PlantVar
                       : v->causality == PLANT_INPUT  ? PMD_SET_STATES
                                                      : 0;
     if (!states) {
-        plant_log(inst, PMD_ERROR, "%s: %s is an %s and cannot be set", fn, v->name, causality_names[v->causality]);
+        pmd_model_error(inst, "%s: %s is an %s and cannot be set", fn, v->name, causality_names[v->causality]);
         return PMD_ERROR;
     }
     if (!(inst->s.state & states)) {
-        plant_log(inst, PMD_ERROR, "%s: %s, a %s, cannot be set in %s", fn, v->name, causality_names[v->causality],
-                  pmd_model_state_name(inst->s.state));
+        pmd_model_error(inst, "%s: %s, a %s, cannot be set in %s", fn, v->name, causality_names[v->causality],
+                        pmd_model_state_name(inst->s.state));
         return PMD_ERROR;
     }
     if (!(value >= v->min && value <= v->max)) {      /* also NaN */
-        plant_log(inst, PMD_ERROR, "%s: %s = %.17g is not in %.17g .. %.17g: not set", fn, v->name, value, v->min,
-                  v->max);
+        pmd_model_error(inst, "%s: %s = %.17g is not in %.17g .. %.17g: not set", fn, v->name, value, v->min,
+                        v->max);
         return PMD_ERROR;
     }
     if (!isfinite(value)) {
-        plant_log(inst, PMD_ERROR, "%s: %s = %g is not finite: not set", fn, v->name, value);
+        pmd_model_error(inst, "%s: %s = %g is not finite: not set", fn, v->name, value);
         return PMD_ERROR;
     }
     return PMD_OK;
@@ -309,7 +289,7 @@ static PmdStatus set_value(PlantInstance *inst, const char *fn, const PlantVaria
 /* A type the plant has no variables of. */
 static PmdStatus no_such_type(const PlantInstance *inst, const char *fn, unsigned vr)
 {
-    plant_log(inst, PMD_ERROR, "%s: no variable of this type has value reference %u", fn, vr);
+    pmd_model_error(inst, "%s: no variable of this type has value reference %u", fn, vr);
     return PMD_ERROR;
 }
 
@@ -414,8 +394,8 @@ int pmd_model3_count(PlantInstance *inst, const char *fn, PmdFmi3Type type, cons
 {
     (void)type; (void)vrs;
     if (nvr != nValues) {
-        plant_log(inst, PMD_ERROR, "%s: nValues is %zu but %zu scalar value references are given", fn, nValues,
-                  nvr);
+        pmd_model_error(inst, "%s: nValues is %zu but %zu scalar value references are given", fn, nValues,
+                        nvr);
         return 0;
     }
     return 1;
@@ -504,29 +484,29 @@ static int snapshot_valid(const PlantInstance *inst, const char *fn, const Plant
     size_t i;
     if (memcmp(snap->magic, STATE_MAGIC, sizeof snap->magic) != 0 || snap->version != STATE_VERSION ||
         snap->size != sizeof *snap) {
-        plant_log(inst, PMD_ERROR, "%s: not a state of this FMU (magic, version %u or size %u differ)", fn,
-                  (unsigned)snap->version, (unsigned)snap->size);
+        pmd_model_error(inst, "%s: not a state of this FMU (magic, version %u or size %u differ)", fn,
+                        (unsigned)snap->version, (unsigned)snap->size);
         return 0;
     }
     switch (snap->s.state) {
     case PMD_INSTANTIATED: case PMD_INITIALIZATION_MODE: case PMD_STEP_MODE: case PMD_TERMINATED:
         break;
     default:
-        plant_log(inst, PMD_ERROR, "%s: the state holds no FMI state (%d)", fn, (int)snap->s.state);
+        pmd_model_error(inst, "%s: the state holds no FMI state (%d)", fn, (int)snap->s.state);
         return 0;
     }
     for (i = 0; i < PLANT_VARIABLE_COUNT; i++) {
         const PlantVariable *v = &plant_variables[i];
         double value = member_value(&snap->s.m, v);
         if (!isfinite(value) || value < v->min || value > v->max) {
-            plant_log(inst, PMD_ERROR, "%s: the state's %s = %g is not in %g .. %g", fn, v->name, value, v->min,
-                      v->max);
+            pmd_model_error(inst, "%s: the state's %s = %g is not in %g .. %g", fn, v->name, value, v->min,
+                            v->max);
             return 0;
         }
     }
     if (snap->s.m.encoderCount != plant_encoder_count(&snap->s.m)) {
-        plant_log(inst, PMD_ERROR, "%s: the state's encoder count %ld is not that of its angle %.17g", fn,
-                  (long)snap->s.m.encoderCount, snap->s.m.angle);
+        pmd_model_error(inst, "%s: the state's encoder count %ld is not that of its angle %.17g", fn,
+                        (long)snap->s.m.encoderCount, snap->s.m.angle);
         return 0;
     }
     return 1;
@@ -536,12 +516,12 @@ PmdStatus pmd_model_fmu_state_get(PlantInstance *inst, const char *fn, void **st
 {
     PlantSnapshot *snap;
     if (!state) {
-        plant_log(inst, PMD_ERROR, "%s: the state pointer is NULL", fn);
+        pmd_model_error(inst, "%s: the state pointer is NULL", fn);
         return PMD_ERROR;
     }
     snap = (PlantSnapshot *)(*state ? *state : calloc(1, sizeof *snap));     /* a given state is overwritten */
     if (!snap) {
-        plant_log(inst, PMD_ERROR, "%s: out of memory", fn);
+        pmd_model_error(inst, "%s: out of memory", fn);
         return PMD_ERROR;
     }
     memcpy(snap->magic, STATE_MAGIC, sizeof snap->magic);
@@ -555,7 +535,7 @@ PmdStatus pmd_model_fmu_state_get(PlantInstance *inst, const char *fn, void **st
 PmdStatus pmd_model_fmu_state_set(PlantInstance *inst, const char *fn, const void *state)
 {
     if (!state) {
-        plant_log(inst, PMD_ERROR, "%s: the state is NULL", fn);
+        pmd_model_error(inst, "%s: the state is NULL", fn);
         return PMD_ERROR;
     }
     if (!snapshot_valid(inst, fn, (const PlantSnapshot *)state))
@@ -578,7 +558,7 @@ PmdStatus pmd_model_fmu_state_free(PlantInstance *inst, const char *fn, void **s
 PmdStatus pmd_model_fmu_state_size(PlantInstance *inst, const char *fn, const void *state, size_t *size)
 {
     if (!state || !size) {
-        plant_log(inst, PMD_ERROR, "%s: the state or the size pointer is NULL", fn);
+        pmd_model_error(inst, "%s: the state or the size pointer is NULL", fn);
         return PMD_ERROR;
     }
     *size = sizeof(PlantSnapshot);
@@ -589,7 +569,7 @@ PmdStatus pmd_model_fmu_state_serialize(PlantInstance *inst, const char *fn, con
                                     size_t size)
 {
     if (!state || !bytes || size != sizeof(PlantSnapshot)) {
-        plant_log(inst, PMD_ERROR, "%s: needs a state and %zu bytes (given %zu)", fn, sizeof(PlantSnapshot), size);
+        pmd_model_error(inst, "%s: needs a state and %zu bytes (given %zu)", fn, sizeof(PlantSnapshot), size);
         return PMD_ERROR;
     }
     memcpy(bytes, state, size);
@@ -601,13 +581,13 @@ PmdStatus pmd_model_fmu_state_deserialize(PlantInstance *inst, const char *fn, c
 {
     PlantSnapshot *snap;
     if (!bytes || !state || size != sizeof(PlantSnapshot)) {
-        plant_log(inst, PMD_ERROR, "%s: a state of this FMU is %zu bytes (given %zu)", fn, sizeof(PlantSnapshot),
-                  size);
+        pmd_model_error(inst, "%s: a state of this FMU is %zu bytes (given %zu)", fn, sizeof(PlantSnapshot),
+                        size);
         return PMD_ERROR;
     }
     snap = (PlantSnapshot *)calloc(1, sizeof *snap);
     if (!snap) {
-        plant_log(inst, PMD_ERROR, "%s: out of memory", fn);
+        pmd_model_error(inst, "%s: out of memory", fn);
         return PMD_ERROR;
     }
     memcpy(snap, bytes, size);

@@ -23,7 +23,6 @@ struct PmdModel {
     char *instanceName;
     PmdModelLogger logger;
     void *environment;
-    int loggingOn;
 };
 
 #endif
