@@ -8,40 +8,12 @@
 #include <string.h>
 
 #include "instance.h"
+#include "values.h"
 
 #define DEFAULT_CYCLE_TIME 1e-4
 #define DEFAULT_MEMORY_SIZE 0x4000     /* seed 000, 1.1: memory_size = 0x4000 (16Kx32) */
 
 const char pmd_model_token[] = PMD_INSTANTIATION_TOKEN;
-
-static void log_message(const PmdInstance *inst, PmdStatus status, PmdLogCategory category, const char *format,
-                        va_list args)
-{
-    char message[8192];              /* a refused script names the places it was looked for */
-    vsnprintf(message, sizeof message, format, args);
-    inst->logger(inst->environment, inst->instanceName, status, pmd_log_category_names[category], message);
-}
-
-void pmd_instance_log(const PmdInstance *inst, PmdStatus status, PmdLogCategory category, const char *format, ...)
-{
-    va_list args;
-    /* errors are always logged; the rest as SetDebugLogging says */
-    if (!inst->logger || (status < PMD_ERROR && !(inst->loggingOn && (inst->categories & (1u << category)))))
-        return;
-    va_start(args, format);
-    log_message(inst, status, category, format, args);
-    va_end(args);
-}
-
-void pmd_model_error(const PmdInstance *inst, const char *format, ...)
-{
-    va_list args;
-    if (!inst->logger)
-        return;
-    va_start(args, format);
-    log_message(inst, PMD_ERROR, PMD_LOG_ERRORS, format, args);
-    va_end(args);
-}
 
 /* The chip formats a message only when its category is enabled (chip.logMask).
  * A refused command is the chip's answer, not an FMU failure: it goes out
@@ -413,7 +385,7 @@ PmdStatus pmd_model_exit_initialization(PmdInstance *inst, const char *fn)
 
 PmdStatus pmd_model_do_step(PmdInstance *inst, const char *fn, double t, double h)
 {
-    int64_t end, recorded = 0, ran = 0;
+    int64_t end, k, recorded = 0, ran = 0;
     double x, fine;
     PmdGrid g = pmd_grid(&inst->s, &inst->chip.s);
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
@@ -473,30 +445,29 @@ PmdStatus pmd_model_do_step(PmdInstance *inst, const char *fn, double t, double 
             end = pmd_cycles_before(&g, t + h);
             continue;
         }
+        k = cycles_to_skip(inst, end);
         if (inst->s.recordEnabled) {               /* every cycle recorded: no fast-forward */
             /* Rows past the room (record.capacity, or the memory lent) are not recorded: the grid may have
              * restarted finer inside the step, up to 65 535 cycles for each one the room was checked for.
              * Those cycles record nothing, so they run as an unrecorded step runs them, fast-forwarded where
              * that pays: one by one, a step that passed the check could run for days. */
-            int64_t k = cycles_to_skip(inst, end), room = pmd_record_room(inst) - recorded;
-            int64_t r = k < room ? k : room;
+            int64_t room = pmd_record_room(inst) - recorded, r = k < room ? k : room;
             inst->recordRowBytes = inst->columns.rowBytes;
-            if (inst->columns.count) {             /* record.columns: cycle by cycle (record.c) */
-                pmd_record_cycles(inst, r, recorded);     /* nextCycle advanced row by row */
-                inst->s.nextCycle += k - r;
+            if (inst->columns.count) {             /* record.columns: a row after each cycle (record.c) */
+                PmdGrid now = pmd_grid(&inst->s, &inst->chip.s);
+                pmd_record_cycles(inst, &now, r, recorded);
             } else {
                 /* the rows are int32 words: record.data's buffer is aligned, lent memory was checked above */
-                pmd_chip_run(&inst->chip, r, (int32_t *)(void *)pmd_record_rows(inst) + (size_t)recorded * PMD_RECORD_WORDS);
-                inst->s.nextCycle += k;
+                int32_t *rows = (int32_t *)(void *)pmd_record_rows(inst) + (size_t)recorded * PMD_RECORD_WORDS;
+                pmd_chip_run_every_cycle(&inst->chip, r, rows);
             }
-            pmd_chip_advance(&inst->chip, k - r);
+            pmd_chip_run_fast_forwarding(&inst->chip, k - r);
             recorded += r;
             ran += k;
         } else {                                   /* nothing recorded: fast-forward where it pays */
-            int64_t k = cycles_to_skip(inst, end);
-            pmd_chip_advance(&inst->chip, k);
-            inst->s.nextCycle += k;
+            pmd_chip_run_fast_forwarding(&inst->chip, k);
         }
+        inst->s.nextCycle += k;                    /* the grid is the instance's: it alone advances it */
     }
     inst->s.time = t + h;
     inst->recordCount = (uint32_t)recorded;
