@@ -626,7 +626,7 @@ static PmdStatus unhandled(PmdInstance *inst, const char *fn, const PmdVariable 
  * for other variables index is an array element and no axis exists. */
 #define AXIS_OF(v) (&inst->chip.s.axis[(v)->index])
 
-/* Each case is a row of record.h's tables (PMD_REAL_VALUES, ...), the values record.columns records. */
+/* Each case is a row of values.h's tables (PMD_REAL_VALUES, ...), the values record.columns records. */
 #define VALUE_CASE(family, expression) case family: *value = (expression); break;
 
 PmdStatus pmd_model2_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value)

@@ -225,7 +225,7 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
     return PMD_OK;
 }
 
-/* Each case is a row of record.h's tables, the getters' (instance.c): the
+/* Each case is a row of values.h's tables, the getters' (instance.c): the
  * value as its getter returns it, stored at each of the family's columns in
  * its width (a family has one type, hence one width), the columns of a family
  * one after the other (record.columns is kept in that order): one switch per
