@@ -1,6 +1,6 @@
 /* Benchmark 1: the chip core running external profiles
  * on 4 axes, every cycle's commanded position, velocity and acceleration
- * stored (pmd_chip_run's record rows, as a recording doStep stores them),
+ * stored (pmd_chip_run_every_cycle's record rows, as a recording doStep stores them),
  * against a bare C loop of the same exact recurrence storing the same rows,
  * measured in the same run.
  *
@@ -261,7 +261,7 @@ static double run_chip(const Family *fam, uint32_t *memory, int32_t *out)
     double t0;
     load_chip(&chip, memory, fam);
     t0 = now();
-    pmd_chip_run(&chip, CYCLES, out);
+    pmd_chip_run_every_cycle(&chip, CYCLES, out);
     return now() - t0;
 }
 

@@ -29,8 +29,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             abort();
         cycles = i < size ? data[i++] % 8 : 0;
         while (cycles--)
-            pmd_chip_cycle(&chip);
-        pmd_chip_fast_forward(&chip, 1000);
+            pmd_chip_run_one_cycle(&chip);
+        pmd_chip_skip_closed_form(&chip, 1000);
     }
     return 0;
 }

@@ -1,8 +1,9 @@
 /* Fuzz target: FMI 2's fmuResourceLocation, a file URI decoded into the
  * resources folder where relative script and table paths are looked for.
- * The decoder, resources_of, is static in fmi2.c: this file
- * includes fmi2.c so that it can call it as well as fmi2Instantiate (run.py
- * then leaves fmi2.c out of the target's sources).
+ * The decoder, resources_of, is static in the FMI 2 shell,
+ * fmu_src/fmi_common/fmi2.c: this file includes fmi2.c so that it can call it
+ * as well as fmi2Instantiate (run.py then leaves fmi2.c out of the target's
+ * sources).
  *
  *   input = the URI, up to the first NUL; an empty input passes NULL
  *
@@ -35,6 +36,7 @@
 
 #include "fmi2.c"
 #include "fuzz_property.h"
+#include "instance.h"
 #include "variables.h"
 
 static const char START[] = "@ 0\nLoadSegmentTable(Axis1, \"t.csv\", 0x200, 2);\n"

@@ -73,7 +73,7 @@ enum { OK = 0, ERROR = 3 };          /* fmi2Status and fmi3Status agree on these
 #define MAX_COLUMNS 8                /* names of a record.columns value it sets */
 #define DEFAULT_ROW_BYTES (4 * PMD_RECORD_WORDS)     /* a row of record.columns "" */
 
-/* pmdfmu's FMI 2 extension (fmi2.c, docs/performance.md "Recording"): no header declares it */
+/* pmdfmu's FMI 2 extension (fmi/record_fmi2.c, docs/performance.md "Recording"): no header declares it */
 fmi2Status pmdfmu_fmi2GetRecordData(fmi2Component c, const void **data, size_t *size);
 fmi2Status pmdfmu_fmi2SetRecordBuffer(fmi2Component c, void *rows, size_t size);
 
@@ -203,7 +203,7 @@ static void append(Bytes *b, const void *data, size_t n)
     b->n += n;
 }
 
-/* The instance behind the FMI handle (fmi2.c and fmi3.c both keep it first).
+/* The instance behind the FMI handle (the shells fmi2.c and fmi3.c both keep it first).
  * The fuzzer reads it only to size its steps (memory size, cycle time, whether
  * the chip idles) and to name a changed field, never to decide a property. */
 static const PmdInstance *instance(const Fuzz *f) { return *(PmdInstance *const *)f->c; }

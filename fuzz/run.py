@@ -32,13 +32,13 @@ TARGETS = ("host", "fmi", "script", "sequence", "script_text", "resource_uri")
 
 def sources(target: str, gen: Path):
     chip = sorted(str(p) for p in (ROOT / "fmu_src" / "chip").glob("*.c"))
-    fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "record.c", "state.c", "state_fields.c")]
+    fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "messages.c", "record.c", "state.c", "state_fields.c")]
     script = [str(ROOT / "fmu_src" / "script" / "script.c")]
     generated = [str(gen / n) for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")]
     # fuzz_resource_uri.c includes fmi2.c itself (its URI decoder is static there)
-    extra = {"fmi": ["fmi/fmi2.c", "fmi_common/fmi2_not_provided.c"],
-             "sequence": ["fmi/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/fmi3.c",
-                          "fmi_common/fmi3_not_provided.c"]}.get(target, [])
+    extra = {"fmi": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c"],
+             "sequence": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c",
+                          "fmi_common/fmi3.c", "fmi_common/fmi3_not_provided.c", "fmi/model3.c"]}.get(target, [])
     extra = [str(ROOT / "fmu_src" / n) for n in extra]
     if target == "sequence":
         generated.append(str(gen / "variables3.c"))

@@ -547,8 +547,8 @@ def main(outdir: Path, sources) -> None:
             path.write_text(text)
 
 
-FMI2_ONLY = {"fmi2.c", "fmi2_not_provided.c"}
-FMI3_ONLY = {"fmi3.c", "fmi3_not_provided.c", "variables3.c"}
+FMI2_ONLY = {"fmi2.c", "fmi2_not_provided.c", "record_fmi2.c"}
+FMI3_ONLY = {"fmi3.c", "fmi3_not_provided.c", "model3.c", "variables3.c"}
 
 if __name__ == "__main__":
     if len(sys.argv) < 2:

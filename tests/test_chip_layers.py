@@ -86,3 +86,36 @@ def test_no_circle_between_chip_files(needs):
     for stem in needs:
         found = circle(stem, [])
         assert not found, " -> ".join(f"{s}.c" for s in found)
+
+
+def includes_of_fmu_src():
+    """stem -> {stems it includes}: every C file and header of fmu_src, a C file and its header as one."""
+    import re
+    files = [p for p in (ROOT / "fmu_src").rglob("*") if p.suffix in (".c", ".h")]
+    stems = {p.stem for p in files}
+    graph = {}
+    for p in files:
+        for name in re.findall(r'^\s*#\s*include\s+"([^"]+)"', p.read_text(), re.M):
+            other = Path(name).stem
+            if other in stems and other != p.stem:
+                graph.setdefault(p.stem, set()).add(other)
+    return graph
+
+
+def test_no_include_circle_in_fmu_src():
+    """A header that includes the file that includes it (registers.c including the chip.h that includes
+    registers.h, instance.h and record.c) names a layer above it: no such circle anywhere in fmu_src."""
+    graph = includes_of_fmu_src()
+    assert "registers" in graph.get("chip", set()) and "instance_types" in graph.get("record", set())
+
+    def circle(stem, path):
+        if stem in path:
+            return path[path.index(stem):] + [stem]
+        for other in sorted(graph.get(stem, ())):
+            found = circle(other, path + [stem])
+            if found:
+                return found
+        return None
+    for stem in sorted(graph):
+        found = circle(stem, [])
+        assert not found, " -> ".join(found)

@@ -1,5 +1,5 @@
 """An unrecorded doStep runs ordinary cycles in batches and fast-forwards only where a cheap
-bound says it can skip many (fastforward.c, pmd_chip_advance). Whatever way
+bound says it can skip many (fastforward.c, pmd_chip_run_fast_forwarding). Whatever way
 the cycles go, the outputs and the state are those of a recorded doStep (every cycle run) and of
 cycle by cycle; a doStep over long segments stays O(segments). Pinned by outputs, never by time."""
 import random

@@ -1,4 +1,4 @@
-"""A quiet run (pmd_chip_run in fmu_src/chip/chip.c) leaves out the per-cycle work
+"""A quiet run (pmd_chip_run_every_cycle in fmu_src/chip/chip.c) leaves out the per-cycle work
 that cannot happen while no axis is geared, no breakpoint is armed, no trace runs
 or waits and no switch is active. Pinned here: the same runs with a
 breakpoint armed that never fires, which makes every cycle do all of its checks,

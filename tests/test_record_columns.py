@@ -343,7 +343,7 @@ def test_every_column_kind_in_bulk_is_the_stepwise_value(version, loopback):
 @pytest.mark.parametrize("loopback", (True, False))
 def test_every_column_but_the_filters_in_bulk_is_the_stepwise_value(version, loopback):
     """Without the motor command columns a recording doStep runs its cycles as one chip run (record.c,
-    pmd_chip_run_rows), an ideal servo's filter advanced at its end: every other column (status bits of
+    pmd_chip_run_every_cycle_with_rows), an ideal servo's filter advanced at its end: every other column (status bits of
     position error and settling, events, the Reals) as a master stepping cycle by cycle."""
     names = [n for n in every_column() if not n.endswith((".motorCommand", ".motorOutput"))]
     with pmdfmu.Chip(fmi_version=version, loopback=loopback, **{"record.capacity": 450}) as chip, \

@@ -117,7 +117,7 @@ static void check_breakpoints(PmdChip *chip, int n)
 /* Actual position: the commanded position (loopback, motor on: the ideal
  * servo), held (loopback, motor off), or the encoder input plus the
  * SetActualPosition offset. Returns whether the servo is ideal. The loopback
- * parameter is fixed for a whole run: pmd_chip_run reads it once and passes it. */
+ * parameter is fixed for a whole run: pmd_chip_run_every_cycle reads it once and passes it. */
 static inline int sample_actual(PmdChip *chip, int n, int loopback)
 {
     PmdAxis *ax = &chip->s.axis[n];
@@ -293,7 +293,7 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
  * servo filter runs once the cycle's events have acted on the axis (a motion
  * error's auto-stop, a breakpoint's motor off or update): its output is the
  * motor command the cycle ends with (docs/decisions.md). In a quiet run the
- * filters of the axes in closedForm (bit n: axis n) are left to pmd_chip_run,
+ * filters of the axes in closedForm (bit n: axis n) are left to pmd_chip_run_every_cycle,
  * which runs all their cycles at once at the end. A quiet run's middle cycles
  * are quiet_cycles(). */
 static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closedForm, int32_t *row)
@@ -351,9 +351,9 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
         pmd_chip_record(chip, row);
 }
 
-void pmd_chip_cycle(PmdChip *chip)
+void pmd_chip_run_one_cycle(PmdChip *chip)
 {
-    pmd_chip_run(chip, 1, NULL);
+    pmd_chip_run_every_cycle(chip, 1, NULL);
 }
 
 /* An ideal servo's filter left to one closed-form step at a quiet run's end
@@ -379,7 +379,7 @@ static NOINLINE void quiet_axis_cycle(PmdChip *chip, int n, int loopback, unsign
     pmd_profile_cycle(chip, n);
     if (closedForm & (1u << n)) {
         /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only resets
-         * its settle count, which the run's first cycle did (pmd_chip_run); at rest it settles */
+         * its settle count, which the run's first cycle did (pmd_chip_run_every_cycle); at rest it settles */
         if (chip->s.axis[n].motion == PMD_MOTION_IDLE)
             settle(chip, n, loopback);
     } else {
@@ -389,7 +389,7 @@ static NOINLINE void quiet_axis_cycle(PmdChip *chip, int n, int loopback, unsign
 }
 
 /* The middle cycles of a quiet run (all but its first and last: see
- * pmd_chip_run), `cycles` of them, rows from row on (or none). An ideal
+ * pmd_chip_run_every_cycle), `cycles` of them, rows from row on (or none). An ideal
  * servo's axis inside an external segment - most cycles of a long run - takes
  * the integration step (pmd_external_step) and nothing else: it moves on, so
  * its servo side has nothing to do. Its columns of the row are stored before
@@ -446,12 +446,12 @@ unsigned pmd_chip_deferred_axes(const PmdChip *chip)
     return pmd_chip_run_facts(chip).deferredFilters;
 }
 
-/* Every cycle through cycle(), as pmd_chip_run runs a run of one or two
+/* Every cycle through cycle(), as pmd_chip_run_every_cycle runs a run of one or two
  * cycles, the deferred filters advanced at the end: unlike quiet_cycles,
  * cycle() samples every axis's actual position and checks its servo side
  * (position error, settling, motion complete) each cycle, so only the filters
  * of the axes in closedForm lag behind a row. */
-void pmd_chip_run_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context), void *context)
+void pmd_chip_run_every_cycle_with_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context), void *context)
 {
     PmdRunFacts facts = pmd_chip_run_facts(chip);
     int quiet = facts.quiet, loopback = chip->s.loopback, n;
@@ -474,7 +474,7 @@ void pmd_chip_run_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context)
  * rest stays at rest until a command. The first cycle resets the count of an
  * axis that moves, the last sets the previous actual position
  * (GetActualVelocity) and the actual position as every cycle would have. */
-void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record)
+void pmd_chip_run_every_cycle(PmdChip *chip, int64_t cycles, int32_t *record)
 {
     PmdRunFacts facts = pmd_chip_run_facts(chip);
     int quiet = facts.quiet, loopback = chip->s.loopback, n;

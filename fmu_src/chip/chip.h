@@ -32,8 +32,8 @@ void pmd_chip_init(PmdChip *chip, uint32_t *memory, uint32_t memorySize);
 void pmd_chip_reset(PmdChip *chip);
 
 /* What can happen in the coming cycles: the one description every path that
- * leaves work out reads (pmd_chip_run, pmd_chip_run_rows, the fast-forward and
- * its policy). Only commands and the plant's inputs change it, and a cycle's
+ * leaves work out reads (pmd_chip_run_every_cycle, _with_rows, the closed-form
+ * skip and its policy). Only commands and the plant's inputs change it, and a cycle's
  * events (a motion-complete pending, a breakpoint's action): so a run decides
  * it once, the policy before each attempt. Bit n of a mask: axis n. */
 typedef struct {
@@ -44,26 +44,34 @@ typedef struct {
                                  * brings the filter up to date (pmd_servo_advance) */
     int skippable;              /* no trace, no breakpoint armed, no motion complete pending, every axis at
                                  * rest or in an external segment with an ideal servo: the closed form of
-                                 * the segments may skip cycles (pmd_chip_fast_forward) */
+                                 * the segments may skip cycles (pmd_chip_skip_closed_form) */
 } PmdRunFacts;
 PmdRunFacts pmd_chip_run_facts(const PmdChip *chip);
 
+/* The chip's run entry points, by what they do (each leaves the chip as
+ * pmd_chip_run_one_cycle called `cycles` times would):
+ *   pmd_chip_run_one_cycle               one cycle
+ *   pmd_chip_run_every_cycle             every cycle, optionally storing the default rows
+ *   pmd_chip_run_every_cycle_with_rows   every cycle, a row callback after each
+ *   pmd_chip_run_fast_forwarding         cycles in batches, skipping in closed form where that pays
+ *   pmd_chip_skip_closed_form            the closed-form skip itself, up to max cycles at once */
+
 /* Runs one chip cycle: every axis's trajectory, then the status registers,
  * the breakpoints and the interrupt line. */
-void pmd_chip_cycle(PmdChip *chip);
+void pmd_chip_run_one_cycle(PmdChip *chip);
 
-/* Runs `cycles` cycles, exactly as pmd_chip_cycle would one by one, deciding
- * once what cannot happen during the run. With record, row k (PMD_RECORD_WORDS
- * words, pmd_chip_record) holds the registers as cycle k left them. */
+/* Runs `cycles` cycles, every one, deciding once what cannot happen during
+ * the run. With record, row k (PMD_RECORD_WORDS words, pmd_chip_record) holds
+ * the registers as cycle k left them. */
 #define PMD_RECORD_WORDS (1 + 3 * PMD_AXES)
-void pmd_chip_run(PmdChip *chip, int64_t cycles, int32_t *record);
+void pmd_chip_run_every_cycle(PmdChip *chip, int64_t cycles, int32_t *record);
 
-/* Runs `cycles` cycles with the result of pmd_chip_run(chip, cycles, NULL),
- * calling row(context) after each: every register then reads as that cycle
- * left it but the servo filter (the motor command) of the axes
+/* Runs `cycles` cycles, every one, as pmd_chip_run_every_cycle(chip, cycles,
+ * NULL) does, calling row(context) after each: every register then reads as
+ * that cycle left it but the servo filter (the motor command) of the axes
  * pmd_chip_deferred_axes names, which the run brings up to date at its end
  * (record.columns' rows, fmu_src/fmi/record.c). */
-void pmd_chip_run_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context), void *context);
+void pmd_chip_run_every_cycle_with_rows(PmdChip *chip, int64_t cycles, void (*row)(void *context), void *context);
 /* The axes (bit n: axis n) whose servo filter a run of the chip as it stands
  * leaves to its end: an ideal servo's in a quiet run. */
 unsigned pmd_chip_deferred_axes(const PmdChip *chip);
@@ -72,15 +80,16 @@ unsigned pmd_chip_deferred_axes(const PmdChip *chip);
  * and acceleration registers. */
 void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS]);
 
-/* Runs up to max cycles at once where that is exactly what running them one by
- * one would do (fastforward.c); returns how many it ran (0 if it cannot). Call
- * it after an ordinary cycle, with inputs unchanged. */
-int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max);
+/* Skips up to max cycles at once, in the closed form of the segments, where
+ * that is exactly what running them one by one would do (fastforward.c);
+ * returns how many it skipped (0 if it cannot). Call it after an ordinary
+ * cycle, with inputs unchanged. */
+int64_t pmd_chip_skip_closed_form(PmdChip *chip, int64_t max);
 
-/* Runs `cycles` cycles with the result of pmd_chip_run(chip, cycles, NULL),
- * fast-forwarding where that pays (fastforward.c): a doStep that records
- * nothing. */
-void pmd_chip_advance(PmdChip *chip, int64_t cycles);
+/* Runs `cycles` cycles with the result of pmd_chip_run_every_cycle(chip,
+ * cycles, NULL): ordinary cycles in batches, pmd_chip_skip_closed_form where
+ * a cheap bound says it pays (fastforward.c): a doStep that records nothing. */
+void pmd_chip_run_fast_forwarding(PmdChip *chip, int64_t cycles);
 
 /* Executes a batch of host words (whole commands as C-Motion sends them).
  * Get replies are appended to reply (at most PMD_BATCH_WORDS words).

@@ -1,10 +1,13 @@
-/* The chip's state: plain data, no pointers, so a copy is a snapshot.
- * Register names follow the Navigator/Pilot programmer's reference. */
+/* The chip's state: plain data, no pointers, so a copy is a snapshot; and the
+ * chip object (PmdChip) around it: that state, this process's memory block and
+ * logger. Register names follow the Navigator/Pilot programmer's reference. */
 #ifndef PMD_CHIP_TYPES_H
 #define PMD_CHIP_TYPES_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+#include "log_categories.h"     /* generated from modelDescription/log_categories.csv */
 
 #define PMD_AXES 4
 #define PMD_BUFFERS 32       /* buffer IDs 0..31; 0 and 1 belong to the trace (seed 000, 1.1) */
@@ -382,8 +385,18 @@ typedef struct {
     uint16_t ioOutput[PMD_IO_PORTS];             /* WriteIO(address, data) */
 } PmdChipState;
 
-/* The chip object (events.h): this state, its external memory and where it logs. */
-typedef struct PmdChip PmdChip;
+/* Where the chip logs: each message under its category (log_categories.csv). */
+typedef void (*PmdLogger)(void *context, PmdLogCategory category, const char *message);
+
+/* The chip: its state, its external memory and where it logs. */
+typedef struct PmdChip {
+    PmdChipState s;
+    uint32_t *memory;
+    uint32_t memorySize;     /* in 32-bit words */
+    PmdLogger logger;
+    void *logContext;
+    unsigned logMask;        /* bit per PmdLogCategory: format messages only when someone listens */
+} PmdChip;
 
 /* Command table types (the table itself is generated from modelDescription/commands.csv). */
 typedef enum { PMD_U16, PMD_I16, PMD_U32, PMD_I32, PMD_BITS } PmdFieldKind;

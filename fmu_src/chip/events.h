@@ -1,24 +1,11 @@
-/* The ground floor of the chip core: the chip as its parts share it, its log
- * and its event status bits. It depends on the chip's data only; every other
- * part of the chip reports through it, and none of it calls back up. */
+/* The ground floor of the chip core: the chip's log and its event status
+ * bits. It depends on the chip's data only (chip_types.h, where PmdChip is);
+ * every other part of the chip reports through it, and none of it calls back up. */
 #ifndef PMD_EVENTS_H
 #define PMD_EVENTS_H
 
 #include "chip_types.h"
-#include "log_categories.h"     /* generated from modelDescription/log_categories.csv */
 #include "pmd_constants.h"
-
-typedef void (*PmdLogger)(void *context, PmdLogCategory category, const char *message);
-
-/* The chip: its state, its external memory and where it logs. */
-struct PmdChip {
-    PmdChipState s;
-    uint32_t *memory;
-    uint32_t memorySize;     /* in 32-bit words */
-    PmdLogger logger;
-    void *logContext;
-    unsigned logMask;        /* bit per PmdLogCategory: format messages only when someone listens */
-};
 
 /* Logging: pmd_log formats only when the category is enabled. */
 void pmd_log(const PmdChip *chip, PmdLogCategory category, const char *format, ...)

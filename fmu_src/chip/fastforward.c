@@ -163,7 +163,7 @@ static int64_t skippable(const PmdChip *chip, int64_t max)
     return k;
 }
 
-int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
+int64_t pmd_chip_skip_closed_form(PmdChip *chip, int64_t max)
 {
     int64_t k = max > 1 ? skippable(chip, max) : 0;
     int n;
@@ -198,7 +198,7 @@ int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
     return k;
 }
 #else
-int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
+int64_t pmd_chip_skip_closed_form(PmdChip *chip, int64_t max)
 {
     (void)chip; (void)max;
     return 0;
@@ -214,7 +214,7 @@ int64_t pmd_chip_fast_forward(PmdChip *chip, int64_t max)
  * reaches long segments waits at most about as long again as it has run. */
 #define BATCH_MAX ((int64_t)1 << 20)
 
-/* A cheap upper bound on what pmd_chip_fast_forward could skip now (at most
+/* A cheap upper bound on what pmd_chip_skip_closed_form could skip now (at most
  * max): PmdRunFacts.skippable and the least remaining segment time of the
  * moving axes, without the exact bounds; 0 when it cannot apply. */
 static int64_t fast_forward_bound(const PmdChip *chip, int64_t max)
@@ -231,19 +231,19 @@ static int64_t fast_forward_bound(const PmdChip *chip, int64_t max)
     return k;
 }
 
-/* The policy: ordinary cycles in batches (pmd_chip_run), fast-forward after
+/* The policy: ordinary cycles in batches (pmd_chip_run_every_cycle), fast-forward after
  * one when the bound says it can pay. Every fast-forward follows an ordinary
- * cycle, as pmd_chip_fast_forward asks, and both are exact, so the result is
- * that of pmd_chip_run(chip, cycles, NULL) whichever way the cycles went. */
-void pmd_chip_advance(PmdChip *chip, int64_t cycles)
+ * cycle, as pmd_chip_skip_closed_form asks, and both are exact, so the result is
+ * that of pmd_chip_run_every_cycle(chip, cycles, NULL) whichever way the cycles went. */
+void pmd_chip_run_fast_forwarding(PmdChip *chip, int64_t cycles)
 {
     int64_t batch = 1;
     while (cycles > 0) {
         int64_t m = batch < cycles ? batch : cycles, k = 0;
-        pmd_chip_run(chip, m, NULL);
+        pmd_chip_run_every_cycle(chip, m, NULL);
         cycles -= m;
         if (cycles > 1 && fast_forward_bound(chip, cycles) >= FAST_FORWARD_MIN)
-            k = pmd_chip_fast_forward(chip, cycles);
+            k = pmd_chip_skip_closed_form(chip, cycles);
         cycles -= k;
         /* after a skip, one ordinary cycle (a segment read, a motion-complete event) and try again */
         batch = k > 0 ? 1 : (batch < BATCH_MAX ? 2 * batch : BATCH_MAX);

@@ -7,8 +7,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "chip.h"
+#include "events.h"
 #include "register_table.h"
+#include "registers.h"
 
 /* Where the register lives: in the chip state, in the axis, or in the axis's
  * buffered (host-written) or active profile or filter registers. */

@@ -53,7 +53,7 @@ static inline int16_t pmd_phase_command(const PmdAxis *ax, int phase)
 /* The commanded trajectory of every axis as the FMU's Reals, fraction kept:
  * counts, counts/s, counts/s^2 for a cycle of cycleTime s. The one definition
  * of axisN.position, .velocity and .acceleration, for the getters and the
- * recorder alike (record.h). */
+ * recorder alike (fmu_src/fmi/values.h). */
 typedef struct {
     double position[PMD_AXES], velocity[PMD_AXES], acceleration[PMD_AXES];
 } PmdCommandedReals;

@@ -8,22 +8,12 @@
 #include <string.h>
 
 #include "instance.h"
+#include "values.h"
 
 #define DEFAULT_CYCLE_TIME 1e-4
 #define DEFAULT_MEMORY_SIZE 0x4000     /* seed 000, 1.1: memory_size = 0x4000 (16Kx32) */
 
-void pmd_instance_log(const PmdInstance *inst, PmdStatus status, PmdLogCategory category, const char *format, ...)
-{
-    char message[8192];              /* a refused script names the places it was looked for */
-    va_list args;
-    /* errors are always logged; the rest as SetDebugLogging says */
-    if (!inst->logger || (status < PMD_ERROR && !(inst->loggingOn && (inst->categories & (1u << category)))))
-        return;
-    va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
-    va_end(args);
-    inst->logger(inst->environment, inst->instanceName, status, pmd_log_category_names[category], message);
-}
+const char pmd_model_token[] = PMD_INSTANTIATION_TOKEN;
 
 /* The chip formats a message only when its category is enabled (chip.logMask).
  * A refused command is the chip's answer, not an FMU failure: it goes out
@@ -69,7 +59,7 @@ static void set_defaults(PmdInstance *inst)
     pmd_chip_init(&inst->chip, inst->chip.memory, (uint32_t)memorySize);
 }
 
-PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment)
+PmdInstance *pmd_model_new(const char *instanceName, PmdModelLogger logger, void *environment)
 {
     PmdInstance *inst = (PmdInstance *)calloc(1, sizeof *inst);
     if (!inst)
@@ -78,7 +68,7 @@ PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger
     inst->s.memorySize = DEFAULT_MEMORY_SIZE;
     inst->chip.memory = (uint32_t *)calloc((size_t)inst->s.memorySize, sizeof(uint32_t));
     if (!inst->instanceName || !inst->chip.memory) {
-        pmd_instance_free(inst);
+        pmd_model_free(inst);
         return NULL;
     }
     strcpy(inst->instanceName, instanceName);
@@ -90,7 +80,7 @@ PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger
     return inst;
 }
 
-void pmd_instance_free(PmdInstance *inst)
+void pmd_model_free(PmdInstance *inst)
 {
     if (!inst)
         return;
@@ -107,7 +97,7 @@ void pmd_instance_free(PmdInstance *inst)
     free(inst);
 }
 
-PmdStatus pmd_instance_resources(PmdInstance *inst, const char *fn, char *resources, const char *noResources)
+PmdStatus pmd_model_resources(PmdInstance *inst, const char *fn, char *resources, const char *noResources)
 {
     char error[1024];
     inst->resources = resources;
@@ -124,7 +114,7 @@ const char *pmd_script_value(const PmdInstance *inst)
     return inst->scriptPath ? inst->scriptPath : inst->scriptStart ? inst->scriptStart : "";
 }
 
-void pmd_instance_reset(PmdInstance *inst)
+void pmd_model_reset(PmdInstance *inst)
 {
     uint32_t *memory = (uint32_t *)realloc(inst->chip.memory, DEFAULT_MEMORY_SIZE * sizeof(uint32_t));
     if (memory) {   /* shrinking cannot fail in practice; if it does, keep the larger block */
@@ -134,7 +124,7 @@ void pmd_instance_reset(PmdInstance *inst)
     set_defaults(inst);
 }
 
-PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
+PmdStatus pmd_model_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
                                 const char *const categories[])
 {
     size_t i;
@@ -166,25 +156,30 @@ PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn
     return PMD_OK;
 }
 
-static const char *state_name(PmdState state)
+const char *pmd_model_state_name(PmdState state)
 {
     switch (state) {
     case PMD_INSTANTIATED: return "instantiated";
     case PMD_INITIALIZATION_MODE: return "initialization mode";
     case PMD_STEP_MODE: return "step mode";
-    default: return "terminated";
+    case PMD_TERMINATED: return "terminated";
     }
+    return "terminated";
 }
 
-PmdInstance *pmd_begin(PmdInstance *inst, const char *fn, unsigned states)
+PmdState pmd_model_fmi_state(const PmdInstance *inst)
 {
-    if (!inst)
-        return NULL;
-    if (!(inst->s.state & states)) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not allowed in %s", fn, state_name(inst->s.state));
-        return NULL;
-    }
-    return inst;
+    return inst->s.state;
+}
+
+double pmd_model_time(const PmdInstance *inst)
+{
+    return inst->s.time;
+}
+
+void pmd_model_terminate(PmdInstance *inst)
+{
+    inst->s.state = PMD_TERMINATED;
 }
 
 int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const void *a, const void *b)
@@ -199,7 +194,7 @@ int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const vo
 /* ---- time grid ---------------------------------------------------------------- */
 
 /* What initialization loads into the sample time register: the cycleTime
- * parameter in whole microseconds (pmd_set_real checked that it is one). */
+ * parameter in whole microseconds (pmd_model2_set_real checked that it is one). */
 static uint16_t sample_time_of(double cycleTime)
 {
     return (uint16_t)floor(cycleTime * 1e6 + 0.5);
@@ -227,7 +222,7 @@ PmdGrid pmd_grid(const PmdInstanceState *s, const PmdChipState *chip)
         g.anchorCycle = s->anchorCycle;
         g.cycleTime = chip->sampleTime / 1e6;
         g.nextCycle = s->nextCycle;
-    } else {                                        /* what pmd_exit_initialization sets up */
+    } else {                                        /* what pmd_model_exit_initialization sets up */
         g.anchorTime = 0;
         g.anchorCycle = 0;
         g.cycleTime = sample_time_of(s->cycleTime) / 1e6;
@@ -309,7 +304,7 @@ static PmdStatus on_the_grid(const PmdInstance *inst, const char *fn, double t, 
 
 /* FMI 2 sets the start time before initialization: the same check as
  * EnterInitializationMode's, at the cycle time set so far (it checks again). */
-PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime)
+PmdStatus pmd_model_setup_experiment(PmdInstance *inst, const char *fn, double startTime)
 {
     PmdStatus status = on_the_grid(inst, fn, startTime, inst->s.anchorTime, inst->s.cycleTime);
     if (status == PMD_OK)
@@ -317,7 +312,7 @@ PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTi
     return status;
 }
 
-PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime)
+PmdStatus pmd_model_enter_initialization(PmdInstance *inst, const char *fn, double startTime)
 {
     PmdStatus status = on_the_grid(inst, fn, startTime, inst->s.anchorTime, inst->s.cycleTime);
     if (status != PMD_OK)
@@ -331,7 +326,7 @@ PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double sta
  * the script compiled into a local, record.data sized for record.capacity (a
  * buffer of this process, which may have changed in initialization); a refused
  * ExitInitializationMode leaves the state as it was. */
-PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
+PmdStatus pmd_model_exit_initialization(PmdInstance *inst, const char *fn)
 {
     PmdScript script;
     const char *value = pmd_script_value(inst);
@@ -388,9 +383,9 @@ PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn)
     return PMD_OK;
 }
 
-PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
+PmdStatus pmd_model_do_step(PmdInstance *inst, const char *fn, double t, double h)
 {
-    int64_t end, recorded = 0, ran = 0;
+    int64_t end, k, recorded = 0, ran = 0;
     double x, fine;
     PmdGrid g = pmd_grid(&inst->s, &inst->chip.s);
     if (!isfinite(t) || !isfinite(h) || h <= 0) {
@@ -450,30 +445,29 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
             end = pmd_cycles_before(&g, t + h);
             continue;
         }
+        k = cycles_to_skip(inst, end);
         if (inst->s.recordEnabled) {               /* every cycle recorded: no fast-forward */
             /* Rows past the room (record.capacity, or the memory lent) are not recorded: the grid may have
              * restarted finer inside the step, up to 65 535 cycles for each one the room was checked for.
              * Those cycles record nothing, so they run as an unrecorded step runs them, fast-forwarded where
              * that pays: one by one, a step that passed the check could run for days. */
-            int64_t k = cycles_to_skip(inst, end), room = pmd_record_room(inst) - recorded;
-            int64_t r = k < room ? k : room;
+            int64_t room = pmd_record_room(inst) - recorded, r = k < room ? k : room;
             inst->recordRowBytes = inst->columns.rowBytes;
-            if (inst->columns.count) {             /* record.columns: cycle by cycle (record.c) */
-                pmd_record_cycles(inst, r, recorded);     /* nextCycle advanced row by row */
-                inst->s.nextCycle += k - r;
+            if (inst->columns.count) {             /* record.columns: a row after each cycle (record.c) */
+                PmdGrid now = pmd_grid(&inst->s, &inst->chip.s);
+                pmd_record_cycles(inst, &now, r, recorded);
             } else {
                 /* the rows are int32 words: record.data's buffer is aligned, lent memory was checked above */
-                pmd_chip_run(&inst->chip, r, (int32_t *)(void *)pmd_record_rows(inst) + (size_t)recorded * PMD_RECORD_WORDS);
-                inst->s.nextCycle += k;
+                int32_t *rows = (int32_t *)(void *)pmd_record_rows(inst) + (size_t)recorded * PMD_RECORD_WORDS;
+                pmd_chip_run_every_cycle(&inst->chip, r, rows);
             }
-            pmd_chip_advance(&inst->chip, k - r);
+            pmd_chip_run_fast_forwarding(&inst->chip, k - r);
             recorded += r;
             ran += k;
         } else {                                   /* nothing recorded: fast-forward where it pays */
-            int64_t k = cycles_to_skip(inst, end);
-            pmd_chip_advance(&inst->chip, k);
-            inst->s.nextCycle += k;
+            pmd_chip_run_fast_forwarding(&inst->chip, k);
         }
+        inst->s.nextCycle += k;                    /* the grid is the instance's: it alone advances it */
     }
     inst->s.time = t + h;
     inst->recordCount = (uint32_t)recorded;
@@ -489,7 +483,7 @@ PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h)
 
 /* ---- ports ---------------------------------------------------------------- */
 
-void pmd_set_begin(PmdInstance *inst)
+void pmd_model_set_begin(PmdInstance *inst)
 {
     free(inst->staged.memory);                      /* left by a call that was refused after its check */
     inst->staged.memory = NULL;
@@ -503,7 +497,7 @@ void pmd_set_begin(PmdInstance *inst)
  * fits the memory (as it will be), a new memorySize room for every buffer the
  * host has set up and for a pending write. The new memory block is allocated
  * last, so that nothing can fail once values are applied. */
-PmdStatus pmd_set_check(PmdInstance *inst, const char *fn)
+PmdStatus pmd_model_set_check(PmdInstance *inst, const char *fn)
 {
     uint32_t size = (uint32_t)inst->staged.memorySize;
     int id;
@@ -560,41 +554,45 @@ void pmd_commit_ports(PmdInstance *inst)
     }
 }
 
+/* Gets see pending port writes executed first: a host reads its replies at the
+ * time it wrote the batch (CONTRACT 2.2). */
+void pmd_model_commit(PmdInstance *inst)
+{
+    if (inst->s.state != PMD_TERMINATED)
+        pmd_commit_ports(inst);
+}
+
 /* ---- variables ------------------------------------------------------------- */
 
 static const char *const type_names[] = {"Real", "Integer", "Boolean", "String", "Binary"};
 static const PmdVariable *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdType type);
 
-int pmd_variable_given(PmdInstance *inst, const char *fn, unsigned vr, int type)
+int pmd_model2_given(PmdInstance *inst, const char *fn, unsigned vr, PmdFmi2Type type)
 {
-    return lookup(inst, fn, vr, (PmdType)type) != NULL;
+    static const PmdType types[] = {[PMD_FMI2_REAL] = PMD_REAL, [PMD_FMI2_INTEGER] = PMD_INTEGER,
+                                    [PMD_FMI2_BOOLEAN] = PMD_BOOLEAN};
+    return lookup(inst, fn, vr, types[type]) != NULL;
+}
+
+int pmd_variable_row(const PmdInstance *inst, const char *fn, unsigned vr, const short *of_vr, unsigned max)
+{
+    if (vr > max || of_vr[vr] < 0) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
+        return -1;
+    }
+    return of_vr[vr];
 }
 
 static const PmdVariable *lookup(PmdInstance *inst, const char *fn, unsigned vr, PmdType type)
 {
-    const PmdVariable *v;
-    if (vr > PMD_VR_MAX || pmd_variable_of_vr[vr] < 0) {
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
-        return NULL;
-    }
-    v = &pmd_variables[pmd_variable_of_vr[vr]];
-    if (v->type != type) {
+    int row = pmd_variable_row(inst, fn, vr, pmd_variable_of_vr, PMD_VR_MAX);
+    const PmdVariable *v = row < 0 ? NULL : &pmd_variables[row];
+    if (v && v->type != type) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a %s, not %s", fn, vr,
                          v->name, type_names[v->type], type_names[type]);
         return NULL;
     }
     return v;
-}
-
-PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const char *type)
-{
-    if (vr <= PMD_VR_MAX && pmd_variable_of_vr[vr] >= 0)
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is a %s, not %s", fn, vr,
-                         pmd_variables[pmd_variable_of_vr[vr]].name,
-                         type_names[pmd_variables[pmd_variable_of_vr[vr]].type], type);
-    else
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: no variable has value reference %u", fn, vr);
-    return PMD_ERROR;
 }
 
 /* Parameters are fixed: settable before the end of initialization only;
@@ -628,10 +626,10 @@ static PmdStatus unhandled(PmdInstance *inst, const char *fn, const PmdVariable 
  * for other variables index is an array element and no axis exists. */
 #define AXIS_OF(v) (&inst->chip.s.axis[(v)->index])
 
-/* Each case is a row of record.h's tables (PMD_REAL_VALUES, ...), the values record.columns records. */
+/* Each case is a row of values.h's tables (PMD_REAL_VALUES, ...), the values record.columns records. */
 #define VALUE_CASE(family, expression) case family: *value = (expression); break;
 
-PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value)
+PmdStatus pmd_model2_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
     PmdGrid grid;
@@ -652,7 +650,7 @@ PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *v
     return PMD_OK;
 }
 
-PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value)
+PmdStatus pmd_model2_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
     unsigned i;
@@ -666,7 +664,7 @@ PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_
     return PMD_OK;
 }
 
-PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value)
+PmdStatus pmd_model2_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
     unsigned i;
@@ -694,7 +692,7 @@ int pmd_cycle_time_valid(double seconds)
     return us >= 0.5 && us < 65535.5 && fabs(us - floor(us + 0.5)) <= 1e-9 * us;
 }
 
-PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply)
+PmdStatus pmd_model2_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_REAL);
     if (!v || !settable(inst, fn, v))
@@ -722,7 +720,7 @@ PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double va
 }
 
 /* A new memory size keeps the words both sizes have and every register
- * (pmd_set_check made sure the buffers fit and allocated the block). */
+ * (pmd_model_set_check made sure the buffers fit and allocated the block). */
 static void set_memory_size(PmdInstance *inst, int32_t words)
 {
     uint32_t *memory = inst->staged.memory;
@@ -790,7 +788,7 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
         return unhandled(inst, fn, v, "Integer setter");
     }
     if (!apply) {
-        switch (v->family) {                                /* what pmd_set_check looks at */
+        switch (v->family) {                                /* what pmd_model_set_check looks at */
         case VAR_memorySize: inst->staged.memorySize = (int32_t)value; break;
         case VAR_memory_address: inst->staged.memoryAddress = (int32_t)value; break;
         case VAR_memory_count: inst->staged.memoryCount = (int32_t)value; break;
@@ -859,7 +857,41 @@ PmdStatus pmd_set_memory_data(PmdInstance *inst, const char *fn, unsigned vr, co
     return PMD_OK;
 }
 
-PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply)
+/* How many value references from vr[0] on are consecutive elements of
+ * memory.data (at most n), a strobe's block (Chip.write_memory sets
+ * memory.data[1..64] in one call); below 2 none: a lone element, and any
+ * other order, takes the per-value path. */
+static size_t memory_data_run(const unsigned vr[], size_t n)
+{
+    size_t span = pmd_memory_data_span(vr[0], n), run, k;
+    unsigned differ = 0;
+    if (span < 2)
+        return span;
+    for (k = 1; k < span; k++)          /* no early exit: a whole block compares in one vectorized pass */
+        differ |= vr[k] ^ (unsigned)(vr[0] + k);
+    if (!differ)
+        return span;
+    for (run = 1; vr[run] == vr[0] + run; run++)
+        continue;                       /* ends before span: an element there differs */
+    return run;
+}
+
+/* FMI 2's Integers from vr[0] on: a run of memory.data as one block
+ * (pmd_set_memory_data: the same checks, messages and order as value by
+ * value, without a lookup and two switches per word and pass), else one value. */
+PmdStatus pmd_model2_set_integers(PmdInstance *inst, const char *fn, const unsigned vr[], size_t n,
+                                  const int32_t value[], int apply, size_t *taken)
+{
+    size_t run = memory_data_run(vr, n);
+    if (run > 1) {
+        *taken = run;
+        return pmd_set_memory_data(inst, fn, vr[0], value, 1, run, apply);
+    }
+    *taken = 1;
+    return pmd_set_integer(inst, fn, vr[0], value[0], apply);
+}
+
+PmdStatus pmd_model2_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
     if (!v || !settable(inst, fn, v))
@@ -881,7 +913,7 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
     return PMD_OK;
 }
 
-PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value)
+PmdStatus pmd_model_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_STRING);
     if (!v)
@@ -894,7 +926,7 @@ PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const c
     return PMD_OK;
 }
 
-PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply)
+PmdStatus pmd_model_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_STRING);
     char *copy;
@@ -921,7 +953,8 @@ PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const c
     return PMD_OK;
 }
 
-PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value, size_t *size)
+PmdStatus pmd_model3_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value,
+                                size_t *size)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BINARY);
     if (!v)

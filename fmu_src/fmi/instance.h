@@ -1,203 +1,47 @@
 /* One FMU instance: the chip, its memory, the host and dual-port memory
  * ports, the parameters and the time grid. Declared state (PmdInstanceState,
  * the chip's PmdChipState) apart from the process shell (PmdInstance).
- * Independent of the FMI version; fmi2.c and fmi3.c map the FMI APIs onto it. */
+ * Independent of the FMI version: the chip's model (fmi_common/model.h), which
+ * the FMI shells (fmi_common/fmi2.c, fmi3.c) map the FMI APIs onto; this file
+ * declares what the chip's model files (instance.c, record.c, state.c, model3.c)
+ * share beyond that API. */
 #ifndef PMD_INSTANCE_H
 #define PMD_INSTANCE_H
 
 #include <stddef.h>
 
-#include "chip.h"
+#include "instance_types.h"
+#include "messages.h"
 #include "record.h"
-#include "script.h"
-#include "variables.h"
 
-#define PMD_MAX_MEMORY_WORDS (1u << 26)   /* 256 MiB of external memory at most */
+/* The model API (model.h) is this instance's public face; what follows is
+ * shared by the chip's model files beyond it. */
 
-typedef enum { PMD_OK, PMD_WARNING, PMD_DISCARD, PMD_ERROR, PMD_FATAL } PmdStatus;
-
-/* The FMI states, as bits so that a function can name the states it is legal in. */
-typedef enum {
-    PMD_INSTANTIATED = 1 << 0,
-    PMD_INITIALIZATION_MODE = 1 << 1,
-    PMD_STEP_MODE = 1 << 2,
-    PMD_TERMINATED = 1 << 3
-} PmdState;
-
-typedef void (*PmdInstanceLogger)(void *environment, const char *instanceName, PmdStatus status,
-                                  const char *category, const char *message);
-
-/* The instance's declared state: plain data, no pointer, nothing of this
- * process. An FMU state (state.c) is this struct, the chip's (chip.s) and the
- * memory words, copied field by field by the list in state_fields.c. */
-typedef struct {
-    PmdState state;
-
-    /* parameters */
-    double cycleTime;                /* initialization loads it into the chip's sample time register */
-    int32_t memorySize;
-
-    /* The time grid: chip cycle k runs at anchorTime + (k - anchorCycle) * the
-     * cycle time, which is the chip's sample time register (pmd_grid); nextCycle
-     * is the next k to run, time the last communication point. A host batch or
-     * script step that changes the sample time restarts the grid at the next
-     * cycle (CONTRACT 2.2). Initialization sets it up at time 0, cycle 0. */
-    double time;
-    int64_t nextCycle;
-    double anchorTime;
-    int64_t anchorCycle;
-
-    /* host port */
-    int32_t hostWord[PMD_BATCH_WORDS];
-    int32_t hostWordCount, hostStrobe, hostAck;
-    int32_t hostReply[PMD_BATCH_WORDS];
-    int32_t hostReplyCount, hostError;
-
-    /* dual-port memory port */
-    int32_t memoryAddress, memoryCount, memoryStrobe, memoryStrobeSeen;
-    int32_t memoryData[PMD_BATCH_WORDS];
-
-    /* how far the script ran */
-    size_t scriptNext;               /* the next step to run */
-    uint64_t scriptDigest;           /* of the compiled script it runs (0: none): a snapshot runs on only with it */
-
-    uint8_t recordEnabled;           /* record.enabled */
-} PmdInstanceState;
-
-/* The process shell around the declared state: names, hooks and buffers of
- * this process, which an FMU state neither holds nor restores. */
-typedef struct {
-    PmdInstanceState s;
-    PmdChip chip;                    /* chip.s is declared state; its memory block and logger are this process's */
-    char *instanceName;
-    PmdInstanceLogger logger;
-    void *environment;
-    int loggingOn;
-    unsigned categories;             /* bit per PmdLogCategory enabled by SetDebugLogging */
-
-    /* the script parameter, compiled at the end of initialization: a path or the
-     * script's text (docs/scripts.md); NULL: its start value, scriptStart (a
-     * packed FMU's, read from its resources at instantiation) or "" */
-    char *scriptPath;
-    char *scriptStart;
-    PmdScript script;
-    /* where relative paths are looked for: the FMU's resources folder, as the
-     * importer named it at instantiation (ending in a separator), or NULL and why */
-    char *resources;
-    const char *noResources;
-
-    /* bulk recording (record.data; FMI 2: pmdfmu_fmi2GetRecordData): a row per
-     * cycle of the last doStep, PMD_RECORD_WORDS int32 or the columns of
-     * record.columns (record.c). The buffer, its size and record.columns are
-     * this process's: a restored state keeps the instance's record.capacity
-     * and record.columns and has recorded nothing yet. */
-    uint32_t recordCapacity;         /* cycles (the record.capacity parameter) */
-    int32_t *record;
-    uint32_t recordRows;             /* cycles the record buffer holds (record.capacity when it was allocated) */
-    size_t recordBytes;              /* bytes the record buffer holds */
-    uint32_t recordCount;            /* cycles recorded by the last doStep */
-    uint32_t recordRowBytes;         /* bytes of each of those rows (as record.columns stood at that doStep) */
-    /* FMI 2: the caller's memory the rows go to instead of the buffer while it
-     * lends it (pmdfmu_fmi2SetRecordBuffer), NULL when it does not; the FMU
-     * never frees it nor keeps it past the caller's NULL or a reset */
-    unsigned char *recordLent;
-    size_t recordLentBytes;
-    PmdRecordColumns columns;        /* record.columns */
-    PmdRecordColumns stagedColumns;  /* a set call's new record.columns, compiled by its check */
-
-    /* A set call checks every value, then what they ask for together (a memory
-     * write that must fit the memory, a memory size that must hold the
-     * buffers), then applies them: a refused call changes nothing. */
-    struct {
-        int32_t memorySize, memoryAddress, memoryCount, memoryStrobe;
-        uint32_t *memory;            /* the new memory block of a memorySize change, allocated by the check */
-    } staged;
-} PmdInstance;
-
-#define PMD_MAX_RECORD_CYCLES (1u << 24)
-
-PmdInstance *pmd_instance_new(const char *instanceName, PmdInstanceLogger logger, void *environment);
-void pmd_instance_free(PmdInstance *inst);
-/* Instantiation: the FMU's resources folder (allocated, taken over; NULL with
- * why if the importer named none that is a local folder), and the start value
- * a packed FMU keeps there. PMD_ERROR if that cannot be read. */
-PmdStatus pmd_instance_resources(PmdInstance *inst, const char *fn, char *resources, const char *noResources);
 /* The `script` parameter's value: as set, or its start value. */
 const char *pmd_script_value(const PmdInstance *inst);
-void pmd_instance_reset(PmdInstance *inst);
-/* nCategories = 0: all categories; an unknown category is an error and changes nothing. */
-PmdStatus pmd_set_debug_logging(PmdInstance *inst, const char *fn, int loggingOn, size_t nCategories,
-                                const char *const categories[]);
-PmdStatus pmd_setup_experiment(PmdInstance *inst, const char *fn, double startTime);
 /* Whether seconds is a cycle time the sample time register holds: whole microseconds, 1..65535. */
 int pmd_cycle_time_valid(double seconds);
 
-/* The time grid as it stands: chip cycle k runs at anchorTime + (k - anchorCycle)
- * * cycleTime, nextCycle is the next k to run. From the end of initialization
- * on, the declared anchor and nextCycle, and the chip's sample time register
- * in seconds (sampleTime / 1e6, correctly rounded); before it, the grid
- * initialization will set up: anchored at time 0, cycle 0, with the cycleTime
- * parameter as the register will hold it. */
-typedef struct {
-    double anchorTime, cycleTime;
-    int64_t anchorCycle, nextCycle;
-} PmdGrid;
+/* The time grid as it stands (PmdGrid, instance_types.h): from the end of
+ * initialization on, the declared anchor and nextCycle, and the chip's sample
+ * time register in seconds (sampleTime / 1e6, correctly rounded); before it,
+ * the grid initialization will set up: anchored at time 0, cycle 0, with the
+ * cycleTime parameter as the register will hold it. */
 PmdGrid pmd_grid(const PmdInstanceState *s, const PmdChipState *chip);
 /* The grid index of the first cycle at or after t (within a master's rounding). */
 int64_t pmd_cycles_before(const PmdGrid *grid, double t);
-PmdStatus pmd_enter_initialization(PmdInstance *inst, const char *fn, double startTime);
-PmdStatus pmd_exit_initialization(PmdInstance *inst, const char *fn);
-PmdStatus pmd_do_step(PmdInstance *inst, const char *fn, double t, double h);
-/* Allocates record.data's buffer (record.capacity cycles of record.columns' rows) unless it
- * exists; never in doStep. A larger block keeps the rows recorded. */
-PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn);
-/* record.data's bytes: the rows the last doStep recorded (lent until the next call). */
-void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size);
-/* FMI 2's pmdfmu_fmi2SetRecordBuffer: the caller's memory for the rows of the recording doSteps that follow, or
- * NULL for record.data's buffer again. */
-void pmd_record_lend(PmdInstance *inst, void *rows, size_t bytes);
-/* Where a recording doStep writes its rows, and how many fit there (record.columns as it stands). */
-unsigned char *pmd_record_rows(const PmdInstance *inst);
-int64_t pmd_record_room(const PmdInstance *inst);
-
-/* record.columns (record.c). Compiles a value: names checked and resolved to
- * value references once; PMD_ERROR with a message naming fn, the value and
- * the reason, *out untouched. */
-PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const char *text, PmdRecordColumns *out);
-void pmd_record_columns_free(PmdRecordColumns *columns);
-/* The set call's staged value: checked (and the buffer grown if recording) with apply = 0, installed with 1. */
-PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *text, int apply);
-/* A recording doStep with record.columns: runs `cycles` cycles one by one, each
- * ending as a one-cycle doStep ends (nextCycle advanced), and writes each
- * cycle's row into record.data from row `first` on. */
-void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first);
-
-/* Returns inst if a call to fn is legal in its state (a mask of PmdState), else logs and returns NULL. */
-PmdInstance *pmd_begin(PmdInstance *inst, const char *fn, unsigned states);
 /* Checks that arrays holding n values are not NULL; logs and returns 0 if one is. */
 int pmd_arrays_given(const PmdInstance *inst, const char *fn, size_t n, const void *a, const void *b);
 
-#define PMD_ANY_STATE (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
-#define PMD_GET_STATES (PMD_INITIALIZATION_MODE | PMD_STEP_MODE | PMD_TERMINATED)
-#define PMD_SET_STATES (PMD_INSTANTIATED | PMD_INITIALIZATION_MODE | PMD_STEP_MODE)
+/* The row of a generated variable table that holds vr (of_vr: the row by value
+ * reference, -1 none; max: the largest value reference), or -1, logged as "no
+ * variable has value reference vr": the FMI 2 table's and variables3.h's alike. */
+int pmd_variable_row(const PmdInstance *inst, const char *fn, unsigned vr, const short *of_vr, unsigned max);
 
-/* Variable access, one value at a time. fn names the FMI function in messages.
- *
- * A set call is all or nothing: pmd_set_begin, then every value's set with
- * apply = 0 (checks it and stages it), then pmd_set_check (checks what the
- * staged values ask for together), then every set again with apply = 1.
- * Integer values come as the FMI type holds them (FMI 3 UInt32 unsigned), so
- * that a message shows the value the caller sent. */
-void pmd_set_begin(PmdInstance *inst);
-PmdStatus pmd_set_check(PmdInstance *inst, const char *fn);
-/* Whether vr is a variable of this type (logs and returns 0 if not): gets check every value reference first. */
-int pmd_variable_given(PmdInstance *inst, const char *fn, unsigned vr, int type);
-PmdStatus pmd_get_real(PmdInstance *inst, const char *fn, unsigned vr, double *value);
-PmdStatus pmd_get_integer(PmdInstance *inst, const char *fn, unsigned vr, int32_t *value);
-PmdStatus pmd_get_boolean(PmdInstance *inst, const char *fn, unsigned vr, int *value);
-PmdStatus pmd_set_real(PmdInstance *inst, const char *fn, unsigned vr, double value, int apply);
+/* Variable access beyond model.h's, one value at a time (model.h: a set call
+ * is all or nothing). Integer values come as the FMI type holds them (FMI 3
+ * UInt32 unsigned), so that a message shows the value the caller sent. */
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_t value, int apply);
-PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply);
 /* A block of memory.data (a strobe's words, Chip.write_memory), set at once
  * rather than value by value, with the same checks, messages and staging.
  * pmd_memory_data_span: how many of the n value references vr, vr + 1, ..
@@ -208,18 +52,8 @@ PmdStatus pmd_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int va
 size_t pmd_memory_data_span(unsigned vr, size_t n);
 PmdStatus pmd_set_memory_data(PmdInstance *inst, const char *fn, unsigned vr, const void *words, int isSigned,
                               size_t n, int apply);
-PmdStatus pmd_get_string(PmdInstance *inst, const char *fn, unsigned vr, const char **value);
-PmdStatus pmd_get_binary(PmdInstance *inst, const char *fn, unsigned vr, const unsigned char **value, size_t *size);
-PmdStatus pmd_set_string(PmdInstance *inst, const char *fn, unsigned vr, const char *value, int apply);
-PmdStatus pmd_no_variable(PmdInstance *inst, const char *fn, unsigned vr, const char *type);
 
 /* Executes pending host and memory port writes (host batch first; CONTRACT 2.1). */
 void pmd_commit_ports(PmdInstance *inst);
-
-void pmd_instance_log(const PmdInstance *inst, PmdStatus status, PmdLogCategory category, const char *format, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
 
 #endif

@@ -11,7 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "instance.h"
+#include "messages.h"
+#include "record.h"
+#include "values.h"
 
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "record.data's rows are little-endian as the platform stores them"
@@ -223,7 +225,7 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
     return PMD_OK;
 }
 
-/* Each case is a row of record.h's tables, the getters' (instance.c): the
+/* Each case is a row of values.h's tables, the getters' (instance.c): the
  * value as its getter returns it, stored at each of the family's columns in
  * its width (a family has one type, hence one width), the columns of a family
  * one after the other (record.columns is kept in that order): one switch per
@@ -244,14 +246,6 @@ PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *
                    else memcpy(row + c->offset, &n, sizeof n))   /* 4: an Integer is 16 or 32 bits (compile) */
 #define BOOLEAN_COLUMN(F, expression) FAMILY_COLUMNS(F, row[c->offset] = (expression) != 0)
 
-/* A family the tables have no row for: no column has one (record.columns was checked when set), and
- * telling GCC or Clang so leaves the range check out of the switch. */
-#if defined(__GNUC__)
-#define UNREACHABLE() __builtin_unreachable()
-#else
-#define UNREACHABLE() ((void)0)
-#endif
-
 /* A row: the chip time, then each column (checked when set: its family is
  * one of the tables', of the column's type). g: the grid as it stands. */
 static inline void record_row(PmdInstance *inst, const PmdGrid *g, unsigned char *row)
@@ -264,16 +258,25 @@ static inline void record_row(PmdInstance *inst, const PmdGrid *g, unsigned char
         pmd_commanded_reals(&inst->chip, g->cycleTime, &all);
     memcpy(row, &time, sizeof time);
     while (c < last) {
-        switch (c->family) {
+        switch ((PmdFamily)c->family) {         /* every family: a new one is a build error here */
         PMD_REAL_VALUES(REAL_COLUMN)
         PMD_INTEGER_VALUES(INTEGER_COLUMN)
         PMD_BOOLEAN_VALUES(BOOLEAN_COLUMN)
-        default: UNREACHABLE();                 /* checked when set */
+        case VAR_script:
+        case VAR_record_columns:
+        case VAR_record_data:
+        case VAR_FAMILY_COUNT:
+            /* no number: pmd_record_columns_compile refuses such a column, and were one here, it would
+             * keep the bytes it has (the row's layout stays that of record.columns) */
+            c++;
+            break;
         }
     }
 }
 
-/* A row per cycle of a chip run (pmd_chip_run_rows): where it goes, the grid. */
+/* A row per cycle of a chip run (pmd_chip_run_every_cycle_with_rows): where it
+ * goes, and the grid as the row reads it (its own copy: the instance's
+ * nextCycle is the instance's to advance). */
 typedef struct {
     PmdInstance *inst;
     PmdGrid grid;
@@ -283,7 +286,7 @@ typedef struct {
 static void next_row(void *context)
 {
     Rows *r = (Rows *)context;
-    r->grid.nextCycle = ++r->inst->s.nextCycle;
+    r->grid.nextCycle++;
     record_row(r->inst, &r->grid, r->row);
     r->row += r->inst->columns.rowBytes;
 }
@@ -299,25 +302,26 @@ static int reads_deferred(const PmdInstance *inst, unsigned deferred)
     return 0;
 }
 
-/* The cycles as one chip run with a row after each cycle (pmd_chip_run_rows)
- * unless a column shows an ideal servo's filter, which such a run brings up to
- * date at its end (chip.c): then each cycle alone (pmd_chip_run of one cycle).
- * The grid stays as it is: a cycle changes no part of it (only a host batch or
- * a script step changes the sample time, and they run between calls); each
- * row has its own next cycle. */
-void pmd_record_cycles(PmdInstance *inst, int64_t cycles, int64_t first)
+/* The cycles as one chip run with a row after each cycle
+ * (pmd_chip_run_every_cycle_with_rows) unless a column shows an ideal servo's
+ * filter, which such a run brings up to date at its end (chip.c): then each
+ * cycle alone (pmd_chip_run_every_cycle of one cycle). The grid stays as it
+ * is: a cycle changes no part of it (only a host batch or a script step
+ * changes the sample time, and they run between calls); each row has its own
+ * next cycle. */
+void pmd_record_cycles(PmdInstance *inst, const PmdGrid *grid, int64_t cycles, int64_t first)
 {
     Rows r;
     int64_t i;
     r.inst = inst;
-    r.grid = pmd_grid(&inst->s, &inst->chip.s);
+    r.grid = *grid;
     r.row = pmd_record_rows(inst) + (size_t)first * inst->columns.rowBytes;
     if (!reads_deferred(inst, pmd_chip_deferred_axes(&inst->chip))) {
-        pmd_chip_run_rows(&inst->chip, cycles, next_row, &r);
+        pmd_chip_run_every_cycle_with_rows(&inst->chip, cycles, next_row, &r);
         return;
     }
     for (i = 0; i < cycles; i++) {
-        pmd_chip_run(&inst->chip, 1, NULL);
+        pmd_chip_run_every_cycle(&inst->chip, 1, NULL);
         next_row(&r);
     }
 }

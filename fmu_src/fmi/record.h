@@ -1,88 +1,35 @@
-/* record.columns: which values a recording doStep writes into record.data
- * besides the chip time (record.c). Independent of the FMI version. */
+/* Bulk recording (record.c): record.data's buffer, the memory an FMI 2
+ * caller lends for it, and record.columns, the values a recording doStep
+ * writes per cycle besides the chip time. Independent of the FMI version. */
 #ifndef PMD_RECORD_H
 #define PMD_RECORD_H
 
-#include <stddef.h>
-#include <stdint.h>
+#include "instance_types.h"
 
-/* One column: a variable of variables.csv (its FMI 2 scalar), resolved once
- * to the family and index its value is read by (PMD_*_VALUES below). */
-typedef struct {
-    unsigned short family;           /* PmdFamily */
-    unsigned short index;            /* the axis or array element */
-    unsigned char bytes;             /* of its FMI 3 type: 8, 4, 2 (the low bits), 1 (a Boolean: 0 or 1) */
-    uint32_t offset;                 /* of its value in a row */
-} PmdRecordColumn;
+/* Allocates record.data's buffer (record.capacity cycles of record.columns' rows) unless it
+ * exists; never in doStep. A larger block keeps the rows recorded. */
+PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn);
+/* record.data's bytes: the rows the last doStep recorded (lent until the next call). */
+void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size);
+/* FMI 2's pmdfmu_fmi2SetRecordBuffer: the caller's memory for the rows of the recording doSteps that follow, or
+ * NULL for record.data's buffer again. */
+void pmd_record_lend(PmdInstance *inst, void *rows, size_t bytes);
+/* Where a recording doStep writes its rows, and how many fit there (record.columns as it stands). */
+unsigned char *pmd_record_rows(const PmdInstance *inst);
+int64_t pmd_record_room(const PmdInstance *inst);
 
-/* The value of each Real, Integer and Boolean variable: one table (family,
- * expression) per type, expanded into the getters' switches (pmd_get_real,
- * _integer, _boolean in instance.c) and into the record.columns readers'
- * (record.c), so that a getter and a column cannot disagree - the same
- * expression, hence the same floating-point operations. An expression reads
- * inst (PmdInstance *), i (the variable's index: its axis 0..3 or array
- * element) and, a Real, g (const PmdGrid *, the grid as it stands) and reals
- * (const PmdCommandedReals *, pmd_commanded_reals at g's cycle time: the
- * readers compute it where a PMD_READS_REALS family is read). */
-#define PMD_AXIS(i) (&inst->chip.s.axis[(i)])
-#define PMD_READS_REALS(family) \
-    ((family) == VAR_axis_position || (family) == VAR_axis_velocity || (family) == VAR_axis_acceleration)
-#define PMD_REAL_VALUES(X) \
-    X(VAR_time, inst->s.time) \
-    X(VAR_cycleTime, inst->s.cycleTime) \
-    X(VAR_activeCycleTime, g->cycleTime) \
-    X(VAR_nextCycleTime, g->anchorTime + (double)(g->nextCycle - g->anchorCycle) * g->cycleTime) \
-    X(VAR_nextCycle, (double)g->nextCycle) \
-    X(VAR_script_lastCycle, (double)inst->script.lastCycle) \
-    X(VAR_axis_position, reals->position[i]) \
-    X(VAR_axis_velocity, reals->velocity[i]) \
-    X(VAR_axis_acceleration, reals->acceleration[i]) \
-    /* full scale is the 16-bit command's 2^15 (GetCurrentMotorCommand: 100/2^15 % per count) */ \
-    X(VAR_axis_motorOutput, PMD_AXIS(i)->filter.output / 32768.0)
-#define PMD_INTEGER_VALUES(X) \
-    X(VAR_memorySize, inst->s.memorySize) \
-    X(VAR_chipTime, pmd_int32(inst->chip.s.time)) \
-    X(VAR_axis_commandedPosition, PMD_AXIS(i)->trajectory.position) \
-    X(VAR_axis_commandedVelocity, pmd_commanded_velocity(&PMD_AXIS(i)->trajectory)) \
-    X(VAR_axis_commandedAcceleration, pmd_commanded_acceleration(&PMD_AXIS(i)->trajectory)) \
-    X(VAR_axis_activityStatus, pmd_activity_status(&inst->chip, i)) \
-    X(VAR_axis_eventStatus, PMD_AXIS(i)->eventStatus) \
-    X(VAR_axis_motorCommand, PMD_AXIS(i)->filter.output) \
-    X(VAR_axis_actualPosition, PMD_AXIS(i)->actualPositionInput) \
-    X(VAR_host_word, inst->s.hostWord[i]) \
-    X(VAR_host_wordCount, inst->s.hostWordCount) \
-    X(VAR_host_strobe, inst->s.hostStrobe) \
-    X(VAR_host_ack, inst->s.hostAck) \
-    X(VAR_host_reply, inst->s.hostReply[i]) \
-    X(VAR_host_replyCount, inst->s.hostReplyCount) \
-    X(VAR_host_error, inst->s.hostError) \
-    X(VAR_memory_address, inst->s.memoryAddress) \
-    X(VAR_memory_count, inst->s.memoryCount) \
-    X(VAR_memory_strobe, inst->s.memoryStrobe) \
-    X(VAR_memory_data, inst->s.memoryData[i]) \
-    X(VAR_analog, inst->chip.s.analogInput[i]) \
-    X(VAR_io_input, inst->chip.s.ioInput[i]) \
-    X(VAR_io_output, inst->chip.s.ioOutput[i]) \
-    X(VAR_record_capacity, (int32_t)inst->recordCapacity) \
-    X(VAR_record_rowSize, (int32_t)inst->columns.rowBytes) \
-    X(VAR_script_axes, inst->script.axes)
-#define PMD_BOOLEAN_VALUES(X) \
-    X(VAR_loopback, inst->chip.s.loopback) \
-    X(VAR_axis_positiveLimit, PMD_AXIS(i)->positiveLimitInput) \
-    X(VAR_axis_negativeLimit, PMD_AXIS(i)->negativeLimitInput) \
-    X(VAR_axis_home, PMD_AXIS(i)->homeInput) \
-    X(VAR_record_enabled, inst->s.recordEnabled) \
-    X(VAR_host_interrupt, pmd_host_interrupt(&inst->chip))
-
-/* record.columns compiled: count 0 is "" (the default row of PMD_RECORD_WORDS int32).
- * The columns are kept in the order of their families (each at its offset in
- * the row): a row switches once per family, then reads each of its columns. */
-typedef struct {
-    char *text;                      /* the value as set; NULL: "" */
-    PmdRecordColumn *column;
-    size_t count;
-    int readsReals;                  /* a column's family is PMD_READS_REALS */
-    uint32_t rowBytes;               /* of one row of record.data */
-} PmdRecordColumns;
+/* record.columns. Compiles a value: names checked and resolved to
+ * value references once; PMD_ERROR with a message naming fn, the value and
+ * the reason, *out untouched. */
+PmdStatus pmd_record_columns_compile(PmdInstance *inst, const char *fn, const char *text, PmdRecordColumns *out);
+void pmd_record_columns_free(PmdRecordColumns *columns);
+/* The set call's staged value: checked (and the buffer grown if recording) with apply = 0, installed with 1. */
+PmdStatus pmd_record_columns_set(PmdInstance *inst, const char *fn, const char *text, int apply);
+/* A recording doStep with record.columns: runs `cycles` cycles, every one,
+ * and writes each cycle's row into record.data from row `first` on, as the
+ * getters would read it after that cycle. grid: the instance's grid as it
+ * stands (a cycle changes no part of it); row k reads its next cycle as
+ * grid->nextCycle + k + 1, and the instance advances its own nextCycle. */
+void pmd_record_cycles(PmdInstance *inst, const PmdGrid *grid, int64_t cycles, int64_t first);
 
 #endif

@@ -310,7 +310,7 @@ static int state_given(const PmdInstance *inst, const char *fn, const void *stat
     return state != NULL;
 }
 
-PmdStatus pmd_fmu_state_get(PmdInstance *inst, const char *fn, void **state)
+PmdStatus pmd_model_fmu_state_get(PmdInstance *inst, const char *fn, void **state)
 {
     Snapshot *s;
     if (!state_given(inst, fn, state) || !(s = snapshot_alloc(inst, fn, (Snapshot *)*state, pmd_state_size(inst))))
@@ -320,7 +320,7 @@ PmdStatus pmd_fmu_state_get(PmdInstance *inst, const char *fn, void **state)
     return PMD_OK;
 }
 
-PmdStatus pmd_fmu_state_set(PmdInstance *inst, const char *fn, const void *state)
+PmdStatus pmd_model_fmu_state_set(PmdInstance *inst, const char *fn, const void *state)
 {
     const Snapshot *s = (const Snapshot *)state;
     if (!state_given(inst, fn, state) || pmd_state_check(inst, fn, s->bytes, s->size) != PMD_OK)
@@ -328,7 +328,7 @@ PmdStatus pmd_fmu_state_set(PmdInstance *inst, const char *fn, const void *state
     return pmd_state_read(inst, fn, s->bytes);
 }
 
-PmdStatus pmd_fmu_state_free(PmdInstance *inst, const char *fn, void **state)
+PmdStatus pmd_model_fmu_state_free(PmdInstance *inst, const char *fn, void **state)
 {
     if (!state_given(inst, fn, state))
         return PMD_ERROR;
@@ -337,7 +337,7 @@ PmdStatus pmd_fmu_state_free(PmdInstance *inst, const char *fn, void **state)
     return PMD_OK;
 }
 
-PmdStatus pmd_fmu_state_size(PmdInstance *inst, const char *fn, const void *state, size_t *size)
+PmdStatus pmd_model_fmu_state_size(PmdInstance *inst, const char *fn, const void *state, size_t *size)
 {
     if (!state_given(inst, fn, state) || !pmd_arrays_given(inst, fn, 1, size, size))
         return PMD_ERROR;
@@ -345,7 +345,7 @@ PmdStatus pmd_fmu_state_size(PmdInstance *inst, const char *fn, const void *stat
     return PMD_OK;
 }
 
-PmdStatus pmd_fmu_state_serialize(PmdInstance *inst, const char *fn, const void *state, unsigned char *bytes,
+PmdStatus pmd_model_fmu_state_serialize(PmdInstance *inst, const char *fn, const void *state, unsigned char *bytes,
                                   size_t size)
 {
     const Snapshot *s = (const Snapshot *)state;
@@ -359,7 +359,7 @@ PmdStatus pmd_fmu_state_serialize(PmdInstance *inst, const char *fn, const void 
     return PMD_OK;
 }
 
-PmdStatus pmd_fmu_state_deserialize(PmdInstance *inst, const char *fn, const unsigned char *bytes, size_t size,
+PmdStatus pmd_model_fmu_state_deserialize(PmdInstance *inst, const char *fn, const unsigned char *bytes, size_t size,
                                     void **state)
 {
     Snapshot *s;

@@ -1,4 +1,4 @@
-/* FMU state snapshots, shared by the FMI 2 and FMI 3 wrappers (state.c). */
+/* FMU state snapshots (state.c): the chip's FMU states for both FMI shells. */
 #ifndef PMD_STATE_H
 #define PMD_STATE_H
 
@@ -11,14 +11,7 @@ PmdStatus pmd_state_check(const PmdInstance *inst, const char *fn, const unsigne
 /* Restores a checked snapshot. */
 PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char *in);
 
-/* The FMU state objects of fmi2/fmi3 Get/Set/Free/Serialize/DeserializeFMUState. */
-PmdStatus pmd_fmu_state_get(PmdInstance *inst, const char *fn, void **state);
-PmdStatus pmd_fmu_state_set(PmdInstance *inst, const char *fn, const void *state);
-PmdStatus pmd_fmu_state_free(PmdInstance *inst, const char *fn, void **state);
-PmdStatus pmd_fmu_state_size(PmdInstance *inst, const char *fn, const void *state, size_t *size);
-PmdStatus pmd_fmu_state_serialize(PmdInstance *inst, const char *fn, const void *state, unsigned char *bytes,
-                                  size_t size);
-PmdStatus pmd_fmu_state_deserialize(PmdInstance *inst, const char *fn, const unsigned char *bytes, size_t size,
-                                    void **state);
+/* The FMU state objects of fmi2/fmi3 Get/Set/Free/Serialize/DeserializeFMUState are
+ * pmd_model_fmu_state_* of model.h, over these. */
 
 #endif

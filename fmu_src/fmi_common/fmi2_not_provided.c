@@ -2,7 +2,7 @@
  * canInterpolateInputs false, maxOutputDerivativeOrder 0, no directional
  * derivatives; doStep is synchronous). Every call is refused with fmi2Error
  * by the FMU's pmd_fmi2_unsupported. */
-#include "fmi2_not_provided.h"
+#include "fmi2.h"
 
 fmi2Status fmi2CancelStep(fmi2Component c)
 {

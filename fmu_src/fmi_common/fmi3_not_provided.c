@@ -2,19 +2,12 @@
  * with no event mode, no clocks, no structural parameters and no derivatives
  * (their modelDescription.xml say so). Every call is refused: an instantiation
  * with NULL, any other call with fmi3Error by the FMU's pmd_fmi3_unsupported. */
-#include "fmi3_not_provided.h"
+#include "fmi3.h"
 
 /* The dependencies are in modelDescription.xml's ModelStructure (from
  * variables.csv and plant.csv); the API functions that would repeat them at
  * run time are not provided. */
 #define NO_DEPENDENCIES_API "the dependencies are declared in modelDescription.xml; not provided through the API"
-
-void pmd_fmi3_refuse_instance(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage,
-                              const char *why)
-{
-    if (logMessage)
-        logMessage(environment, fmi3Error, "errors", why);
-}
 
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String instantiationToken,
                                           fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,

@@ -12,7 +12,7 @@
  * LoadSegmentTable reads a CSV segment table into buffers firstBuffer.. at
  * address, one per column, and assigns them to the columns' trajectory
  * variables. The script is a file or, given as text, a string in memory
- * (issue 14: a profile that travels inside the FMU or its parameter set);
+ * (a profile that travels inside the FMU or its parameter set);
  * relative paths are looked for in a fixed order of places (pmd_script_compile). */
 #if !defined(_WIN32) && !defined(_POSIX_C_SOURCE)
 #define _POSIX_C_SOURCE 200809L      /* open, fstat, fdopen, O_CLOEXEC: the build is strict C99 */

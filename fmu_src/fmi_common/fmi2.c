@@ -1,18 +1,17 @@
-/* FMI 2.0 Co-Simulation over the instance (instance.h). Every function
- * checks its component, its pointers and the state it is called in, and
- * answers a bad call with fmi2Error and a log message naming the function,
+/* FMI 2.0 Co-Simulation, written once for both FMUs over the model API
+ * (model.h: the chip's fmu_src/fmi/model.c, the plant's plant_fmu.c). Every
+ * function checks its component, its pointers and the state it is called in,
+ * and answers a bad call with fmi2Error and a log message naming the function,
  * the value and the reason. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "fmi2Functions.h"
-#include "fmi2_not_provided.h"
-#include "instance.h"
-#include "state.h"
+#include "fmi2.h"
 
-/* The environment's callbacks live beside the instance. */
+/* The environment's callbacks live beside the model (the fuzzers read inst, first). */
 typedef struct {
-    PmdInstance *inst;
+    PmdModel *inst;
     fmi2CallbackFunctions functions;
 } Component;
 
@@ -36,25 +35,44 @@ static void log_to_environment(void *environment, const char *instanceName, PmdS
     comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category, escaped);
 }
 
-#define ANY_STATE PMD_ANY_STATE
-#define GET_STATES PMD_GET_STATES
-#define SET_STATES PMD_SET_STATES
-
-static PmdInstance *begin(fmi2Component c, const char *fn, unsigned states)
+PmdModel *pmd_fmi2_begin(fmi2Component c, const char *fn, unsigned states)
 {
-    return c ? pmd_begin(((Component *)c)->inst, fn, states) : NULL;
+    PmdModel *m = c ? ((Component *)c)->inst : NULL;
+    if (m && !(pmd_model_fmi_state(m) & states)) {
+        pmd_model_error(m, "%s: not allowed in %s", fn, pmd_model_state_name(pmd_model_fmi_state(m)));
+        return NULL;
+    }
+    return m;
 }
 
-#define arrays_given pmd_arrays_given
+int pmd_fmi2_arrays_given(const PmdModel *m, const char *fn, size_t n, const void *a, const void *b)
+{
+    if (n > 0 && (!a || !b)) {
+        pmd_model_error(m, "%s: %zu values but an array is NULL", fn, n);
+        return 0;
+    }
+    return 1;
+}
 
-/* The refusal of every function this FMU does not provide (fmi2_not_provided.c). */
+#define begin pmd_fmi2_begin
+#define arrays_given pmd_fmi2_arrays_given
+
 fmi2Status pmd_fmi2_unsupported(fmi2Component c, const char *fn, const char *why)
 {
-    PmdInstance *inst = begin(c, fn, ANY_STATE);
-    if (inst)
-        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: not supported: %s", fn, why);
+    PmdModel *m = begin(c, fn, PMD_ANY_STATE);
+    if (m)
+        pmd_model_error(m, "%s: not supported: %s", fn, why);
     return fmi2Error;
 }
+
+/* The body of a function that hands the call to the model: fn is F's name,
+ * inst the model if F is legal in the states (else fmi2Error, logged). */
+#define CALL_MODEL(F, states, call)                                                                  \
+    do {                                                                                             \
+        static const char fn[] = #F;                                                                 \
+        PmdModel *inst = begin(c, fn, states);                                                       \
+        return inst ? status_of[call] : fmi2Error;                                                   \
+    } while (0)
 
 /* ---- inquiry, logging, life cycle ---- */
 
@@ -64,9 +82,8 @@ const char *fmi2GetVersion(void) { return fmi2Version; }
 fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
                                const fmi2String categories[])
 {
-    PmdInstance *inst = begin(c, "fmi2SetDebugLogging", ANY_STATE);
-    return inst ? status_of[pmd_set_debug_logging(inst, "fmi2SetDebugLogging", loggingOn, nCategories, categories)]
-                : fmi2Error;
+    CALL_MODEL(fmi2SetDebugLogging, PMD_ANY_STATE,
+               pmd_model_set_debug_logging(inst, fn, loggingOn, nCategories, categories));
 }
 
 /* The resources folder of fmuResourceLocation, a file URI (RFC 8089; FMI 2.0.4
@@ -140,23 +157,24 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                           "fmi2Instantiate: this FMU supports Co-Simulation only");
         return NULL;
     }
-    if (!fmuGUID || strcmp(fmuGUID, PMD_INSTANTIATION_TOKEN) != 0) {
-        functions->logger(functions->componentEnvironment, instanceName, fmi2Error, "errors",
-                          "fmi2Instantiate: the GUID does not match this binary's " PMD_INSTANTIATION_TOKEN);
+    if (!fmuGUID || strcmp(fmuGUID, pmd_model_token) != 0) {
+        char message[256];
+        snprintf(message, sizeof message, "fmi2Instantiate: the GUID does not match this binary's %s", pmd_model_token);
+        functions->logger(functions->componentEnvironment, instanceName, fmi2Error, "errors", message);
         return NULL;
     }
     comp = (Component *)calloc(1, sizeof *comp);
     if (!comp)
         return NULL;
     comp->functions = *functions;
-    comp->inst = pmd_instance_new(instanceName, log_to_environment, comp);
+    comp->inst = pmd_model_new(instanceName, log_to_environment, comp);
     if (!comp->inst) {
         free(comp);
         return NULL;
     }
-    pmd_set_debug_logging(comp->inst, "fmi2Instantiate", loggingOn, 0, NULL);
+    pmd_model_set_debug_logging(comp->inst, "fmi2Instantiate", loggingOn, 0, NULL);
     resources = resources_of(fmuResourceLocation, &noResources);
-    if (pmd_instance_resources(comp->inst, "fmi2Instantiate", resources, noResources) != PMD_OK) {
+    if (pmd_model_resources(comp->inst, "fmi2Instantiate", resources, noResources) != PMD_OK) {
         fmi2FreeInstance(comp);
         return NULL;
     }
@@ -167,210 +185,140 @@ void fmi2FreeInstance(fmi2Component c)
 {
     if (!c)
         return;
-    pmd_instance_free(((Component *)c)->inst);
+    pmd_model_free(((Component *)c)->inst);
     free(c);
 }
 
 fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
                                fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime)
 {
-    PmdInstance *inst = begin(c, "fmi2SetupExperiment", PMD_INSTANTIATED);
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    return inst ? status_of[pmd_setup_experiment(inst, "fmi2SetupExperiment", startTime)] : fmi2Error;
+    CALL_MODEL(fmi2SetupExperiment, PMD_INSTANTIATED, pmd_model_setup_experiment(inst, fn, startTime));
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 {
-    PmdInstance *inst = begin(c, "fmi2EnterInitializationMode", PMD_INSTANTIATED);
-    return inst ? status_of[pmd_enter_initialization(inst, "fmi2EnterInitializationMode", inst->s.time)] : fmi2Error;
+    CALL_MODEL(fmi2EnterInitializationMode, PMD_INSTANTIATED,
+               pmd_model_enter_initialization(inst, fn, pmd_model_time(inst)));
 }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 {
-    PmdInstance *inst = begin(c, "fmi2ExitInitializationMode", PMD_INITIALIZATION_MODE);
-    return inst ? status_of[pmd_exit_initialization(inst, "fmi2ExitInitializationMode")] : fmi2Error;
+    CALL_MODEL(fmi2ExitInitializationMode, PMD_INITIALIZATION_MODE, pmd_model_exit_initialization(inst, fn));
 }
 
 fmi2Status fmi2Terminate(fmi2Component c)
 {
-    PmdInstance *inst = begin(c, "fmi2Terminate", PMD_INITIALIZATION_MODE | PMD_STEP_MODE);
+    PmdModel *inst = begin(c, "fmi2Terminate", PMD_INITIALIZATION_MODE | PMD_STEP_MODE);
     if (!inst)
         return fmi2Error;
-    inst->s.state = PMD_TERMINATED;
+    pmd_model_terminate(inst);
     return fmi2OK;
 }
 
 fmi2Status fmi2Reset(fmi2Component c)
 {
-    PmdInstance *inst = begin(c, "fmi2Reset", ANY_STATE);
+    PmdModel *inst = begin(c, "fmi2Reset", PMD_ANY_STATE);
     if (!inst)
         return fmi2Error;
-    pmd_instance_reset(inst);
+    pmd_model_reset(inst);
     return fmi2OK;
 }
 
 /* ---- variables ---- */
 
-/* Gets see pending port writes executed first: a host reads its replies at the
- * time it wrote the batch (CONTRACT 2.2). A get refused for a value reference
- * executes nothing. */
+/* A get checks every value reference before the model commits (the chip:
+ * pending port writes executed first, a host reads its replies at the time it
+ * wrote the batch, CONTRACT 2.2): a get refused for a value reference executes
+ * nothing and returns no value. */
 #define GET_FUNCTION(fn, T, get, type)                                                            \
     fmi2Status fn(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, T value[])        \
     {                                                                                            \
-        PmdInstance *inst = begin(c, #fn, GET_STATES);                                           \
+        PmdModel *inst = begin(c, #fn, PMD_GET_STATES);                                          \
         size_t i;                                                                                \
         if (!inst || !arrays_given(inst, #fn, nvr, vr, value))                                   \
             return fmi2Error;                                                                    \
         for (i = 0; i < nvr; i++)                                                                \
-            if (!pmd_variable_given(inst, #fn, vr[i], type))                                     \
+            if (!pmd_model2_given(inst, #fn, vr[i], type))                                       \
                 return fmi2Error;                                                                \
-        if (inst->s.state != PMD_TERMINATED)                                                       \
-            pmd_commit_ports(inst);                                                              \
+        pmd_model_commit(inst);                                                                  \
         for (i = 0; i < nvr; i++)                                                                \
             if (get(inst, #fn, vr[i], &value[i]) != PMD_OK)                                      \
                 return fmi2Error;                                                                \
         return fmi2OK;                                                                           \
     }
 
-GET_FUNCTION(fmi2GetReal, fmi2Real, pmd_get_real, PMD_REAL)
-GET_FUNCTION(fmi2GetInteger, fmi2Integer, pmd_get_integer, PMD_INTEGER)
-GET_FUNCTION(fmi2GetBoolean, fmi2Boolean, pmd_get_boolean, PMD_BOOLEAN)
+GET_FUNCTION(fmi2GetReal, fmi2Real, pmd_model2_get_real, PMD_FMI2_REAL)
+GET_FUNCTION(fmi2GetInteger, fmi2Integer, pmd_model2_get_integer, PMD_FMI2_INTEGER)
+GET_FUNCTION(fmi2GetBoolean, fmi2Boolean, pmd_model2_get_boolean, PMD_FMI2_BOOLEAN)
 
 /* Sets are all or nothing: every value is checked, then what they ask for
- * together, before any is applied (instance.h). */
+ * together, before any is applied (model.h). */
 #define SET_FUNCTION(fn, T, set)                                                                  \
     fmi2Status fn(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const T value[])  \
     {                                                                                            \
-        PmdInstance *inst = begin(c, #fn, SET_STATES);                                           \
+        PmdModel *inst = begin(c, #fn, PMD_SET_STATES);                                          \
         size_t i;                                                                                \
         if (!inst || !arrays_given(inst, #fn, nvr, vr, value))                                   \
             return fmi2Error;                                                                    \
-        pmd_set_begin(inst);                                                                     \
+        pmd_model_set_begin(inst);                                                               \
         for (i = 0; i < nvr; i++)                                                                \
             if (set(inst, #fn, vr[i], value[i], 0) != PMD_OK)                                    \
                 return fmi2Error;                                                                \
-        if (pmd_set_check(inst, #fn) != PMD_OK)                                                  \
+        if (pmd_model_set_check(inst, #fn) != PMD_OK)                                            \
             return fmi2Error;                                                                    \
         for (i = 0; i < nvr; i++)                                                                \
             set(inst, #fn, vr[i], value[i], 1);                                                  \
         return fmi2OK;                                                                           \
     }
 
-SET_FUNCTION(fmi2SetReal, fmi2Real, pmd_set_real)
-SET_FUNCTION(fmi2SetBoolean, fmi2Boolean, pmd_set_boolean)
+SET_FUNCTION(fmi2SetReal, fmi2Real, pmd_model2_set_real)
+SET_FUNCTION(fmi2SetBoolean, fmi2Boolean, pmd_model2_set_boolean)
 
-/* How many value references from vr[0] on are consecutive elements of
- * memory.data (at most n), a strobe's block (Chip.write_memory sets
- * memory.data[1..64] in one call); below 2 none: a lone element, and any
- * other order, takes the per-value path. */
-static size_t memory_data_run(const fmi2ValueReference vr[], size_t n)
-{
-    size_t span = pmd_memory_data_span(vr[0], n), run, k;
-    fmi2ValueReference differ = 0;
-    if (span < 2)
-        return span;
-    for (k = 1; k < span; k++)          /* no early exit: a whole block compares in one vectorized pass */
-        differ |= vr[k] ^ (fmi2ValueReference)(vr[0] + k);
-    if (!differ)
-        return span;
-    for (run = 1; vr[run] == vr[0] + run; run++)
-        continue;                       /* ends before span: an element there differs */
-    return run;
-}
-
-/* One pass of fmi2SetInteger over the values from vr[0] on: a run of
- * memory.data as one block (pmd_set_memory_data: the same checks, messages and
- * order as value by value, without a lookup and two switches per word and
- * pass), else one value; *taken: how many values it took. */
-static PmdStatus set_integers(PmdInstance *inst, const char *fn, const fmi2ValueReference vr[], size_t n,
-                              const fmi2Integer value[], int apply, size_t *taken)
-{
-    size_t run = memory_data_run(vr, n);
-    if (run > 1) {
-        *taken = run;
-        return pmd_set_memory_data(inst, fn, vr[0], value, 1, run, apply);
-    }
-    *taken = 1;
-    return pmd_set_integer(inst, fn, vr[0], value[0], apply);
-}
-
-/* SET_FUNCTION's two passes (check, then apply), through set_integers. */
+/* SET_FUNCTION's two passes (check, then apply), as many values a pass as the
+ * model takes at once (the chip: a run of memory.data as one block). */
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[])
 {
     static const char fn[] = "fmi2SetInteger";
-    PmdInstance *inst = begin(c, fn, SET_STATES);
+    PmdModel *inst = begin(c, fn, PMD_SET_STATES);
     size_t i, taken;
     if (!inst || !arrays_given(inst, fn, nvr, vr, value))
         return fmi2Error;
-    pmd_set_begin(inst);
+    pmd_model_set_begin(inst);
     for (i = 0; i < nvr; i += taken)
-        if (set_integers(inst, fn, vr + i, nvr - i, value + i, 0, &taken) != PMD_OK)
+        if (pmd_model2_set_integers(inst, fn, vr + i, nvr - i, value + i, 0, &taken) != PMD_OK)
             return fmi2Error;
-    if (pmd_set_check(inst, fn) != PMD_OK)
+    if (pmd_model_set_check(inst, fn) != PMD_OK)
         return fmi2Error;
     for (i = 0; i < nvr; i += taken)
-        set_integers(inst, fn, vr + i, nvr - i, value + i, 1, &taken);
+        pmd_model2_set_integers(inst, fn, vr + i, nvr - i, value + i, 1, &taken);
     return fmi2OK;
 }
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[])
 {
-    PmdInstance *inst = begin(c, "fmi2GetString", GET_STATES);
+    PmdModel *inst = begin(c, "fmi2GetString", PMD_GET_STATES);
     size_t i;
     if (!inst || !arrays_given(inst, "fmi2GetString", nvr, vr, value))
         return fmi2Error;
     for (i = 0; i < nvr; i++)
-        if (pmd_get_string(inst, "fmi2GetString", vr[i], &value[i]) != PMD_OK)
+        if (pmd_model_get_string(inst, "fmi2GetString", vr[i], &value[i]) != PMD_OK)
             return fmi2Error;
     return fmi2OK;
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[])
 {
-    PmdInstance *inst = begin(c, "fmi2SetString", SET_STATES);
+    PmdModel *inst = begin(c, "fmi2SetString", PMD_SET_STATES);
     size_t i;
     int apply;
     if (!inst || !arrays_given(inst, "fmi2SetString", nvr, vr, value))
         return fmi2Error;
-    pmd_set_begin(inst);
+    pmd_model_set_begin(inst);
     for (apply = 0; apply <= 1; apply++)
         for (i = 0; i < nvr; i++)
-            if (pmd_set_string(inst, "fmi2SetString", vr[i], value[i], apply) != PMD_OK)
+            if (pmd_model_set_string(inst, "fmi2SetString", vr[i], value[i], apply) != PMD_OK)
                 return fmi2Error;
-    return fmi2OK;
-}
-
-/* ---- extension: bulk recording ---- */
-
-/* record.data in FMI 2, which has no Binary type: this FMU's one function
- * beside the FMI 2 ones (an importer that does not know it ignores it). It
- * lends the buffer fmi3GetBinary gives for record.data in FMI 3: the rows of
- * the cycles the last doStep recorded (record.enabled), valid until the next
- * call to the instance; *size in bytes. docs/performance.md, "Recording". */
-FMI2_Export fmi2Status pmdfmu_fmi2GetRecordData(fmi2Component c, const void **data, size_t *size)
-{
-    PmdInstance *inst = begin(c, "pmdfmu_fmi2GetRecordData", GET_STATES);
-    const unsigned char *bytes;
-    if (!inst || !arrays_given(inst, "pmdfmu_fmi2GetRecordData", 1, data, size))
-        return fmi2Error;
-    pmd_record_data(inst, &bytes, size);
-    *data = bytes;
-    return fmi2OK;
-}
-
-/* The other side of the same buffer: the caller lends the FMU memory of its
- * own (size bytes; 4-byte aligned for the default rows) for the rows of the
- * recording doSteps that follow, NULL gives record.data's buffer back;
- * pmdfmu_fmi2GetRecordData then reports the rows there. The harness records
- * into its result this way, without a copy. The memory must stay valid until
- * NULL is lent or the instance is reset or freed; a step recording more cycles
- * than fit is refused, as one beyond record.capacity is. */
-FMI2_Export fmi2Status pmdfmu_fmi2SetRecordBuffer(fmi2Component c, void *rows, size_t size)
-{
-    PmdInstance *inst = begin(c, "pmdfmu_fmi2SetRecordBuffer", ANY_STATE);
-    if (!inst)
-        return fmi2Error;
-    pmd_record_lend(inst, rows, size);
     return fmi2OK;
 }
 
@@ -379,49 +327,42 @@ FMI2_Export fmi2Status pmdfmu_fmi2SetRecordBuffer(fmi2Component c, void *rows, s
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,
                       fmi2Boolean noSetFMUStatePriorToCurrentPoint)
 {
-    PmdInstance *inst = begin(c, "fmi2DoStep", PMD_STEP_MODE);
     (void)noSetFMUStatePriorToCurrentPoint;
-    return inst ? status_of[pmd_do_step(inst, "fmi2DoStep", currentCommunicationPoint, communicationStepSize)] : fmi2Error;
+    CALL_MODEL(fmi2DoStep, PMD_STEP_MODE,
+               pmd_model_do_step(inst, fn, currentCommunicationPoint, communicationStepSize));
 }
 
-/* ---- FMU state (state.c) ---- */
+/* ---- FMU state ---- */
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
-    PmdInstance *inst = begin(c, "fmi2GetFMUstate", ANY_STATE);
-    return inst ? status_of[pmd_fmu_state_get(inst, "fmi2GetFMUstate", state)] : fmi2Error;
+    CALL_MODEL(fmi2GetFMUstate, PMD_ANY_STATE, pmd_model_fmu_state_get(inst, fn, state));
 }
 
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state)
 {
-    PmdInstance *inst = begin(c, "fmi2SetFMUstate", ANY_STATE);
-    return inst ? status_of[pmd_fmu_state_set(inst, "fmi2SetFMUstate", state)] : fmi2Error;
+    CALL_MODEL(fmi2SetFMUstate, PMD_ANY_STATE, pmd_model_fmu_state_set(inst, fn, state));
 }
 
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *state)
 {
-    PmdInstance *inst = begin(c, "fmi2FreeFMUstate", ANY_STATE);
-    return inst ? status_of[pmd_fmu_state_free(inst, "fmi2FreeFMUstate", state)] : fmi2Error;
+    CALL_MODEL(fmi2FreeFMUstate, PMD_ANY_STATE, pmd_model_fmu_state_free(inst, fn, state));
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t *size)
 {
-    PmdInstance *inst = begin(c, "fmi2SerializedFMUstateSize", ANY_STATE);
-    return inst ? status_of[pmd_fmu_state_size(inst, "fmi2SerializedFMUstateSize", state, size)] : fmi2Error;
+    CALL_MODEL(fmi2SerializedFMUstateSize, PMD_ANY_STATE, pmd_model_fmu_state_size(inst, fn, state, size));
 }
 
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte serializedState[], size_t size)
 {
-    PmdInstance *inst = begin(c, "fmi2SerializeFMUstate", ANY_STATE);
-    return inst ? status_of[pmd_fmu_state_serialize(inst, "fmi2SerializeFMUstate", state,
-                                                    (unsigned char *)serializedState, size)] : fmi2Error;
+    CALL_MODEL(fmi2SerializeFMUstate, PMD_ANY_STATE,
+               pmd_model_fmu_state_serialize(inst, fn, state, (unsigned char *)serializedState, size));
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *state)
 {
-    PmdInstance *inst = begin(c, "fmi2DeSerializeFMUstate", ANY_STATE);
-    return inst ? status_of[pmd_fmu_state_deserialize(inst, "fmi2DeSerializeFMUstate",
-                                                      (const unsigned char *)serializedState, size, state)]
-                : fmi2Error;
+    CALL_MODEL(fmi2DeSerializeFMUstate, PMD_ANY_STATE,
+               pmd_model_fmu_state_deserialize(inst, fn, (const unsigned char *)serializedState, size, state));
 }
