@@ -13,16 +13,15 @@ fuzz_sequence.c's OPS[] (read_ops); tests/test_determinism.py checks that Seq
 encodes each of them and that a seed or regression input uses each. To see what an input does, run it traced:
 FUZZ_SEQUENCE_TRACE=1 build/fuzz/fuzz_sequence FILE.
 """
-import importlib.util
 import re
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-_spec = importlib.util.spec_from_file_location("tables", HERE.parent / "python" / "pmdfmu" / "tables.py")
-tables = importlib.util.module_from_spec(_spec)
-sys.modules["tables"] = tables
-_spec.loader.exec_module(tables)
+sys.path.insert(0, str(HERE.parent / "modelDescription"))
+from generating import harness_tables  # noqa: E402  (the interface tables' reader, by path)
+
+tables = harness_tables()
 
 COMMANDS = tables.read_commands(HERE.parent / "modelDescription" / "commands.csv")
 COMMAND_INDEX = {c.name: i for i, c in enumerate(COMMANDS)}

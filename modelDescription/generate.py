@@ -18,7 +18,6 @@ Usage: generate.py OUTDIR [C source file names of the FMUs' sources/ ...]
 """
 import csv
 import hashlib
-import importlib.util
 import re
 import sys
 import uuid
@@ -27,10 +26,9 @@ from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 HERE = Path(__file__).resolve().parent
-_spec = importlib.util.spec_from_file_location("tables", HERE.parent / "python" / "pmdfmu" / "tables.py")
-tables = importlib.util.module_from_spec(_spec)
-sys.modules["tables"] = tables
-_spec.loader.exec_module(tables)
+sys.path.insert(0, str(HERE))
+from generating import harness_tables, write_files  # noqa: E402  (this folder's helper)
+tables = harness_tables()
 
 def package_version() -> str:
     """The project's one version, python/pmdfmu/__init__.py's __version__ (pyproject.toml reads it
@@ -540,11 +538,7 @@ def main(outdir: Path, sources) -> None:
     files["command_table.h"], files["command_table.c"] = commands_c(commands, registers)
     files["register_table.h"], files["register_table.c"] = registers_c(registers, commands)
     files["log_categories.h"], files["log_categories.c"] = log_categories_c(LOG_CATEGORIES())
-    for name, text in files.items():
-        path = outdir / name
-        path.parent.mkdir(parents=True, exist_ok=True)
-        if not path.exists() or path.read_text() != text:   # keep timestamps: no needless rebuilds
-            path.write_text(text)
+    write_files(outdir, files)
 
 
 FMI2_ONLY = {"fmi2.c", "fmi2_not_provided.c", "record_fmi2.c"}

@@ -19,6 +19,8 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from generating import write_files  # noqa: E402  (this folder's helper)
 TABLE = HERE / "host_interfaces.csv"
 
 
@@ -78,10 +80,7 @@ def main(argv):
         sys.exit(__doc__)
     outdir = Path(argv[1])
     outdir.mkdir(parents=True, exist_ok=True)
-    text = header(read_table())
-    target = outdir / "PMDhosttime_table.h"
-    if not target.exists() or target.read_text() != text:      # unchanged: no rebuild
-        target.write_text(text)
+    write_files(outdir, {"PMDhosttime_table.h": header(read_table())})
 
 
 if __name__ == "__main__":

@@ -27,6 +27,7 @@ from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from generate import METADATA, VERSION, build_description     # the chip's generator, beside this one
+from generating import write_files
 
 HERE = Path(__file__).resolve().parent
 MODEL_IDENTIFIER = "pmdplant"
@@ -243,11 +244,7 @@ def main(outdir: Path, sources) -> None:
         "fmi3/buildDescription.xml": build_description([n for n in sources if n not in FMI2_ONLY], MODEL_IDENTIFIER),
     }
     files["plant_variables.h"], files["plant_variables.c"] = variables_c(variables, token)
-    for name, text in files.items():
-        path = outdir / name
-        path.parent.mkdir(parents=True, exist_ok=True)
-        if not path.exists() or path.read_text() != text:   # keep timestamps: no needless rebuilds
-            path.write_text(text)
+    write_files(outdir, files)
 
 
 FMI2_ONLY = {"fmi2.c", "fmi2_not_provided.c"}
