@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What every benchmark module shares: runs repeated, figures as
 min / median, a report table. Benchmarks, not tests: nothing asserts a time.
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Benchmark 2: one doStep of many cycles through the
  * FMU's real FMI 3 binary (dlopen), recorded (record.enabled, every cycle's
  * row in record.data) and not recorded (fast-forward where it pays), from the

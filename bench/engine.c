@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Benchmark 1: the chip core running external profiles
  * on 4 axes, every cycle's commanded position, velocity and acceleration
  * stored (pmd_chip_run_every_cycle's record rows, as a recording doStep stores them),

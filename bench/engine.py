@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The engine and doStep. Part of ./dev bench (bench/run.py).
 
 1a/1b  bench/engine.c: the chip core running random, never repeating external profiles on 4 axes,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU as any importer sees it: the cost of one FMI step through
 FMPy against a do-nothing FMU with the same variables, and the heap an
 instance holds. Part of ./dev bench (bench/run.py)."""

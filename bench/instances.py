@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Instances: pmdfmu.Chip() after the first of an FMU file, against the
 first Chip of a file (what every Chip() cost before: extract the FMU, read its 480 KB model
 description, declare FMPy's FMI prototypes, instantiate, initialize). Part of ./dev bench."""

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Benchmark 6: the heap one FMU instance holds, and what its doSteps
  * allocate. Drives the real FMI 2 binary (dlopen) and counts, from outside,
  * every malloc, calloc and realloc the FMU makes (this program's own

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Recording: Chip.run(cycles, record=names) on a real profile, 4 axes moving,
 in FMI 2 and FMI 3, (a) the 12 commanded outputs, (b) 7 columns per axis with the Reals and the
 activity status (pmdfmu.profile.record_outputs). Figures: M axis-cycles/s (4 axes x cycles / time),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Streaming: a host streams a long external profile into
 circular buffers by read index (seed 000, section 1.3: the read index tells which entries may be overwritten): run the
 cycles the unread segments cover, read GetBufferReadIndex, write the freed

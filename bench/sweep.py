@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Sweeps: the per-case overhead of a sweep, on a running 2-worker local
 cluster (its client reused, workers warm) and in this process, with cases that do next to
 nothing; and the speed-up of 8 cases of at least 0.2 s each on that cluster over the same cases

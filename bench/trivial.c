@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Benchmark 3's baseline: an FMI 2.0 Co-Simulation FMU with the same
  * variables as PMDMotionProcessor that does nothing: Set stores, Get returns,
  * DoStep returns. The bench packs it with the real modelDescription.xml. */

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Upload: 100 000 segments (5 words each: position,
 velocity, acceleration, jerk, time) into the chip's memory, through the script
 loader and through the memory port. Part of ./dev bench.

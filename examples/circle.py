@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A 2-axis external profile from a segment table, synchronized start, run to completion."""
 import pmdfmu
 from pmdfmu.demo import circle_table

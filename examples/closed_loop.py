@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The servo loop closed through a plant model (docs/servo.md): a DC motor
 driving an inertia, integrated here one chip cycle at a time, takes the FMU's
 motor output and sends its encoder count back to axis 1's actual position, with

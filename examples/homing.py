@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Homing, in the spirit of seed 002: hunt for the home switch with a velocity
 move, capture the position where it trips, stop, make that point the origin,
 and move back to it with a trapezoidal move.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The host port word by word, as a co-simulation master would drive it:
 the instruction word (the axis in its PMDInstructionAxis field, bits 8-15, the opcode in
 PMDInstructionOpcode, bits 0-7), then data words, 32-bit values high word first."""

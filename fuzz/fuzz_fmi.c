@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Fuzz target: random FMI 2.0 call sequences on two instances:
  * set/get of every type with random value references and values, doStep
  * with random times and sizes (NaN, negative, huge), FMU state get/set/

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Fuzz target: the host port. The input is a stream of 16-bit words, fed to
  * the chip as command batches of random sizes, with chip cycles in between.
  * Nothing may crash, and the chip must stay consistent. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the fuzz targets share: a property that does not hold stops the run
  * with its message (libFuzzer keeps the input that broke it). */
 #ifndef FUZZ_PROPERTY_H

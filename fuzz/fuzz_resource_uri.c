@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Fuzz target: FMI 2's fmuResourceLocation, a file URI decoded into the
  * resources folder where relative script and table paths are looked for.
  * The decoder, resources_of, is static in the FMI 2 shell,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Fuzz target: the script parser. The input is a script; it loads a
  * table "t.csv" when it asks for one, which the fuzzer writes next to it. */
 #include <stdint.h>

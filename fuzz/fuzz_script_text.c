@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Fuzz target: a script given as text (the `script` parameter's
  * value is the script itself when it holds a line feed), compiled by
  * pmd_script_compile with a resources folder as the FMU gives it.

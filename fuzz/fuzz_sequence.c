@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Fuzz target: sequences of legal operations.
  *
  * The other targets feed random words and random FMI calls, and mostly meet

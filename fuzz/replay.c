@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Replays fuzz inputs (files named on the command line) through a fuzz target
  * without libFuzzer: the regression tests build it with any C compiler. */
 #include <stdint.h>

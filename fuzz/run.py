@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Builds the fuzz targets with clang's libFuzzer (+ ASan + UBSan) and runs each
 for a while. A crash leaves its input in fuzz/findings/; copy it into
 fuzz/regressions/TARGET/ and the test suite replays it from then on.

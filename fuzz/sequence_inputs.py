@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Hand-built inputs of the sequence fuzzer (fuzz/fuzz_sequence.c):
 seeds that reach deep states (fuzz/corpus/sequence/), one regression input
 per bug reached by legal calls (fuzz/regressions/sequence/), and the bad

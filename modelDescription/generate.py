@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Generates, from the tables beside this file, everything that must agree with them:
 
   fmi2/modelDescription.xml   the FMI 2.0 Co-Simulation interface

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Generates the C-Motion C library's table-driven half from the tables beside this file:
 
   c-motion.h        the C-Motion 2.x API over the FMU: every constant of constants.csv under its

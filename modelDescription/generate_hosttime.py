@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Generates, from host_interfaces.csv beside this file, the C side of the host
 timing model's table (host/c/PMDhosttime.c includes it):
 

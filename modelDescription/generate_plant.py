@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-2-Clause
 """Generates, from plant.csv and plant_units.csv beside this file, everything of
 the plant FMU (pmdplant: a DC motor, its amplifier and a quadrature encoder)
 that must agree with them:

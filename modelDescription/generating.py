@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What the generators beside this file share (generate.py, generate_plant.py, generate_cmotion.py,
 generate_hosttime.py; fuzz/sequence_inputs.py loads the tables too): the harness's table readers,
 loaded by path, and writing what they make."""

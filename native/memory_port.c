@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Chip.write_memory's strobes in C (memory_port.h): the calls the harness made
  * from Python per block of 64 words, the same FMI functions with the same
  * arguments in the same order, so that the memory, the port's variables and

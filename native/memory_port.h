@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 #ifndef PMD_NATIVE_MEMORY_PORT_H
 #define PMD_NATIVE_MEMORY_PORT_H
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The harness's native side (python/pmdfmu/native.py loads it with ctypes):
  * loops that would cost a Python call per cycle or per word, run in C over
  * the FMU's own FMI functions. Not part of any FMU: it calls an FMU only

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Chip.run(cycles, record=names) in C (record_loop.h): the loop the harness ran in
  * Python (a grid read, a doStep of one cycle, one get per FMI type, every
  * cycle), over the same FMI functions of the FMU with the same arguments, so

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """C programs over the C-Motion library (host/c), compiled here with cc as CMakeLists.txt builds
 them: the library's generated sources (c-motion.h/.c, the ports' value references, the host
 interfaces' table), then the library and the program in one cc call. `sanitize` adds one of the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Where shared test code lives. tests/ holds three kinds of file:
 
 - test_*.py: the tests. A test file never imports another test file (nor this

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Recording runs to interrupt, and the checks after an interrupt (tests/test_interrupts.py; a helper
 module, not a test file: conftest.py). A real Ctrl-C raises KeyboardInterrupt in the main thread at the
 next point where Python checks for signals: Interrupter puts it there, counting the lines the harness

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Exact reference models written independently of the C core: seed 000's
 external profile (Python Fractions in counts, the seed's pseudo code line by
 line) and the servo filter (docs/decisions.md's formula in Python integers)."""

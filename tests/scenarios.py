@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Chip set-ups that several test files run (a helper module, not a test file:
 see conftest.py for where shared test code lives)."""
 import importlib.util

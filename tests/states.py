@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Helpers for tests that work below the Chip API (a helper module, not a test
 file: see conftest.py): the FMU state as bytes (a refused call changes nothing),
 raw host words, host batches left pending, value references for raw FMI calls,

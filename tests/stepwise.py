@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The harness's oracles: what Chip.run(record=...) and Chip.write_memory did in Python through FMPy
 before the FMU recorded in bulk and the native loops came (pmdfmu.recording, pmdfmu.memory_port).
 The tests pin those paths to these, bit for bit (a helper module, not a test file: conftest.py)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The map is part of the code: docs/architecture.md and the README's Layout name every top-level folder
 of the repository and every folder of fmu_src/, so a folder added without a word about it fails here."""
 import re

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Limit switches, actual position, motion error, settle and tracking windows,
 signal sense and capture (pmd-reference 2.1-2.3, 4.5)."""
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every breakpoint action in every profile mode acts as the host's own command
 sent at the cycle the breakpoint fires (reference 2.5).
 

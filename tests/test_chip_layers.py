@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The chip core is built in layers (the map in fmu_src/chip/chip.h):
 each C file calls only functions of its own layer and the layers below, so
 there is no circle. The compiler's object files say what each file defines and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The servo loop closed through a plant: examples/closed_loop.py's
 DC motor and inertia, integrated here cycle by cycle, takes axis1.motorOutput and sends its
 encoder count back to axis1.actualPosition with `loopback` false (docs/servo.md). The

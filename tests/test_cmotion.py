@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """C-Motion in C: the library of host/c over the FMU runs seed 000's
 sample code, sections 1.1-1.6, compiled as printed (tests/c/seed_1_*.c), and examples/c.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The C-Motion library itself (host/c/PMDfmu.c), beyond the seed's programs: one chip per thread
 is safe and PMDTaskWait advances the calling thread's chips only (tests/c/cmotion_threads.c);
 the FMU's messages and the transport's reach the log callback, and nothing reaches the terminal

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Facts that two languages hold must agree: where one side cannot be generated from the other, the
 copy is checked here (the version: tests/test_version.py; the ctypes layouts of native/: native.py at
 load; the fuzzer's operation list: tests/test_determinism.py)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Dependencies that tell the truth: the dependencies both model
 descriptions declare, against what the FMU does, through FMPy in FMI 2 and FMI 3.
 

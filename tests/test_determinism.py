@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Determinism: the same scripted profile run 10 times, and through
 FMI 2 and FMI 3, gives byte-identical CSVs."""
 import hashlib

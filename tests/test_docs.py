@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """docs/commands.md lists every opcode with its status, and the FMU agrees."""
 from pathlib import Path
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """An unrecorded doStep runs ordinary cycles in batches and fast-forwards only where a cheap
 bound says it can skip many (fastforward.c, pmd_chip_run_fast_forwarding). Whatever way
 the cycles go, the outputs and the state are those of a recorded doStep (every cycle run) and of

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Bad input (CONTRACT 2.4): the chip answers a bad command with its host I/O
 error code and does not execute it; a bad FMI call gets fmi2Error and a log
 message naming the function, the value and the reason; nothing else changes."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """CONTRACT 2.3 at the edges of the formats: every value seed
 000's formats allow (position 32.0, velocity and acceleration 16.16, jerk 0.32,
 time 32-bit unsigned), for any segment time up to 2^32-1, gives the exact

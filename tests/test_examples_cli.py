@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The README's examples and the pmdfmu command, run as a user would."""
 import csv
 import subprocess

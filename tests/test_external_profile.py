@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """External profile mode (seed 000) against the exact reference model."""
 import random
 from fractions import Fraction

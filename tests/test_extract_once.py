@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """An FMU file is extracted once per process: every Chip of the
 file shares its folder, model description and FMI prototypes; a rewritten file is
 extracted anew; instances of the shared folder give exactly what an instance of a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Coarse doSteps fast-forward through external-profile segments in closed form;
 the result is bit-identical to stepping cycle by cycle."""
 import random

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Seed 000, 1.7 and seed 001: the fixed-point examples; the core's floor division."""
 import shutil
 import subprocess

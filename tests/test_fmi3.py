@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """FMI 3.0 Co-Simulation: the same core, names and timing as FMI 2."""
 import shutil
 import subprocess

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMPy internals the harness uses for speed (docs/architecture.md): FMPy's slaves declare their FMI
 functions' prototypes in _loadFunctions() into _functions (chip._SharedPrototypes replaces that with the
 prototypes of the FMU file's first slave), and keep the loaded library in .dll (recording.extension

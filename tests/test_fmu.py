@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU as a co-simulation tool sees it (CONTRACT 2)."""
 import re
 import zipfile

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """FMU state: get, set, free, serialize, deserialize."""
 import subprocess
 import sys

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The harness never rounds or masks what the user passes: a value
 that does not fit is refused with a ValueError naming it, before anything reaches the
 FMU; the in-range boundary values do exactly what they say, through FMI 2 and FMI 3."""

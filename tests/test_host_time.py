@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Host time (docs/host-time.md, docs/decisions.md "Host time"):
 each command takes its transfer time on the host interface, the chip runs the
 cycles that fall due meanwhile, so an unchanged polling loop ends at the cycle it

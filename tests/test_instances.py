@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Instances from C: four instances stepped concurrently from four
 threads give exactly the sequential results; 1000 rounds of instantiate, run,
 save/restore state and free under valgrind leak nothing and raise no error."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Ctrl-C anywhere in a recording run: the Chip stays usable and exact (docs/robustness.md, "Interrupts").
 
 A real Ctrl-C raises KeyboardInterrupt in the main thread at the next point where Python checks for

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A second, independent importer: FMI4j (Java, from Maven Central) runs the
 FMI 2.0 FMU with the example script; its CSV equals FMPy's, with the script as the
 parameter or packed inside the FMU with no parameter set."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Short sequences of legal calls that corrupted memory, overflowed or
 changed state they were refused. Each runs through the real FMU in FMI 2 and
 FMI 3; a refused call must leave the FMU state byte for byte as it was."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU's block path for memory.data: fmi2SetInteger takes
 a run of consecutive memory.data[k] value references, and fmi3SetUInt32 the
 memory.data array, as one block (pmd_set_memory_data) instead of value by value.

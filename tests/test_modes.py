@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Velocity contouring, electronic gear, on-the-fly trapezoidal changes and the
 stops in every mode (seed 001; pmd-reference 5)."""
 import numpy as np

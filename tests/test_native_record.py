@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Chip.run(record=...) in bulk (the FMU's record.data and record.columns, FMI 2
 through pmdfmu_fmi2GetRecordData) and through the native loop (native/record_loop.c,
 pmdfmu.recording) is the harness's cycle-by-cycle Python loop (tests/stepwise.py,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every command a Navigator accepts is accepted: the
 command table is the Navigator set of the MC2440's C-Motion (pmd-reference S3),
 each command runs through the harness and as raw host words, the hardware

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The plant FMU alone (pmdplant, fmu_src/plant, modelDescription/plant.csv): its
 interface as the table declares it in FMI 2 and 3, the motor's physics against
 closed-form solutions, its fixed-step integration and determinism, the encoder,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The motor output and the peripheral bus as FMU variables: every
 axis's `motorCommand` (GetCurrentMotorCommand, Int16) and `motorOutput` (the
 fraction of full scale, Float64), the analog inputs `analog[1..8]` that

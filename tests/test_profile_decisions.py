@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The profile decisions of docs/decisions.md, each pinned by the test named
 after it (docs/decisions.md, "Breakpoint actions and profile decisions"):
 (a) where an external profile starts reading, (b) an Update while an external

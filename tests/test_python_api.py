@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The Python API explains itself: the C-Motion methods made from the command table
 have real signatures, names and docstrings, and wrong calls say which call was wrong."""
 import ast

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A quiet run (pmd_chip_run_every_cycle in fmu_src/chip/chip.c) leaves out the per-cycle work
 that cannot happen while no axis is geared, no breakpoint is armed, no trace runs
 or waits and no switch is active. Pinned here: the same runs with a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The README is a front door whose examples run: its Python blocks print what their `# ->` lines
 say, its C program compiles against the C-Motion library and prints what it says (the CI gate's
 commands are run by tests/test_verify_cli.py, the systems' by tests/test_systems.py)."""

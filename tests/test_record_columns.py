@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """record.columns: bulk recording of any variables in FMI 2 and FMI 3: the
 FMU's rows equal a master's stepping cycle by cycle (tests/stepwise.py), bad names are refused."""
 from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at

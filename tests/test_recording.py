@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Bulk recording through FMI 3 record.data: the same rows as
 recording cycle by cycle, far fewer FMI calls."""
 import numpy as np

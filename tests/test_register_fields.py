@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Register fields are declared once, as the *Mask constants of constants.csv
 : the command table's packed values name them, and the C
 header the FMU's sources carry derives NAME_SHIFT and NAME_LENGTH from them."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every Set command reads back through its Get (pmd-reference 1.2), with the
 reset values of reference 4.2, and the remaining single-purpose commands."""
 import pytest

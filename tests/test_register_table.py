@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The register table (modelDescription/registers.csv): every
 plain stored register resets to its row's value, keeps what its Set stores,
 refuses a value outside its range with its row's error code and message, and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Breakpoints, interrupts, Reset, actual position and the ports' order (pmd-reference 2.5, 4.1, 4.2)."""
 import numpy as np
 

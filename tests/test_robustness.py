@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every class of bad input of docs/robustness.md: instance A gets it
 while it runs a busy profile; instance B runs the same profile untouched. A
 refused FMI call leaves A's FMU state byte for byte as it was; a refused chip

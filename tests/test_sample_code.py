@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Seed 000's sample code, sections 1.1-1.6, transcribed line by line.
 
 The seed's set-up loop computes buffer_start = memory_start + axis*variable*

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Stand-alone scripts: the `script` parameter (docs/scripts.md)."""
 import os
 import threading

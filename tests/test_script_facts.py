@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """What the compiled script knows about itself: the axes its
 calls address (script.axes) and the time of its last @ line (script.lastCycle),
 as FMU outputs, so that no one parses a script again to find them."""

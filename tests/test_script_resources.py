@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Profiles that travel with the FMU (docs/scripts.md).
 
 The `script` parameter: a value holding a line feed is the script's text; a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The servo filter and the motor output: docs/decisions.md's
 "Servo filter and motor output", pinned cycle by cycle against tests/reference.py's
 ServoFilter (written from that page), with `loopback` false and a scripted encoder;

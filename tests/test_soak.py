@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Soak: 10^9 cycles of an external profile streamed through the
 dual-port memory port, refilled behind the read position, checked against the
 exact closed form at every checkpoint, with flat memory."""

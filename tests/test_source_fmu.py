@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Source FMU: sources/ is self-contained; FMPy's build support rebuilds the
 binary from it (FMI 2 SourceFiles, FMI 3 buildDescription.xml) and the rebuilt
 FMU runs the seed's worked example."""

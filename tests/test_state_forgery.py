@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Forged FMU states: a snapshot whose checksum was recomputed after a
 field was changed must still be refused when the field holds a value the model
 never gives it, with a message naming the field, and the instance must stay as

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The test suite's own layout (tests/conftest.py): no test file imports another
 test file or conftest.py; helper modules hold no tests."""
 import ast

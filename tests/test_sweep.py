@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Sweeps on Dask: a 2-worker local cluster gives exactly the serial
 run, row for row; failing cases are rows with their reasons."""
 from pathlib import Path

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Sweeps on a running cluster: a Client passed in is used as it is and
 stays open, its workers keep their FMU instances from sweep to sweep; an address goes through
 this process's client of it; cases in batches and in several threads of a worker give exactly

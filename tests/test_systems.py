@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Chip + plant as a system (docs/systems.md): the servo loop of
 examples/systems/SystemStructure.ssd closed through the plant FMU, as an SSP run by
 FMPy's SSP support and by libcosim, as a container FMU run by FMPy, and by a plain

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The FMU in the co-simulation tools engineers use.
 
 Each tool runs the FMU with examples/two_axis.script for a few hundred chip cycles, one cycle

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Trace in buffer 0 (pmd-reference 4.4, 2.6) and SetSampleTime (CONTRACT 2.2)."""
 import pytest
 

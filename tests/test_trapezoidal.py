@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Trapezoidal point-to-point moves (seed 001; seed 000 1.4's initial move)."""
 import random
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Upload: write_memory's strobes run in C (native/memory_port.c)
 and leave the FMU exactly as the harness's Python loop did (stepwise.write_memory_stepwise,
 kept as the reference): the same FMU state byte for byte (memory, the port's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Every variable through every getter and setter: for each row
 of modelDescription/variables.csv (every axis, every array element in FMI 2, every
 array whole in FMI 3), through FMI 2 and FMI 3, a get and a set of EVERY type. The

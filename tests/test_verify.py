@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """pmdfmu.verify (docs/verify.md): a run against a golden trace and assertions, in Python.
 Goldens are written by the same run (`pmdfmu run`'s profile.run_profile), then the profile or the
 limits are changed and the failure must name the right cycle, column, segment and values."""

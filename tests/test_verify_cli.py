@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`pmdfmu verify` from the command line (docs/verify.md): exit status 0 pass, 1 fail,
 2 malformed input; JUnit XML and Markdown files; batches of a case table on Dask; README's example."""
 import os

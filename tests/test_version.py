@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The project's one version, python/pmdfmu/__init__.py's __version__: the installed package's metadata
 (pyproject.toml reads it there), both FMUs' model descriptions (modelDescription/generate.py reads it),
 the C library's header (a copy, checked here) and `pmdfmu --version` say the same."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Seed 000's worked table, chip times 11003..11013, out of the FMU cycle by cycle."""
 import pmdfmu
 from scenarios import WORKED_TABLE, run_worked_example

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* A complete C-Motion host program against the PMDMotionProcessor FMU: two axes follow an
    external profile (a square, a leg per segment) that is longer than the chip's buffers, so the
    host streams it in, refilling behind the read index while the axes move; it starts both axes

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The chip and the plant as one system (docs/systems.md), from one description,
 SystemStructure.ssd beside this file, in three forms and four masters:
 

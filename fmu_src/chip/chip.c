@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Chip life cycle and the per-cycle sequence: every axis's trajectory, then
  * limits, capture, the servo side, breakpoints, the servo filter and the trace. */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip core: a PMD Navigator/Pilot-class motion processor's trajectory
  * side. Plain C, no FMI inside; the FMI wrappers in ../fmi drive it.
  *

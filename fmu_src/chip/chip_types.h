@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's state: plain data, no pointers, so a copy is a snapshot; and the
  * chip object (PmdChip) around it: that state, this process's memory block and
  * logger. Register names follow the Navigator/Pilot programmer's reference. */

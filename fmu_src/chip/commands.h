@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What every command handler file needs. The handlers live in commands_*.c,
  * one file per chapter of the reference's opcode table (1.2); the plain stored
  * registers have none (registers.c serves them by registers.csv). The

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Breakpoints (reference 2.5, seed 004): two per axis, each a packed word of
  * source axis, action and trigger, and a 32-bit comparison value. */
 #include "commands.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Buffer memory (reference 4.3): 32 buffers in the external memory, set up
  * by start and length, read and written at their indexes, and assigned to an
  * axis's trajectory functions (SetBufferFunction, seed 000). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Chip-wide commands of the reference's "Miscellaneous" chapter (1.2): no
  * operation, reset, version and the cycle time. */
 #include "commands.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's hardware interfaces (reference 1.2, "Miscellaneous" and the
  * commutation commands) that no row of registers.csv can serve (a packed or
  * paired word, an address or channel, a reply of their own): the AxisOut pin,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The profile chapter (reference 1.2, 4.1): Update and MultiUpdate, the gear
  * master, the bump-free actual position changes and the trajectory's outputs.
  * The buffered profile registers themselves are rows of registers.csv. */

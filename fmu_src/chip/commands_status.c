@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Status and interrupts (reference 1.2, 2.1-2.4): the event, activity and
  * signal status, the capture, the host interrupt and the host I/O error. The
  * interrupt mask and the event status register are rows of registers.csv. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The trace commands (reference 1.2, 2.6, 4.4): what is sampled and when the
  * trace starts and stops; trace.c samples. The trace mode and period are rows
  * of registers.csv, guarded by pmd_trace_busy. */

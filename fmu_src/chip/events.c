@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's log and its event status bits: the ground floor (events.h). */
 #include <stdarg.h>
 #include <stdio.h>

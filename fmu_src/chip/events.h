@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The ground floor of the chip core: the chip's log and its event status
  * bits. It depends on the chip's data only (chip_types.h, where PmdChip is);
  * every other part of the chip reports through it, and none of it calls back up. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Fast-forward: many chip cycles at once, bit-identical to running them one
  * by one, when nothing needs individual cycles.
  *

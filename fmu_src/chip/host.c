@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The host port: an instruction word (fields PMDInstructionAxis and
  * PMDInstructionOpcode), then the data words,
  * 32-bit values high word first (reference 1.1). The command table generated

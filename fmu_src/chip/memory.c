@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's external memory (reference 4.3): the one way the chip writes it,
  * and the dual-port path from outside. */
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's external memory: the caller's array of memorySize 32-bit words. */
 #ifndef PMD_MEMORY_H
 #define PMD_MEMORY_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The trajectory generator: external profile (seed 000), trapezoidal
  * point-to-point, stops and Update. All arithmetic is exact (chip_types.h). */
 #include "events.h"

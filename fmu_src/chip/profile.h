@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The trajectory generators and Update (profile.c): one cycle of an axis's
  * profile, the stops, and the copy of the buffered registers to the active set. */
 #ifndef PMD_PROFILE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The plain stored registers of modelDescription/registers.csv: their Set and
  * Get commands have no handler of their own. A Set passes the register's guard
  * and range check (the refusal and its host I/O error code come from the

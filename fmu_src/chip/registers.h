@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The plain stored registers of modelDescription/registers.csv (registers.c):
  * their Set and Get commands are served by the generated register table. */
 #ifndef PMD_REGISTERS_H

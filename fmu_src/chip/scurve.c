@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* S-curve point-to-point (seed 001): jerk-limited, phases I-VII, symmetric
  * deceleration, from rest to rest, ending exactly on the destination.
  *

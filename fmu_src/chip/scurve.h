@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The S-curve generator (scurve.c): plans a move, then runs it cycle by cycle;
  * profile.c ends the motion when the curve says it is finished. */
 #ifndef PMD_SCURVE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The servo filter and the motor output (seed 001: "PID + velocity
  * feedforward and motor bias", closed and open loop; reference 1.2 for the
  * registers and their scalings). The formula, its integer arithmetic and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The servo filter and the motor output of every axis (servo.c): the PID with
  * velocity and acceleration feedforward, the output scale, the motor bias and
  * the motor limit in closed loop, the motor command register in open loop.

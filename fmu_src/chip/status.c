@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The status registers and the values the chip derives from its state
  * (reference 2.1-2.3, 4.5): read by the host, the cycle, breakpoints and the
  * trace; they change nothing. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Register views: the status registers and the values the chip derives from
  * its state. Ground floor: they read the state and call nothing. */
 #ifndef PMD_STATUS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The trace facility (reference 4.4): up to four variables, sampled every
  * `period` cycles at the end of the cycle into buffer 0, one 32-bit word per
  * slot, in slot order. One-time mode stops when the buffer is full; rolling

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The trace facility (trace.c): sampling at the end of each cycle. */
 #ifndef PMD_TRACE_H
 #define PMD_TRACE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Exact 64 x 64 -> 128-bit products and 128 / 64-bit division, for the
  * S-curve's rational positions. Uses the compiler's 128-bit integers where it
  * has them, else (or with PMD_PORTABLE_WIDE) plain C99 on 32-bit halves; the

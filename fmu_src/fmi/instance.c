@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The FMU instance over the chip core: variables, ports and the time grid
  * (CONTRACT 2.1, 2.2). */
 #include <float.h>

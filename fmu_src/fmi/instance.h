@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* One FMU instance: the chip, its memory, the host and dual-port memory
  * ports, the parameters and the time grid. Declared state (PmdInstanceState,
  * the chip's PmdChipState) apart from the process shell (PmdInstance).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip FMU's instance as data: the declared state (PmdInstanceState),
  * the process shell around it (PmdInstance, the chip's PmdModel of model.h),
  * record.columns compiled and the time grid. Types only: instance.c, record.c,

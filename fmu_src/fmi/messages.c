@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip FMU's messages (messages.h). */
 #include <stdarg.h>
 #include <stdio.h>

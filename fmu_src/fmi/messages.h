@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip FMU's messages (messages.c): under the log categories the model
  * description declares, as SetDebugLogging enabled them; errors always. */
 #ifndef PMD_MESSAGES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's model in FMI 3's terms (model.h): the same chip, names, value
  * references and timing as FMI 2, with native types and the host and memory
  * ports as arrays (variables3.h). Element e of an FMI 3 variable is the FMI 2

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Bulk recording: record.data's buffer and record.columns, the values a
  * recording doStep writes per cycle (docs/performance.md, "Recording").
  *

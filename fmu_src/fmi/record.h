@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Bulk recording (record.c): record.data's buffer, the memory an FMI 2
  * caller lends for it, and record.columns, the values a recording doStep
  * writes per cycle besides the chip time. Independent of the FMI version. */

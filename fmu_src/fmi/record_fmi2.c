@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's two functions beside the FMI 2 ones, in its FMI 2 binary only:
  * bulk recording (record.c) for FMI 2, which has no Binary type
  * (docs/performance.md, "Recording"; the harness's native/record_loop.c). */

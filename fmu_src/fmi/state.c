@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMU state: a snapshot of an instance as one self-describing block of bytes.
  *
  * A snapshot is the declared state (state_fields.h: the instance's

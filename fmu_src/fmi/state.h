@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMU state snapshots (state.c): the chip's FMU states for both FMI shells. */
 #ifndef PMD_STATE_H
 #define PMD_STATE_H

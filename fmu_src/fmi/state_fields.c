@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The declared state (state_fields.h): one row per field of
  * PmdInstanceState, PmdChipState and every struct inside them, with the
  * values the field may hold. Ranges are those the commands and the engine

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The declared state: every field of the structs an FMU state holds (the
  * instance's PmdInstanceState and the chip's PmdChipState), what each may
  * hold (state_fields.c). QEMU's VMStateDescription is the model: a snapshot

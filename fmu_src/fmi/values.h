@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The value of each Real, Integer and Boolean variable of the chip's FMU:
  * one table per type, read by the getters (instance.c) and by record.columns'
  * rows (record.c). Tables only (X macros), no functions. */

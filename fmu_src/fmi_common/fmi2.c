@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 2.0 Co-Simulation, written once for both FMUs over the model API
  * (model.h: the chip's fmu_src/fmi/model.c, the plant's plant_fmu.c). Every
  * function checks its component, its pointers and the state it is called in,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the FMI 2.0 shell (fmi2.c, written once for both FMUs over model.h)
  * offers the FMU's other FMI 2 files: fmi2_not_provided.c's refusals and the
  * chip's extension functions (fmu_src/fmi/record_fmi2.c). */

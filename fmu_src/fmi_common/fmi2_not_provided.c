@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 2.0 functions that neither FMU provides (modelDescription.xml says so:
  * canInterpolateInputs false, maxOutputDerivativeOrder 0, no directional
  * derivatives; doStep is synchronous). Every call is refused with fmi2Error

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 Co-Simulation, written once for both FMUs over the model API
  * (model.h: the chip's fmu_src/fmi/model.c and model3.c, the plant's
  * plant_fmu.c): native types, arrays as the model declares them. No event

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the FMI 3.0 shell (fmi3.c, written once for both FMUs over model.h)
  * offers the FMU's other FMI 3 files: fmi3_not_provided.c's refusals. */
 #ifndef PMD_FMI3_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* FMI 3.0 functions that neither FMU provides: both are Co-Simulation only,
  * with no event mode, no clocks, no structural parameters and no derivatives
  * (their modelDescription.xml say so). Every call is refused: an instantiation

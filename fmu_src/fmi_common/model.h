@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What an FMU's model provides to the FMI shells (fmi2.c, fmi3.c), which are
  * written once for both FMUs: the chip's model is fmu_src/fmi/ (model.c over
  * instance.h, model3.c for FMI 3's arrays), the plant's fmu_src/plant/plant_fmu.c.

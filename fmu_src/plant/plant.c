@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The plant's physics (plant.h has the equations). */
 #include <math.h>
 

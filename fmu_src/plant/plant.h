@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The plant: a DC motor behind an amplifier, driving an inertia against
  * viscous and Coulomb friction, read by a quadrature encoder. Plain data and
  * plain functions, nothing of FMI (plant_fmu.c is the FMU around it).

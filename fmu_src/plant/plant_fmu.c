@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The plant's model for the FMI shells (fmi_common/model.h, plant_fmu.h):
  * life cycle, variables by the generated table, doStep and FMU states. Every
  * refusal is logged with the function, the variable or value and the reason. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* One plant FMU instance: the model (plant.h), the FMI state it is in, and its
  * variables served by the generated table (plant_variables.h). It is the
  * plant's model for the FMI shells (fmi_common/model.h: plant_fmu.c implements

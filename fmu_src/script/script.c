@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Command scripts (docs/scripts.md): C-Motion calls grouped by the chip
  * cycle at which they run, compiled at initialization into host-command
  * words and memory blocks.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Command scripts: the FMU used stand-alone, without a host model (script.c).
  * Plain C over the chip's command table; no FMI inside (the instance runs them). */
 #ifndef PMD_SCRIPT_H

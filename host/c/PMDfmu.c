@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The C-Motion library's FMU transport (PMDfmu.h): loads the FMI 2 binary of the
    PMDMotionProcessor FMU with dlopen and drives it as a co-simulation master does. */
 #define _XOPEN_SOURCE 700     /* realpath, mkdtemp, nftw */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The C-Motion library's transport: a chip is an instance of the PMDMotionProcessor FMI 2 FMU,
    loaded with dlopen and driven through its host port (host.word/wordCount/strobe in,
    host.ack/error/replyCount/reply out) and its dual-port memory port (memory.*), the path any

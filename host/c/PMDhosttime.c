@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The host timing model (PMDhosttime.h). Every time is a whole number of nanoseconds; a
    transfer whose exact time is a fraction of a nanosecond (a serial byte at 57600 baud) is
    rounded up, transfer by transfer, so the host clock never runs on a float. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The host timing model: how long a command's transfer takes on the host interface, in whole
    nanoseconds, and which chip cycles fall due by the host clock (docs/host-time.md,
    docs/decisions.md "Host time"). Plain C99, no FMI: the C-Motion transport

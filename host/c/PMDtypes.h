@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* C-Motion's basic types and axis handle, as the 2.x API the seed's sample code uses has them
    (pmd-reference S3, the Navigator MC2440 C-Motion; S1 for the handle's transport_data member),
    with fixed-width integers so that PMDuint32 is 32 bits on every host. */

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """pmdfmu: a cycle-exact software twin of a PMD Navigator/Pilot-class motion
 processor's trajectory side, as an FMI co-simulation FMU, driven from Python
 the way C-Motion drives the chip.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The chip, as host code sees it: the FMU loaded through FMPy, C-Motion calls
 on axis handles, and cycle-exact runs recorded into numpy arrays."""
 from __future__ import annotations

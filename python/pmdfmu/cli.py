@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The pmdfmu command: a thin layer over the library.
 
   pmdfmu build      configure and build the FMU with CMake (into build/)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The bundled demo: a 2-axis external profile tracing a circle, written as a
 segment table the way a host planner would, run through the FMU.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """docs/commands.md, written from the command table, the register table, the
 hardware table and the out-of-scope table so that the list of opcodes, the
 registers' reset values and ranges, what each hardware command does in the FMU

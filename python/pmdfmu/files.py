@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A user's files as the harness reads and writes them.
 
 Reading: only a regular file is read; a FIFO, a device or a folder is refused at

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Fixed-point encoding of trajectory parameters (seed 000, section 1.7).
 
 The chip uses three 32-bit formats: 32.0 (unity scaling: positions), 16.16

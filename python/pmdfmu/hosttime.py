@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The host timing model: how long each command's transfer takes on the host
 interface, in whole nanoseconds (docs/host-time.md,
 docs/decisions.md "Host time").

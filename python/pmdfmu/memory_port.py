@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Chip.write_memory's strobes in the harness's native library (native/memory_port.c):
 per block of 64 words one set of memory.data, .address, .count and a new
 .strobe, then a get of host.ack that executes the write, through the FMU's own

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The harness's native library (native/*.c, built by CMake beside the FMUs):
 loops over an FMU's own FMI functions that would cost a Python call per cycle
 or per word. Found like the FMUs (chip.default_fmu): $PMDFMU_FMU_DIR/native,

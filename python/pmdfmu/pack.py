@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """pmdfmu pack: a copy of the FMU that runs a script profile with no parameter set.
 
 The copy carries the script and every segment table it loads under

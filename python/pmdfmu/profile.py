@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """External profiles from segment tables, following seed 000: buffer set-up
 (1.1), loading (1.3), the initial move and the synchronized start (1.4), and
 the run until every axis's profile segment number drops to 0 (1.6)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """How Chip.run(cycles, record=names) records (docs/performance.md, "Recording"):
 a Recorder, made per run by Chip.run (Chip.recorder: the class, another one for
 a test's oracle).

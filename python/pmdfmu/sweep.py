@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """Parameter and profile studies on Dask.
 
 A sweep runs a table of cases - FMU parameters, a script or a segment table,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """The interface tables under modelDescription/: variables, commands, registers, constants.
 
 This module has no third-party imports: the build's code generator

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """A team's own tests on pmdfmu runs, in one line (docs/verify.md):
 
     from pmdfmu.testing import assert_trajectory

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """`pmdfmu verify`: run a profile as `pmdfmu run` does and check it
 against a golden trace and declarative assertions, with reports a CI pipeline
 acts on (exit status, JUnit XML, Markdown, diff plots). docs/verify.md has the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-2-Clause
 """pmdfmu verify's reports: the text a person reads, JUnit XML (GitHub Actions, GitLab, Jenkins), the
 Markdown summary (GITHUB_STEP_SUMMARY) and the diff plot of a golden trace (docs/verify.md)."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The C-Motion library's log callback (PMDfmu.h): what the FMU and the transport say reaches it,
    and nothing else reaches the terminal. tests/test_cmotion_library.py runs it.
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* One chip per thread through the C-Motion library (PMDfmu.h): each worker opens its own chip,
    moves two axes and sleeps with PMDTaskWait between reads, then closes it, round after round.
    tests/test_cmotion_library.py runs the workers one after the other in one thread and all at

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* The cycle's floor divisions by the exact state's units (chip_types.h:
  * pmd_floor_counts, pmd_floor_1616) against C's signed division with the
  * floor fix-up (pmd_floor_div), at the int64 extremes, around every multiple

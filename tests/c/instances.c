@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Drives the real FMU binary (dlopen) through FMI 2.0 from C.
  *
  *   instances FMU.so GUID SCENARIO threads   four instances, each running the scenario with its own

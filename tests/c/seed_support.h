@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* What the seed's sample-code programs (tests/c/seed_1_*.c) share around the snippets: the
    chip, opened through the C-Motion library, printing its outputs after every cycle; the
    scenario's data; and the phases a program does not take from its own section, as plain

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
 /* Prints the declared state (fmu_src/fmi/state_fields.c) for
  * tests/test_state_forgery.py, which forges snapshots from it:
  *   header SIZE CHECKSUM                         bytes before the state image, checksum offset
