@@ -4,6 +4,7 @@ min / median, a report table. Benchmarks, not tests: nothing asserts a time.
 
 A benchmark module (bench/<topic>.py) defines benchmarks(tmp: Path) -> None,
 which measures and calls report(); bench/run.py runs them all."""
+
 from __future__ import annotations
 
 import statistics
@@ -13,7 +14,7 @@ from pathlib import Path
 from typing import Callable, List, Tuple
 
 REPO = Path(__file__).resolve().parent.parent
-RUNS = 5                     # every figure: min and median of at least this many runs
+RUNS = 5  # every figure: min and median of at least this many runs
 
 rows: List[Tuple[str, ...]] = []
 
@@ -21,6 +22,7 @@ rows: List[Tuple[str, ...]] = []
 @dataclass(frozen=True)
 class Figure:
     """A time measured RUNS times or more: the least (best) and the median."""
+
     min: float
     median: float
 

@@ -8,6 +8,7 @@
        against recorded (record.data), over short and over long segments.
 2c     a coarse doStep: 100 segments x 10^7 cycles, against cycle by cycle.
 """
+
 from __future__ import annotations
 
 import os
@@ -24,19 +25,33 @@ from common import REPO, RUNS, Figure, repeat, report, timed
 
 BUILD = Path(os.environ.get("PMDFMU_FMU_DIR") or REPO / "build")
 AXES = 4
-FAMILIES = {"short": (1, 7), "long": (1000, 2000)}     # segment times, cycles
-DOSTEP_CYCLES = 10 ** 6
-CYCLES_ENGINE = 1_000_000      # bench/engine.c's CYCLES
+FAMILIES = {"short": (1, 7), "long": (1000, 2000)}  # segment times, cycles
+DOSTEP_CYCLES = 10**6
+CYCLES_ENGINE = 1_000_000  # bench/engine.c's CYCLES
 
 
 def build() -> Path:
     """bench_engine and bench_dostep, built by CMake with the FMUs' own settings (Release,
     link-time optimization) in a build dir of their own under the FMU's."""
     tree = BUILD / "bench" / "engine"
-    subprocess.run(["cmake", "-S", str(REPO), "-B", str(tree), "-DCMAKE_BUILD_TYPE=Release",
-                    f"-DPython3_EXECUTABLE={sys.executable}"], check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", str(tree), "--target", "bench_engine", "bench_dostep"], check=True,
-                   stdout=subprocess.DEVNULL)
+    subprocess.run(
+        [
+            "cmake",
+            "-S",
+            str(REPO),
+            "-B",
+            str(tree),
+            "-DCMAKE_BUILD_TYPE=Release",
+            f"-DPython3_EXECUTABLE={sys.executable}",
+        ],
+        check=True,
+        stdout=subprocess.DEVNULL,
+    )
+    subprocess.run(
+        ["cmake", "--build", str(tree), "--target", "bench_engine", "bench_dostep"],
+        check=True,
+        stdout=subprocess.DEVNULL,
+    )
     return tree
 
 
@@ -55,14 +70,20 @@ def engine(tree: Path) -> None:
     per = CYCLES_ENGINE * AXES
     for label, family in (("1a", "short"), ("1b", "long")):
         core = fig[f"{family} engine"].per(per)
-        name, bare = min(((k.split()[1], f.per(per)) for k, f in fig.items()
-                          if k.startswith(f"{family} bare")), key=lambda x: x[1].median)
+        name, bare = min(
+            ((k.split()[1], f.per(per)) for k, f in fig.items() if k.startswith(f"{family} bare")),
+            key=lambda x: x[1].median,
+        )
         lo, hi = FAMILIES[family]
         ratio = core.median / bare.median
-        report(f"{label} engine, {lo}-{hi}-cycle random segments, 4 axes, every cycle stored",
-               core.text(1e9, "ns/axis-cycle"), f"bare C loop ({name}) {bare.text(1e9, 'ns')}", ratio,
-               "<= 1.3x", ratio <= 1.3)
-
+        report(
+            f"{label} engine, {lo}-{hi}-cycle random segments, 4 axes, every cycle stored",
+            core.text(1e9, "ns/axis-cycle"),
+            f"bare C loop ({name}) {bare.text(1e9, 'ns')}",
+            ratio,
+            "<= 1.3x",
+            ratio <= 1.3,
+        )
 
 
 def tables(tmp: Path, family: str) -> tuple:
@@ -77,13 +98,19 @@ def tables(tmp: Path, family: str) -> tuple:
         rows, cycles = [], 0
         while cycles <= DOSTEP_CYCLES + 10:
             t = rng.randint(lo, hi)
-            rows.append(f"{rng.randrange(-2 ** 31, 2 ** 31)},{rng.randrange(-2 ** 23, 2 ** 23)},"
-                        f"{rng.randrange(-2 ** 11, 2 ** 11)},{rng.randrange(-2 ** 19, 2 ** 19)},{t}")
+            rows.append(
+                f"{rng.randrange(-(2**31), 2**31)},{rng.randrange(-(2**23), 2**23)},"
+                f"{rng.randrange(-(2**11), 2**11)},{rng.randrange(-(2**19), 2**19)},{t}"
+            )
             cycles += t
-        (d / f"axis{axis}.csv").write_text("# units: raw\nposition,velocity,acceleration,jerk,time\n" +
-                                           "\n".join(rows) + "\n")
-        lines += [f'LoadSegmentTable(Axis{axis}, "axis{axis}.csv", {address}, {2 + 5 * (axis - 1)});',
-                  f"SetProfileMode(Axis{axis}, PMDExternalProfile);", f"Update(Axis{axis});"]
+        (d / f"axis{axis}.csv").write_text(
+            "# units: raw\nposition,velocity,acceleration,jerk,time\n" + "\n".join(rows) + "\n"
+        )
+        lines += [
+            f'LoadSegmentTable(Axis{axis}, "axis{axis}.csv", {address}, {2 + 5 * (axis - 1)});',
+            f"SetProfileMode(Axis{axis}, PMDExternalProfile);",
+            f"Update(Axis{axis});",
+        ]
         address += 5 * len(rows)
     script = d / "profile.script"
     script.write_text("\n".join(lines) + "\n")
@@ -97,37 +124,52 @@ def dostep(tmp: Path, tree: Path) -> None:
     token = read_model_description(str(fmu)).guid
     for label, family in (("2a", "short"), ("2b", "long")):
         script, words = tables(tmp, family)
-        out = subprocess.run([str(tree / "bench_dostep"), str(binary), token, str(script), str(words),
-                              str(DOSTEP_CYCLES), str(RUNS)], capture_output=True, text=True, check=True).stdout
+        out = subprocess.run(
+            [str(tree / "bench_dostep"), str(binary), token, str(script), str(words), str(DOSTEP_CYCLES), str(RUNS)],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout
         fig = figures(out.splitlines(), 1)
         plain, recorded = fig["unrecorded"].per(DOSTEP_CYCLES), fig["recorded"].per(DOSTEP_CYCLES)
         lo, hi = FAMILIES[family]
         ratio = plain.median / recorded.median
-        report(f"{label} doStep of 10^6 cycles, {lo}-{hi}-cycle segments, not recorded",
-               plain.text(1e9, "ns/cycle"), f"recorded (record.data) {recorded.text(1e9, 'ns')}", ratio,
-               "<= 1.0x", ratio <= 1.0)
+        report(
+            f"{label} doStep of 10^6 cycles, {lo}-{hi}-cycle segments, not recorded",
+            plain.text(1e9, "ns/cycle"),
+            f"recorded (record.data) {recorded.text(1e9, 'ns')}",
+            ratio,
+            "<= 1.0x",
+            ratio <= 1.0,
+        )
 
 
 def coarse() -> None:
     """One doStep of 10^9 cycles over a 100-segment table: fast-forward, O(segments)."""
     from pmdfmu.profile import load_external_profile, start_external_profile
+
     segments = [(1000 * i, 0x10000, 0x10, 0x100, 10_000_000) for i in range(100)] + [(0, 0, 0, 0, 0)]
 
     def run(cycles, block_fast_forward):
         with pmdfmu.Chip() as chip:
             load_external_profile(chip, {0: segments})
             start_external_profile(chip, [0])
-            if block_fast_forward:          # an armed breakpoint needs every cycle
-                chip.axis(1).SetBreakpointValue(0, 2 ** 31 - 1)
+            if block_fast_forward:  # an armed breakpoint needs every cycle
+                chip.axis(1).SetBreakpointValue(0, 2**31 - 1)
                 chip.axis(1).SetBreakpoint(0, 1, 0, pmdfmu.PMDBreakpointTime)
             return timed(lambda: chip.run(cycles))
 
-    fast = repeat(lambda: run(10 ** 9, False))
+    fast = repeat(lambda: run(10**9, False))
     slow = repeat(lambda: run(1_000_000, True), runs=RUNS).per(1_000_000)
     extrapolated = slow.median * 1e9
-    report("2c coarse doStep, 100 segments x 10^7 cycles (ratio: speed-up)", fast.text(1e3, "ms"),
-           f"cycle by cycle {slow.min * 1e9:.0f} / {extrapolated:.0f} s (extrapolated)", extrapolated / fast.median,
-           "< 10 ms", fast.median < 0.010)
+    report(
+        "2c coarse doStep, 100 segments x 10^7 cycles (ratio: speed-up)",
+        fast.text(1e3, "ms"),
+        f"cycle by cycle {slow.min * 1e9:.0f} / {extrapolated:.0f} s (extrapolated)",
+        extrapolated / fast.median,
+        "< 10 ms",
+        fast.median < 0.010,
+    )
 
 
 def benchmarks(tmp: Path) -> None:

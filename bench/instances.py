@@ -2,6 +2,7 @@
 """Instances: pmdfmu.Chip() after the first of an FMU file, against the
 first Chip of a file (what every Chip() cost before: extract the FMU, read its 480 KB model
 description, declare FMPy's FMI prototypes, instantiate, initialize). Part of ./dev bench."""
+
 from __future__ import annotations
 
 import shutil
@@ -11,8 +12,8 @@ from pathlib import Path
 import pmdfmu
 from common import repeat, report, timed
 
-LATER = 50            # instances made per timed run of the later Chip()
-TARGET = 2e-3         # s: a later Chip()
+LATER = 50  # instances made per timed run of the later Chip()
+TARGET = 2e-3  # s: a later Chip()
 
 
 def folders(chip: pmdfmu.Chip) -> int:
@@ -22,7 +23,7 @@ def folders(chip: pmdfmu.Chip) -> int:
 
 def one_version(tmp: Path, fmi_version: int) -> None:
     source = pmdfmu.default_fmu(fmi_version)
-    copies = iter(range(10 ** 6))
+    copies = iter(range(10**6))
 
     def first() -> float:
         """The first Chip of an FMU file: a copy written for this run, never seen by the process."""
@@ -35,7 +36,7 @@ def one_version(tmp: Path, fmi_version: int) -> None:
 
     fresh = repeat(first)
     path = Path(shutil.copy(source, tmp / f"later-{fmi_version}.fmu"))
-    keeper = pmdfmu.Chip(fmi_version, path)           # the file's first instance
+    keeper = pmdfmu.Chip(fmi_version, path)  # the file's first instance
     before = folders(keeper)
     chips = []
 
@@ -49,10 +50,14 @@ def one_version(tmp: Path, fmi_version: int) -> None:
     ours = repeat(later).per(LATER)
     new_folders = folders(keeper) - before
     keeper.close()
-    report(f"Chip() after the first of an FMU file, FMI {fmi_version}", ours.text(1e3, "ms", ".3f"),
-           f"first Chip of the file {fresh.text(1e3, 'ms')}", fresh.median / ours.median,
-           f"<= {TARGET * 1e3:g} ms, no new unzip ({new_folders} made); ratio first / later",
-           ours.median <= TARGET and new_folders == 0)
+    report(
+        f"Chip() after the first of an FMU file, FMI {fmi_version}",
+        ours.text(1e3, "ms", ".3f"),
+        f"first Chip of the file {fresh.text(1e3, 'ms')}",
+        fresh.median / ours.median,
+        f"<= {TARGET * 1e3:g} ms, no new unzip ({new_folders} made); ratio first / later",
+        ours.median <= TARGET and new_folders == 0,
+    )
 
 
 def benchmarks(tmp: Path) -> None:

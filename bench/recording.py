@@ -9,6 +9,7 @@ one output per cycle (stop_time = cycles x cycleTime, step_size = output_interva
 simulate_fmu's fastest honest form is the baseline: the FMU already extracted, no validation, the
 prepared instance handed over (fmu_instance, initialize=False), so that it runs the same profile
 and nothing but its loop is timed."""
+
 from __future__ import annotations
 
 import random
@@ -33,9 +34,19 @@ SIMULATE_RUNS = {1_000_000: 3}
 def segment_table(seed: int = 16, rows: int = 200):
     """Random segments of 100-3000 cycles with jerk on every axis (the table repeats after ~300 000 cycles)."""
     rng = random.Random(seed)
-    return {axis: [(rng.randrange(-10 ** 6, 10 ** 6), rng.randrange(-5 << 16, 5 << 16), rng.randrange(-1 << 12, 1 << 12),
-                    rng.randrange(-1 << 20, 1 << 20), rng.randrange(100, 3000)) for _ in range(rows)]
-            for axis in range(AXES)}
+    return {
+        axis: [
+            (
+                rng.randrange(-(10**6), 10**6),
+                rng.randrange(-5 << 16, 5 << 16),
+                rng.randrange(-1 << 12, 1 << 12),
+                rng.randrange(-1 << 20, 1 << 20),
+                rng.randrange(100, 3000),
+            )
+            for _ in range(rows)
+        ]
+        for axis in range(AXES)
+    }
 
 
 def prepared(version: int, table) -> pmdfmu.Chip:
@@ -48,16 +59,28 @@ def prepared(version: int, table) -> pmdfmu.Chip:
 
 def simulate(chip: pmdfmu.Chip, names, cycles: int):
     ct = chip.cycle_time
-    return fmpy.simulate_fmu(chip._unzipdir, validate=False, fmi_type="CoSimulation", fmu_instance=chip.fmu,
-                             initialize=False, terminate=False, start_time=0.0, stop_time=cycles * ct,
-                             step_size=ct, output_interval=ct, output=list(names))
+    return fmpy.simulate_fmu(
+        chip._unzipdir,
+        validate=False,
+        fmi_type="CoSimulation",
+        fmu_instance=chip.fmu,
+        initialize=False,
+        terminate=False,
+        start_time=0.0,
+        stop_time=cycles * ct,
+        step_size=ct,
+        output_interval=ct,
+        output=list(names),
+    )
 
 
 def measure(version: int, table, action, runs: int = common.RUNS) -> common.Figure:
     """action(chip) timed on a fresh prepared chip per run."""
+
     def once():
         with prepared(version, table) as chip:
             return common.timed(lambda: action(chip))
+
     return common.repeat(once, runs)
 
 
@@ -72,18 +95,29 @@ def benchmarks(tmp: Path) -> None:
             for cycles in CYCLES:
                 run = measure(version, table, lambda chip, cycles=cycles, names=names: chip.run(cycles, record=names))
                 sim_runs = SIMULATE_RUNS.get(cycles, common.RUNS)
-                sim = measure(version, table, lambda chip, cycles=cycles, names=names: simulate(chip, names, cycles),
-                              sim_runs)
+                sim = measure(
+                    version, table, lambda chip, cycles=cycles, names=names: simulate(chip, names, cycles), sim_runs
+                )
                 axis_cycles = AXES * cycles
                 name = f"chip.run(record) FMI {version}, {label}, {cycles:,} cycles"
-                common.report(name + ": rate", run.rate(axis_cycles).text(1e-6, "M axis-cycles/s", ".1f"),
-                              "-", axis_cycles / run.median / 1e6 / 20, ">= 20 M axis-cycles/s (ratio: /20 M)",
-                              axis_cycles / run.median >= 20e6)
+                common.report(
+                    name + ": rate",
+                    run.rate(axis_cycles).text(1e-6, "M axis-cycles/s", ".1f"),
+                    "-",
+                    axis_cycles / run.median / 1e6 / 20,
+                    ">= 20 M axis-cycles/s (ratio: /20 M)",
+                    axis_cycles / run.median >= 20e6,
+                )
                 ratio = sim.median / run.median
-                common.report(name + ": vs simulate_fmu", run.text(1e3, "ms"),
-                              f"simulate_fmu {sim.text(1e3, 'ms', '.0f')}"
-                              + (f" ({sim_runs} runs)" if sim_runs != common.RUNS else ""),
-                              ratio, ">= 200x (simulate_fmu / run)", ratio >= 200)
+                common.report(
+                    name + ": vs simulate_fmu",
+                    run.text(1e3, "ms"),
+                    f"simulate_fmu {sim.text(1e3, 'ms', '.0f')}"
+                    + (f" ({sim_runs} runs)" if sim_runs != common.RUNS else ""),
+                    ratio,
+                    ">= 200x (simulate_fmu / run)",
+                    ratio >= 200,
+                )
     lending(table)
 
 
@@ -105,7 +139,11 @@ def lending(table) -> None:
                     recording.lent_stepper = real
         lent_f, copied_f = common.Figure.of(lent), common.Figure.of(copied)
         saved = (copied_f.median - lent_f.median) / lent_f.median
-        common.report(f"lent vs copied rows, FMI 2, status + Reals, {cycles:,} cycles",
-                      lent_f.per(cycles).text(1e9, "ns/row"), f"copied {copied_f.per(cycles).text(1e9, 'ns/row')}",
-                      copied_f.median / lent_f.median,
-                      f"report (the copy costs {saved:.0%} of a lent row: the extension stays if > 10 %)", True)
+        common.report(
+            f"lent vs copied rows, FMI 2, status + Reals, {cycles:,} cycles",
+            lent_f.per(cycles).text(1e9, "ns/row"),
+            f"copied {copied_f.per(cycles).text(1e9, 'ns/row')}",
+            copied_f.median / lent_f.median,
+            f"report (the copy costs {saved:.0%} of a lent row: the extension stays if > 10 %)",
+            True,
+        )

@@ -7,6 +7,7 @@ time. Each topic is a module of this folder with benchmarks(tmp).
 
     python bench/run.py [TOPIC ...]          (./dev bench)
 """
+
 from __future__ import annotations
 
 import importlib
@@ -33,7 +34,7 @@ def main(argv) -> int:
             tmp.mkdir()
             try:
                 importlib.import_module(topic).benchmarks(tmp)
-            except Exception as e:            # one failing benchmark does not hide the others
+            except Exception as e:  # one failing benchmark does not hide the others
                 traceback.print_exc()
                 common.rows.append((topic, f"failed: {e}", "", "", "", "NO"))
     rows = [HEAD] + common.rows

@@ -10,6 +10,7 @@ alone, no refill: its time is the baseline). Part of ./dev bench.
 Every streamed run is checked against the whole-table run (cycles, commanded
 position, velocity and activity at the end): the figure is that of a stream
 that delivered the profile."""
+
 from __future__ import annotations
 
 import time
@@ -21,11 +22,11 @@ import numpy as np
 import pmdfmu
 from common import RUNS, Figure, report
 
-ENTRIES = 4096               # buffer entries per column (the seed's buffer_length)
-SEGMENTS = 50_000            # segments streamed per run (plus the time-0 row that ends the profile)
-BASE = 0x200                 # the columns' buffers: BASE + f * ENTRIES
-TARGET = 0.30                # the share of a streamed run spent refilling
-TAIL = 64                    # cycles run past the profile's segment times: it has stopped by then
+ENTRIES = 4096  # buffer entries per column (the seed's buffer_length)
+SEGMENTS = 50_000  # segments streamed per run (plus the time-0 row that ends the profile)
+BASE = 0x200  # the columns' buffers: BASE + f * ENTRIES
+TARGET = 0.30  # the share of a streamed run spent refilling
+TAIL = 64  # cycles run past the profile's segment times: it has stopped by then
 RECORD = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration"]
 
 
@@ -76,7 +77,7 @@ def streamed(version: int, rows: np.ndarray, record: Sequence[str]):
     the end state)."""
     total = len(rows)
     columns = [np.ascontiguousarray(rows[:, f] & 0xFFFFFFFF, dtype=np.uint32) for f in range(5)]
-    ends = np.concatenate([[0], np.cumsum(rows[:, 4])])          # ends[i]: the cycles of segments 0..i-1
+    ends = np.concatenate([[0], np.cumsum(rows[:, 4])])  # ends[i]: the cycles of segments 0..i-1
     with pmdfmu.Chip(version, memorySize=BASE + 5 * ENTRIES) as chip:
         ax = chip.axis(0)
         buffers(chip, ENTRIES)
@@ -88,14 +89,14 @@ def streamed(version: int, rows: np.ndarray, record: Sequence[str]):
                 while i < last:
                     slot = i % ENTRIES
                     n = min(last - i, ENTRIES - slot)
-                    chip.write_memory(BASE + f * ENTRIES + slot, columns[f][i:i + n])
+                    chip.write_memory(BASE + f * ENTRIES + slot, columns[f][i : i + n])
                     i += n
 
         written = min(ENTRIES - 1, total)
         write(0, written)
         ax.SetProfileMode(pmdfmu.PMDExternalProfile)
         ax.Update()
-        read, index, ran, refill = 0, 0, 0, 0.0     # segments the chip has read, its read index, cycles run
+        read, index, ran, refill = 0, 0, 0, 0.0  # segments the chip has read, its read index, cycles run
         start = time.perf_counter()
         while True:
             # up to the last cycle of the last segment written: the chip never reads an entry not yet
@@ -110,7 +111,7 @@ def streamed(version: int, rows: np.ndarray, record: Sequence[str]):
             now = ax.GetBufferReadIndex(2)
             read += (now - index) % ENTRIES
             index = now
-            last = min(read + ENTRIES - 1, total)     # the entry in progress was read: all others are free
+            last = min(read + ENTRIES - 1, total)  # the entry in progress was read: all others are free
             write(written, last)
             written = last
             refill += time.perf_counter() - begin
@@ -130,11 +131,14 @@ def one(version: int, cycles: Sequence[int], record: Sequence[str], target: bool
     base = Figure.of(p[0] for p in plain)
     share = Figure.of(shares)
     what = f"{'recorded (3 outputs)' if record else 'not recorded'}, {cycles[0]}-{cycles[1]}-cycle segments"
-    report(f"streamed run, FMI {version}, {what}: share refilling",
-           f"{share.text(100, '%', '.1f')} of {loop.text(1e3, 'ms', '.1f')}",
-           f"the same profile from one table {base.text(1e3, 'ms', '.1f')}", loop.median / base.median,
-           f"< {TARGET:.0%} refilling; ratio streamed / whole" if target else "report; ratio streamed / whole",
-           share.median < TARGET if target else True)
+    report(
+        f"streamed run, FMI {version}, {what}: share refilling",
+        f"{share.text(100, '%', '.1f')} of {loop.text(1e3, 'ms', '.1f')}",
+        f"the same profile from one table {base.text(1e3, 'ms', '.1f')}",
+        loop.median / base.median,
+        f"< {TARGET:.0%} refilling; ratio streamed / whole" if target else "report; ratio streamed / whole",
+        share.median < TARGET if target else True,
+    )
 
 
 def benchmarks(tmp: Path) -> None:

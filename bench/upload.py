@@ -14,6 +14,7 @@ loader and through the memory port. Part of ./dev bench.
   own FMI functions). Baseline: the same writes by the harness's Python loop
   (tests/stepwise.py's write_memory_stepwise: what write_memory did before; the ratio is the
   speed-up)."""
+
 from __future__ import annotations
 
 import sys
@@ -29,16 +30,23 @@ sys.path.insert(0, str(REPO / "tests"))
 from stepwise import write_memory_stepwise  # noqa: E402  (the tests' oracle, the baseline here)
 
 SEGMENTS = 100_000
-TARGET = 2e6                  # segments/s, each path
+TARGET = 2e6  # segments/s, each path
 HEADER = "position,velocity,acceleration,jerk,time"
 
 
 def table(seed: int = 5) -> np.ndarray:
     """Random segments: 32-bit position and velocity, small acceleration and jerk, 1-7-cycle times."""
     rng = np.random.default_rng(seed)
-    return np.stack([rng.integers(-2 ** 31, 2 ** 31, SEGMENTS), rng.integers(-2 ** 31, 2 ** 31, SEGMENTS),
-                     rng.integers(-2 ** 20, 2 ** 20, SEGMENTS), rng.integers(-2 ** 20, 2 ** 20, SEGMENTS),
-                     rng.integers(1, 8, SEGMENTS)], axis=1)
+    return np.stack(
+        [
+            rng.integers(-(2**31), 2**31, SEGMENTS),
+            rng.integers(-(2**31), 2**31, SEGMENTS),
+            rng.integers(-(2**20), 2**20, SEGMENTS),
+            rng.integers(-(2**20), 2**20, SEGMENTS),
+            rng.integers(1, 8, SEGMENTS),
+        ],
+        axis=1,
+    )
 
 
 def script_loader(tmp: Path, rows: np.ndarray, version: int) -> None:
@@ -58,25 +66,36 @@ def script_loader(tmp: Path, rows: np.ndarray, version: int) -> None:
                 raise AssertionError("the table was not loaded")
         return took
 
-    pmdfmu.Chip(version).close()                     # the FMU file's first Chip (its unzip) is not the upload's
+    pmdfmu.Chip(version).close()  # the FMU file's first Chip (its unzip) is not the upload's
     ours = repeat(load).rate(SEGMENTS)
     numpy = repeat(lambda: timed(lambda: np.loadtxt(csv, delimiter=",", skiprows=1, dtype=np.int64))).rate(SEGMENTS)
-    report(f"upload {SEGMENTS} segments, script loader (LoadSegmentTable), FMI {version}",
-           ours.text(1e-6, "M segments/s"), f"numpy.loadtxt of the same CSV {numpy.text(1e-6, 'M/s')}",
-           ours.median / numpy.median, f">= {TARGET / 1e6:g} M/s; ratio loader / numpy", ours.median >= TARGET)
+    report(
+        f"upload {SEGMENTS} segments, script loader (LoadSegmentTable), FMI {version}",
+        ours.text(1e-6, "M segments/s"),
+        f"numpy.loadtxt of the same CSV {numpy.text(1e-6, 'M/s')}",
+        ours.median / numpy.median,
+        f">= {TARGET / 1e6:g} M/s; ratio loader / numpy",
+        ours.median >= TARGET,
+    )
 
 
 def memory_port(rows: np.ndarray, version: int) -> None:
     columns = [np.ascontiguousarray(rows[:, f]) for f in range(5)]
     with pmdfmu.Chip(version, memorySize=5 * SEGMENTS) as chip:
+
         def upload(write) -> float:
             return timed(lambda: [write(f * SEGMENTS, columns[f]) for f in range(5)])
 
         ours = repeat(lambda: upload(chip.write_memory)).rate(SEGMENTS)
         python = repeat(lambda: upload(lambda a, w: write_memory_stepwise(chip, a, w))).rate(SEGMENTS)
-    report(f"upload {SEGMENTS} segments, memory port (write_memory), FMI {version}",
-           ours.text(1e-6, "M segments/s"), f"the Python strobe loop {python.text(1e-6, 'M/s')}",
-           ours.median / python.median, f">= {TARGET / 1e6:g} M/s; ratio native / Python", ours.median >= TARGET)
+    report(
+        f"upload {SEGMENTS} segments, memory port (write_memory), FMI {version}",
+        ours.text(1e-6, "M segments/s"),
+        f"the Python strobe loop {python.text(1e-6, 'M/s')}",
+        ours.median / python.median,
+        f">= {TARGET / 1e6:g} M/s; ratio native / Python",
+        ours.median >= TARGET,
+    )
 
 
 def benchmarks(tmp: Path) -> None:

@@ -8,12 +8,20 @@ auto-stop switches the motor off.
 
     python examples/closed_loop.py
 """
+
 import math
 from dataclasses import dataclass
 
 import pmdfmu
-from pmdfmu import (PMDActivityMotorOnMask, PMDAutoStopEnabled, PMDEventMotionCompleteMask, PMDEventMotionErrorMask,
-                    PMDMotionCompleteActualPosition, PMDMotorOn, PMDTrapezoidalProfile)
+from pmdfmu import (
+    PMDActivityMotorOnMask,
+    PMDAutoStopEnabled,
+    PMDEventMotionCompleteMask,
+    PMDEventMotionErrorMask,
+    PMDMotionCompleteActualPosition,
+    PMDMotorOn,
+    PMDTrapezoidalProfile,
+)
 
 
 @dataclass
@@ -27,10 +35,11 @@ class Motor:
     (counts/cycle^2), so the no-load speed at full scale is
     full_scale_acceleration * time_constant counts/cycle. Integrated once per
     cycle (semi-implicit Euler); the encoder reads the whole counts."""
-    full_scale_acceleration: float = 1.0    # counts/cycle^2 at u = 1
-    time_constant: float = 200.0            # cycles
-    position: float = 0.0                   # counts
-    velocity: float = 0.0                   # counts/cycle
+
+    full_scale_acceleration: float = 1.0  # counts/cycle^2 at u = 1
+    time_constant: float = 200.0  # cycles
+    position: float = 0.0  # counts
+    velocity: float = 0.0  # counts/cycle
 
     def step(self, u: float) -> None:
         self.velocity += self.full_scale_acceleration * u - self.velocity / self.time_constant
@@ -45,13 +54,11 @@ class Motor:
 # Kvff and Kaff cancel the motor's own response to the commanded velocity and
 # acceleration: Kvff V/2^16 = u_full * v / (a_full * tau), Kaff A/2^16 = u_full * a / a_full,
 # u_full = 32768 counts of motor command.
-GAINS = dict(Kp=100, Ki=200, Kd=4000, DerivativeTime=4, IntegrationLimit=20_000, Kvff=164, Kaff=32768,
-             Kout=0xFFFF)
+GAINS = dict(Kp=100, Ki=200, Kd=4000, DerivativeTime=4, IntegrationLimit=20_000, Kvff=164, Kaff=32768, Kout=0xFFFF)
 # A PI loop with far too much integral gain and no derivative: it oscillates with growing amplitude.
-UNSTABLE_GAINS = dict(Kp=100, Ki=1000, Kd=0, DerivativeTime=1, IntegrationLimit=0x7FFFFFFF, Kvff=0, Kaff=0,
-                      Kout=0xFFFF)
+UNSTABLE_GAINS = dict(Kp=100, Ki=1000, Kd=0, DerivativeTime=1, IntegrationLimit=0x7FFFFFFF, Kvff=0, Kaff=0, Kout=0xFFFF)
 
-MOVE = dict(position=10_000, velocity=10.0, acceleration=0.02)     # counts, counts/cycle, counts/cycle^2
+MOVE = dict(position=10_000, velocity=10.0, acceleration=0.02)  # counts, counts/cycle, counts/cycle^2
 
 
 def set_up(chip, gains, settle_window=5, settle_time=20, position_error_limit=1000):
@@ -91,8 +98,12 @@ def run(chip, motor, cycles, until=None):
         chip.set("axis1.actualPosition", encoder)
         chip.run(1)
         motor.step(chip.get("axis1.motorOutput"))
-        row = (chip.get("axis1.commandedPosition"), encoder, chip.get("axis1.motorCommand"),
-               chip.get("axis1.eventStatus"))
+        row = (
+            chip.get("axis1.commandedPosition"),
+            encoder,
+            chip.get("axis1.motorCommand"),
+            chip.get("axis1.eventStatus"),
+        )
         rows.append(row)
         if until and until(row):
             break
@@ -123,13 +134,17 @@ if __name__ == "__main__":
     with pmdfmu.Chip(loopback=False) as chip:
         ax, motor, rows = settle_move(chip)
         worst = max(abs(c - e) for c, e, _, _ in rows)
-        print(f"suggested gains: motion complete after {len(rows)} cycles at {rows[-1][1]} counts "
-              f"(commanded {rows[-1][0]}); largest following error {worst} counts")
+        print(
+            f"suggested gains: motion complete after {len(rows)} cycles at {rows[-1][1]} counts "
+            f"(commanded {rows[-1][0]}); largest following error {worst} counts"
+        )
         for k in range(0, len(rows), 250):
             c, e, u, _ = rows[k]
             print(f"  cycle {k + 1:5d}: commanded {c:6d}  encoder {e:6d}  motor command {u:6d}")
     with pmdfmu.Chip(loopback=False) as chip:
         ax, motor, rows = unstable_move(chip)
-        print(f"unstable gains: motion error after {len(rows)} cycles, position error {ax.GetPositionError()}; "
-              f"motor on: {bool(ax.GetActivityStatus() & PMDActivityMotorOnMask)}, "
-              f"motor command {chip.get('axis1.motorCommand')}")
+        print(
+            f"unstable gains: motion error after {len(rows)} cycles, position error {ax.GetPositionError()}; "
+            f"motor on: {bool(ax.GetActivityStatus() & PMDActivityMotorOnMask)}, "
+            f"motor command {chip.get('axis1.motorCommand')}"
+        )

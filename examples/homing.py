@@ -7,11 +7,19 @@ The plant is a simple stage: an ideal servo (loopback) and a home switch that
 is active at and beyond HOME_AT counts of travel. The script steps the chip one
 cycle at a time and sets the switch input from the stage's travel, as a plant
 model in a co-simulation would (so the switch reaches the chip one cycle late)."""
-import pmdfmu
-from pmdfmu import (PMDActivityInMotionMask, PMDActivityPositionCaptureMask, PMDAxis1, PMDCaptureSourceHome,
-                    PMDSmoothStop, PMDTrapezoidal, PMDVelocityContouringProfile)
 
-HOME_AT = 12_345            # where the switch sits, unknown to the host
+import pmdfmu
+from pmdfmu import (
+    PMDActivityInMotionMask,
+    PMDActivityPositionCaptureMask,
+    PMDAxis1,
+    PMDCaptureSourceHome,
+    PMDSmoothStop,
+    PMDTrapezoidal,
+    PMDVelocityContouringProfile,
+)
+
+HOME_AT = 12_345  # where the switch sits, unknown to the host
 
 
 class Stage:
@@ -36,7 +44,7 @@ def home(chip):
         ax.GetCaptureValue()
     # hunt for the home point with a velocity move
     ax.SetProfileMode(PMDVelocityContouringProfile)
-    ax.SetVelocity(pmdfmu.fixed_16_16(8.0))             # 8 counts/cycle
+    ax.SetVelocity(pmdfmu.fixed_16_16(8.0))  # 8 counts/cycle
     ax.SetAcceleration(pmdfmu.fixed_16_16(0.25))
     ax.Update()
     while not ax.GetActivityStatus() & PMDActivityPositionCaptureMask:
@@ -47,7 +55,7 @@ def home(chip):
     while ax.GetActivityStatus() & PMDActivityInMotionMask:
         stage.step()
     captured = ax.GetCaptureValue()
-    ax.AdjustActualPosition(-captured)                   # the home point is now 0
+    ax.AdjustActualPosition(-captured)  # the home point is now 0
     stage.origin += captured
     overshoot = ax.GetActualPosition()
     # and a trapezoidal move back to the origin
@@ -64,5 +72,7 @@ def home(chip):
 if __name__ == "__main__":
     with pmdfmu.Chip() as chip:
         captured, overshoot, final = home(chip)
-        print(f"home switch captured at {captured} counts; stopped {overshoot} counts past it; "
-              f"back at {final} (the new origin), switch active: {bool(chip.get('axis1.home'))}")
+        print(
+            f"home switch captured at {captured} counts; stopped {overshoot} counts past it; "
+            f"back at {final} (the new origin), switch active: {bool(chip.get('axis1.home'))}"
+        )

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Seed 000's worked example: one constant-velocity segment, read at chip time 11003."""
+
 import pmdfmu
 from pmdfmu import PMDBufferFunctionPosition, PMDBufferFunctionTime, PMDBufferFunctionVelocity
 
@@ -9,9 +10,11 @@ def start_worked_example(chip):
     the Update that starts the external profile: the next cycle, 11003, reads the
     first segment. (The tests run this function too: tests/scenarios.py.)"""
     ax = chip.axis(pmdfmu.PMDAxis1)
-    for buffer_id, function, address in ((2, PMDBufferFunctionPosition, 0x200),
-                                         (3, PMDBufferFunctionVelocity, 0x210),
-                                         (4, PMDBufferFunctionTime, 0x220)):
+    for buffer_id, function, address in (
+        (2, PMDBufferFunctionPosition, 0x200),
+        (3, PMDBufferFunctionVelocity, 0x210),
+        (4, PMDBufferFunctionTime, 0x220),
+    ):
         ax.SetBufferStart(buffer_id, address)
         ax.SetBufferLength(buffer_id, 2)
         ax.SetBufferFunction(function, buffer_id)
@@ -20,7 +23,7 @@ def start_worked_example(chip):
         ax.WriteBuffer(2, position)
         ax.WriteBuffer(3, velocity)
         ax.WriteBuffer(4, time)
-    chip.run(11003)                                   # chip times 0 .. 11002
+    chip.run(11003)  # chip times 0 .. 11002
     ax.SetProfileMode(pmdfmu.PMDExternalProfile)
     ax.Update()
 
@@ -29,5 +32,7 @@ if __name__ == "__main__":
     with pmdfmu.Chip() as chip:
         start_worked_example(chip)
         for row in chip.run(11, record=["axis1.commandedPosition", "axis1.commandedVelocity"]):
-            print(f"chip time {row['cycle']}: position {row['axis1.commandedPosition']}, "
-                  f"velocity {row['axis1.commandedVelocity']:#x}")
+            print(
+                f"chip time {row['cycle']}: position {row['axis1.commandedPosition']}, "
+                f"velocity {row['axis1.commandedVelocity']:#x}"
+            )

@@ -21,6 +21,7 @@ reading of file URIs and follows a URI of its own folder through
 fmi2Instantiate to the script and tables found there. The head of each file
 gives its input format and properties.
 """
+
 import argparse
 import subprocess
 import sys
@@ -33,13 +34,26 @@ TARGETS = ("host", "fmi", "script", "sequence", "script_text", "resource_uri")
 
 def sources(target: str, gen: Path):
     chip = sorted(str(p) for p in (ROOT / "fmu_src" / "chip").glob("*.c"))
-    fmi = [str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "messages.c", "record.c", "state.c", "state_fields.c")]
+    fmi = [
+        str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "messages.c", "record.c", "state.c", "state_fields.c")
+    ]
     script = [str(ROOT / "fmu_src" / "script" / "script.c")]
-    generated = [str(gen / n) for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")]
+    generated = [
+        str(gen / n)
+        for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")
+    ]
     # fuzz_resource_uri.c includes fmi2.c itself (its URI decoder is static there)
-    extra = {"fmi": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c"],
-             "sequence": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c",
-                          "fmi_common/fmi3.c", "fmi_common/fmi3_not_provided.c", "fmi/model3.c"]}.get(target, [])
+    extra = {
+        "fmi": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c"],
+        "sequence": [
+            "fmi_common/fmi2.c",
+            "fmi_common/fmi2_not_provided.c",
+            "fmi/record_fmi2.c",
+            "fmi_common/fmi3.c",
+            "fmi_common/fmi3_not_provided.c",
+            "fmi/model3.c",
+        ],
+    }.get(target, [])
     extra = [str(ROOT / "fmu_src" / n) for n in extra]
     if target == "sequence":
         generated.append(str(gen / "variables3.c"))
@@ -63,23 +77,41 @@ CHECKS = ["-DPMD_CHECK_INVARIANTS"]
 
 def build(target: str, gen: Path, out: Path) -> Path:
     exe = out / f"fuzz_{target}"
-    subprocess.run(["clang", "-g", "-O1", "-std=c99", "-D_DEFAULT_SOURCE", *CHECKS,
-                    "-fsanitize=fuzzer,address,undefined,float-cast-overflow", "-fno-sanitize-recover=all",
-                    f"-fsanitize-coverage-ignorelist={ROOT / 'fuzz' / 'coverage_ignore.txt'}",
-                    *include_flags(gen), *sources(target, gen), "-lm", "-o", str(exe)],
-                   check=True)
+    subprocess.run(
+        [
+            "clang",
+            "-g",
+            "-O1",
+            "-std=c99",
+            "-D_DEFAULT_SOURCE",
+            *CHECKS,
+            "-fsanitize=fuzzer,address,undefined,float-cast-overflow",
+            "-fno-sanitize-recover=all",
+            f"-fsanitize-coverage-ignorelist={ROOT / 'fuzz' / 'coverage_ignore.txt'}",
+            *include_flags(gen),
+            *sources(target, gen),
+            "-lm",
+            "-o",
+            str(exe),
+        ],
+        check=True,
+    )
     return exe
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--seconds", type=int, default=60)
-    parser.add_argument("--out", type=Path, default=ROOT / "build" / "fuzz",
-                        help="where the targets and their growing corpora go (default: build/fuzz)")
+    parser.add_argument(
+        "--out",
+        type=Path,
+        default=ROOT / "build" / "fuzz",
+        help="where the targets and their growing corpora go (default: build/fuzz)",
+    )
     parser.add_argument("targets", nargs="*", default=list(TARGETS))
     args = parser.parse_args()
     out = args.out.resolve()
-    gen = generated(out / "generated-fuzz")     # not generated/: --out may be a CMake build folder, whose differs
+    gen = generated(out / "generated-fuzz")  # not generated/: --out may be a CMake build folder, whose differs
     out.mkdir(parents=True, exist_ok=True)
     failed = []
     for target in args.targets:
@@ -89,16 +121,34 @@ def main() -> int:
         findings = ROOT / "fuzz" / "findings" / target
         findings.mkdir(parents=True, exist_ok=True)
         # seeds: the saved corpus and the regression inputs (deep states, already minimal)
-        seeds = [str(d) for d in (ROOT / "fuzz" / "corpus" / target, ROOT / "fuzz" / "regressions" / target)
-                 if d.is_dir()]
+        seeds = [
+            str(d) for d in (ROOT / "fuzz" / "corpus" / target, ROOT / "fuzz" / "regressions" / target) if d.is_dir()
+        ]
         print(f"fuzzing {target} for {args.seconds} s", flush=True)
-        result = subprocess.run([str(exe), str(corpus), *seeds, f"-max_total_time={args.seconds}",
-                                 "-rss_limit_mb=2048", "-timeout=20", f"-artifact_prefix={findings}/",
-                                 "-print_final_stats=1"], capture_output=True, text=True)
+        result = subprocess.run(
+            [
+                str(exe),
+                str(corpus),
+                *seeds,
+                f"-max_total_time={args.seconds}",
+                "-rss_limit_mb=2048",
+                "-timeout=20",
+                f"-artifact_prefix={findings}/",
+                "-print_final_stats=1",
+            ],
+            capture_output=True,
+            text=True,
+        )
         lines = result.stderr.splitlines()
         # what went wrong (sanitizer, property, crash file), then libFuzzer's final stats
-        said = [line for line in lines if any(k in line for k in ("ERROR:", "runtime error", "property violated",
-                                                                   "the FMU's last error", "Test unit written"))]
+        said = [
+            line
+            for line in lines
+            if any(
+                k in line
+                for k in ("ERROR:", "runtime error", "property violated", "the FMU's last error", "Test unit written")
+            )
+        ]
         print("\n".join(said[:8] + lines[-6:]), flush=True)
         if result.returncode != 0:
             failed.append(target)

@@ -14,6 +14,7 @@ fuzz_sequence.c's OPS[] (read_ops); tests/test_determinism.py checks that Seq
 encodes each of them and that a seed or regression input uses each. To see what an input does, run it traced:
 FUZZ_SEQUENCE_TRACE=1 build/fuzz/fuzz_sequence FILE.
 """
+
 import re
 import sys
 from pathlib import Path
@@ -28,12 +29,11 @@ COMMANDS = tables.read_commands(HERE.parent / "modelDescription" / "commands.csv
 COMMAND_INDEX = {c.name: i for i, c in enumerate(COMMANDS)}
 
 
-
 def read_ops(source: Path = HERE / "fuzz_sequence.c"):
     """The names of the rows of OPS[] in fuzz_sequence.c, in order (each row {"name", op_name})."""
     text = source.read_text()
-    table = text[text.index("static const Operation OPS[] = {"):]
-    rows = re.findall(r'\{"(\w+)", op_(\w+)\}', table[:table.index("};")])
+    table = text[text.index("static const Operation OPS[] = {") :]
+    rows = re.findall(r'\{"(\w+)", op_(\w+)\}', table[: table.index("};")])
     assert rows and all(name == function for name, function in rows), rows
     return [name for name, _ in rows]
 
@@ -46,8 +46,11 @@ SYMBOLS = {"lo": 0, "lo+1": 1, "hi": 2, "hi-1": 3, "zero": 4, "one": 5, "M": 6, 
 EXACT = 11
 
 # the variables a record.columns column may name, in variables.csv's order (fuzz_sequence.c's recordable[])
-RECORDABLE = [v.name for v in tables.read_variables(HERE.parent / "modelDescription" / "variables.csv")
-              if v.type not in ("String", "Binary") and v.name != "time"]
+RECORDABLE = [
+    v.name
+    for v in tables.read_variables(HERE.parent / "modelDescription" / "variables.csv")
+    if v.type not in ("String", "Binary") and v.name != "time"
+]
 
 CYCLE_TIMES = [1e-4, 1e-6, 0.065535, 1e-3, 2.5e-5, 3e-4, 0.065534, 2e-6]
 START_TIMES = [0, 1, 0.5, -1, 1e3, 1e-4]
@@ -140,8 +143,19 @@ class Seq:
                     self.value(row.get(f, 0 if f != 4 else 1))
         return self
 
-    def move(self, mode, position, velocity, acceleration, deceleration=0, jerk=None, gear=None, multi=None,
-             axis=0, pending=False):
+    def move(
+        self,
+        mode,
+        position,
+        velocity,
+        acceleration,
+        deceleration=0,
+        jerk=None,
+        gear=None,
+        multi=None,
+        axis=0,
+        pending=False,
+    ):
         """mode 0 trapezoidal, 1 velocity, 2 S-curve (jerk), 3 gear (gear = (master, ratio, source)),
         4 external; multi: a MultiUpdate mask instead of Update."""
         self.op("move")
@@ -160,8 +174,9 @@ class Seq:
             self.value(multi)
         return self
 
-    def trace(self, start_address, length, variables, mode, period, start, stop=None, start_first=True,
-              axis=0, pending=False):
+    def trace(
+        self, start_address, length, variables, mode, period, start, stop=None, start_first=True, axis=0, pending=False
+    ):
         """variables: (axis, variable ID) per slot; start, stop: (axis, condition, bit, state)."""
         self.op("trace")
         self.flags(axis, pending, (1 if start_first else 0) | (2 if stop else 0))
@@ -259,10 +274,26 @@ class Seq:
         self.byte(1 if via_bytes else 0)
         return self
 
-    def reinitialize(self, memory=0x4000, capacity=65536, cycle_time=1e-4, start=0, loopback=True, record=False,
-                     terminate=False, early=False, bad_cycle_time=None, start_in_cycles=False):
-        bits = (1 if terminate else 0) | (2 if early else 0) | (0 if loopback else 4) | (8 if record else 0) | \
-               (32 if start_in_cycles else 0)
+    def reinitialize(
+        self,
+        memory=0x4000,
+        capacity=65536,
+        cycle_time=1e-4,
+        start=0,
+        loopback=True,
+        record=False,
+        terminate=False,
+        early=False,
+        bad_cycle_time=None,
+        start_in_cycles=False,
+    ):
+        bits = (
+            (1 if terminate else 0)
+            | (2 if early else 0)
+            | (0 if loopback else 4)
+            | (8 if record else 0)
+            | (32 if start_in_cycles else 0)
+        )
         if bad_cycle_time is not None:
             bits |= 16 | bad_cycle_time << 6
         self.op("reinitialize")
@@ -404,8 +435,19 @@ class Seq:
         self.op("record_data")
         return self
 
-    def memory_block(self, first=0, n=64, seed=1, check=True, prefix=None, prefix_value=0, gap=False,
-                     again=False, fmi3_kind=None, more=False):
+    def memory_block(
+        self,
+        first=0,
+        n=64,
+        seed=1,
+        check=True,
+        prefix=None,
+        prefix_value=0,
+        gap=False,
+        again=False,
+        fmi3_kind=None,
+        more=False,
+    ):
         """memory.data as a block: FMI 2 the run memory.data[first + 1] .. [first + n] (first 0..63, n 1..65),
         prefix "count" or "address" (prefix_value) first, gap: without its middle element, again: its first
         element once more at the end; FMI 3 (fmi3_kind): "array", "address" (memory.address first), "twice",
@@ -425,12 +467,32 @@ class Seq:
         self.value(prefix_value)
         return self
 
-    def axis_setup(self, error_limit, settle_time, settle_window, tracking_window, signal_sense, interrupt_mask,
-                   auto_stop=False, settled_complete=False, limits=True, capture_home=False, motor_off=False,
-                   axis=0, pending=False):
+    def axis_setup(
+        self,
+        error_limit,
+        settle_time,
+        settle_window,
+        tracking_window,
+        signal_sense,
+        interrupt_mask,
+        auto_stop=False,
+        settled_complete=False,
+        limits=True,
+        capture_home=False,
+        motor_off=False,
+        axis=0,
+        pending=False,
+    ):
         self.op("axis_setup")
-        self.flags(axis, pending, (1 if auto_stop else 0) | (2 if settled_complete else 0) | (4 if limits else 0) |
-                   (8 if capture_home else 0) | (16 if motor_off else 0))
+        self.flags(
+            axis,
+            pending,
+            (1 if auto_stop else 0)
+            | (2 if settled_complete else 0)
+            | (4 if limits else 0)
+            | (8 if capture_home else 0)
+            | (16 if motor_off else 0),
+        )
         for v in (error_limit, settle_time, settle_window, tracking_window, signal_sense, interrupt_mask):
             self.value(v)
         return self
@@ -438,131 +500,315 @@ class Seq:
 
 # ---- seeds: short sequences into deep states ---------------------------------------------
 
+
 def seeds():
     out = {}
     # a trace armed to start on the next Update, buffer 0 then changed, then Update (the first legal-call finding's shape)
     out["trace-start-on-update-then-buffer0-changes"] = (
-        Seq().trace(0x100, 8, [(0, 2), (0, 3)], 1, 1, (0, 1, 0, 0))
+        Seq()
+        .trace(0x100, 8, [(0, 2), (0, 3)], 1, 1, (0, 1, 0, 0))
         .buffer(0, 0x200, 3)
         .move(0, 1000, 0x10000, 0x1000)
-        .step(5).replay(3, 1, via_bytes=True))
+        .step(5)
+        .replay(3, 1, via_bytes=True)
+    )
     # every trace start and stop condition on a moving axis
     s = Seq(fmi3=True)
     for cond in range(5):
-        s.trace(0, 16, [(1, 8), (1, 13), (1, 12)], cond % 2, 1 + cond, (1, cond, 10, 1), stop=(1, 4 - cond, 3, 0),
-                start_first=bool(cond % 2))
+        s.trace(
+            0,
+            16,
+            [(1, 8), (1, 13), (1, 12)],
+            cond % 2,
+            1 + cond,
+            (1, cond, 10, 1),
+            stop=(1, 4 - cond, 3, 0),
+            start_first=bool(cond % 2),
+        )
         s.move(0, 5000 * (cond + 1), 0x20000, 0x800, axis=1).step(20)
         s.command("GetTraceStatus").command("GetTraceCount")
     out["trace-every-condition"] = s.replay(10, 7)
     # FMI 3 recording, then the sample time changes while recording
     out["record-then-sample-time-changes"] = (
-        Seq(fmi3=True).reinitialize(capacity=1000, record=True)
+        Seq(fmi3=True)
+        .reinitialize(capacity=1000, record=True)
         .move(1, 0, 0x30000, 0x1000, axis=2)
-        .step(100).sample_time(50).step(10).sample_time(200, pending=True).step(3)
-        .record(False).step(2000).replay(5, 1, via_bytes=True))
+        .step(100)
+        .sample_time(50)
+        .step(10)
+        .sample_time(200, pending=True)
+        .step(3)
+        .record(False)
+        .step(2000)
+        .replay(5, 1, via_bytes=True)
+    )
     # an external profile over all five functions, saved, run, restored through bytes
     rows = [{0: 10 * k, 1: 0x8000 * k, 2: 0x100, 3: 1 << k, 4: 2 + k} for k in range(6)]
     out["external-profile-five-functions"] = (
-        Seq().external_profile(0x40, rows, functions=(0, 1, 2, 3, 4)).save(0)
-        .step(30).replay(4, 9, via_bytes=True).restore(0, via_bytes=True).step(7))
+        Seq()
+        .external_profile(0x40, rows, functions=(0, 1, 2, 3, 4))
+        .save(0)
+        .step(30)
+        .replay(4, 9, via_bytes=True)
+        .restore(0, via_bytes=True)
+        .step(7)
+    )
     # streaming: WriteBuffer into a running profile, indexes, ReadBuffer, dual-port memory writes
     out["streamed-profile-and-memory-port"] = (
-        Seq().buffer(2, 0x300, 4, function=0).buffer(3, 0x304, 4, function=4)
-        .write_buffer(2, [1, 2, 3, 4]).write_buffer(3, [3, 3, 3, 3])
-        .move(4, 0, 0, 0).step(6).buffer_index("read", 2, 3).buffer_index("write", 3, 1)
-        .memory("write", 0x300, 4, 77).memory("write", ("M-", 64), 64, 5, pending=True)
-        .step(9).buffer_index("readbuffer", 2, 5).replay(8))
+        Seq()
+        .buffer(2, 0x300, 4, function=0)
+        .buffer(3, 0x304, 4, function=4)
+        .write_buffer(2, [1, 2, 3, 4])
+        .write_buffer(3, [3, 3, 3, 3])
+        .move(4, 0, 0, 0)
+        .step(6)
+        .buffer_index("read", 2, 3)
+        .buffer_index("write", 3, 1)
+        .memory("write", 0x300, 4, 77)
+        .memory("write", ("M-", 64), 64, 5, pending=True)
+        .step(9)
+        .buffer_index("readbuffer", 2, 5)
+        .replay(8)
+    )
     # the four axes in four profile modes, a breakpoint, stops
     out["four-axes-moves-breakpoint-stop"] = (
-        Seq().move(0, 100000, 0x50000, 0x2000, 0x1000)
+        Seq()
+        .move(0, 100000, 0x50000, 0x2000, 0x1000)
         .move(1, 0, -0x40000, 0x3000, axis=1)
         .move(2, -20000, 0x40000, 0x4000, jerk=0x10000, axis=2)
         .move(3, 0, 0, 0, gear=(0, 0x20000, 1), axis=3)
         .breakpoint(0, 0, 2, 1, 50000, axis=0)
-        .step(500).stop(smooth=True, axis=1).stop(multi=True, axis=2).step(3000)
-        .replay(1000, 20))
+        .step(500)
+        .stop(smooth=True, axis=1)
+        .stop(multi=True, axis=2)
+        .step(3000)
+        .replay(1000, 20)
+    )
     # other parameters: a small memory, 1 us cycles, no loopback, switches and encoder inputs
     out["small-memory-no-loopback-switches"] = (
-        Seq(fmi3=True).reinitialize(memory=64, cycle_time=1e-6, loopback=False, start=1e3, early=True)
-        .input(0, "actualPosition", 12345).input(0, "positiveLimit", True).input(1, "home", True)
-        .command("SetCaptureSource", 1, axis=1).move(0, 1 << 20, 0x10000, 0x100)
-        .step(50).input(0, "positiveLimit", False).command("ResetEventStatus", 0).step(10)
-        .buffer(2, "M-1", 1).write_buffer(2, [9]).replay(3))
+        Seq(fmi3=True)
+        .reinitialize(memory=64, cycle_time=1e-6, loopback=False, start=1e3, early=True)
+        .input(0, "actualPosition", 12345)
+        .input(0, "positiveLimit", True)
+        .input(1, "home", True)
+        .command("SetCaptureSource", 1, axis=1)
+        .move(0, 1 << 20, 0x10000, 0x100)
+        .step(50)
+        .input(0, "positiveLimit", False)
+        .command("ResetEventStatus", 0)
+        .step(10)
+        .buffer(2, "M-1", 1)
+        .write_buffer(2, [9])
+        .replay(3)
+    )
     # the refusals, in states with pending writes
     out["refused-calls-in-deep-states"] = (
-        Seq().move(0, 1000, 0x10000, 0x100).sample_time(10, pending=True).refused(4).refused(5, 2)
-        .memory("write", 0, 64, 1, pending=True).refused(7, 1).refused(6).refused(2).refused(3)
-        .refused(8, 4096, 0x80).step(3).refused(0).refused(1))
+        Seq()
+        .move(0, 1000, 0x10000, 0x100)
+        .sample_time(10, pending=True)
+        .refused(4)
+        .refused(5, 2)
+        .memory("write", 0, 64, 1, pending=True)
+        .refused(7, 1)
+        .refused(6)
+        .refused(2)
+        .refused(3)
+        .refused(8, 4096, 0x80)
+        .step(3)
+        .refused(0)
+        .refused(1)
+    )
     # a chip Reset between moves, logging on, save and restore across a re-initialization
     out["reset-logging-restore-across-reinit"] = (
-        Seq(fmi3=True).logging(True).move(0, 500, 0x10000, 0x100).step(10).save(1)
-        .chip_reset().step(2).reinitialize(memory=0x1000, cycle_time=1e-3, capacity=10, record=True)
-        .step("capacity").step("capacity+1").restore(1).step(20).logging(False))
+        Seq(fmi3=True)
+        .logging(True)
+        .move(0, 500, 0x10000, 0x100)
+        .step(10)
+        .save(1)
+        .chip_reset()
+        .step(2)
+        .reinitialize(memory=0x1000, cycle_time=1e-3, capacity=10, record=True)
+        .step("capacity")
+        .step("capacity+1")
+        .restore(1)
+        .step(20)
+        .logging(False)
+    )
     # a script that moves, traces and changes the sample time while the host steps and records
     out["script-moves-and-sample-time"] = (
-        Seq(fmi3=True).script([(0, 0, "SetBufferLength", 0, 32), (0, 0, "SetTraceVariable", 0, 0, 8),
-                               (0, 0, "SetTraceStart", 0, 1, 0, 0), (3, 0, "SetVelocity", 0x30000),
-                               (0, 0, "SetProfileMode", 1), (0, 0, "Update"), (20, 0, "SetSampleTime", 7),
-                               (40, 0, "SetSampleTime", 100)], capacity=1000, record=True)
-        .step(30).step(50).record(False).step(1).replay(100, 3))
+        Seq(fmi3=True)
+        .script(
+            [
+                (0, 0, "SetBufferLength", 0, 32),
+                (0, 0, "SetTraceVariable", 0, 0, 8),
+                (0, 0, "SetTraceStart", 0, 1, 0, 0),
+                (3, 0, "SetVelocity", 0x30000),
+                (0, 0, "SetProfileMode", 1),
+                (0, 0, "Update"),
+                (20, 0, "SetSampleTime", 7),
+                (40, 0, "SetSampleTime", 100),
+            ],
+            capacity=1000,
+            record=True,
+        )
+        .step(30)
+        .step(50)
+        .record(False)
+        .step(1)
+        .replay(100, 3)
+    )
     # commands and memory writes in initialization mode, then memorySize changes (keeping the registers)
     out["initialization-mode-commands-then-memory-size"] = (
-        Seq(fmi3=True).enter_initialization(start=1, start_in_cycles=True)
-        .buffer(2, 0x10, 8, function=0).memory("write", 0x10, 8, 3).parameter("memorySize", 0x18)
-        .parameter("memorySize", 0x17).parameter("memorySize", 0x8000).parameter("cycleTime", 2.5e-5)
-        .parameter("badCycleTime", 1).memory("write", 0x7FF0, 16, 9, pending=True).parameter("memorySize", 0x7FF8)
-        .step(1).exit_initialization().move(4, 0, 0, 0).step(20).replay(5))
+        Seq(fmi3=True)
+        .enter_initialization(start=1, start_in_cycles=True)
+        .buffer(2, 0x10, 8, function=0)
+        .memory("write", 0x10, 8, 3)
+        .parameter("memorySize", 0x18)
+        .parameter("memorySize", 0x17)
+        .parameter("memorySize", 0x8000)
+        .parameter("cycleTime", 2.5e-5)
+        .parameter("badCycleTime", 1)
+        .memory("write", 0x7FF0, 16, 9, pending=True)
+        .parameter("memorySize", 0x7FF8)
+        .step(1)
+        .exit_initialization()
+        .move(4, 0, 0, 0)
+        .step(20)
+        .replay(5)
+    )
     # an axis whose position error trips auto stop, settles, meets a limit
     out["auto-stop-settle-limit"] = (
-        Seq().reinitialize(loopback=False)
+        Seq()
+        .reinitialize(loopback=False)
         .axis_setup(10, 5, 2, 3, 0, 0xFFFF, auto_stop=True, settled_complete=True)
-        .move(0, 100000, 0x20000, 0x1000).step(3).input(0, "actualPosition", 1000).step(10)
-        .command("ResetEventStatus", 0).command("SetMotorMode", 1).move(0, 0, 0x20000, 0x1000).step(5)
-        .input(0, "actualPosition", 5).step(40).input(0, "negativeLimit", True).step(2)
-        .move(0, -100, 0x10000, 0x1000).refused(9).refused(10).replay(4))
+        .move(0, 100000, 0x20000, 0x1000)
+        .step(3)
+        .input(0, "actualPosition", 1000)
+        .step(10)
+        .command("ResetEventStatus", 0)
+        .command("SetMotorMode", 1)
+        .move(0, 0, 0x20000, 0x1000)
+        .step(5)
+        .input(0, "actualPosition", 5)
+        .step(40)
+        .input(0, "negativeLimit", True)
+        .step(2)
+        .move(0, -100, 0x10000, 0x1000)
+        .refused(9)
+        .refused(10)
+        .replay(4)
+    )
     # record.columns as users set them: valid lists (blanks around names), "", refused names, two values in
     # one call, too many columns; recording steps in between, record.data read after each, FMI 2 and 3
-    wide = ["axis1.position", "axis1.velocity", "axis1.acceleration", "axis1.motorOutput", "nextCycleTime",
-            "axis2.activityStatus", "io.output[3]", "host.interrupt"]
+    wide = [
+        "axis1.position",
+        "axis1.velocity",
+        "axis1.acceleration",
+        "axis1.motorOutput",
+        "nextCycleTime",
+        "axis2.activityStatus",
+        "io.output[3]",
+        "host.interrupt",
+    ]
     for fmi3 in (False, True):
         out[f"record-columns-set-refused-and-read-fmi{3 if fmi3 else 2}"] = (
-            Seq(fmi3=fmi3).reinitialize(capacity=500, record=True).move(1, 0, 0x30000, 0x1000, axis=1)
+            Seq(fmi3=fmi3)
+            .reinitialize(capacity=500, record=True)
+            .move(1, 0, 0x30000, 0x1000, axis=1)
             .columns("valid", ["axis2.commandedPosition", ("axis2.velocity", True, True), "host.interrupt"])
-            .step(40).record_data()
-            .columns("bad", ["axis1.commandedPosition", "axis1.velocity"], (1, 1)).record_data()
-            .columns("two", ["axis1.motorCommand"], wide).step(30).record_data()
-            .columns("two", wide, ("bad", ["axis1.position"], 0, 8)).columns("many").step(3).record_data()
-            .columns("empty").sample_time(20, pending=True).step(10).record_data()
-            .columns("valid", wide).save(0).step(5).restore(0).record_data().step(7).replay(4, 2))
+            .step(40)
+            .record_data()
+            .columns("bad", ["axis1.commandedPosition", "axis1.velocity"], (1, 1))
+            .record_data()
+            .columns("two", ["axis1.motorCommand"], wide)
+            .step(30)
+            .record_data()
+            .columns("two", wide, ("bad", ["axis1.position"], 0, 8))
+            .columns("many")
+            .step(3)
+            .record_data()
+            .columns("empty")
+            .sample_time(20, pending=True)
+            .step(10)
+            .record_data()
+            .columns("valid", wide)
+            .save(0)
+            .step(5)
+            .restore(0)
+            .record_data()
+            .step(7)
+            .replay(4, 2)
+        )
     # FMI 2's lent memory: lent while recording, columns widened while lent, the grid made finer, a state
     # saved and restored while lent, memory too small (refused), misaligned (default rows), 0 bytes, NULL,
     # then lent again and forgotten by a reset
     out["record-buffer-lent-widened-restored-reset"] = (
-        Seq().record(True).move(1, 0, 0x20000, 0x800, axis=1).lend("rows", 100)
-        .step(50).record_data().columns("valid", ["axis2.velocity", "axis2.commandedPosition"]).step(60)
-        .record_data().columns("valid", wide).step(90).sample_time(10, pending=True).step(5).record_data()
-        .save(1).step(3).restore(1, via_bytes=True).record_data().step(2).record_data().replay(2, 1)
-        .lend("bytes", 12, offset=3).step(3).columns("empty").step(1).lend("bytes", 1000, offset=2).step(1)
-        .lend("empty").step(1).lend("null").step(20).record_data()
-        .lend("rows", 300, offset=4).step(10).reinitialize(capacity=200, record=True).step(10).record_data())
+        Seq()
+        .record(True)
+        .move(1, 0, 0x20000, 0x800, axis=1)
+        .lend("rows", 100)
+        .step(50)
+        .record_data()
+        .columns("valid", ["axis2.velocity", "axis2.commandedPosition"])
+        .step(60)
+        .record_data()
+        .columns("valid", wide)
+        .step(90)
+        .sample_time(10, pending=True)
+        .step(5)
+        .record_data()
+        .save(1)
+        .step(3)
+        .restore(1, via_bytes=True)
+        .record_data()
+        .step(2)
+        .record_data()
+        .replay(2, 1)
+        .lend("bytes", 12, offset=3)
+        .step(3)
+        .columns("empty")
+        .step(1)
+        .lend("bytes", 1000, offset=2)
+        .step(1)
+        .lend("empty")
+        .step(1)
+        .lend("null")
+        .step(20)
+        .record_data()
+        .lend("rows", 300, offset=4)
+        .step(10)
+        .reinitialize(capacity=200, record=True)
+        .step(10)
+        .record_data()
+    )
     # memory.data as a block: FMI 2 runs from any element, past memory.data[64], split, with an element
     # twice, after memory.count or memory.address; FMI 3 the array, after memory.address, twice, a wrong
     # nValues; a write of the block's words after each
     s = Seq().memory_block(0, 64, 7).memory_block(5, 10, 9).memory_block(60, 5, 1).memory_block(63, 1, 3)
-    s.memory_block(40, 30, 5, gap=True).memory_block(3, 20, 6, again=True).memory_block(0, 64, 8, prefix="count",
-                                                                                     prefix_value=64)
+    s.memory_block(40, 30, 5, gap=True).memory_block(3, 20, 6, again=True).memory_block(
+        0, 64, 8, prefix="count", prefix_value=64
+    )
     s.memory_block(0, 16, 2, prefix="address", prefix_value=0x100, check=False).memory("strobe").step(1)
     s.memory_block(10, 12, 4, gap=True, again=True).memory("write", 0x200, 64, 11).step(1)
     out["memory-data-blocks-fmi2"] = s
     out["memory-data-blocks-fmi3"] = (
-        Seq(fmi3=True).memory_block(fmi3_kind="array", seed=7).memory_block(fmi3_kind="twice", seed=9)
-        .memory_block(fmi3_kind="address", seed=2, prefix_value=0x80).memory_block(fmi3_kind="count", seed=3)
-        .memory_block(fmi3_kind="count", more=True, seed=4).memory("strobe").step(2)
-        .memory_block(fmi3_kind="array", seed=5, check=False).memory("write", ("M-", 64), 64, 1).step(1))
+        Seq(fmi3=True)
+        .memory_block(fmi3_kind="array", seed=7)
+        .memory_block(fmi3_kind="twice", seed=9)
+        .memory_block(fmi3_kind="address", seed=2, prefix_value=0x80)
+        .memory_block(fmi3_kind="count", seed=3)
+        .memory_block(fmi3_kind="count", more=True, seed=4)
+        .memory("strobe")
+        .step(2)
+        .memory_block(fmi3_kind="array", seed=5, check=False)
+        .memory("write", ("M-", 64), 64, 1)
+        .step(1)
+    )
     return out
 
 
 # ---- regressions: the legal-call bugs an attack found ---------------------------------------
+
 
 def regressions():
     out = {}
@@ -570,56 +816,80 @@ def regressions():
     #    set to length 0 and moved to the end of the memory (accepted: the trace only waits), then
     #    Update: the trace's first sample was written at address 0x4000, past the memory.
     out["trace-start-after-buffer0-moved-past-memory"] = (
-        Seq().trace(0, 1, [(0, 2)], 1, 1, (0, 1, 0, 0))
+        Seq()
+        .trace(0, 1, [(0, 2)], 1, 1, (0, 1, 0, 0))
         .buffer(0, "M", 0, length_first=True)
-        .command("Update").step(1).step(3))
+        .command("Update")
+        .step(1)
+        .step(3)
+    )
     # 2. FMI 3, record.capacity 100, recording; a host batch SetSampleTime(1) left pending; one doStep
     #    of 100 cycles at the old cycle time: the grid restarted inside the step, which ran 10 000
     #    cycles and wrote them past record.data.
     out["recording-step-across-sample-time-change"] = (
-        Seq(fmi3=True).reinitialize(capacity=100, record=True).move(1, 0, 0x10000, 0)
-        .sample_time(1, pending=True).step(100).step(1))
+        Seq(fmi3=True)
+        .reinitialize(capacity=100, record=True)
+        .move(1, 0, 0x10000, 0)
+        .sample_time(1, pending=True)
+        .step(100)
+        .step(1)
+    )
     #    The same through a script: SetSampleTime(1) at cycle 0 of a 100-cycle recording step.
     out["recording-step-across-script-sample-time"] = (
-        Seq(fmi3=True).script([(0, 0, "SetSampleTime", 1), (5, 1, "SetVelocity", 0x10000),
-                               (0, 1, "SetProfileMode", 1), (0, 1, "Update")], capacity=100, record=True)
-        .step(100).step(1))
+        Seq(fmi3=True)
+        .script(
+            [(0, 0, "SetSampleTime", 1), (5, 1, "SetVelocity", 0x10000), (0, 1, "SetProfileMode", 1), (0, 1, "Update")],
+            capacity=100,
+            record=True,
+        )
+        .step(100)
+        .step(1)
+    )
     # 3. A valid 64-word memory write pending, then memory.address set to 0x3FF0 (the write would
     #    leave the memory): refused, yet the new address stayed (and the pending write was dropped).
     out["refused-memory-address-keeps-pending-write"] = (
-        Seq().memory("write", 0, 64, 1, pending=True).memory("address", ("M-", 16)).step(1))
+        Seq().memory("write", 0, 64, 1, pending=True).memory("address", ("M-", 16)).step(1)
+    )
     out["refused-memory-address-keeps-pending-write-fmi3"] = (
-        Seq(fmi3=True).memory("write", 0, 64, 1, pending=True).memory("address", ("M-", 16)).step(1))
+        Seq(fmi3=True).memory("write", 0, 64, 1, pending=True).memory("address", ("M-", 16)).step(1)
+    )
     # 4. cycleTime 0.065535, SetSampleTime(1) pending, doStep(t, 2^52 * 0.065535): accepted on the old
     #    grid, the new one's cycle index overflowed a float-to-int conversion.
     out["huge-step-after-pending-sample-time"] = (
-        Seq().reinitialize(cycle_time=0.065535).sample_time(1, pending=True).step(("huge", 52)).step(1))
+        Seq().reinitialize(cycle_time=0.065535).sample_time(1, pending=True).step(("huge", 52)).step(1)
+    )
     # 5. (found by this fuzzer) A state the FMU saved itself is refused on restore. A one-time trace
     #    fills buffer 0 (length 1) and stops; buffer 0 is then set to length 0 (allowed: no trace
     #    runs); GetFMUState, SetFMUState: "chip.s.trace.count = 1 is more than trace buffer 0 holds".
     out["restore-refuses-trace-count-after-buffer0-shrinks"] = (
-        Seq().trace(0x100, 1, [(0, 2)], 0, 1, (0, 0, 0, 0)).step(3)
-        .buffer(0, 0x100, 0, length_first=True).replay(1))
+        Seq().trace(0x100, 1, [(0, 2)], 0, 1, (0, 0, 0, 0)).step(3).buffer(0, 0x100, 0, length_first=True).replay(1)
+    )
     #    The same with the countdown: a trace of period 6 samples once (countdown 5), is stopped, and
     #    the period set to 5: "chip.s.trace.countdown = 5 is not below the period 5".
     out["restore-refuses-trace-countdown-after-period-shrinks"] = (
-        Seq().trace(0x100, 8, [(0, 2)], 1, 6, (0, 0, 0, 0)).step(1)
-        .command("SetTraceStop", 0, 0, 0, 0).command("SetTracePeriod", 5).replay(1))
+        Seq()
+        .trace(0x100, 8, [(0, 2)], 1, 6, (0, 0, 0, 0))
+        .step(1)
+        .command("SetTraceStop", 0, 0, 0, 0)
+        .command("SetTracePeriod", 5)
+        .replay(1)
+    )
     # 6. (found by this fuzzer) SetFMUState does not restore record.data's row count (recordCount,
     #    part of the serialized state): after save, restore, the state differs from the saved one
     #    and, in FMI 3, record.data is empty where it held the last step's rows.
     out["restore-resets-record-count"] = (
-        Seq(fmi3=True).reinitialize(capacity=1, record=True).step(1).replay("capacity+1"))
+        Seq(fmi3=True).reinitialize(capacity=1, record=True).step(1).replay("capacity+1")
+    )
     # 7. (found by this fuzzer) The FMU state holds uninitialized bytes: pmd_update copies its local
     #    PmdSCurve plan, padding and all, into the axis (profile.c, ax->scurve = plan), so an S-curve
     #    Update executed in a step leaves different state bytes in a run and in its replay.
     out["scurve-update-copies-uninitialized-padding-into-the-state"] = (
-        Seq().move(2, 1000, 0x10000, 0x100, 0, jerk=0x1000, pending=True).replay(1))
+        Seq().move(2, 1000, 0x10000, 0x100, 0, jerk=0x1000, pending=True).replay(1)
+    )
     # 8. (found by this fuzzer) A state the FMU saved is refused on restore: an S-curve Update to the
     #    current position with jerk 0: "chip.s.axis[0].scurve: step 0, p6 0, v2 0 or a 0 is not on
     #    the unit curve".
-    out["restore-refuses-zero-distance-scurve"] = (
-        Seq().move(2, 0, 0x4000, 1, 0, jerk=0).replay(1))
+    out["restore-refuses-zero-distance-scurve"] = Seq().move(2, 0, 0x4000, 1, 0, jerk=0).replay(1)
     # 9. (found by this fuzzer) A state the FMU saved is refused on restore: initialization at a
     #    negative start time (legal: -1 s) leaves time before the grid's anchor (0), which the state
     #    check refuses: "time -1 is not within 2^53 cycles after anchorTime 0".
@@ -627,54 +897,97 @@ def regressions():
     # The other findings of that attack, so that the fuzzer starts from each of them:
     # 4b. A memory write leaving the memory asked for by the strobe alone: refused, the old strobe stays.
     out["refused-memory-strobe-keeps-its-value"] = (
-        Seq().memory("address", ("M-", 16)).memory("count", 0, 64).memory("strobe").step(1))
+        Seq().memory("address", ("M-", 16)).memory("count", 0, 64).memory("strobe").step(1)
+    )
     # 4c. In initialization mode, a write pending at 0x1000 and memorySize 0x800: refused, nothing reset.
     out["refused-memory-size-in-initialization-keeps-everything"] = (
-        Seq().enter_initialization().memory("write", 0x1000, 8, 1, pending=True)
-        .parameter("memorySize", 0x800).exit_initialization().step(1))
+        Seq()
+        .enter_initialization()
+        .memory("write", 0x1000, 8, 1, pending=True)
+        .parameter("memorySize", 0x800)
+        .exit_initialization()
+        .step(1)
+    )
     # 9. memorySize set to its own value in initialization (used to wipe memory and registers), and a
     #    cycle time the sample time register cannot hold (refused, not rounded).
     out["memory-size-set-to-itself-keeps-everything"] = (
-        Seq().enter_initialization().command("SetPosition", 1234).buffer(2, 0x10, 8, function=0)
-        .parameter("memorySize", 0x4000).parameter("badCycleTime", 0).exit_initialization().replay(1))
+        Seq()
+        .enter_initialization()
+        .command("SetPosition", 1234)
+        .buffer(2, 0x10, 8, function=0)
+        .parameter("memorySize", 0x4000)
+        .parameter("badCycleTime", 0)
+        .exit_initialization()
+        .replay(1)
+    )
     # 7. Legal extremes: acceleration 0x7FFFFFFF for 11 500 cycles (the 64-bit state wrapped at 10 923),
     #    and a gear of ratio 0x40000000 behind a master jumping 65536 counts (signed overflow).
     out["external-segment-at-full-acceleration"] = (
-        Seq().external_profile(0x200, [{0: 0, 2: 0x7FFFFFFF, 4: 11500}, {4: 0}], functions=(0, 2, 4))
-        .step(11500).step(2))
+        Seq()
+        .external_profile(0x200, [{0: 0, 2: 0x7FFFFFFF, 4: 11500}, {4: 0}], functions=(0, 2, 4))
+        .step(11500)
+        .step(2)
+    )
     out["gear-behind-a-jumping-master"] = (
-        Seq().move(3, 0, 0, 0, gear=(1, 0x40000000, 1))
-        .external_profile(0x200, [{0: 0, 4: 2}, {0: 65536, 4: 2}, {4: 0}], axis=1).step(8))
+        Seq()
+        .move(3, 0, 0, 0, gear=(1, 0x40000000, 1))
+        .external_profile(0x200, [{0: 0, 4: 2}, {0: 65536, 4: 2}, {4: 0}], axis=1)
+        .step(8)
+    )
     # 10. A get refused for an unknown value reference while a batch is pending executes nothing.
-    out["refused-get-keeps-the-pending-batch"] = (
-        Seq().command("SetPosition", 99, pending=True).refused(0).step(1))
+    out["refused-get-keeps-the-pending-batch"] = Seq().command("SetPosition", 99, pending=True).refused(0).step(1)
     # 11. cycleTime 65.535 ms, record.capacity N, recording, SetSampleTime(1) pending, a doStep of N cycles:
     #    it passed the capacity check and ran N * 65 535 cycles of 1 us, those past the N rows kept one by
     #    one (N = 100 000: 6.6 * 10^9 cycles, hours) where an unrecorded step fast-forwards them.
     out["recording-coarse-step-made-finer-past-capacity"] = (
-        Seq().reinitialize(cycle_time=0.065535, capacity=100_000, record=True)
-        .sample_time(1, pending=True).step("capacity").record_data().step(1))
+        Seq()
+        .reinitialize(cycle_time=0.065535, capacity=100_000, record=True)
+        .sample_time(1, pending=True)
+        .step("capacity")
+        .record_data()
+        .step(1)
+    )
     out["recording-coarse-step-made-finer-past-capacity-columns-fmi3"] = (
-        Seq(fmi3=True).reinitialize(cycle_time=0.065535, capacity=100_000, record=True)
+        Seq(fmi3=True)
+        .reinitialize(cycle_time=0.065535, capacity=100_000, record=True)
         .columns("valid", ["axis1.commandedPosition", "host.interrupt"])
-        .sample_time(1, pending=True).step("capacity").record_data().step(1))
+        .sample_time(1, pending=True)
+        .step("capacity")
+        .record_data()
+        .step(1)
+    )
     #    The same with FMI 2's lent memory as the limit: 6552 rows of 5 bytes lent, a step of 6552 cycles.
     out["recording-coarse-step-made-finer-past-lent-memory"] = (
-        Seq().reinitialize(cycle_time=0.065535, record=True).columns("valid", ["loopback"])
-        .lend("bytes", 6552 * 5).sample_time(1, pending=True).step(6552).record_data().step(1))
+        Seq()
+        .reinitialize(cycle_time=0.065535, record=True)
+        .columns("valid", ["loopback"])
+        .lend("bytes", 6552 * 5)
+        .sample_time(1, pending=True)
+        .step(6552)
+        .record_data()
+        .step(1)
+    )
     # 12. (found by this fuzzer's columns) In initialization mode, record.enabled set, then record.capacity 0:
     #    a valid record.columns was refused ("record.enabled: record.capacity is 0"), the buffer sized as if
     #    a step recorded now.
     for fmi3 in (False, True):
         out[f"record-columns-in-initialization-with-capacity-0{'-fmi3' if fmi3 else ''}"] = (
-            Seq(fmi3=fmi3).enter_initialization().record(True).parameter("record.capacity", 0)
-            .columns("valid", ["loopback", "axis1.commandedPosition"]).parameter("record.capacity", 10)
-            .exit_initialization().step(10).record_data())
+            Seq(fmi3=fmi3)
+            .enter_initialization()
+            .record(True)
+            .parameter("record.capacity", 0)
+            .columns("valid", ["loopback", "axis1.commandedPosition"])
+            .parameter("record.capacity", 10)
+            .exit_initialization()
+            .step(10)
+            .record_data()
+        )
     return out
 
 
 # ---- script regressions: the file findings of that attack (fuzz_script.c: the first half of an
 # input is the script, the second half the table t.csv it may load) --------------------------
+
 
 def script_input(script: str, table: str = "") -> bytes:
     body, rest = script.encode(), table.encode()
@@ -695,8 +1008,11 @@ def script_regressions():
 
 
 def main():
-    for folder, target, inputs in (("corpus", "sequence", seeds()), ("regressions", "sequence", regressions()),
-                                   ("regressions", "script", script_regressions())):
+    for folder, target, inputs in (
+        ("corpus", "sequence", seeds()),
+        ("regressions", "sequence", regressions()),
+        ("regressions", "script", script_regressions()),
+    ):
         d = HERE / folder / target
         d.mkdir(parents=True, exist_ok=True)
         for name, data in inputs.items():

@@ -20,6 +20,7 @@ doStep), `initialDependencies` the parameters it depends on in initialization.
 
 Usage: generate_plant.py OUTDIR [C source file names of the FMU's sources/ ...]
 """
+
 import csv
 import hashlib
 import sys
@@ -27,13 +28,15 @@ import uuid
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from generate import METADATA, VERSION, build_description     # the chip's generator, beside this one
+from generate import METADATA, VERSION, build_description  # the chip's generator, beside this one
 from generating import write_files
 
 HERE = Path(__file__).resolve().parent
 MODEL_IDENTIFIER = "pmdplant"
-DESCRIPTION = ("DC motor with amplifier, armature resistance, back-EMF, inertia, viscous and Coulomb friction, "
-               "and a quadrature encoder: a plant for the PMD motion processor's servo loop")
+DESCRIPTION = (
+    "DC motor with amplifier, armature resistance, back-EMF, inertia, viscous and Coulomb friction, "
+    "and a quadrature encoder: a plant for the PMD motion processor's servo loop"
+)
 GENERATION_TOOL = f"pmdfmu {VERSION}"
 # (name, description): errors are always logged, whatever SetDebugLogging says
 LOG_CATEGORIES = [("errors", "Refused calls and values, with the function, the variable and the reason")]
@@ -90,9 +93,11 @@ def unit_definitions(units):
 
 
 def log_categories():
-    return ["  <LogCategories>",
-            *(f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES),
-            "  </LogCategories>"]
+    return [
+        "  <LogCategories>",
+        *(f'    <Category name="{n}" description={quoteattr(d)}/>' for n, d in LOG_CATEGORIES),
+        "  </LogCategories>",
+    ]
 
 
 def attributes(v) -> str:
@@ -127,20 +132,31 @@ def fmi2_xml(variables, units, token: str, sources) -> str:
     ]
     for v in variables:
         initial = ' initial="exact"' if v["causality"] == "parameter" else ""
-        lines += [f'    <ScalarVariable name="{v["name"]}" valueReference="{v["vr"]}" causality="{v["causality"]}"'
-                  f' variability="{v["variability"]}"{initial} description={quoteattr(v["description"])}>',
-                  f'      <{v["type"]}{attributes(v)}/>',
-                  "    </ScalarVariable>"]
+        lines += [
+            f'    <ScalarVariable name="{v["name"]}" valueReference="{v["vr"]}" causality="{v["causality"]}"'
+            f' variability="{v["variability"]}"{initial} description={quoteattr(v["description"])}>',
+            f"      <{v['type']}{attributes(v)}/>",
+            "    </ScalarVariable>",
+        ]
     outputs = [v for v in variables if v["causality"] == "output"]
 
     def unknown(v, column):
         deps = " ".join(str(i) for i in sorted(index[n] for n in v[column]))
         return f'      <Unknown index="{index[v["name"]]}" dependencies="{deps}"/>'
-    lines += ["  </ModelVariables>", "  <ModelStructure>", "    <Outputs>",
-              *(unknown(v, "dependencies") for v in outputs),
-              "    </Outputs>", "    <InitialUnknowns>",
-              *(unknown(v, "initialDependencies") for v in outputs),
-              "    </InitialUnknowns>", "  </ModelStructure>", "</fmiModelDescription>", ""]
+
+    lines += [
+        "  </ModelVariables>",
+        "  <ModelStructure>",
+        "    <Outputs>",
+        *(unknown(v, "dependencies") for v in outputs),
+        "    </Outputs>",
+        "    <InitialUnknowns>",
+        *(unknown(v, "initialDependencies") for v in outputs),
+        "    </InitialUnknowns>",
+        "  </ModelStructure>",
+        "</fmiModelDescription>",
+        "",
+    ]
     return "\n".join(lines)
 
 
@@ -161,18 +177,26 @@ def fmi3_xml(variables, units, token: str) -> str:
     ]
     for v in variables:
         initial = ' initial="exact"' if v["causality"] == "parameter" else ""
-        lines.append(f'    <{v["fmi3Type"]} name="{v["name"]}" valueReference="{v["vr"]}"'
-                     f' causality="{v["causality"]}" variability="{v["variability"]}"{initial}'
-                     f'{attributes(v)} description={quoteattr(v["description"])}/>')
+        lines.append(
+            f'    <{v["fmi3Type"]} name="{v["name"]}" valueReference="{v["vr"]}"'
+            f' causality="{v["causality"]}" variability="{v["variability"]}"{initial}'
+            f"{attributes(v)} description={quoteattr(v['description'])}/>"
+        )
     outputs = [v for v in variables if v["causality"] == "output"]
 
     def unknown(element, v, column):
         deps = " ".join(str(vr[n]) for n in v[column])
         return f'    <{element} valueReference="{v["vr"]}" dependencies="{deps}"/>'
-    lines += ["  </ModelVariables>", "  <ModelStructure>",
-              *(unknown("Output", v, "dependencies") for v in outputs),
-              *(unknown("InitialUnknown", v, "initialDependencies") for v in outputs),
-              "  </ModelStructure>", "</fmiModelDescription>", ""]
+
+    lines += [
+        "  </ModelVariables>",
+        "  <ModelStructure>",
+        *(unknown("Output", v, "dependencies") for v in outputs),
+        *(unknown("InitialUnknown", v, "initialDependencies") for v in outputs),
+        "  </ModelStructure>",
+        "</fmiModelDescription>",
+        "",
+    ]
     return "\n".join(lines)
 
 
@@ -181,52 +205,80 @@ def c_double(text: str, default: str) -> str:
 
 
 def variables_c(variables, token: str):
-    h = ["/* Generated by modelDescription/generate_plant.py from plant.csv: do not edit. */",
-         "#ifndef PLANT_VARIABLES_H", "#define PLANT_VARIABLES_H", "",
-         "#include <stddef.h>", "",
-         f'#define PLANT_MODEL_IDENTIFIER "{MODEL_IDENTIFIER}"',
-         f'#define PLANT_INSTANTIATION_TOKEN "{token}"',
-         f"#define PLANT_VARIABLE_COUNT {len(variables)}",
-         f"#define PLANT_LOG_CATEGORY_COUNT {len(LOG_CATEGORIES)}", "",
-         "typedef enum {", *(f"    PLANT_LOG_{n.upper()}," for n, _ in LOG_CATEGORIES), "} PlantLogCategory;",
-         "extern const char *const plant_log_category_names[PLANT_LOG_CATEGORY_COUNT];", "",
-         "/* FMI 2 types (PLANT_NONE: not an FMI 2 variable) and FMI 3 types. */",
-         "typedef enum { PLANT_NONE, PLANT_REAL, PLANT_INTEGER } PlantType;",
-         "typedef enum { PLANT3_FLOAT64, PLANT3_INT32, PLANT3_INT16 } PlantType3;",
-         "typedef enum { PLANT_PARAMETER, PLANT_INPUT, PLANT_OUTPUT, PLANT_INDEPENDENT } PlantCausality;", "",
-         "/* One row of plant.csv. The value lives in the PlantModel member at offset,",
-         " * a double for FMI 3 Float64, else an int32_t; min and max bound what a set",
-         " * call (and a restored FMU state) may write there. */",
-         "typedef struct {",
-         "    unsigned vr;",
-         "    unsigned char type;          /* PlantType */",
-         "    unsigned char type3;         /* PlantType3 */",
-         "    unsigned char causality;     /* PlantCausality */",
-         "    size_t offset;",
-         "    double min, max, start;",
-         "    const char *name;",
-         "} PlantVariable;", "",
-         "extern const PlantVariable plant_variables[PLANT_VARIABLE_COUNT];", "",
-         "#endif", ""]
+    h = [
+        "/* Generated by modelDescription/generate_plant.py from plant.csv: do not edit. */",
+        "#ifndef PLANT_VARIABLES_H",
+        "#define PLANT_VARIABLES_H",
+        "",
+        "#include <stddef.h>",
+        "",
+        f'#define PLANT_MODEL_IDENTIFIER "{MODEL_IDENTIFIER}"',
+        f'#define PLANT_INSTANTIATION_TOKEN "{token}"',
+        f"#define PLANT_VARIABLE_COUNT {len(variables)}",
+        f"#define PLANT_LOG_CATEGORY_COUNT {len(LOG_CATEGORIES)}",
+        "",
+        "typedef enum {",
+        *(f"    PLANT_LOG_{n.upper()}," for n, _ in LOG_CATEGORIES),
+        "} PlantLogCategory;",
+        "extern const char *const plant_log_category_names[PLANT_LOG_CATEGORY_COUNT];",
+        "",
+        "/* FMI 2 types (PLANT_NONE: not an FMI 2 variable) and FMI 3 types. */",
+        "typedef enum { PLANT_NONE, PLANT_REAL, PLANT_INTEGER } PlantType;",
+        "typedef enum { PLANT3_FLOAT64, PLANT3_INT32, PLANT3_INT16 } PlantType3;",
+        "typedef enum { PLANT_PARAMETER, PLANT_INPUT, PLANT_OUTPUT, PLANT_INDEPENDENT } PlantCausality;",
+        "",
+        "/* One row of plant.csv. The value lives in the PlantModel member at offset,",
+        " * a double for FMI 3 Float64, else an int32_t; min and max bound what a set",
+        " * call (and a restored FMU state) may write there. */",
+        "typedef struct {",
+        "    unsigned vr;",
+        "    unsigned char type;          /* PlantType */",
+        "    unsigned char type3;         /* PlantType3 */",
+        "    unsigned char causality;     /* PlantCausality */",
+        "    size_t offset;",
+        "    double min, max, start;",
+        "    const char *name;",
+        "} PlantVariable;",
+        "",
+        "extern const PlantVariable plant_variables[PLANT_VARIABLE_COUNT];",
+        "",
+        "#endif",
+        "",
+    ]
     types = {"": "PLANT_NONE", "Real": "PLANT_REAL", "Integer": "PLANT_INTEGER"}
     types3 = {"Float64": "PLANT3_FLOAT64", "Int32": "PLANT3_INT32", "Int16": "PLANT3_INT16"}
     member_type = {"Float64": "double", "Int32": "int32_t", "Int16": "int32_t"}
-    c = ["/* Generated by modelDescription/generate_plant.py from plant.csv: do not edit. */",
-         "#include <math.h>", "#include <stddef.h>", "#include <stdint.h>", "",
-         '#include "plant.h"', '#include "plant_variables.h"', "",
-         "const char *const plant_log_category_names[PLANT_LOG_CATEGORY_COUNT] = {",
-         *(f'    "{n}",' for n, _ in LOG_CATEGORIES), "};", "",
-         "/* Each variable's member has the size its type says (the negative array size stops the build otherwise). */",
-         *(f"typedef char plant_member_{v['name']}[sizeof(((const PlantModel *)0)->{v['name']}) == "
-           f"sizeof({member_type[v['fmi3Type']]}) ? 1 : -1];" for v in variables), "",
-         "const PlantVariable plant_variables[PLANT_VARIABLE_COUNT] = {"]
+    c = [
+        "/* Generated by modelDescription/generate_plant.py from plant.csv: do not edit. */",
+        "#include <math.h>",
+        "#include <stddef.h>",
+        "#include <stdint.h>",
+        "",
+        '#include "plant.h"',
+        '#include "plant_variables.h"',
+        "",
+        "const char *const plant_log_category_names[PLANT_LOG_CATEGORY_COUNT] = {",
+        *(f'    "{n}",' for n, _ in LOG_CATEGORIES),
+        "};",
+        "",
+        "/* Each variable's member has the size its type says (the negative array size stops the build otherwise). */",
+        *(
+            f"typedef char plant_member_{v['name']}[sizeof(((const PlantModel *)0)->{v['name']}) == "
+            f"sizeof({member_type[v['fmi3Type']]}) ? 1 : -1];"
+            for v in variables
+        ),
+        "",
+        "const PlantVariable plant_variables[PLANT_VARIABLE_COUNT] = {",
+    ]
     for v in variables:
         low = "INT16_MIN" if v["fmi3Type"] == "Int16" else "INT32_MIN" if v["fmi3Type"] == "Int32" else "-HUGE_VAL"
         high = "INT16_MAX" if v["fmi3Type"] == "Int16" else "INT32_MAX" if v["fmi3Type"] == "Int32" else "HUGE_VAL"
-        c.append(f'    {{{v["vr"]}, {types[v["type"]]}, {types3[v["fmi3Type"]]}, '
-                 f'PLANT_{v["causality"].upper()}, offsetof(PlantModel, {v["name"]}), '
-                 f'{c_double(v["min"], low)}, {c_double(v["max"], high)}, {c_double(v["start"], "0.0")}, '
-                 f'"{v["name"]}"}},')
+        c.append(
+            f"    {{{v['vr']}, {types[v['type']]}, {types3[v['fmi3Type']]}, "
+            f"PLANT_{v['causality'].upper()}, offsetof(PlantModel, {v['name']}), "
+            f"{c_double(v['min'], low)}, {c_double(v['max'], high)}, {c_double(v['start'], '0.0')}, "
+            f'"{v["name"]}"}},'
+        )
     c += ["};", ""]
     return "\n".join(h), "\n".join(c)
 

@@ -2,6 +2,7 @@
 """What the generators beside this file share (generate.py, generate_plant.py, generate_cmotion.py,
 generate_hosttime.py; fuzz/sequence_inputs.py loads the tables too): the harness's table readers,
 loaded by path, and writing what they make."""
+
 import importlib.util
 import sys
 from pathlib import Path

@@ -3,6 +3,7 @@
 them: the library's generated sources (c-motion.h/.c, the ports' value references, the host
 interfaces' table), then the library and the program in one cc call. `sanitize` adds one of the
 runtimes (gcc's -fsanitize=thread, or address,undefined) to the library and the program alike."""
+
 import subprocess
 import sys
 from pathlib import Path
@@ -21,11 +22,29 @@ def generate(out: Path) -> Path:
 
 def compile_program(source: Path, exe: Path, generated: Path, sanitize: str = "") -> Path:
     """source linked with the library into exe; sanitize: "" or a -fsanitize= list."""
-    library = [HOST_C / "PMDfmu.c", HOST_C / "PMDhosttime.c", generated / "c-motion.c",
-               generated / "PMDfmu_ports.c"]
-    flags = ["-O1"] if not sanitize else ["-O1", "-g", "-fno-omit-frame-pointer", f"-fsanitize={sanitize}",
-                                          "-fno-sanitize-recover=all"]
-    subprocess.run(["cc", "-std=c99", *flags, "-DPMD_HAVE_HOSTTIME", f"-I{HOST_C}", f"-I{generated}",
-                    f"-I{FMI_HEADERS}", *map(str, library), str(source), "-o", str(exe), "-pthread", "-ldl", "-lm"],
-                   check=True)
+    library = [HOST_C / "PMDfmu.c", HOST_C / "PMDhosttime.c", generated / "c-motion.c", generated / "PMDfmu_ports.c"]
+    flags = (
+        ["-O1"]
+        if not sanitize
+        else ["-O1", "-g", "-fno-omit-frame-pointer", f"-fsanitize={sanitize}", "-fno-sanitize-recover=all"]
+    )
+    subprocess.run(
+        [
+            "cc",
+            "-std=c99",
+            *flags,
+            "-DPMD_HAVE_HOSTTIME",
+            f"-I{HOST_C}",
+            f"-I{generated}",
+            f"-I{FMI_HEADERS}",
+            *map(str, library),
+            str(source),
+            "-o",
+            str(exe),
+            "-pthread",
+            "-ldl",
+            "-lm",
+        ],
+        check=True,
+    )
     return exe

@@ -18,6 +18,7 @@
 Fixtures for what a test receives ready-made, helper modules for what it calls or
 compares with: test_suite_layout.py checks the rule.
 """
+
 from pathlib import Path
 
 import pytest

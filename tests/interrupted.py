@@ -3,6 +3,7 @@
 module, not a test file: conftest.py). A real Ctrl-C raises KeyboardInterrupt in the main thread at the
 next point where Python checks for signals: Interrupter puts it there, counting the lines the harness
 and FMPy run and calling _thread.interrupt_main() at chosen counts, as a SIGINT's arrival does."""
+
 import _thread
 import signal
 import sys
@@ -18,7 +19,7 @@ from scenarios import busy_chip
 
 WATCHED = (str(Path(pmdfmu.__file__).parent), str(Path(fmpy.__file__).parent))
 CAPACITY = 60
-CYCLES = 400            # 7 chunks
+CYCLES = 400  # 7 chunks
 
 
 class Interrupter:
@@ -32,8 +33,10 @@ class Interrupter:
 
     def __enter__(self):
         # Python's own handler, which raises KeyboardInterrupt (another test may have left another one)
-        self.handlers = (signal.signal(signal.SIGINT, signal.default_int_handler),
-                         signal.signal(signal.SIGALRM, self.alarm))
+        self.handlers = (
+            signal.signal(signal.SIGINT, signal.default_int_handler),
+            signal.signal(signal.SIGALRM, self.alarm),
+        )
         sys.settrace(self.call)
         return self
 
@@ -72,7 +75,7 @@ def interrupted_run(chip, names, at, then=None) -> int:
             except KeyboardInterrupt:
                 deadline = time.monotonic() + 1
                 while then and interrupter.fired < 2 and time.monotonic() < deadline:
-                    time.sleep(then)             # the second one, if it did not land in the cleanup
+                    time.sleep(then)  # the second one, if it did not land in the cleanup
             checkpoint()
         except KeyboardInterrupt:
             pass
@@ -83,7 +86,7 @@ def checkpoint():
     """A Python call: a pending interrupt is raised here at the latest."""
 
 
-SCRIPT_END = 260        # the script's last line: no grid change after it
+SCRIPT_END = 260  # the script's last line: no grid change after it
 
 
 def script(tmp_path):
@@ -93,11 +96,13 @@ def script(tmp_path):
 
 
 # (FMI version, recorded names, with a script whose SetSampleTime makes chunks redone cycle by cycle)
-RUNS = {"lent columns": (2, record_outputs(range(2)), False),
-        "copied columns": (3, record_outputs(range(2)), False),
-        "commanded table": (2, RECORDED[:6], False),
-        "redone chunks": (2, record_outputs([0]), True),
-        "redone chunks fmi3": (3, RECORDED[:3], True)}
+RUNS = {
+    "lent columns": (2, record_outputs(range(2)), False),
+    "copied columns": (3, record_outputs(range(2)), False),
+    "commanded table": (2, RECORDED[:6], False),
+    "redone chunks": (2, record_outputs([0]), True),
+    "redone chunks fmi3": (3, RECORDED[:3], True),
+}
 
 
 def chip_for(run, tmp_path):
@@ -115,11 +120,11 @@ def assert_intact(chip, run, tmp_path):
     with chip_for(run, tmp_path) as fresh:
         # cycle by cycle while the script may change the grid (a run of n cycles is n on the grid at its
         # start), then in one run
-        while fresh.get("chipTime") < min(ran, 3 * SCRIPT_END):      # with a margin: @ lines count grid cycles
+        while fresh.get("chipTime") < min(ran, 3 * SCRIPT_END):  # with a margin: @ lines count grid cycles
             fresh.run(1)
         fresh.run(ran - fresh.get("chipTime"))
         assert fresh.cycles == chip.cycles and fresh.get("chipTime") == ran
-        chip.run(2 * CAPACITY)                       # an unrecorded step longer than record.capacity runs
+        chip.run(2 * CAPACITY)  # an unrecorded step longer than record.capacity runs
         fresh.run(2 * CAPACITY)
         assert not chip.get("record.enabled")
         assert chip.run(150, record=names).tobytes() == fresh.run(150, record=names).tobytes()

@@ -2,6 +2,7 @@
 """Exact reference models written independently of the C core: seed 000's
 external profile (Python Fractions in counts, the seed's pseudo code line by
 line) and the servo filter (docs/decisions.md's formula in Python integers)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
@@ -41,7 +42,7 @@ class ExternalProfile:
         if f not in self.functions:
             return 1 if f == TIME else 0
         raw = self.rows[self.index][f] & 0xFFFFFFFF
-        return raw if f == TIME else wrap32(raw)     # PMD_TIME is unsigned
+        return raw if f == TIME else wrap32(raw)  # PMD_TIME is unsigned
 
     def cycle(self) -> Optional[Tuple[int, int, int]]:
         """One chip cycle; returns the three registers, or None once halted."""
@@ -54,7 +55,7 @@ class ExternalProfile:
             self.j = Fraction(self.entry(JERK), 1 << 32)
             self.segment_time = self.entry(TIME)
             self.index = (self.index + 1) % len(self.rows)
-            if self.segment_time == 0:              # StopTrajectory()
+            if self.segment_time == 0:  # StopTrajectory()
                 self.v = self.a = self.j = Fraction(0)
                 self.running = False
                 return registers(self.p, self.v, self.a)
@@ -71,6 +72,7 @@ class ExternalProfile:
 
 # ---- the servo filter (docs/decisions.md, "Servo filter and motor output") ----
 
+
 def _clamp(x: int, low: int, high: int) -> int:
     return max(low, min(high, x))
 
@@ -78,6 +80,7 @@ def _clamp(x: int, low: int, high: int) -> int:
 @dataclass
 class FilterRegisters:
     """The filter group (reference 4.1), reset values of reference 4.2."""
+
     kp: int = 0
     ki: int = 0
     kd: int = 0
@@ -96,14 +99,15 @@ class ServoFilter:
 
     The test sets `buffered` as the host's Set commands do and calls update()
     where Update applies it; motor_bias and motor_limit act at once."""
+
     buffered: FilterRegisters = field(default_factory=FilterRegisters)
     active: FilterRegisters = field(default_factory=FilterRegisters)
     motor_bias: int = 0
     motor_limit: int = 32767
     integral: int = 0
     derivative: int = 0
-    previous_error: int = 0          # E at the last derivative sample
-    count: int = 0                   # cycles since the last derivative sample
+    previous_error: int = 0  # E at the last derivative sample
+    count: int = 0  # cycles since the last derivative sample
     output: int = 0
 
     def update(self) -> None:
@@ -125,9 +129,14 @@ class ServoFilter:
             self.derivative = _clamp(e - self.previous_error, -32768, 32767)
             self.previous_error = e
             self.count = 0
-        s = (r.kp * e + r.kd * self.derivative + (r.ki * self.integral) // 256 + (r.kvff * velocity) // 65536 +
-             (r.kaff * acceleration) // 65536)
-        s = _clamp(s, -2 ** 31, 2 ** 31 - 1)
+        s = (
+            r.kp * e
+            + r.kd * self.derivative
+            + (r.ki * self.integral) // 256
+            + (r.kvff * velocity) // 65536
+            + (r.kaff * acceleration) // 65536
+        )
+        s = _clamp(s, -(2**31), 2**31 - 1)
         u = (r.kout * s) // 65536 + self.motor_bias
         self.output = _clamp(u, -self.motor_limit, self.motor_limit)
         return self.output

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Chip set-ups that several test files run (a helper module, not a test file:
 see conftest.py for where shared test code lives)."""
+
 import importlib.util
 from pathlib import Path
 
@@ -21,9 +22,16 @@ _worked_example = _example("worked_example")
 
 # ---- a busy chip: everything moving at once (FMU state tests) ---------------------
 
-BUSY_OUTPUTS = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration",
-                "axis1.activityStatus", "axis1.eventStatus", "axis2.commandedPosition", "axis1.position",
-                "host.interrupt"]
+BUSY_OUTPUTS = [
+    "axis1.commandedPosition",
+    "axis1.commandedVelocity",
+    "axis1.commandedAcceleration",
+    "axis1.activityStatus",
+    "axis1.eventStatus",
+    "axis2.commandedPosition",
+    "axis1.position",
+    "host.interrupt",
+]
 
 
 def busy_chip(chip):
@@ -52,9 +60,19 @@ def busy_chip(chip):
 # ---- seed 000's worked table ---------------------------------------------------------
 
 # chip time, commanded position, commanded velocity (the table's rows)
-WORKED_TABLE = [(11003, 0, 0x10000), (11004, 1, 0x10000), (11005, 2, 0x10000), (11006, 3, 0x10000),
-                (11007, 4, 0x10000), (11008, 5, 0x10000), (11009, 6, 0x10000), (11010, 7, 0x10000),
-                (11011, 8, 0x10000), (11012, 9, 0x10000), (11013, 10, 0)]
+WORKED_TABLE = [
+    (11003, 0, 0x10000),
+    (11004, 1, 0x10000),
+    (11005, 2, 0x10000),
+    (11006, 3, 0x10000),
+    (11007, 4, 0x10000),
+    (11008, 5, 0x10000),
+    (11009, 6, 0x10000),
+    (11010, 7, 0x10000),
+    (11011, 8, 0x10000),
+    (11012, 9, 0x10000),
+    (11013, 10, 0),
+]
 
 
 def run_worked_example(chip):
@@ -62,8 +80,15 @@ def run_worked_example(chip):
     first read at chip time 11003), and the 11 cycles of the seed's table."""
     _worked_example.start_worked_example(chip)
     assert chip.axis(pmdfmu.PMDAxis1).GetTime() == 11002
-    return chip.run(11, record=["axis1.commandedPosition", "axis1.commandedVelocity",
-                                "axis1.commandedAcceleration", "axis1.activityStatus"])
+    return chip.run(
+        11,
+        record=[
+            "axis1.commandedPosition",
+            "axis1.commandedVelocity",
+            "axis1.commandedAcceleration",
+            "axis1.activityStatus",
+        ],
+    )
 
 
 # ---- random external profiles on axes 1-3 (fast-forward and quiet-run tests) ---------
@@ -81,7 +106,7 @@ def load_random_profiles(chip, rng, rows_per_axis=12, long=(50, 4000)):
             v = rng.choice([0, rng.randrange(-0x30000, 0x30000)])
             a = rng.choice([0, rng.randrange(-0x400, 0x400)])
             j = rng.choice([0, rng.randrange(-0x100000, 0x100000)])
-            if rng.random() < 0.3:                         # velocity exactly 0 after 100 cycles: an event
+            if rng.random() < 0.3:  # velocity exactly 0 after 100 cycles: an event
                 m = rng.choice([1, -1]) * rng.randrange(1, 0x100)
                 v, a, j = 200 * m, -2 * m, 0
             rows.append((rng.randrange(-5000, 5000), v, a, j, rng.randrange(*long)))

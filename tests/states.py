@@ -3,6 +3,7 @@
 file: see conftest.py): the FMU state as bytes (a refused call changes nothing),
 raw host words, host batches left pending, value references for raw FMI calls,
 an instance left in initialization mode."""
+
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
 from fmpy.fmi3 import FMU3Slave
 
@@ -54,8 +55,12 @@ class InitializationChip:
         self._proto = pmdfmu.Chip(fmi_version=fmi_version)
         desc = self._proto.model_description
         self.fmi_version, self.variables, self.messages = fmi_version, self._proto.variables, []
-        kwargs = dict(guid=desc.guid, unzipDirectory=self._proto._unzipdir,
-                      modelIdentifier=desc.coSimulation.modelIdentifier, instanceName="init")
+        kwargs = dict(
+            guid=desc.guid,
+            unzipDirectory=self._proto._unzipdir,
+            modelIdentifier=desc.coSimulation.modelIdentifier,
+            instanceName="init",
+        )
 
         def record(status, message):
             self.messages.append(pmdfmu.chip.LogMessage(pmdfmu.chip.STATUS_NAMES[status], "", message.decode()))

@@ -2,6 +2,7 @@
 """The harness's oracles: what Chip.run(record=...) and Chip.write_memory did in Python through FMPy
 before the FMU recorded in bulk and the native loops came (pmdfmu.recording, pmdfmu.memory_port).
 The tests pin those paths to these, bit for bit (a helper module, not a test file: conftest.py)."""
+
 from typing import Sequence
 
 import numpy as np
@@ -14,7 +15,7 @@ from pmdfmu.fixed import integer
 UNSIGNED = {n: (1 << 8 * t.itemsize) - 1 for n, t in DTYPES.items() if t.kind == "u"}
 
 
-@_refusals                  # an FMI call the FMU refuses raises as from Chip's own calls
+@_refusals  # an FMI call the FMU refuses raises as from Chip's own calls
 def run_stepwise(chip: pmdfmu.Chip, cycles: int, record: Sequence[str]) -> np.ndarray:
     """chip.run(cycles, record) cycle by cycle: a doStep of one cycle, then one get per FMI type."""
     names = list(record)
@@ -37,7 +38,7 @@ def run_stepwise(chip: pmdfmu.Chip, cycles: int, record: Sequence[str]) -> np.nd
     get_time, time_vr = chip._getters[chip.variables["chipTime"].type], [chip._vr["chipTime"]]
     for i in range(cycles):
         chip._step(1)
-        out["cycle"][i] = get_time(time_vr)[0] & 0xFFFFFFFF      # FMI 2 Integer: the same 32 bits
+        out["cycle"][i] = get_time(time_vr)[0] & 0xFFFFFFFF  # FMI 2 Integer: the same 32 bits
         for get, ns, vrs, places in groups:
             values = get(vrs)
             for n, p in zip(ns, places):
@@ -71,5 +72,5 @@ def write_memory_stepwise(chip: pmdfmu.Chip, address: int, words: Sequence[int])
     strobe = chip.get("memory.strobe")
     for start in range(0, len(data), BATCH_WORDS):
         strobe = (strobe + 1) & 0x7FFFFFFF
-        chip._memory_strobe(address + start, data[start:start + BATCH_WORDS], strobe)
-        chip.get("host.ack")                      # executes the write now
+        chip._memory_strobe(address + start, data[start : start + BATCH_WORDS], strobe)
+        chip.get("host.ack")  # executes the write now

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The map is part of the code: docs/architecture.md and the README's Layout name every top-level folder
 of the repository and every folder of fmu_src/, so a folder added without a word about it fails here."""
+
 import re
 import subprocess
 from pathlib import Path
@@ -25,7 +26,7 @@ def test_the_architecture_page_names_every_folder():
 
 def test_the_readme_layout_names_every_top_level_folder():
     text = (REPO / "README.md").read_text()
-    layout = text[text.index("## Layout"):]
+    layout = text[text.index("## Layout") :]
     top, fmu = folders()
     missing = [f for f in top + fmu if f"`{f}/" not in layout]
     assert not missing, f"the README's Layout table does not name {missing}"

@@ -1,22 +1,52 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Limit switches, actual position, motion error, settle and tracking windows,
 signal sense and capture (pmd-reference 2.1-2.3, 4.5)."""
+
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDActivityAxisSettledMask, PMDActivityInMotionMask, PMDActivityInNegativeLimitMask,
-                    PMDActivityInPositiveLimitMask, PMDActivityMotorOnMask, PMDActivityPositionCaptureMask,
-                    PMDActivityTrackingMask, PMDAutoStopEnabled, PMDAxis1Mask, PMDAxis2Mask, PMDAxis3Mask,
-                    PMDCaptureSourceHome, PMDError, PMDEventCaptureReceivedMask, PMDEventInNegativeLimitMask,
-                    PMDEventInPositiveLimitMask, PMDEventMotionCompleteMask, PMDEventMotionErrorMask,
-                    PMDExternalProfile, PMDLimitDisabled, PMDMotionCompleteActualPosition, PMDSignalEncoderAMask,
-                    PMDSignalEncoderBMask, PMDSignalEncoderHomeMask, PMDSignalEncoderIndexMask,
-                    PMDSignalNegativeLimitMask, PMDSignalPositiveLimitMask, PMDSignalSenseMask,
-                    PMDVelocityContouringProfile, field_ex)
+from pmdfmu import (
+    PMDActivityAxisSettledMask,
+    PMDActivityInMotionMask,
+    PMDActivityInNegativeLimitMask,
+    PMDActivityInPositiveLimitMask,
+    PMDActivityMotorOnMask,
+    PMDActivityPositionCaptureMask,
+    PMDActivityTrackingMask,
+    PMDAutoStopEnabled,
+    PMDAxis1Mask,
+    PMDAxis2Mask,
+    PMDAxis3Mask,
+    PMDCaptureSourceHome,
+    PMDError,
+    PMDEventCaptureReceivedMask,
+    PMDEventInNegativeLimitMask,
+    PMDEventInPositiveLimitMask,
+    PMDEventMotionCompleteMask,
+    PMDEventMotionErrorMask,
+    PMDExternalProfile,
+    PMDLimitDisabled,
+    PMDMotionCompleteActualPosition,
+    PMDSignalEncoderAMask,
+    PMDSignalEncoderBMask,
+    PMDSignalEncoderHomeMask,
+    PMDSignalEncoderIndexMask,
+    PMDSignalNegativeLimitMask,
+    PMDSignalPositiveLimitMask,
+    PMDSignalSenseMask,
+    PMDVelocityContouringProfile,
+    field_ex,
+)
 
 # GetSignalStatus with every input idle: the signals are active low, so all read high
-IDLE_SIGNALS = (PMDSignalEncoderAMask | PMDSignalEncoderBMask | PMDSignalEncoderIndexMask | PMDSignalEncoderHomeMask |
-                PMDSignalPositiveLimitMask | PMDSignalNegativeLimitMask)
+IDLE_SIGNALS = (
+    PMDSignalEncoderAMask
+    | PMDSignalEncoderBMask
+    | PMDSignalEncoderIndexMask
+    | PMDSignalEncoderHomeMask
+    | PMDSignalPositiveLimitMask
+    | PMDSignalNegativeLimitMask
+)
 
 
 def move(ax, position, velocity=0x20000, acceleration=0x2000):
@@ -69,8 +99,8 @@ def test_multiupdate_aborts_at_the_first_axis_moving_into_a_limit(chip):
         chip.axis(0).MultiUpdate(PMDAxis1Mask | PMDAxis2Mask | PMDAxis3Mask)
     assert e.value.code == 0x0E
     chip.run(20)
-    assert chip.axis(0).GetCommandedPosition() < 0          # axis 1 was updated
-    assert chip.axis(2).GetCommandedPosition() == 0         # axis 3 was not
+    assert chip.axis(0).GetCommandedPosition() < 0  # axis 1 was updated
+    assert chip.axis(2).GetCommandedPosition() == 0  # axis 3 was not
     assert chip.axis(1).GetActivityStatus() & PMDActivityInNegativeLimitMask
 
 
@@ -103,14 +133,14 @@ def test_an_external_profile_stops_on_a_limit(chip):
 
 def test_signal_status_is_active_low_and_sense_inverts_it(chip):
     ax = chip.axis(0)
-    assert ax.GetSignalStatus() == IDLE_SIGNALS              # A, B, index, home, limits all idle (high)
+    assert ax.GetSignalStatus() == IDLE_SIGNALS  # A, B, index, home, limits all idle (high)
     chip.set("axis1.home", True)
     assert ax.GetSignalStatus() == IDLE_SIGNALS ^ PMDSignalEncoderHomeMask
     ax.SetSignalSense(PMDSignalEncoderHomeMask)
     assert ax.GetSignalStatus() == IDLE_SIGNALS
     assert ax.GetSignalSense() == PMDSignalEncoderHomeMask
     with pytest.raises(PMDError):
-        ax.SetSignalSense(PMDSignalSenseMask + 1)            # the bit above the sense mask
+        ax.SetSignalSense(PMDSignalSenseMask + 1)  # the bit above the sense mask
 
 
 def test_loopback_off_actual_position_error_and_motion_error_with_auto_stop():
@@ -126,14 +156,14 @@ def test_loopback_off_actual_position_error_and_motion_error_with_auto_stop():
         chip.set("axis1.actualPosition", plant)
         chip.run(1)
         assert ax.GetActualPosition() == plant
-        assert ax.GetPositionError() == -5                              # 3 behind, and the trajectory moved 2
-        assert ax.GetActivityStatus() & PMDActivityTrackingMask        # |error| <= tracking window 5
+        assert ax.GetPositionError() == -5  # 3 behind, and the trajectory moved 2
+        assert ax.GetActivityStatus() & PMDActivityTrackingMask  # |error| <= tracking window 5
         chip.run(1)
         assert not ax.GetActivityStatus() & PMDActivityTrackingMask
-        chip.set("axis1.actualPosition", 0)                            # the motor stalls
+        chip.set("axis1.actualPosition", 0)  # the motor stalls
         chip.run(200)
         assert ax.GetEventStatus() & PMDEventMotionErrorMask
-        assert not ax.GetActivityStatus() & PMDActivityMotorOnMask    # auto-stop: motor off
+        assert not ax.GetActivityStatus() & PMDActivityMotorOnMask  # auto-stop: motor off
         assert ax.GetCommandedVelocity() == 0
         assert abs(ax.GetPositionError()) > 100
 
@@ -146,7 +176,7 @@ def test_set_and_adjust_actual_position_cause_no_motion(chip):
     ax.SetActualPosition(before + 5000)
     assert ax.GetActualPosition() == before + 5000 == ax.GetCommandedPosition()
     chip.run(500)
-    assert ax.GetCommandedPosition() == 6000                  # the destination moved with it
+    assert ax.GetCommandedPosition() == 6000  # the destination moved with it
     ax.AdjustActualPosition(-6000)
     assert ax.GetActualPosition() == 0 and ax.GetPositionError() == 0
     chip.run(10)
@@ -173,7 +203,7 @@ def test_settled_and_motion_complete_in_actual_mode():
         move(ax, 50, 0x40000, 0x10000)
         chip.run(100)
         assert ax.GetCommandedPosition() == 50 and not ax.GetActivityStatus() & PMDActivityInMotionMask
-        assert not ax.GetEventStatus() & PMDEventMotionCompleteMask       # the encoder is still at 0
+        assert not ax.GetEventStatus() & PMDEventMotionCompleteMask  # the encoder is still at 0
         chip.set("axis1.actualPosition", 49)
         chip.run(10)
         assert not ax.GetActivityStatus() & PMDActivityAxisSettledMask
@@ -198,7 +228,7 @@ def test_home_capture_latches_until_read(chip):
     chip.run(5)
     chip.set("axis1.home", True)
     chip.run(1)
-    assert ax.GetCaptureValue() == 41       # the first edge (seen in cycle 41, at 41 counts), held until read
+    assert ax.GetCaptureValue() == 41  # the first edge (seen in cycle 41, at 41 counts), held until read
     assert not ax.GetActivityStatus() & PMDActivityPositionCaptureMask
 
 
@@ -214,7 +244,7 @@ def test_an_external_profile_stops_on_a_motion_error_even_without_auto_stop():
         ax.SetBufferFunction(0, 2)
         ax.SetBufferFunction(1, 3)
         ax.SetBufferFunction(4, 4)
-        chip.write_memory(0x300, [0x20000])        # 2 counts/cycle for 1000 cycles; the plant stays at 0
+        chip.write_memory(0x300, [0x20000])  # 2 counts/cycle for 1000 cycles; the plant stays at 0
         chip.write_memory(0x400, [1000])
         ax.SetPositionErrorLimit(50)
         ax.SetProfileMode(PMDExternalProfile)
@@ -222,8 +252,8 @@ def test_an_external_profile_stops_on_a_motion_error_even_without_auto_stop():
         chip.run(40)
         assert ax.GetEventStatus() & PMDEventMotionErrorMask
         assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
-        assert ax.GetCommandedPosition() == 52                 # stopped in the cycle the error passed 50
-        assert ax.GetActivityStatus() & PMDActivityMotorOnMask     # no auto-stop: the motor stays on
+        assert ax.GetCommandedPosition() == 52  # stopped in the cycle the error passed 50
+        assert ax.GetActivityStatus() & PMDActivityMotorOnMask  # no auto-stop: the motor stays on
 
 
 def test_reset_keeps_the_encoder_count_the_last_cycle_sampled_not_the_live_input():
@@ -234,8 +264,8 @@ def test_reset_keeps_the_encoder_count_the_last_cycle_sampled_not_the_live_input
         ax = chip.axis(0)
         chip.set("axis1.actualPosition", 500)
         chip.run(1)
-        ax.SetActualPosition(100)                      # offset -400
-        chip.set("axis1.actualPosition", 700)          # not sampled yet
+        ax.SetActualPosition(100)  # offset -400
+        chip.set("axis1.actualPosition", 700)  # not sampled yet
         ax.Reset()
         assert ax.GetActualPosition() == 500 and ax.GetActualVelocity() == 0
         chip.run(1)

@@ -13,20 +13,47 @@ exception is the motor command of cycle k: the servo filter runs after the
 breakpoints (docs/decisions.md, "Servo filter and motor output"), so a
 breakpoint's action is already in the motor output of the cycle it fires in,
 where the host's command reaches only the next cycle's."""
+
 import numpy as np
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDAbruptStop, PMDBreakpoint1, PMDBreakpointActionAbruptStop, PMDBreakpointActionMotorOff,
-                    PMDBreakpointActionSmoothStop, PMDBreakpointActionUpdate, PMDBreakpointEventStatus,
-                    PMDBreakpointGreaterOrEqualCommandedPosition, PMDBufferFunctionPosition, PMDBufferFunctionTime,
-                    PMDBufferFunctionVelocity, PMDElectronicGearProfile, PMDEventBreakpoint1Mask,
-                    PMDEventBreakpoint2Mask, PMDEventInstructionErrorMask, PMDEventMotionCompleteMask,
-                    PMDExternalProfile, PMDMotorOff, PMDPositionSourceCommanded, PMDSCurveProfile, PMDSmoothStop,
-                    PMDTrapezoidalProfile, PMDVelocityContouringProfile, field_ex)
+from pmdfmu import (
+    PMDAbruptStop,
+    PMDBreakpoint1,
+    PMDBreakpointActionAbruptStop,
+    PMDBreakpointActionMotorOff,
+    PMDBreakpointActionSmoothStop,
+    PMDBreakpointActionUpdate,
+    PMDBreakpointEventStatus,
+    PMDBreakpointGreaterOrEqualCommandedPosition,
+    PMDBufferFunctionPosition,
+    PMDBufferFunctionTime,
+    PMDBufferFunctionVelocity,
+    PMDElectronicGearProfile,
+    PMDEventBreakpoint1Mask,
+    PMDEventBreakpoint2Mask,
+    PMDEventInstructionErrorMask,
+    PMDEventMotionCompleteMask,
+    PMDExternalProfile,
+    PMDMotorOff,
+    PMDPositionSourceCommanded,
+    PMDSCurveProfile,
+    PMDSmoothStop,
+    PMDTrapezoidalProfile,
+    PMDVelocityContouringProfile,
+    field_ex,
+)
 
-QUANTITIES = ("commandedPosition", "commandedVelocity", "commandedAcceleration", "actualPosition",
-              "activityStatus", "eventStatus", "motorCommand")
+QUANTITIES = (
+    "commandedPosition",
+    "commandedVelocity",
+    "commandedAcceleration",
+    "actualPosition",
+    "activityStatus",
+    "eventStatus",
+    "motorCommand",
+)
 NAMES = [f"axis{n}.{q}" for n in range(1, 5) for q in QUANTITIES]
 OTHER_EVENTS = 0xFFFF & ~(PMDEventBreakpoint1Mask | PMDEventBreakpoint2Mask)
 
@@ -57,16 +84,17 @@ def host_command(ax, action):
 # fires in the middle of the move; for "update", the buffered registers hold a
 # change written before the breakpoint is armed.
 
+
 def trapezoidal(chip, action):
     ax = chip.axis(0)
     ax.SetProfileMode(PMDTrapezoidalProfile)
     ax.SetPosition(20_000)
-    ax.SetVelocity(0x40000)                       # 4.0 counts/cycle
+    ax.SetVelocity(0x40000)  # 4.0 counts/cycle
     ax.SetAcceleration(0x1000)
     ax.SetDeceleration(0x800)
     ax.Update()
     if action == "update":
-        ax.SetPosition(2_500)                     # behind the axis: it brakes, overshoots, comes back
+        ax.SetPosition(2_500)  # behind the axis: it brakes, overshoots, comes back
         ax.SetVelocity(0x18000)
     return 0, 3_000
 
@@ -76,10 +104,10 @@ def velocity_contouring(chip, action):
     ax = chip.axis(0)
     ax.SetProfileMode(PMDVelocityContouringProfile)
     ax.SetVelocity(0x20000)
-    ax.SetAcceleration(0xCCC)                     # 0.05 counts/cycle^2
+    ax.SetAcceleration(0xCCC)  # 0.05 counts/cycle^2
     ax.Update()
     if action == "update":
-        ax.SetVelocity(-0x10000)                  # reverse through 0 at the deceleration
+        ax.SetVelocity(-0x10000)  # reverse through 0 at the deceleration
     return 0, 1_000
 
 
@@ -92,7 +120,7 @@ def scurve(chip, action):
     ax.SetJerk(0x1000000)
     ax.Update()
     if action == "update":
-        ax.SetPosition(5_000)                     # no change while an S-curve moves: 0x0C, and nothing changes
+        ax.SetPosition(5_000)  # no change while an S-curve moves: 0x0C, and nothing changes
     return 0, 3_000
 
 
@@ -100,7 +128,7 @@ def gear(chip, action):
     master, slave = chip.axis(0), chip.axis(1)
     trapezoidal(chip, None)
     slave.SetGearMaster(0, PMDPositionSourceCommanded)
-    slave.SetGearRatio(0x18000)                   # 1.5 slave counts per master count
+    slave.SetGearRatio(0x18000)  # 1.5 slave counts per master count
     slave.SetProfileMode(PMDElectronicGearProfile)
     slave.Update()
     if action == "update":
@@ -121,7 +149,7 @@ def external(chip, action):
     ax.SetProfileMode(PMDExternalProfile)
     ax.Update()
     if action == "update":
-        ax.SetVelocity(0x10000)                   # an Update while the profile runs: it runs on
+        ax.SetVelocity(0x10000)  # an Update while the profile runs: it runs on
     return 0, 1_500
 
 
@@ -168,8 +196,7 @@ def row_now(chip, dtype):
     return row
 
 
-def with_breakpoint(setup, action, cycles=CYCLES, trigger=PMDBreakpointGreaterOrEqualCommandedPosition,
-                    value=None):
+def with_breakpoint(setup, action, cycles=CYCLES, trigger=PMDBreakpointGreaterOrEqualCommandedPosition, value=None):
     """Runs setup's move with breakpoint 1 armed on the acting axis: (axis, cycle it fired, the run)."""
     with pmdfmu.Chip() as chip:
         axis, position = set_up(chip, setup, action)
@@ -180,7 +207,7 @@ def with_breakpoint(setup, action, cycles=CYCLES, trigger=PMDBreakpointGreaterOr
         events = rec[f"axis{axis + 1}.eventStatus"]
         assert events[-1] & PMDEventBreakpoint1Mask, "the breakpoint never fired"
         fired = int(np.argmax(events & PMDEventBreakpoint1Mask != 0))
-        assert ax.GetBreakpoint(PMDBreakpoint1)[2] == 0                 # fired once, trigger cleared
+        assert ax.GetBreakpoint(PMDBreakpoint1)[2] == 0  # fired once, trigger cleared
         return axis, fired, rec
 
 
@@ -192,7 +219,7 @@ def with_host(setup, action, fired, cycles=CYCLES):
         try:
             host_command(chip.axis(axis), action)
         except pmdfmu.PMDError as e:
-            assert (setup, action) == (scurve, "update") and e.code == 0x0C     # in motion: refused
+            assert (setup, action) == (scurve, "update") and e.code == 0x0C  # in motion: refused
         before[fired] = row_now(chip, before.dtype)[0]
         after = chip.run(cycles - fired - 1, record=NAMES)
         return np.concatenate([before, after])
@@ -216,39 +243,39 @@ def assert_same_runs(bp, host, fired):
 @pytest.mark.parametrize("mode", MODES)
 def test_breakpoint_action_equals_the_host_command_at_that_cycle(mode, action):
     axis, fired, bp = with_breakpoint(MODES[mode], action)
-    assert 100 < fired < CYCLES - 500                  # mid-move, with time left to see the effect
+    assert 100 < fired < CYCLES - 500  # mid-move, with time left to see the effect
     host = with_host(MODES[mode], action, fired)
     assert_same_runs(bp, host, fired)
     name = f"axis{axis + 1}."
     v = bp[name + "commandedVelocity"]
     motor = bp[name + "motorCommand"]
-    assert motor[fired - 1] not in (BIAS, OPEN_LOOP)      # closed loop, feedforward at work
+    assert motor[fired - 1] not in (BIAS, OPEN_LOOP)  # closed loop, feedforward at work
     # the cycle it fires in: the breakpoint's action is already in the motor output
     if action == "motor off":
         assert motor[fired] == OPEN_LOOP != host[name + "motorCommand"][fired]
     elif action == "abrupt stop" or (action == "smooth stop" and mode == "gear"):
-        assert motor[fired] == BIAS != host[name + "motorCommand"][fired]        # no velocity left to feed
+        assert motor[fired] == BIAS != host[name + "motorCommand"][fired]  # no velocity left to feed
     elif action == "smooth stop" or (action == "update" and mode == "S-curve"):
-        assert motor[fired] == host[name + "motorCommand"][fired]                # no register, no velocity changed
+        assert motor[fired] == host[name + "motorCommand"][fired]  # no register, no velocity changed
     else:
-        assert motor[fired] != host[name + "motorCommand"][fired]                # the new gains
-    assert v[fired - 1] != 0                           # it was moving
+        assert motor[fired] != host[name + "motorCommand"][fired]  # the new gains
+    assert v[fired - 1] != 0  # it was moving
     # and the action did what it says, whichever way the host would do it
     if action == "abrupt stop" or (action == "smooth stop" and mode == "gear"):
-        assert (v[fired:] == 0).all()                  # at once (gear: a smooth stop is abrupt)
+        assert (v[fired:] == 0).all()  # at once (gear: a smooth stop is abrupt)
     elif mode == "external" and action in ("smooth stop", "update"):
-        assert (v[fired:fired + 50] == 0x18000).all()  # seed 000, 1.5: no change in motion; an Update: runs on
+        assert (v[fired : fired + 50] == 0x18000).all()  # seed 000, 1.5: no change in motion; an Update: runs on
     elif action == "smooth stop":
-        assert v[fired] != 0 and v[-1] == 0            # it brakes, then rests
+        assert v[fired] != 0 and v[-1] == 0  # it brakes, then rests
         assert bp[name + "eventStatus"][-1] & PMDEventMotionCompleteMask
     elif action == "motor off":
         assert not field_ex(int(bp[name + "activityStatus"][fired]), "PMDActivityMotorOn")
         actual = bp[name + "actualPosition"]
         assert (actual[fired:] == actual[fired]).all()  # loopback, motor off: the actual position holds
     elif mode == "S-curve":
-        assert bp[name + "eventStatus"][fired] & PMDEventInstructionErrorMask   # refused, as the host's 0x0C
+        assert bp[name + "eventStatus"][fired] & PMDEventInstructionErrorMask  # refused, as the host's 0x0C
     else:
-        assert v[fired + 1] != v[fired - 1] + (v[fired - 1] - v[fired - 2])   # the new registers act
+        assert v[fired + 1] != v[fired - 1] + (v[fired - 1] - v[fired - 2])  # the new registers act
 
 
 def test_velocity_contouring_smooth_stop_breakpoint_stops_where_the_hosts_smooth_stop_does():
@@ -266,15 +293,17 @@ def test_update_breakpoint_on_motion_complete_starts_the_next_s_curve():
     """An S-curve cannot change in motion, but an update breakpoint on motion
     complete starts the next move at the cycle the last one ends, as the host's
     Update would."""
+
     def second_move(chip, action):
         axis, _ = scurve(chip, None)
         ax = chip.axis(axis)
         ax.SetPosition(16_000)
         return axis, None
 
-    complete = (PMDEventMotionCompleteMask << 16) | PMDEventMotionCompleteMask   # select | sense
-    axis, fired, bp = with_breakpoint(second_move, "update", cycles=9_000, trigger=PMDBreakpointEventStatus,
-                                      value=complete)
+    complete = (PMDEventMotionCompleteMask << 16) | PMDEventMotionCompleteMask  # select | sense
+    axis, fired, bp = with_breakpoint(
+        second_move, "update", cycles=9_000, trigger=PMDBreakpointEventStatus, value=complete
+    )
     assert bp["axis1.commandedPosition"][fired] == 20_000 and bp["axis1.commandedVelocity"][fired] == 0
     assert_same_runs(bp, with_host(second_move, "update", fired, cycles=9_000), fired)
     assert bp["axis1.commandedPosition"][-1] == 16_000
@@ -286,16 +315,16 @@ def test_a_stop_breakpoint_leaves_the_buffered_registers_alone(chip):
     for its own Update (docs/decisions.md, breakpoint actions)."""
     ax = chip.axis(0)
     velocity_contouring(chip, None)
-    ax.SetVelocity(-0x30000)                      # the host's next move, not yet applied
-    ax.SetStopMode(PMDAbruptStop)                 # and a stop of its own, not yet applied
+    ax.SetVelocity(-0x30000)  # the host's next move, not yet applied
+    ax.SetStopMode(PMDAbruptStop)  # and a stop of its own, not yet applied
     ax.SetBreakpointValue(PMDBreakpoint1, 1_000)
     ax.SetBreakpoint(PMDBreakpoint1, 0, PMDBreakpointActionSmoothStop, PMDBreakpointGreaterOrEqualCommandedPosition)
     chip.run(600)
     assert ax.GetEventStatus() & PMDEventBreakpoint1Mask
-    assert ax.GetCommandedVelocity() == 0 and ax.GetCommandedPosition() == 1_040   # the smooth stop ran
-    assert ax.GetVelocity() == -0x30000 and ax.GetStopMode() == PMDAbruptStop      # still buffered
+    assert ax.GetCommandedVelocity() == 0 and ax.GetCommandedPosition() == 1_040  # the smooth stop ran
+    assert ax.GetVelocity() == -0x30000 and ax.GetStopMode() == PMDAbruptStop  # still buffered
     ax.SetStopMode(0)
-    ax.Update()                                   # the host's Update applies them now
+    ax.Update()  # the host's Update applies them now
     chip.run(100)
     assert ax.GetCommandedVelocity() == -0x30000
 
@@ -329,4 +358,4 @@ def test_a_trace_on_the_next_update_starts_in_the_cycle_an_update_breakpoint_fir
             samples[how] = list(zip(words[::2], words[1::2]))
     assert samples["breakpoint"][0] == (50, 0)
     assert samples["breakpoint"][1:] == samples["host"]
-    assert samples["host"][0] == (51, 0x1000)                  # the new move's first cycle
+    assert samples["host"][0] == (51, 0x1000)  # the new move's first cycle

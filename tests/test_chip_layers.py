@@ -3,6 +3,7 @@
 each C file calls only functions of its own layer and the layers below, so
 there is no circle. The compiler's object files say what each file defines and
 what it needs, whatever the headers claim."""
+
 import shutil
 import subprocess
 import sys
@@ -15,16 +16,16 @@ CHIP = ROOT / "fmu_src" / "chip"
 
 # Bottom up; a file belongs to the layer named by its stem or listed with it.
 LAYERS = [
-    ("events",),                    # the log and the event status bits
-    ("status",),                    # register views derived from the state
-    ("memory",),                    # the external memory
-    ("scurve",),                    # the S-curve generator
-    ("profile",),                   # trajectory generators, stops, Update
-    ("servo",),                     # the servo filter and the motor output
-    ("trace",),                     # the trace facility
-    ("registers", "register_table"),   # the plain stored registers' Set, Get and reset values
-    ("chip", "fastforward"),        # life cycle, the per-cycle sequence
-    ("commands", "host", "command_table"),   # handlers (commands*.c), the dispatcher and its table
+    ("events",),  # the log and the event status bits
+    ("status",),  # register views derived from the state
+    ("memory",),  # the external memory
+    ("scurve",),  # the S-curve generator
+    ("profile",),  # trajectory generators, stops, Update
+    ("servo",),  # the servo filter and the motor output
+    ("trace",),  # the trace facility
+    ("registers", "register_table"),  # the plain stored registers' Set, Get and reset values
+    ("chip", "fastforward"),  # life cycle, the per-cycle sequence
+    ("commands", "host", "command_table"),  # handlers (commands*.c), the dispatcher and its table
 ]
 
 pytestmark = pytest.mark.skipif(not (shutil.which("cc") and shutil.which("nm")), reason="no C compiler or nm")
@@ -64,9 +65,12 @@ def needs(tmp_path_factory):
 
 
 def test_every_chip_file_calls_only_its_layer_and_those_below(needs):
-    upward = [f"{stem}.c calls {', '.join(names)} of {other}.c"
-              for stem, calls in needs.items() for other, names in calls.items()
-              if layer_of(other) > layer_of(stem)]
+    upward = [
+        f"{stem}.c calls {', '.join(names)} of {other}.c"
+        for stem, calls in needs.items()
+        for other, names in calls.items()
+        if layer_of(other) > layer_of(stem)
+    ]
     assert not upward, "\n".join(upward)
 
 
@@ -78,12 +82,13 @@ def test_the_ground_floor_calls_nothing_of_the_chip(needs):
 def test_no_circle_between_chip_files(needs):
     def circle(stem, path):
         if stem in path:
-            return path[path.index(stem):] + [stem]
+            return path[path.index(stem) :] + [stem]
         for other in needs.get(stem, {}):
             found = circle(other, path + [stem])
             if found:
                 return found
         return None
+
     for stem in needs:
         found = circle(stem, [])
         assert not found, " -> ".join(f"{s}.c" for s in found)
@@ -92,6 +97,7 @@ def test_no_circle_between_chip_files(needs):
 def includes_of_fmu_src():
     """stem -> {stems it includes}: every C file and header of fmu_src, a C file and its header as one."""
     import re
+
     files = [p for p in (ROOT / "fmu_src").rglob("*") if p.suffix in (".c", ".h")]
     stems = {p.stem for p in files}
     graph = {}
@@ -111,12 +117,13 @@ def test_no_include_circle_in_fmu_src():
 
     def circle(stem, path):
         if stem in path:
-            return path[path.index(stem):] + [stem]
+            return path[path.index(stem) :] + [stem]
         for other in sorted(graph.get(stem, ())):
             found = circle(other, path + [stem])
             if found:
                 return found
         return None
+
     for stem in sorted(graph):
         found = circle(stem, [])
         assert not found, " -> ".join(found)

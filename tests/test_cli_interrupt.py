@@ -3,6 +3,7 @@
 with exit status 130 and one line, `pmdfmu CMD: interrupted`, no traceback; every file it documents is
 there whole (as an uninterrupted run writes it) or not at all, no temporary file is left, and an older
 output is intact (README, "The command line")."""
+
 import random
 import shutil
 import signal
@@ -14,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+pytestmark = pytest.mark.slow  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
@@ -25,8 +26,13 @@ TRIALS = 5
 
 
 def start(argv, cwd):
-    child = subprocess.Popen([sys.executable, "-c", DRIVER, *map(str, argv)], cwd=cwd, stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True)
+    child = subprocess.Popen(
+        [sys.executable, "-c", DRIVER, *map(str, argv)],
+        cwd=cwd,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     assert child.stdout.readline() == "ready\n"
     return child, time.perf_counter()
 
@@ -53,24 +59,34 @@ def assert_interrupted_or_done(status, err, command, done):
     assert "Traceback" not in err, err
     if status == 130:
         assert err == f"pmdfmu {command}: interrupted\n"
-    else:                                   # the signal came after the work was done
+    else:  # the signal came after the work was done
         assert status == done, err
 
 
 def partial_files(*folders):
-    return [p for folder in folders if folder.exists() for p in folder.rglob("*")
-            if p.name.endswith(".partial")]
+    return [p for folder in folders if folder.exists() for p in folder.rglob("*") if p.name.endswith(".partial")]
 
 
 def test_an_interrupted_verify_of_a_case_table_leaves_no_partial_report(tmp_path):
-    changed = tmp_path / "changed.csv"       # axis 2's return leg at half the speed: the golden fails
+    changed = tmp_path / "changed.csv"  # axis 2's return leg at half the speed: the golden fails
     changed.write_text(SQUARE.read_text().replace("2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500"))
-    (tmp_path / "cases.csv").write_text(f"name,table,golden\ngood,{SQUARE},{GOLDEN}\nchanged,changed.csv,{GOLDEN}\n"
-                                        f"again,{SQUARE},{GOLDEN}\n")
+    (tmp_path / "cases.csv").write_text(
+        f"name,table,golden\ngood,{SQUARE},{GOLDEN}\nchanged,changed.csv,{GOLDEN}\nagain,{SQUARE},{GOLDEN}\n"
+    )
 
     def argv(out):
-        return ["verify", "--cases", tmp_path / "cases.csv", "--scheduler", "serial", "--out", out,
-                "--junit", out / "junit.xml"]
+        return [
+            "verify",
+            "--cases",
+            tmp_path / "cases.csv",
+            "--scheduler",
+            "serial",
+            "--out",
+            out,
+            "--junit",
+            out / "junit.xml",
+        ]
+
     done, seconds, err = run_whole(argv(tmp_path / "whole"), tmp_path)
     assert done == 1 and "Traceback" not in err, err
     whole = {p.name: p.read_bytes() for p in (tmp_path / "whole").iterdir() if p.name != "junit.xml"}
@@ -118,8 +134,11 @@ def test_an_interrupt_is_answered_with_one_line_and_130(tmp_path, command):
     load runs faster or slower from one run to the next) a quarter, an eighth."""
     for name in ("two_axis.script", "two_axis_table.csv"):
         shutil.copy(EXAMPLES / name, tmp_path)
-    argv = (["pack", tmp_path / "two_axis.script", "--out", tmp_path / "p.fmu"] if command == "pack" else
-            ["verify", SQUARE, "--against", GOLDEN])
+    argv = (
+        ["pack", tmp_path / "two_axis.script", "--out", tmp_path / "p.fmu"]
+        if command == "pack"
+        else ["verify", SQUARE, "--against", GOLDEN]
+    )
     done, seconds, _err = run_whole(argv, tmp_path)
     for share in (2, 4, 8, 16):
         (tmp_path / "p.fmu").unlink(missing_ok=True)

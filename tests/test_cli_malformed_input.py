@@ -3,6 +3,7 @@
 status 2 -- never a traceback, never status 1 (verify's "the profile failed"); nothing overwrites a
 user's file (README, "The command line"; docs/verify.md, "Exit status"). Each finding of the attack on
 the CLI first, then generated malformed inputs (hypothesis)."""
+
 import os
 import shutil
 import zipfile
@@ -47,6 +48,7 @@ def profile(tmp_path):
 
 # ---- 1, 2: pack writes no input and never through a planted name -----------------------------------
 
+
 @pytest.mark.parametrize("how", ["the script", "its table", "a symlink to the script", "a hard link to the table"])
 def test_pack_refuses_an_output_that_is_one_of_its_inputs(profile, capsys, how):
     table = profile.parent / "two_axis_table.csv"
@@ -59,7 +61,8 @@ def test_pack_refuses_an_output_that_is_one_of_its_inputs(profile, capsys, how):
     assert_one_line(cli(capsys, "pack", profile, "--out", out), "pack", "must not overwrite")
     assert {p: p.read_bytes() for p in before} == before
     assert sorted(p.name for p in profile.parent.iterdir()) == sorted(
-        ["s.script", "two_axis_table.csv"] + (["out.fmu"] if out.name == "out.fmu" else []))
+        ["s.script", "two_axis_table.csv"] + (["out.fmu"] if out.name == "out.fmu" else [])
+    )
 
 
 def test_pack_never_writes_through_a_planted_partial_name(profile, capsys):
@@ -79,38 +82,55 @@ def test_run_and_verify_write_no_output_over_an_input(profile, capsys):
     assert_one_line(cli(capsys, "run", profile, "--csv", profile), "run", "--csv", "names the input")
     changed = profile.parent / "changed.csv"
     changed.write_text(SQUARE.read_text().replace("2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500"))
-    golden = shutil.copy(GOLDEN, profile.parent / "changed.actual.csv")     # a copied actual, as a golden
-    assert_one_line(cli(capsys, "verify", changed, "--against", golden, "--out", profile.parent), "verify",
-                    "would write its recording over the input")
-    assert_one_line(cli(capsys, "verify", changed, "--against", GOLDEN, "--junit", changed), "verify",
-                    "--junit", "names the input")
+    golden = shutil.copy(GOLDEN, profile.parent / "changed.actual.csv")  # a copied actual, as a golden
+    assert_one_line(
+        cli(capsys, "verify", changed, "--against", golden, "--out", profile.parent),
+        "verify",
+        "would write its recording over the input",
+    )
+    assert_one_line(
+        cli(capsys, "verify", changed, "--against", GOLDEN, "--junit", changed), "verify", "--junit", "names the input"
+    )
     assert profile.read_bytes() == script and Path(golden).read_bytes() == GOLDEN.read_bytes()
 
 
 # ---- 3: verify's own malformed inputs ----------------------------------------------------------------
 
+
 def _npz(path, **dtypes):
     """A golden .npz of square.golden.csv's columns, the named ones of another type."""
     rows = np.genfromtxt(GOLDEN, delimiter=",", names=True, max_rows=5, deletechars="")
     names = rows.dtype.names
-    rec = np.zeros(len(rows), dtype=[(n, dtypes.get(n, "f8" if "." in n and n.split(".")[1] in
-                                                     ("position", "velocity", "acceleration") else "i8"))
-                                     for n in names])
+    rec = np.zeros(
+        len(rows),
+        dtype=[
+            (
+                n,
+                dtypes.get(
+                    n, "f8" if "." in n and n.split(".")[1] in ("position", "velocity", "acceleration") else "i8"
+                ),
+            )
+            for n in names
+        ],
+    )
     for n in names:
         rec[n] = rows[n].astype(rec.dtype[n]) if rec.dtype[n].kind != "U" else rows[n].astype(str)
     np.savez_compressed(path, recording=rec)
     return path
 
 
-@pytest.mark.parametrize("kind,flag,expected", [
-    ("40-digit integer", "--against", "g.csv:2: column 1 (cycle): '1111111111"),
-    ("200 000-character field", "--against", "g.csv:2: field larger than field limit"),
-    ("TOML nested 5000 deep", "--assertions", "a.toml: not TOML this parser reads: arrays or tables nested"),
-    ("npz of strings", "--against", "g.npz: column 2 (axis1.commandedPosition): <U"),
-    ("npz of float16", "--against", "g.npz: column 5 (axis1.position): <f2 is not a recording's type"),
-    ("npz of complex", "--against", "g.npz: column 5 (axis1.position): <c16 is not a recording's type"),
-    ("a FIFO", "--against", "g.csv: cannot read the golden trace: a FIFO, not a regular file"),
-])
+@pytest.mark.parametrize(
+    "kind,flag,expected",
+    [
+        ("40-digit integer", "--against", "g.csv:2: column 1 (cycle): '1111111111"),
+        ("200 000-character field", "--against", "g.csv:2: field larger than field limit"),
+        ("TOML nested 5000 deep", "--assertions", "a.toml: not TOML this parser reads: arrays or tables nested"),
+        ("npz of strings", "--against", "g.npz: column 2 (axis1.commandedPosition): <U"),
+        ("npz of float16", "--against", "g.npz: column 5 (axis1.position): <f2 is not a recording's type"),
+        ("npz of complex", "--against", "g.npz: column 5 (axis1.position): <c16 is not a recording's type"),
+        ("a FIFO", "--against", "g.csv: cannot read the golden trace: a FIFO, not a regular file"),
+    ],
+)
 def test_verify_answers_a_malformed_golden_or_assertion_file_with_status_2(tmp_path, capsys, kind, flag, expected):
     path = tmp_path / ("a.toml" if flag == "--assertions" else "g.npz" if "npz" in kind else "g.csv")
     header = "cycle,axis1.commandedPosition\n"
@@ -133,17 +153,21 @@ def test_verify_answers_a_malformed_golden_or_assertion_file_with_status_2(tmp_p
 
 # ---- 4: the front door: run and info -------------------------------------------------------------------
 
-@pytest.mark.parametrize("mistake,expected", [
-    ("a missing script", "missing.script: cannot open the script"),
-    ("a misspelt command", "s.script:2: 'SetPositon' is not a command of this chip"),
-    ("Axis7", "s.script:2: 'Axis7' is not an axis"),
-    ("a golden .npz as the script", "g.npz:1: NUL byte in the line"),
-    ("a misspelt header", "t.csv:1: column 3: 'velocty' is not one of axis, position, velocity"),
-    ("a decimal in a raw table", "t.csv:3: column position: '1.5' is not an integer"),
-    ("a first position out of reach", "t.csv: the initial move (axis 1 to 2147483647) is not complete after"),
-    ("a missing FMU", "nope.fmu: No such file or directory"),
-    ("a script as the FMU", "s.script: not an FMU"),
-])
+
+@pytest.mark.parametrize(
+    "mistake,expected",
+    [
+        ("a missing script", "missing.script: cannot open the script"),
+        ("a misspelt command", "s.script:2: 'SetPositon' is not a command of this chip"),
+        ("Axis7", "s.script:2: 'Axis7' is not an axis"),
+        ("a golden .npz as the script", "g.npz:1: NUL byte in the line"),
+        ("a misspelt header", "t.csv:1: column 3: 'velocty' is not one of axis, position, velocity"),
+        ("a decimal in a raw table", "t.csv:3: column position: '1.5' is not an integer"),
+        ("a first position out of reach", "t.csv: the initial move (axis 1 to 2147483647) is not complete after"),
+        ("a missing FMU", "nope.fmu: No such file or directory"),
+        ("a script as the FMU", "s.script: not an FMU"),
+    ],
+)
 def test_run_answers_a_common_mistake_with_one_line(tmp_path, capsys, mistake, expected):
     script, table = tmp_path / "s.script", tmp_path / "t.csv"
     argv = ["run", script]
@@ -169,12 +193,20 @@ def test_run_answers_a_common_mistake_with_one_line(tmp_path, capsys, mistake, e
     assert_one_line(cli(capsys, *argv), "run", expected)
 
 
-@pytest.mark.parametrize("what,expected", [("missing", "nope.fmu: No such file or directory"),
-                                           ("a folder", "a folder, not a regular file"),
-                                           ("a zip without a model description", "g.npz: not an FMU")])
+@pytest.mark.parametrize(
+    "what,expected",
+    [
+        ("missing", "nope.fmu: No such file or directory"),
+        ("a folder", "a folder, not a regular file"),
+        ("a zip without a model description", "g.npz: not an FMU"),
+    ],
+)
 def test_info_answers_a_bad_fmu_with_one_line(tmp_path, capsys, what, expected):
-    fmu = {"missing": tmp_path / "nope.fmu", "a folder": tmp_path,
-           "a zip without a model description": EXAMPLES / "ci" / "two_axis.golden.npz"}[what]
+    fmu = {
+        "missing": tmp_path / "nope.fmu",
+        "a folder": tmp_path,
+        "a zip without a model description": EXAMPLES / "ci" / "two_axis.golden.npz",
+    }[what]
     if what.startswith("a zip"):
         fmu = shutil.copy(fmu, tmp_path / "g.npz")
     assert_one_line(cli(capsys, "info", fmu), "info", expected)
@@ -186,12 +218,14 @@ def test_a_genuine_bug_keeps_its_traceback(monkeypatch, capsys):
 
     def broken(*args, **kwargs):
         raise ZeroDivisionError("a bug")
+
     monkeypatch.setattr(profile, "run_profile", broken)
     with pytest.raises(ZeroDivisionError):
         main(["run", str(SCRIPT)])
 
 
 # ---- 5: a file argument is a file, never a script's text ---------------------------------------------
+
 
 @pytest.mark.parametrize("command", ["run", "verify"])
 def test_a_script_path_holding_a_line_feed_is_refused_not_compiled_as_text(tmp_path, capsys, command):
@@ -223,10 +257,11 @@ def test_pack_of_a_line_feed_script_refuses_a_table_outside_its_folder(tmp_path,
     script.write_text(SCRIPT.read_text().replace(TABLE.name, f"../{TABLE.name}"))
     shutil.copy(TABLE, tmp_path)
     import tempfile
+
     planted = Path(tempfile.gettempdir()) / TABLE.name
     planted_here = not planted.exists()
     if planted_here:
-        shutil.copy(TABLE, planted)                     # the table the mirror would find
+        shutil.copy(TABLE, planted)  # the table the mirror would find
     try:
         status, out, err = cli(capsys, "pack", script, "--out", tmp_path / "p.fmu")
     finally:
@@ -238,13 +273,28 @@ def test_pack_of_a_line_feed_script_refuses_a_table_outside_its_folder(tmp_path,
 
 # ---- 6: generated malformed inputs ---------------------------------------------------------------------
 
-GENERATED = settings(max_examples=30, deadline=None, derandomize=True,
-                     suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+GENERATED = settings(
+    max_examples=30,
+    deadline=None,
+    derandomize=True,
+    suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
+)
 HUGE = st.sampled_from(["1" * 40, "-" + "9" * 25, "0x" + "F" * 20, "9" * 5000, "1e400", "nan", "-inf"])
-CELL = st.one_of(HUGE, st.text(max_size=8), st.just("1" * 140_000), st.just("\x00"), st.just('"'),
-                 st.sampled_from(["1.5", "0x", "0x+7", " ", "", "1,2", "'", "\u2028"]))
-GARBAGE = st.one_of(st.binary(max_size=300), st.just(b""), st.just(b"\xff\xfe" + "axis".encode("utf-16-le")),
-                    st.just("\u00e9,\u00fc\n".encode("latin-1")), st.just(b"\x00" * 64))
+CELL = st.one_of(
+    HUGE,
+    st.text(max_size=8),
+    st.just("1" * 140_000),
+    st.just("\x00"),
+    st.just('"'),
+    st.sampled_from(["1.5", "0x", "0x+7", " ", "", "1,2", "'", "\u2028"]),
+)
+GARBAGE = st.one_of(
+    st.binary(max_size=300),
+    st.just(b""),
+    st.just(b"\xff\xfe" + "axis".encode("utf-16-le")),
+    st.just("\u00e9,\u00fc\n".encode("latin-1")),
+    st.just(b"\x00" * 64),
+)
 
 
 def _written(path: Path, content) -> Path:
@@ -264,7 +314,7 @@ def _damaged(text: str, draw) -> bytes:
     i = draw(st.integers(1, len(lines) - 1))
     if draw(st.booleans()):
         cut = draw(st.integers(0, len(lines[i])))
-        lines = lines[:i] + [lines[i][:cut] + draw(st.sampled_from(["", ",", ",,x"]))] + lines[i + 1:]
+        lines = lines[:i] + [lines[i][:cut] + draw(st.sampled_from(["", ",", ",,x"]))] + lines[i + 1 :]
     else:
         cells = lines[i].split(",")
         cells[draw(st.integers(0, len(cells) - 1))] = draw(CELL)
@@ -302,8 +352,9 @@ def test_run_of_a_malformed_table_or_script_answers_with_one_line(tmp_path_facto
 def test_pack_of_a_malformed_script_answers_with_one_line(tmp_path_factory, capsys, content):
     folder = tmp_path_factory.mktemp("pack")
     shutil.copy(TABLE, folder)
-    _assert_no_traceback_nor_status_1(cli(capsys, "pack", _written(folder / "s.script", content),
-                                          "--out", folder / "p.fmu"), "pack")
+    _assert_no_traceback_nor_status_1(
+        cli(capsys, "pack", _written(folder / "s.script", content), "--out", folder / "p.fmu"), "pack"
+    )
 
 
 @GENERATED
@@ -313,7 +364,7 @@ def test_verify_of_a_malformed_golden_csv_exits_2(tmp_path_factory, capsys, cont
     path = _written(folder / "g.csv", content)
     status, out, err = cli(capsys, "verify", SQUARE, "--against", path, "--out", folder / "out")
     assert "Traceback" not in err
-    if status == 1:             # a cell replaced by another number: a golden that reads, and differs
+    if status == 1:  # a cell replaced by another number: a golden that reads, and differs
         assert "FAIL square" in out and not err
     else:
         assert status == 2 and err.count("\n") == 1 and err.startswith("pmdfmu verify: "), err
@@ -330,7 +381,7 @@ def test_verify_of_a_malformed_golden_npz_exits_2(tmp_path_factory, capsys, dtyp
     names = rows.dtype.names
     rec = np.zeros(len(rows), dtype=[(n, dtype if i == column else "i8") for i, n in enumerate(names)])
     if dtype == "u8":
-        rec[names[column]] = 2**64 - 1              # a register's column no register holds
+        rec[names[column]] = 2**64 - 1  # a register's column no register holds
     path = folder / "g.npz"
     np.savez_compressed(path, recording=rec)
     if cut is not None:
@@ -339,15 +390,32 @@ def test_verify_of_a_malformed_golden_npz_exits_2(tmp_path_factory, capsys, dtyp
     assert status == 2 and err.count("\n") == 1 and err.startswith("pmdfmu verify: "), err
 
 
-TOML_VALUES = st.one_of(st.text(max_size=5).map(lambda t: '"' + t.replace("\\", "").replace('"', "") + '"'),
-                        st.sampled_from(["nan", "inf", "-inf", "true", "[1, 2]", "{a = 1}", "1979-05-27",
-                                         "[[[[[[[[1]]]]]]]]", "1" * 30, '"1" "2"', "=", "0x", "1e999"]))
+TOML_VALUES = st.one_of(
+    st.text(max_size=5).map(lambda t: '"' + t.replace("\\", "").replace('"', "") + '"'),
+    st.sampled_from(
+        [
+            "nan",
+            "inf",
+            "-inf",
+            "true",
+            "[1, 2]",
+            "{a = 1}",
+            "1979-05-27",
+            "[[[[[[[[1]]]]]]]]",
+            "1" * 30,
+            '"1" "2"',
+            "=",
+            "0x",
+            "1e999",
+        ]
+    ),
+)
 
 
 @st.composite
 def malformed_toml(draw):
     kind = draw(st.sampled_from(["value", "key", "nesting", "garbage", "folder", "fifo"]))
-    if kind == "value":             # a limit whose value is of no number
+    if kind == "value":  # a limit whose value is of no number
         key = draw(st.sampled_from(["max_velocity", "position_min", "final_position", "complete_by", "no_events"]))
         return f"[axis{draw(st.integers(1, 4))}]\n{key} = {draw(TOML_VALUES)}\n".encode()
     if kind == "key":
@@ -367,16 +435,28 @@ def test_verify_of_a_malformed_assertion_file_exits_2(tmp_path_factory, capsys, 
     assert status == 2 and err.count("\n") == 1 and err.startswith("pmdfmu verify: "), err
 
 
-CASE_ROWS = st.sampled_from([
-    "name,table\n", "name,table,fmi_version\nx,{square},7\n", "name,table,max_cycles\nx,{square},0\n",
-    'name,script\nx,"a\nb.script"\n', "name,table,cycleTime\nx,{square},fast\n", "name,table,memorySize\nx,{square},"
-    + "9" * 5000 + "\n", "table\n{square}\n", "name,table\nx,\"" + "y" * 140_000 + "\"\n",
-])
+CASE_ROWS = st.sampled_from(
+    [
+        "name,table\n",
+        "name,table,fmi_version\nx,{square},7\n",
+        "name,table,max_cycles\nx,{square},0\n",
+        'name,script\nx,"a\nb.script"\n',
+        "name,table,cycleTime\nx,{square},fast\n",
+        "name,table,memorySize\nx,{square}," + "9" * 5000 + "\n",
+        "table\n{square}\n",
+        'name,table\nx,"' + "y" * 140_000 + '"\n',
+    ]
+)
 
 
 @GENERATED
-@given(content=st.one_of(CASE_ROWS.map(lambda t: t.replace("{square}", str(SQUARE)).encode()), GARBAGE,
-                         st.sampled_from(["folder", "fifo"])))
+@given(
+    content=st.one_of(
+        CASE_ROWS.map(lambda t: t.replace("{square}", str(SQUARE)).encode()),
+        GARBAGE,
+        st.sampled_from(["folder", "fifo"]),
+    )
+)
 def test_verify_of_a_malformed_case_table_exits_2(tmp_path_factory, capsys, content):
     path = _written(tmp_path_factory.mktemp("cases") / "cases.csv", content)
     status, _out, err = cli(capsys, "verify", "--cases", path, "--scheduler", "serial")
@@ -389,6 +469,7 @@ def test_an_output_through_a_link_or_onto_a_device_is_written_as_asked(tmp_path)
     folder or a folder as the output is named as the user named it, and nothing is left behind."""
     import stat as stat_
     from pmdfmu import files
+
     target, link = tmp_path / "t.csv", tmp_path / "l.csv"
     target.write_text("old")
     target.chmod(0o640)
@@ -408,11 +489,13 @@ def test_an_output_through_a_link_or_onto_a_device_is_written_as_asked(tmp_path)
 
 
 def test_a_plot_name_without_a_plot_format_and_outputs_naming_each_other_are_refused(tmp_path, capsys):
-    for args, why in ((["--plot", tmp_path / "x.txt"], "a plot is written as its suffix says"),
-                      (["--csv", tmp_path / "a.png", "--plot", tmp_path / "a.png"], "names the file --csv writes too")):
+    for args, why in (
+        (["--plot", tmp_path / "x.txt"], "a plot is written as its suffix says"),
+        (["--csv", tmp_path / "a.png", "--plot", tmp_path / "a.png"], "names the file --csv writes too"),
+    ):
         try:
             status = main([str(a) for a in ["run", SCRIPT, *args]])
-        except SystemExit as e:             # argparse's own refusal: the same one line and status
+        except SystemExit as e:  # argparse's own refusal: the same one line and status
             status = e.code
         err = capsys.readouterr().err
         assert status == 2 and why in err and len(err.strip().splitlines()) == 1, err

@@ -4,6 +4,7 @@ DC motor and inertia, integrated here cycle by cycle, takes axis1.motorOutput an
 encoder count back to axis1.actualPosition with `loopback` false (docs/servo.md). The
 suggested gains settle a trapezoidal move in the settle window; an unstable gain set raises
 the motion error and auto-stop stops the axis and switches its motor off."""
+
 import importlib.util
 import subprocess
 import sys
@@ -12,8 +13,12 @@ from pathlib import Path
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDActivityAxisSettledMask, PMDActivityMotorOnMask, PMDEventMotionCompleteMask,
-                    PMDEventMotionErrorMask)
+from pmdfmu import (
+    PMDActivityAxisSettledMask,
+    PMDActivityMotorOnMask,
+    PMDEventMotionCompleteMask,
+    PMDEventMotionErrorMask,
+)
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "closed_loop.py"
 
@@ -33,10 +38,10 @@ def test_the_suggested_gains_settle_a_trapezoidal_move_in_the_settle_window(fmi_
     with pmdfmu.Chip(fmi_version=fmi_version, loopback=False) as chip:
         ax, motor, rows = example.settle_move(chip)
         destination = example.MOVE["position"]
-        assert rows[-1][3] & PMDEventMotionCompleteMask              # actual mode: settled for the settle time
-        assert len(rows) < 1600                                      # the profile itself takes 1499 cycles
+        assert rows[-1][3] & PMDEventMotionCompleteMask  # actual mode: settled for the settle time
+        assert len(rows) < 1600  # the profile itself takes 1499 cycles
         assert not ax.GetEventStatus() & PMDEventMotionErrorMask
-        assert max(abs(c - e) for c, e, _, _ in rows) <= 5           # the following error, all the way
+        assert max(abs(c - e) for c, e, _, _ in rows) <= 5  # the following error, all the way
         assert ax.GetActivityStatus() & PMDActivityAxisSettledMask
         assert abs(ax.GetActualPosition() - destination) <= ax.GetSettleWindow()
         # it stays there: the loop holds the motor inside the window
@@ -44,8 +49,11 @@ def test_the_suggested_gains_settle_a_trapezoidal_move_in_the_settle_window(fmi_
         assert all(abs(e - destination) <= ax.GetSettleWindow() for _, e, _, _ in held)
         assert ax.GetActivityStatus() & PMDActivityMotorOnMask
         # the FMU's outputs are the filter's: the Real is the Int16 over full scale
-        assert chip.get("axis1.motorOutput") == chip.get("axis1.motorCommand") / 32768 == \
-            ax.GetCurrentMotorCommand() / 32768
+        assert (
+            chip.get("axis1.motorOutput")
+            == chip.get("axis1.motorCommand") / 32768
+            == ax.GetCurrentMotorCommand() / 32768
+        )
 
 
 def test_without_feedforward_the_same_move_lags_but_still_settles():
@@ -64,7 +72,7 @@ def test_an_unstable_gain_set_raises_the_motion_error_and_the_axis_stops_with_it
         assert rows[-1][3] & PMDEventMotionErrorMask
         assert abs(errors[-1]) > ax.GetPositionErrorLimit() >= max(abs(x) for x in errors[:-1])
         # the oscillation grew: its swings get wider before the error passes the limit
-        swings = [max(abs(x) for x in errors[k:k + 100]) for k in range(0, len(errors) - 100, 100)]
+        swings = [max(abs(x) for x in errors[k : k + 100]) for k in range(0, len(errors) - 100, 100)]
         assert swings == sorted(swings) and swings[-1] > 4 * swings[0]
         # auto-stop: the trajectory stops, the motor turns off and in that very cycle the output
         # is the open-loop command (the motor command register, 0)
@@ -73,7 +81,7 @@ def test_an_unstable_gain_set_raises_the_motion_error_and_the_axis_stops_with_it
         stopped_at, speed = ax.GetCommandedPosition(), abs(motor.velocity)
         coast = example.run(chip, motor, 300)
         assert all(c == stopped_at and u == 0 for c, _, u, _ in coast)
-        assert abs(motor.velocity) == pytest.approx(speed * (1 - 1 / 200) ** 300)   # unpowered: it coasts down
+        assert abs(motor.velocity) == pytest.approx(speed * (1 - 1 / 200) ** 300)  # unpowered: it coasts down
 
 
 def test_the_closed_loop_example_runs_as_a_user_would():
@@ -88,7 +96,8 @@ def test_the_closed_loop_example_runs_as_a_user_would():
 
 def test_the_snippet_in_docs_servo_md_settles_where_it_says(capsys):
     import re
+
     text = (Path(__file__).resolve().parent.parent / "docs" / "servo.md").read_text()
-    snippet, = re.findall(r"```python\n(.*?)```", text, re.S)
+    (snippet,) = re.findall(r"```python\n(.*?)```", text, re.S)
     exec(compile(snippet, "docs/servo.md", "exec"), {})
     assert capsys.readouterr().out == "10000 10000\n"

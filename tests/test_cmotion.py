@@ -8,6 +8,7 @@ below) and must give the same lines, cycle by cycle; where the profile is an ext
 exact reference model (reference.py) too. The programs are the CMake build's
 ($PMDFMU_FMU_DIR/cmotion) when there is one, else compiled here with cc from the same sources;
 they load the FMU the suite tests (pmdfmu.default_fmu(2))."""
+
 import os
 import shutil
 import subprocess
@@ -16,8 +17,15 @@ from pathlib import Path
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDActivityInMotionMask, PMDAxis1Mask, PMDAxis2Mask, PMDAxis3Mask, PMDExternalProfile,
-                    PMDTrapezoidal, field_ex)
+from pmdfmu import (
+    PMDActivityInMotionMask,
+    PMDAxis1Mask,
+    PMDAxis2Mask,
+    PMDAxis3Mask,
+    PMDExternalProfile,
+    PMDTrapezoidal,
+    field_ex,
+)
 from pmdfmu.chip import COMMANDS, encode, instruction_word
 from cmotion_build import compile_program, generate
 from reference import ExternalProfile
@@ -27,9 +35,11 @@ PROGRAMS = ["seed_1_1", "seed_1_2", "seed_1_3", "seed_1_4", "seed_1_5", "seed_1_
 SEGMENT_CYCLES, ENTRIES, VARIABLES = 64, 5, 5
 MEMORY_START, MEMORY_SIZE = 0x200, 0x4000
 MAX_VEL, MAX_ACC = 0x20000, 0x800
-COLUMNS = [f"axis{a}.{q}" for a in range(1, 5)
-           for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus",
-                     "eventStatus")] + ["host.interrupt"]
+COLUMNS = [
+    f"axis{a}.{q}"
+    for a in range(1, 5)
+    for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus", "eventStatus")
+] + ["host.interrupt"]
 
 
 def source_of(name: str) -> Path:
@@ -68,8 +78,11 @@ def entry(axis, variable, index):
     waypoints = [400 * (axis + 1), 1200 + 100 * axis, 800, 1600 - 200 * axis, 0]
     if index >= ENTRIES - 1:
         return 0
-    return {0: waypoints[index], 1: int((waypoints[index + 1] - waypoints[index]) * 65536 / SEGMENT_CYCLES),
-            4: SEGMENT_CYCLES}.get(variable, 0)
+    return {
+        0: waypoints[index],
+        1: int((waypoints[index + 1] - waypoints[index]) * 65536 / SEGMENT_CYCLES),
+        4: SEGMENT_CYCLES,
+    }.get(variable, 0)
 
 
 class Transcription:
@@ -125,7 +138,7 @@ class Transcription:
         command = COMMANDS["WriteBuffer"]
         for start in range(0, len(writes), 16):
             words = []
-            for buffer_id, value in writes[start:start + 16]:
+            for buffer_id, value in writes[start : start + 16]:
                 words += [instruction_word(command.opcode, 0)] + encode(command, [buffer_id, value])
             error, _ = self.chip.batch(words)
             assert error == 0
@@ -140,12 +153,15 @@ def test_seed_1_1_sets_up_the_buffers_as_the_python_transcription(programs):
     assert not errors and not cycles
     with pmdfmu.Chip() as chip:
         t = Transcription(chip)
-        length = t.setup_buffers(2)          # 1.1 sets num_axes = 2
+        length = t.setup_buffers(2)  # 1.1 sets num_axes = 2
         expected = [["buffer_length", str(length)]]
-        expected += [["buffer", str(i), str(chip.axis(0).GetBufferStart(i)), str(chip.axis(0).GetBufferLength(i))]
-                     for i in range(2, 12)]
-        expected += [["function", str(a), str(f), str(chip.axis(a).GetBufferFunction(f))]
-                     for a in range(2) for f in range(5)]
+        expected += [
+            ["buffer", str(i), str(chip.axis(0).GetBufferStart(i)), str(chip.axis(0).GetBufferLength(i))]
+            for i in range(2, 12)
+        ]
+        expected += [
+            ["function", str(a), str(f), str(chip.axis(a).GetBufferFunction(f))] for a in range(2) for f in range(5)
+        ]
     assert results == expected
     # the seed's own formula: axis 1's five buffers and axis 2's position buffer start at 0x200
     assert [int(r[2]) for r in results[1:7]] == [0x200] * 6
@@ -169,7 +185,7 @@ def test_seed_1_2_velocity_profiles_run_as_the_reference_model(programs):
         t.run(ENTRIES * SEGMENT_CYCLES)
     assert cycles == t.cycles
     assert [c[1:4] for c in cycles] == ExternalProfile(rows).run(len(cycles))
-    assert field_ex(cycles[-1][4], "PMDActivityProfileSegment") == 0      # ended at the time-0 row
+    assert field_ex(cycles[-1][4], "PMDActivityProfileSegment") == 0  # ended at the time-0 row
 
 
 @pytest.mark.parametrize("mode", ["writebuffer", "dpram", "refill"])
@@ -212,7 +228,7 @@ def test_seed_1_3_uploads_run_as_the_python_transcription_and_the_reference(prog
         for axis in range(3):
             starts = [MEMORY_START + axis * v * length for v in range(VARIABLES)]
             rows = [tuple(signed(memory.get(s + i, 0) & 0xFFFFFFFF) for s in starts) for i in range(length)]
-            got = [c[1 + 5 * axis:4 + 5 * axis] for c in cycles[started:]]
+            got = [c[1 + 5 * axis : 4 + 5 * axis] for c in cycles[started:]]
             assert got == ExternalProfile(rows).run(len(got)), f"axis {axis + 1}"
 
 
@@ -224,7 +240,7 @@ def test_seed_1_4_start_runs_as_the_python_transcription(programs, mode):
         t = Transcription(chip)
         t.setup_buffers(3)
         t.populate(3)
-        t.initial_moves([0, 1])                  # as printed: axes 1 and 2 only
+        t.initial_moves([0, 1])  # as printed: axes 1 and 2 only
         t.wait_at_rest(3)
         if mode == "update":
             t.hAxis[0].SetProfileMode(PMDExternalProfile)
@@ -237,7 +253,7 @@ def test_seed_1_4_start_runs_as_the_python_transcription(programs, mode):
         t.run(1500)
     assert cycles == t.cycles
     segments = [field_ex(cycles[started][5 * a + 4], "PMDActivityProfileSegment") for a in range(3)]
-    assert segments[0] == 1            # axis 1 reads its first row in the first cycle
+    assert segments[0] == 1  # axis 1 reads its first row in the first cycle
     if mode == "update":
         assert segments[1:] == [0, 0]  # Update starts axis 1 alone
 
@@ -264,7 +280,7 @@ def test_seed_1_5_stop_runs_as_the_python_transcription(programs, mode):
         t.run(50)
         t.results += [["stopmode", str(a), str(t.hAxis[a].GetStopMode())] for a in range(3)]
     assert cycles == t.cycles and results == t.results
-    for axis in stopped:                          # held where the stop found it, in one cycle
+    for axis in stopped:  # held where the stop found it, in one cycle
         assert len({c[1 + 5 * axis] for c in cycles[-50:]}) == 1
         assert all(c[2 + 5 * axis] == 0 for c in cycles[-50:])
 
@@ -304,6 +320,7 @@ def test_seed_1_6_polling_loop_ends_at_completion_plus_the_transfer_time(program
     (parallel16): it ends with the first GetActivityStatus whose request arrives at or after the
     completing cycle; the chip's cycles are those of the run without polling."""
     from pmdfmu.hosttime import HostInterface
+
     cycles, results, errors = run_c(programs, "seed_1_6", "poll", host=None)
     assert not errors
     start, end, polls = (int(x) for x in results[0][1:])
@@ -313,7 +330,7 @@ def test_seed_1_6_polling_loop_ends_at_completion_plus_the_transfer_time(program
     # the completing cycle: the first whose profile segment number is 0 after the start
     started = next(i for i, c in enumerate(cycles) if field_ex(c[4], "PMDActivityProfileSegment"))
     done = next(c[0] for c in cycles[started:] if field_ex(c[4], "PMDActivityProfileSegment") == 0)
-    t_done = done * 100_000                      # the default cycle time, 100 us, from time 0
+    t_done = done * 100_000  # the default cycle time, 100 us, from time 0
     last_request = start + (polls - 1) * per_poll + host.request_ns(1)
     assert last_request >= t_done > last_request - per_poll
     # host time moves the start (the set-up's commands took time), not the profile: from its first
@@ -321,13 +338,18 @@ def test_seed_1_6_polling_loop_ends_at_completion_plus_the_transfer_time(program
     with pmdfmu.Chip() as chip:
         t, t_started = transcribe_1_6(chip)
     polled = [c[1:] for c in cycles[started:]]
-    assert polled == [c[1:] for c in t.cycles[t_started:t_started + len(polled)]]
-    assert field_ex(polled[-1][3], "PMDActivityProfileSegment") == 0 and polled[-1][-1] == 1    # interrupt
+    assert polled == [c[1:] for c in t.cycles[t_started : t_started + len(polled)]]
+    assert field_ex(polled[-1][3], "PMDActivityProfileSegment") == 0 and polled[-1][-1] == 1  # interrupt
 
 
 def test_the_example_host_program_runs_to_completion(programs):
-    out = subprocess.run([str(programs["cmotion_example"])], capture_output=True, text=True, timeout=300,
-                         env=dict(os.environ, PMDFMU_FMU=str(pmdfmu.default_fmu(2))))
+    out = subprocess.run(
+        [str(programs["cmotion_example"])],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env=dict(os.environ, PMDFMU_FMU=str(pmdfmu.default_fmu(2))),
+    )
     assert out.returncode == 0, out.stdout + out.stderr
     assert "profile complete" in out.stdout
 

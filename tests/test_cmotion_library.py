@@ -7,6 +7,7 @@ the FMU's messages and the transport's reach the log callback, and nothing reach
 Each program is compiled here with the library (cmotion_build.py), plainly; with
 PMDFMU_C_SANITIZERS=thread,address (./dev sanitize) also under ThreadSanitizer and under
 AddressSanitizer + UndefinedBehaviorSanitizer, where any report fails the test."""
+
 import os
 import re
 import shutil
@@ -19,13 +20,14 @@ from cmotion_build import ROOT, compile_program, generate
 
 SANITIZERS = {"thread": "thread", "address": "address,undefined"}
 FLAVOURS = ["plain"] + [s for s in os.environ.get("PMDFMU_C_SANITIZERS", "").split(",") if s]
-PMD_ERR_Driver, PMD_ERR_OpeningPort = 0x1208, 0x1205      # host/c/PMDtypes.h
+PMD_ERR_Driver, PMD_ERR_OpeningPort = 0x1208, 0x1205  # host/c/PMDtypes.h
 
 pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 
 
-@pytest.fixture(scope="module", params=[f if f == "plain" else pytest.param(f, marks=pytest.mark.sanitize)
-                                         for f in FLAVOURS])
+@pytest.fixture(
+    scope="module", params=[f if f == "plain" else pytest.param(f, marks=pytest.mark.sanitize) for f in FLAVOURS]
+)
 def flavour(request):
     if request.param not in ("plain", *SANITIZERS):
         pytest.fail(f"PMDFMU_C_SANITIZERS: unknown sanitizer {request.param!r} (thread, address)")
@@ -39,20 +41,20 @@ def programs(flavour, tmp_path_factory):
     """name -> executable, compiled with the flavour's sanitizer."""
     tmp = tmp_path_factory.mktemp(f"cmotion-{flavour}")
     generated = generate(tmp / "generated")
-    return {name: compile_program(ROOT / "tests" / "c" / f"{name}.c", tmp / name, generated,
-                                  SANITIZERS.get(flavour, ""))
-            for name in ("cmotion_threads", "cmotion_log")}
+    return {
+        name: compile_program(ROOT / "tests" / "c" / f"{name}.c", tmp / name, generated, SANITIZERS.get(flavour, ""))
+        for name in ("cmotion_threads", "cmotion_log")
+    }
 
 
 def run(programs, name, *args, env=None):
     """The program's run against the suite's FMI 2 FMU; a sanitizer's report fails it."""
     env = dict(os.environ, PMDFMU_FMU=str(pmdfmu.default_fmu(2)), **(env or {}))
     if not programs[name].parent.name.startswith("cmotion-plain"):
-        env.pop("LD_PRELOAD", None)            # ./dev sanitize's runtimes for Python, not for these
+        env.pop("LD_PRELOAD", None)  # ./dev sanitize's runtimes for Python, not for these
         env["TSAN_OPTIONS"] = "halt_on_error=1 exitcode=66"
         env["ASAN_OPTIONS"] = "detect_leaks=1:halt_on_error=1:exitcode=66"
-    out = subprocess.run([str(programs[name]), *map(str, args)], capture_output=True, text=True, env=env,
-                         timeout=600)
+    out = subprocess.run([str(programs[name]), *map(str, args)], capture_output=True, text=True, env=env, timeout=600)
     assert "Sanitizer" not in out.stderr, out.stderr
     assert out.returncode == 0, out.stderr
     return out
@@ -64,6 +66,7 @@ def messages(stderr):
 
 
 # ---- one chip per thread ----
+
 
 def test_threads_each_with_its_own_chip_print_what_one_thread_prints(programs):
     """Four threads open, move, PMDTaskWait and close their own chips at once, three rounds each:
@@ -91,6 +94,7 @@ def test_task_wait_advances_only_the_calling_threads_chips(programs):
 
 # ---- the log callback ----
 
+
 def test_a_bad_script_fails_setup_with_the_fmus_file_line_reason_in_the_log(programs):
     out = run(programs, "cmotion_log", "script", "@ 0\nSetPositon(Axis1, 100);\n")
     assert out.stdout.split() == ["S", f"0x{PMD_ERR_Driver:X}"]
@@ -104,16 +108,23 @@ def test_a_bad_script_fails_setup_with_the_fmus_file_line_reason_in_the_log(prog
 
 
 def test_a_command_the_chip_refuses_in_a_script_reaches_the_log_as_a_warning(programs):
-    out = run(programs, "cmotion_log", "script", "@ 0\nSetProfileMode(Axis1, PMDTrapezoidal);\n"
-                                                 "@ 5\nSetStopMode(Axis1, 9);\n", 10)
+    out = run(
+        programs,
+        "cmotion_log",
+        "script",
+        "@ 0\nSetProfileMode(Axis1, PMDTrapezoidal);\n@ 5\nSetStopMode(Axis1, 9);\n",
+        10,
+    )
     assert out.stdout.split() == ["S", "0x0", "R", "0x0"]
     warnings = [(s, m) for c, s, m in messages(out.stderr) if c == "warnings"]
-    assert len(warnings) == 1 and warnings[0][0] == "1", out.stderr          # fmi2Warning
+    assert len(warnings) == 1 and warnings[0][0] == "1", out.stderr  # fmi2Warning
     assert ":4:" in warnings[0][1] and "0x04" in warnings[0][1], out.stderr
 
 
-MOVE = "@ 0\nSetProfileMode(Axis1, PMDTrapezoidal);\nSetPosition(Axis1, 200);\nSetVelocity(Axis1, 2.0);\n" \
-       "SetAcceleration(Axis1, 0.25);\nUpdate(Axis1);\n"
+MOVE = (
+    "@ 0\nSetProfileMode(Axis1, PMDTrapezoidal);\nSetPosition(Axis1, 200);\nSetVelocity(Axis1, 2.0);\n"
+    "SetAcceleration(Axis1, 0.25);\nUpdate(Axis1);\n"
+)
 
 
 def test_events_reach_the_log_only_when_their_category_is_asked_for(programs):
@@ -134,6 +145,7 @@ def test_an_unknown_log_category_fails_setup_with_the_fmus_reason(programs):
 
 # ---- nothing on the terminal but the log ----
 
+
 def test_a_file_that_is_not_a_zip_gives_only_the_librarys_log_line(programs, tmp_path):
     """unzip's own complaint goes into the library's message, not onto the terminal."""
     (tmp_path / "not-a-zip.fmu").write_text("not a zip\n")
@@ -142,4 +154,3 @@ def test_a_file_that_is_not_a_zip_gives_only_the_librarys_log_line(programs, tmp
     lines = out.stderr.splitlines()
     assert len(lines) == 1 and lines[0].startswith("L transport 3 cannot unpack"), out.stderr
     assert "not-a-zip.fmu" in lines[0] and re.search(r"zipfile", lines[0]), out.stderr
-

@@ -2,6 +2,7 @@
 """Facts that two languages hold must agree: where one side cannot be generated from the other, the
 copy is checked here (the version: tests/test_version.py; the ctypes layouts of native/: native.py at
 load; the fuzzer's operation list: tests/test_determinism.py)."""
+
 import re
 from pathlib import Path
 
@@ -28,8 +29,9 @@ def test_a_memory_block_holds_as_many_words_in_python_as_in_c():
 
 def test_the_default_row_is_the_chip_time_then_each_axis_commanded_outputs():
     assert int(c_define("fmu_src/chip/chip.h", "PMD_RECORD_WORDS").strip("()").split("+")[0]) == 1
-    assert recording.RECORDED == [f"axis{n}.commanded{q}" for n in range(1, 5)
-                                  for q in ("Position", "Velocity", "Acceleration")]
+    assert recording.RECORDED == [
+        f"axis{n}.commanded{q}" for n in range(1, 5) for q in ("Position", "Velocity", "Acceleration")
+    ]
     assert len(recording.RECORDED) == 3 * 4
 
 

@@ -22,6 +22,7 @@ merely safe. The plant-facing outputs (motorCommand, motorOutput) depend on no p
 chip + plant form no algebraic loop. Both XMLs pass FMPy's validation (schema and model
 structure) and fmu-manipulation-toolbox's checker; FMI 2 keeps the explicit `time` the standard
 describes (tools' FMI Library finding: its start-attribute message is an FMI Library defect)."""
+
 import copy
 import re
 import shutil
@@ -33,14 +34,20 @@ import pytest
 from fmpy.validation import validate_fmu
 
 import pmdfmu
-from pmdfmu import (PMDAbruptStopMode, PMDBufferFunctionPosition, PMDExternalProfile, PMDMotorOff)
+from pmdfmu import PMDAbruptStopMode, PMDBufferFunctionPosition, PMDExternalProfile, PMDMotorOff
 from states import command
 
 ROOT = Path(__file__).resolve().parent.parent
 FMI_VERSIONS = (2, 3)
-START_TIME = 2.5e-4               # Initialization Mode: between two cycles for 1e-4 and 2e-4 s
-PLANT_INPUTS = ("axis{axis}.actualPosition", "axis{axis}.positiveLimit", "axis{axis}.negativeLimit",
-                "axis{axis}.home", "analog", "io.input")
+START_TIME = 2.5e-4  # Initialization Mode: between two cycles for 1e-4 and 2e-4 s
+PLANT_INPUTS = (
+    "axis{axis}.actualPosition",
+    "axis{axis}.positiveLimit",
+    "axis{axis}.negativeLimit",
+    "axis{axis}.home",
+    "analog",
+    "io.input",
+)
 PLANT_FACING = ("axis{axis}.motorCommand", "axis{axis}.motorOutput")
 
 
@@ -58,6 +65,7 @@ def declared(md, mode):
 
 
 # ---- driving the FMU below the Chip API -------------------------------------------------------
+
 
 def words(*commands):
     """Host words of several commands: each a (name, *args) tuple, with axis=n as a last dict."""
@@ -121,7 +129,7 @@ class Probe:
         """Every output: {name: value}, FMI 3 arrays as tuples."""
         out = {}
         for kind, vs in self.outputs.items():
-            if kind == "Binary":                         # record.data: empty, whether a buffer exists or not
+            if kind == "Binary":  # record.data: empty, whether a buffer exists or not
                 for v in vs:
                     out[v.name] = self.fmu.getBinary([v.valueReference])[0] or b""
                 continue
@@ -133,7 +141,7 @@ class Probe:
             i = 0
             for v in vs:
                 n = self.size(v)
-                out[v.name] = tuple(values[i:i + n]) if n > 1 else values[i]
+                out[v.name] = tuple(values[i : i + n]) if n > 1 else values[i]
                 i += n
         return out
 
@@ -141,7 +149,7 @@ class Probe:
         self.fmu.setFMUState(self.state)
         strings = [v for v in self.knowns if v.type == "String" and self.values[v.name] != self.saved_values[v.name]]
         self.values = copy.deepcopy(self.saved_values)
-        self.write({v.name: self.values[v.name] for v in strings})     # not in the FMU state: the path is the shell's
+        self.write({v.name: self.values[v.name] for v in strings})  # not in the FMU state: the path is the shell's
 
     def run(self, phases, vary=None):
         """The outputs after each phase (its sets, then every output read), from the saved state;
@@ -162,12 +170,12 @@ class Probe:
         v, i = self.variable_of(element)
         before = start[v.name] if i is None else start[v.name][i]
         now = before
-        for sets in phases[:k + 1]:
+        for sets in phases[: k + 1]:
             now = sets.get(element, now)
         name = row(element)
         if v.type == "Boolean":
             return [not now]
-        if name in ("host.strobe", "memory.strobe"):   # the value seen (cancels a pending one), a new one
+        if name in ("host.strobe", "memory.strobe"):  # the value seen (cancels a pending one), a new one
             return [x for x in (before, now + 1) if x != now]
         if name in ("host.wordCount", "memory.count"):
             return [x for x in (now - 1, now + 1) if 0 <= x <= 64]
@@ -185,9 +193,9 @@ class Probe:
             return ["no-such.script"]
         if name == "record.columns":
             return ["axis1.activityStatus,axis2.position"]
-        if name == "axis{axis}.actualPosition":              # 0: where a Reset puts the commanded position too
+        if name == "axis{axis}.actualPosition":  # 0: where a Reset puts the commanded position too
             return [x for x in (now + 1000, 0) if x != now]
-        return [now + 1000]                                  # memory.address
+        return [now + 1000]  # memory.address
 
 
 def observe(probe, phases):
@@ -208,6 +216,7 @@ def observe(probe, phases):
 
 # ---- the states ------------------------------------------------------------------------------
 
+
 def batch(strobe, *commands):
     """A phase that leaves a batch pending: its words, count and strobe."""
     w = words(*commands)
@@ -218,15 +227,29 @@ def memory_write(strobe, address, value):
     return {"memory.address": address, "memory.count": 1, "memory.data[1]": value, "memory.strobe": strobe}
 
 
-SENSORS = ([("GetSignalStatus", {"axis": n}) for n in range(4)] + [("ReadAnalog", c) for c in range(8)] +
-           [("ReadIO", a) for a in range(16)])
-ENCODER = ([("Reset",)] + [("GetActualPosition", {"axis": n}) for n in range(4)] +
-           [("GetActualVelocity",), ("GetPositionError",)] +
-           [("SetActualPosition", 100 * n, {"axis": n}) for n in range(4)])
-EXTERNAL_UPDATE = [("Reset",), ("SetBufferStart", 2, 0), ("SetBufferLength", 2, 0x400),
-                   ("SetBufferFunction", PMDBufferFunctionPosition, 2, {"axis": 0}),
-                   ("SetProfileMode", PMDExternalProfile, {"axis": 0}), ("ClearPositionError",), ("Update",),
-                   ("SetInterruptMask", 0xFFFF), ("GetBufferLength", 2), ("ReadBuffer", 2)]
+SENSORS = (
+    [("GetSignalStatus", {"axis": n}) for n in range(4)]
+    + [("ReadAnalog", c) for c in range(8)]
+    + [("ReadIO", a) for a in range(16)]
+)
+ENCODER = (
+    [("Reset",)]
+    + [("GetActualPosition", {"axis": n}) for n in range(4)]
+    + [("GetActualVelocity",), ("GetPositionError",)]
+    + [("SetActualPosition", 100 * n, {"axis": n}) for n in range(4)]
+)
+EXTERNAL_UPDATE = [
+    ("Reset",),
+    ("SetBufferStart", 2, 0),
+    ("SetBufferLength", 2, 0x400),
+    ("SetBufferFunction", PMDBufferFunctionPosition, 2, {"axis": 0}),
+    ("SetProfileMode", PMDExternalProfile, {"axis": 0}),
+    ("ClearPositionError",),
+    ("Update",),
+    ("SetInterruptMask", 0xFFFF),
+    ("GetBufferLength", 2),
+    ("ReadBuffer", 2),
+]
 
 
 def batches(s, buffer_address, m=0):
@@ -237,21 +260,32 @@ def batches(s, buffer_address, m=0):
         "Reset": [batch(s + 1, ("Reset",))],
         "SetSampleTime": [batch(s + 1, ("SetSampleTime", 200))],
         "abrupt stop": [batch(s + 1, ("SetStopMode", PMDAbruptStopMode), ("Update",))],
-        "a move on axis 3": [batch(s + 1, ("SetPosition", 1000, {"axis": 2}), ("SetVelocity", 0x10000, {"axis": 2}),
-                                   ("SetAcceleration", 0x100, {"axis": 2}), ("Update", {"axis": 2}))],
-        "events and the interrupt": [batch(s + 1, ("ResetEventStatus", 0, {"axis": 1}), ("SetInterruptMask", 0xFFFF),
-                                           ("GetEventStatus",))],
+        "a move on axis 3": [
+            batch(
+                s + 1,
+                ("SetPosition", 1000, {"axis": 2}),
+                ("SetVelocity", 0x10000, {"axis": 2}),
+                ("SetAcceleration", 0x100, {"axis": 2}),
+                ("Update", {"axis": 2}),
+            )
+        ],
+        "events and the interrupt": [
+            batch(s + 1, ("ResetEventStatus", 0, {"axis": 1}), ("SetInterruptMask", 0xFFFF), ("GetEventStatus",))
+        ],
         "a refusal": [batch(s + 1, ("SetBufferLength", 40, 1), ("GetTime",))],
         "WriteIO": [batch(s + 1, ("WriteIO", 3, 0x1234))],
         "the sensors": [batch(s + 1, *SENSORS)],
         "the encoder": [batch(s + 1, *ENCODER)],
         "an external profile's Update": [batch(s + 1, *EXTERNAL_UPDATE)],
         # the write first (one get), then the batch that reads it (a later get at the same time)
-        "a memory write, then ReadBuffer": [memory_write(m + 1, buffer_address, 0xABCD),
-                                            batch(s + 1, ("ReadBuffer", 2))],
+        "a memory write, then ReadBuffer": [
+            memory_write(m + 1, buffer_address, 0xABCD),
+            batch(s + 1, ("ReadBuffer", 2)),
+        ],
         # both in one get: the batch runs before the write
-        "a batch and a write at once": [{**memory_write(m + 1, buffer_address, 0xABCD),
-                                         **batch(s + 1, ("ReadBuffer", 2))}],
+        "a batch and a write at once": [
+            {**memory_write(m + 1, buffer_address, 0xABCD), **batch(s + 1, ("ReadBuffer", 2))}
+        ],
     }
 
 
@@ -279,7 +313,7 @@ def step_mode_state(chip):
     a2.Update()
     a1.SetBufferStart(2, 0x300)
     a1.SetBufferLength(2, 4)
-    chip.batch(command("SetBufferLength", 40, 1))       # refused: an instruction-error event
+    chip.batch(command("SetBufferLength", 40, 1))  # refused: an instruction-error event
     chip.run(20)
     t = chip.get("time")
     chip.fmu.doStep(t, 0.5 * chip.get("activeCycleTime"))
@@ -296,7 +330,7 @@ def initialization_mode(chip, start_time=START_TIME):
         chip.fmu.enterInitializationMode(startTime=start_time)
     chip.set("loopback", False)
     plant_inputs(chip)
-    chip.batch(command("SetBufferLength", 40, 1))       # refused: an instruction-error event
+    chip.batch(command("SetBufferLength", 40, 1))  # refused: an instruction-error event
 
 
 def observed_dependencies(fmi_version, mode):
@@ -320,8 +354,9 @@ def observed_dependencies(fmi_version, mode):
                 if mode == "init" and "write" in name:
                     # the buffer the memory write fills: set up by a first get, inside the smallest
                     # memory probed (memorySize 0x200)
-                    phases = ([batch(strobe + 1, ("SetBufferStart", 2, address), ("SetBufferLength", 2, 4))] +
-                              batches(strobe + 1, address, memory)[name])
+                    phases = [batch(strobe + 1, ("SetBufferStart", 2, address), ("SetBufferLength", 2, 4))] + batches(
+                        strobe + 1, address, memory
+                    )[name]
                 seen |= observe(probe, phases)
             finally:
                 chip.fmu.freeFMUState(probe.state)
@@ -334,10 +369,12 @@ _observed = {}
 @pytest.fixture(scope="module")
 def observed():
     """observed(fmi_version, mode): the (output, known) pairs seen to move, computed once."""
+
     def get(fmi_version, mode):
         if (fmi_version, mode) not in _observed:
             _observed[fmi_version, mode] = observed_dependencies(fmi_version, mode)
         return _observed[fmi_version, mode]
+
     return get
 
 
@@ -349,6 +386,7 @@ MODES = {"step": "Outputs at communication points", "init": "InitialUnknowns in 
 
 
 # ---- the declarations against the FMU ---------------------------------------------------------
+
 
 @pytest.mark.parametrize("mode", MODES)
 @pytest.mark.parametrize("fmi_version", FMI_VERSIONS, ids=["fmi2", "fmi3"])
@@ -421,14 +459,17 @@ def test_the_plant_inputs_reach_only_what_a_batch_reads_at_once(fmi_version):
 
 def test_both_fmi_versions_declare_the_same_dependencies():
     """FMI 2's scalars and FMI 3's whole arrays name the same rows, element for element where both have them."""
+
     def by_variable(md, mode):
         return {(out.split("[")[0], k.split("[")[0]) for out, knowns in declared(md, mode).items() for k in knowns}
+
     md2, md3 = model_description(2), model_description(3)
     for mode in MODES:
         assert by_variable(md2, mode) == by_variable(md3, mode), mode
 
 
 # ---- the XML ---------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("fmi_version", FMI_VERSIONS, ids=["fmi2", "fmi3"])
 def test_the_model_descriptions_are_valid_and_list_knowns_only(fmi_version):
@@ -476,8 +517,11 @@ def test_fmi2_declares_time_as_the_standard_says_which_fmi_library_misreads():
     assert (time.name, time.causality, time.variability, time.type) == ("time", "independent", "continuous", "Real")
     assert time.start is None and time.initial is None
     text = (Path(pmdfmu.chip.extract(str(pmdfmu.chip.default_fmu(2)))) / "modelDescription.xml").read_text()
-    assert re.search(r'<ScalarVariable name="time" valueReference="0" causality="independent" '
-                     r'variability="continuous" description="[^"]*">\s*<Real/>', text)
+    assert re.search(
+        r'<ScalarVariable name="time" valueReference="0" causality="independent" '
+        r'variability="continuous" description="[^"]*">\s*<Real/>',
+        text,
+    )
 
 
 def test_fmi3_parameters_are_types_every_tool_knows():
@@ -486,28 +530,37 @@ def test_fmi3_parameters_are_types_every_tool_knows():
     allows for any parameter; FMI 2 has them as Integer."""
     v = {x.name: x for x in model_description(3).modelVariables}
     assert {n: v[n].type for n in v if v[n].causality == "parameter"} == {
-        "cycleTime": "Float64", "memorySize": "Int32", "loopback": "Boolean", "script": "String",
-        "record.capacity": "Int32"}
+        "cycleTime": "Float64",
+        "memorySize": "Int32",
+        "loopback": "Boolean",
+        "script": "String",
+        "record.capacity": "Int32",
+    }
 
 
 # ---- the generator's rule --------------------------------------------------------------------
 
+
 def generator():
     import importlib.util
+
     spec = importlib.util.spec_from_file_location("generate", ROOT / "modelDescription" / "generate.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
 
 
-@pytest.mark.parametrize("cell, message", [
-    ("", "an output says what it depends on"),
-    ("host.nothing", "names no input, parameter or independent variable"),
-    ("cycleTime", "changes in Initialization Mode only"),
-    ("step:cycleTime", "changes in Initialization Mode only"),
-    ("later:host.strobe", "the mode is step: or init:"),
-    ("axis{axis}.home", "names the output's own axis; it has none"),
-])
+@pytest.mark.parametrize(
+    "cell, message",
+    [
+        ("", "an output says what it depends on"),
+        ("host.nothing", "names no input, parameter or independent variable"),
+        ("cycleTime", "changes in Initialization Mode only"),
+        ("step:cycleTime", "changes in Initialization Mode only"),
+        ("later:host.strobe", "the mode is step: or init:"),
+        ("axis{axis}.home", "names the output's own axis; it has none"),
+    ],
+)
 def test_the_generator_refuses_a_dependency_it_cannot_write_truthfully(tmp_path, cell, message):
     gen = generator()
     table = (ROOT / "modelDescription" / "variables.csv").read_text().splitlines()

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Determinism: the same scripted profile run 10 times, and through
 FMI 2 and FMI 3, gives byte-identical CSVs."""
+
 import hashlib
 import importlib.util
 import os
@@ -45,21 +46,39 @@ def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
     (some regression inputs fail only under a sanitizer). Each input runs on its
     own, so that a failure names every input that fails."""
     import sys
+
     sys.path.insert(0, str(ROOT / "fuzz"))
     import run as fuzz
+
     gen = fuzz.generated()
     sanitize = SANITIZERS if sanitizers_available(tmp_path) else []
     env = {**os.environ, "ASAN_OPTIONS": "detect_leaks=0", "UBSAN_OPTIONS": "print_stacktrace=1"}
     failed = []
     for target in fuzz.TARGETS:
-        inputs = sorted(p for d in ("corpus", "regressions") for p in (ROOT / "fuzz" / d / target).glob("*")
-                        if p.is_file())
+        inputs = sorted(
+            p for d in ("corpus", "regressions") for p in (ROOT / "fuzz" / d / target).glob("*") if p.is_file()
+        )
         if not inputs:
             continue
         exe = tmp_path / f"replay_{target}"
-        subprocess.run(["cc", "-g", "-O1", "-std=c99", "-D_DEFAULT_SOURCE", *fuzz.CHECKS, *sanitize,
-                        *fuzz.include_flags(gen), str(ROOT / "fuzz" / "replay.c"), *fuzz.sources(target, gen), "-lm",
-                        "-o", str(exe)], check=True)
+        subprocess.run(
+            [
+                "cc",
+                "-g",
+                "-O1",
+                "-std=c99",
+                "-D_DEFAULT_SOURCE",
+                *fuzz.CHECKS,
+                *sanitize,
+                *fuzz.include_flags(gen),
+                str(ROOT / "fuzz" / "replay.c"),
+                *fuzz.sources(target, gen),
+                "-lm",
+                "-o",
+                str(exe),
+            ],
+            check=True,
+        )
         for path in inputs:
             out = subprocess.run([str(exe), str(path)], capture_output=True, text=True, timeout=300, env=env)
             if out.returncode != 0 or "replayed 1 inputs" not in out.stdout:
@@ -75,23 +94,51 @@ def test_regression_inputs_run_clean_under_valgrind(tmp_path):
     valgrind, with a build without sanitizers: no invalid access, no uninitialized
     value used, no leak."""
     import sys
+
     sys.path.insert(0, str(ROOT / "fuzz"))
     import run as fuzz
+
     gen = fuzz.generated()
-    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}     # ./dev sanitize preloads ASan
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}  # ./dev sanitize preloads ASan
     failed = []
     for target in fuzz.TARGETS:
         inputs = sorted(p for p in (ROOT / "fuzz" / "regressions" / target).glob("*") if p.is_file())
         if not inputs:
             continue
         exe = tmp_path / f"replay_{target}"
-        subprocess.run(["cc", "-g", "-O1", "-std=c99", "-D_DEFAULT_SOURCE", *fuzz.CHECKS, *fuzz.include_flags(gen),
-                        str(ROOT / "fuzz" / "replay.c"), *fuzz.sources(target, gen), "-lm", "-o", str(exe)],
-                       check=True)
+        subprocess.run(
+            [
+                "cc",
+                "-g",
+                "-O1",
+                "-std=c99",
+                "-D_DEFAULT_SOURCE",
+                *fuzz.CHECKS,
+                *fuzz.include_flags(gen),
+                str(ROOT / "fuzz" / "replay.c"),
+                *fuzz.sources(target, gen),
+                "-lm",
+                "-o",
+                str(exe),
+            ],
+            check=True,
+        )
         for path in inputs:
-            out = subprocess.run(["valgrind", "-q", "--error-exitcode=99", "--leak-check=full",
-                                  "--errors-for-leak-kinds=definite", str(exe), str(path)],
-                                 capture_output=True, text=True, timeout=600, env=env)
+            out = subprocess.run(
+                [
+                    "valgrind",
+                    "-q",
+                    "--error-exitcode=99",
+                    "--leak-check=full",
+                    "--errors-for-leak-kinds=definite",
+                    str(exe),
+                    str(path),
+                ],
+                capture_output=True,
+                text=True,
+                timeout=600,
+                env=env,
+            )
             if out.returncode != 0:
                 failed.append(f"{path.relative_to(ROOT)}:\n{out.stderr[-1500:]}")
     assert not failed, f"{len(failed)} regression inputs fail under valgrind:\n" + "\n".join(failed)

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """docs/commands.md lists every opcode with its status, and the FMU agrees."""
+
 from pathlib import Path
 
 import pytest

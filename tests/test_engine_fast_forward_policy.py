@@ -3,6 +3,7 @@
 bound says it can skip many (fastforward.c, pmd_chip_run_fast_forwarding). Whatever way
 the cycles go, the outputs and the state are those of a recorded doStep (every cycle run) and of
 cycle by cycle; a doStep over long segments stays O(segments). Pinned by outputs, never by time."""
+
 import random
 import re
 from pathlib import Path
@@ -14,16 +15,26 @@ from reference import wrap32
 from scenarios import REAL
 
 # fastforward.c's least skip worth an attempt, read from the source the FMU is built from
-FAST_FORWARD_MIN = int(re.search(r"^#define FAST_FORWARD_MIN (\d+)$", (Path(__file__).resolve().parent.parent / "fmu_src" /
-                                 "chip" / "fastforward.c").read_text(), re.M).group(1))
-OUT = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
-                                                      "commandedAcceleration", "activityStatus", "eventStatus")]
+FAST_FORWARD_MIN = int(
+    re.search(
+        r"^#define FAST_FORWARD_MIN (\d+)$",
+        (Path(__file__).resolve().parent.parent / "fmu_src" / "chip" / "fastforward.c").read_text(),
+        re.M,
+    ).group(1)
+)
+OUT = [
+    f"axis{n}.{q}"
+    for n in range(1, 5)
+    for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus", "eventStatus")
+]
 
 
 def snapshot(chip):
-    return [chip.get(n) for n in OUT + REAL + ["chipTime", "axis1.motorCommand"]] + \
-        [chip.axis(a).GetActualVelocity() for a in range(4)] + [chip.axis(a).GetBufferReadIndex(2 + 5 * a)
-                                                                for a in range(3)]
+    return (
+        [chip.get(n) for n in OUT + REAL + ["chipTime", "axis1.motorCommand"]]
+        + [chip.axis(a).GetActualVelocity() for a in range(4)]
+        + [chip.axis(a).GetBufferReadIndex(2 + 5 * a) for a in range(3)]
+    )
 
 
 def bound_tables(rng):
@@ -33,10 +44,21 @@ def bound_tables(rng):
     for axis in range(3):
         rows = []
         for _ in range(14):
-            t = rng.choice([1, 2, 7, FAST_FORWARD_MIN - 1, FAST_FORWARD_MIN, FAST_FORWARD_MIN + 1,
-                            FAST_FORWARD_MIN + 2, 2 * FAST_FORWARD_MIN, 1000])
+            t = rng.choice(
+                [
+                    1,
+                    2,
+                    7,
+                    FAST_FORWARD_MIN - 1,
+                    FAST_FORWARD_MIN,
+                    FAST_FORWARD_MIN + 1,
+                    FAST_FORWARD_MIN + 2,
+                    2 * FAST_FORWARD_MIN,
+                    1000,
+                ]
+            )
             v, a, j = rng.randrange(-0x30000, 0x30000), rng.randrange(-0x400, 0x400), rng.randrange(-0x1000, 0x1000)
-            if rng.random() < 0.3:                  # at rest after m cycles, m near the bound
+            if rng.random() < 0.3:  # at rest after m cycles, m near the bound
                 m = rng.choice([FAST_FORWARD_MIN - 1, FAST_FORWARD_MIN, FAST_FORWARD_MIN + 1])
                 a = rng.choice([1, -1]) * rng.randrange(1, 0x40)
                 v, j = -m * a, 0
@@ -58,11 +80,12 @@ def test_unrecorded_steps_equal_recorded_steps_around_the_bound():
         tables = bound_tables(rng)
         with started(pmdfmu.Chip(), tables) as plain, started(pmdfmu.Chip(), tables) as recorded:
             for _ in range(16):
-                n = rng.choice([1, 2, FAST_FORWARD_MIN - 1, FAST_FORWARD_MIN, FAST_FORWARD_MIN + 1,
-                                rng.randrange(1, 3000)])
+                n = rng.choice(
+                    [1, 2, FAST_FORWARD_MIN - 1, FAST_FORWARD_MIN, FAST_FORWARD_MIN + 1, rng.randrange(1, 3000)]
+                )
                 rows = recorded.run(n, record=OUT)
-                plain.run(n)                                   # one unrecorded doStep
-                assert snapshot(plain)[:len(OUT)] == [int(rows[name][-1]) for name in OUT]
+                plain.run(n)  # one unrecorded doStep
+                assert snapshot(plain)[: len(OUT)] == [int(rows[name][-1]) for name in OUT]
                 assert snapshot(plain) == snapshot(recorded)
 
 
@@ -83,13 +106,13 @@ def test_an_armed_breakpoint_or_trace_steps_every_cycle_with_the_same_result():
                     ax.SetTracePeriod(97)
                     ax.SetTraceVariable(0, 0, PMDTraceTime)
                     ax.SetTraceVariable(1, 1, PMDTraceCommandedPosition)
-                    ax.SetTraceStart(0, 0, 0, 0)        # immediate: rolling samples the whole run
+                    ax.SetTraceStart(0, 0, 0, 0)  # immediate: rolling samples the whole run
             rows = chips[1].run(4000, record=OUT)
             chips[0].run(4000)
             assert snapshot(chips[0]) == snapshot(chips[1])
-            assert snapshot(chips[0])[:len(OUT)] == [int(rows[name][-1]) for name in OUT]
+            assert snapshot(chips[0])[: len(OUT)] == [int(rows[name][-1]) for name in OUT]
             if armed == "breakpoint":
-                assert chips[0].axis(0).GetCommandedVelocity() == 0     # stopped at 2345, mid-step
+                assert chips[0].axis(0).GetCommandedVelocity() == 0  # stopped at 2345, mid-step
             else:
                 assert [chips[0].axis(0).GetTraceCount()] == [chips[1].axis(0).GetTraceCount()] != [0]
         finally:
@@ -102,10 +125,12 @@ def test_long_segments_after_many_short_ones_take_one_step_in_o_segments():
     2*10^9 cycles (each skipped at once): 6*10^10 cycles in one doStep. Cycle by cycle this would
     take hours; its end is exact."""
     rng = random.Random(7)
-    short = [(rng.randrange(-5000, 5000), rng.randrange(-0x30000, 0x30000), 0, 0, rng.randrange(1, 8))
-             for _ in range(600)]
-    long = [(rng.randrange(-2 ** 31, 2 ** 31), rng.randrange(-0x7FFFFFFF, 0x7FFFFFFF), 0, 0, 2_000_000_000)
-            for _ in range(30)]
+    short = [
+        (rng.randrange(-5000, 5000), rng.randrange(-0x30000, 0x30000), 0, 0, rng.randrange(1, 8)) for _ in range(600)
+    ]
+    long = [
+        (rng.randrange(-(2**31), 2**31), rng.randrange(-0x7FFFFFFF, 0x7FFFFFFF), 0, 0, 2_000_000_000) for _ in range(30)
+    ]
     tables = {0: short + long + [(7, 0, 0, 0, 0)], 2: long[:3] + [(5, 0, 0, 0, 0)]}
     with started(pmdfmu.Chip(), tables) as chip:
         into_last = 1_234_567
@@ -115,7 +140,7 @@ def test_long_segments_after_many_short_ones_take_one_step_in_o_segments():
         # the last segment read at its first cycle, then into_last - 1 steps of v / 2^16 counts
         assert chip.axis(0).GetCommandedPosition() == wrap32(p + ((into_last - 1) * v >> 16))
         assert chip.axis(0).GetCommandedVelocity() == v
-        assert chip.axis(2).GetCommandedPosition() == 5                  # its table ended long ago
+        assert chip.axis(2).GetCommandedPosition() == 5  # its table ended long ago
         assert chip.get("chipTime") == wrap32(cycles - 1)
 
 
@@ -129,7 +154,7 @@ def test_a_chip_at_rest_with_loopback_off_takes_a_huge_step_at_once():
         ax.SetSignalSense(2420)
         ax.SetSettleWindow(2)
         chip.set("axis1.actualPosition", 1)
-        cycles = 10 ** 12
+        cycles = 10**12
         chip.run(cycles)
         assert chip.get("chipTime") == wrap32(cycles - 1)
         assert ax.GetActualPosition() == 1 and ax.GetCommandedPosition() == 0

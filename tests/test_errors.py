@@ -2,6 +2,7 @@
 """Bad input (CONTRACT 2.4): the chip answers a bad command with its host I/O
 error code and does not execute it; a bad FMI call gets fmi2Error and a log
 message naming the function, the value and the reason; nothing else changes."""
+
 import math
 
 import pytest
@@ -20,15 +21,16 @@ def errors(chip):
 
 # ---- the chip's answers ----------------------------------------------------------
 
+
 def test_host_io_error_reads_1_after_reset_then_keeps_the_first_error(chip):
     ax = chip.axis(0)
-    assert ax.GetHostIOError() == 0x01              # reset, until read
+    assert ax.GetHostIOError() == 0x01  # reset, until read
     assert ax.GetHostIOError() == 0
     with pytest.raises(PMDError):
-        ax.SetBufferLength(40, 1)                   # 0x04
+        ax.SetBufferLength(40, 1)  # 0x04
     with pytest.raises(PMDError):
-        ax.SetBufferReadIndex(2, 0)                 # 0x07
-    assert ax.GetHostIOError() == 0x04              # the first since the last read
+        ax.SetBufferReadIndex(2, 0)  # 0x07
+    assert ax.GetHostIOError() == 0x04  # the first since the last read
     assert ax.GetHostIOError() == 0
     ax.Reset()
     assert ax.GetHostIOError() == 0x01
@@ -42,7 +44,7 @@ def test_refused_commands_set_the_instruction_error_event_bit(chip):
 
 
 def test_unknown_opcode_answers_0x02_and_ends_the_batch(chip):
-    error, reply = chip.batch([0x0002, op("GetTime")])       # 0x02 is Magellan-only
+    error, reply = chip.batch([0x0002, op("GetTime")])  # 0x02 is Magellan-only
     assert error == 0x02 and reply == []
 
 
@@ -75,33 +77,36 @@ def test_replies_past_host_reply_64_are_refused_not_dropped(chip):
 
 
 def test_unused_bits_of_a_packed_word_are_refused(chip):
-    error, _ = chip.batch([op("SetBreakpoint"), 0, 0x10000 - 1])   # trigger 0xFF
+    error, _ = chip.batch([op("SetBreakpoint"), 0, 0x10000 - 1])  # trigger 0xFF
     assert error == 0x04
     error, _ = chip.batch([op("SetBreakpoint"), 5, field_dp(0, "PMDBreakpointTrigger", PMDBreakpointActivityStatus)])
     assert error == 0x04
 
 
-@pytest.mark.parametrize("call,args,code", [
-    ("SetBufferStart", (32, 0x200), 0x04),                    # bad buffer ID
-    ("SetBufferStart", (2, 0x4001), 0x07),                    # start past memory
-    ("SetBufferLength", (2, 0x4001), 0x07),                   # start + length past memory
-    ("SetBufferLength", (2, 0x40000000), 0x07),
-    ("SetBufferWriteIndex", (2, 0), 0x07),                    # index >= length 0
-    ("SetBufferReadIndex", (2, 0), 0x07),
-    ("WriteBuffer", (2, 1), 0x07),                            # zero-length buffer
-    ("ReadBuffer", (2,), 0x07),
-    ("SetBufferFunction", (5, 2), 0x04),                      # function 0..4
-    ("SetBufferFunction", (0, 1), 0x04),                      # 0 and 1 belong to the trace
-    ("SetBufferFunction", (0, 32), 0x04),
-    ("GetBufferFunction", (-1,), 0x04),
-    ("SetAcceleration", (0x80000000,), 0x0B),                 # negative in every mode
-    ("SetDeceleration", (-1,), 0x0B),
-    ("SetJerk", (0xFFFFFFFF,), 0x0B),
-    ("SetStopMode", (3,), 0x04),
-    ("SetProfileMode", (7,), 0x04),
-    ("SetBreakpointValue", (2, 0), 0x04),
-    ("MultiUpdate", (0x10,), 0x04),
-])
+@pytest.mark.parametrize(
+    "call,args,code",
+    [
+        ("SetBufferStart", (32, 0x200), 0x04),  # bad buffer ID
+        ("SetBufferStart", (2, 0x4001), 0x07),  # start past memory
+        ("SetBufferLength", (2, 0x4001), 0x07),  # start + length past memory
+        ("SetBufferLength", (2, 0x40000000), 0x07),
+        ("SetBufferWriteIndex", (2, 0), 0x07),  # index >= length 0
+        ("SetBufferReadIndex", (2, 0), 0x07),
+        ("WriteBuffer", (2, 1), 0x07),  # zero-length buffer
+        ("ReadBuffer", (2,), 0x07),
+        ("SetBufferFunction", (5, 2), 0x04),  # function 0..4
+        ("SetBufferFunction", (0, 1), 0x04),  # 0 and 1 belong to the trace
+        ("SetBufferFunction", (0, 32), 0x04),
+        ("GetBufferFunction", (-1,), 0x04),
+        ("SetAcceleration", (0x80000000,), 0x0B),  # negative in every mode
+        ("SetDeceleration", (-1,), 0x0B),
+        ("SetJerk", (0xFFFFFFFF,), 0x0B),
+        ("SetStopMode", (3,), 0x04),
+        ("SetProfileMode", (7,), 0x04),
+        ("SetBreakpointValue", (2, 0), 0x04),
+        ("MultiUpdate", (0x10,), 0x04),
+    ],
+)
 def test_out_of_range_arguments_get_the_chips_code_and_change_nothing(chip, call, args, code):
     ax = chip.axis(0)
     ax.SetBufferStart(3, 0x100)
@@ -129,10 +134,11 @@ def test_buffer_indexes_wrap_at_the_length_and_start_resets_them(chip):
     assert ax.GetBufferReadIndex(5) == 1
     ax.SetBufferStart(5, 0x301)
     assert (ax.GetBufferReadIndex(5), ax.GetBufferWriteIndex(5)) == (0, 0)
-    assert ax.ReadBuffer(5) == 22                                     # the memory itself is unchanged
+    assert ax.ReadBuffer(5) == 22  # the memory itself is unchanged
 
 
 # ---- bad FMI calls ------------------------------------------------------------------
+
 
 def test_unknown_value_reference_is_an_error_naming_it(chip):
     with pytest.raises(FMICallException):
@@ -185,11 +191,15 @@ def test_a_step_not_starting_at_the_last_communication_point_is_an_error(chip):
 
 
 def test_memory_writes_leaving_the_memory_are_refused_whole(chip):
-    vr = {n: chip.variables[n].valueReference for n in ("memory.address", "memory.count", "memory.strobe",
-                                                         "memory.data[1]", "memory.data[2]")}
+    vr = {
+        n: chip.variables[n].valueReference
+        for n in ("memory.address", "memory.count", "memory.strobe", "memory.data[1]", "memory.data[2]")
+    }
     with pytest.raises(FMICallException):
-        chip.fmu.setInteger([vr["memory.data[1]"], vr["memory.data[2]"], vr["memory.address"], vr["memory.count"],
-                             vr["memory.strobe"]], [5, 6, 0x3FFF, 2, 1])
+        chip.fmu.setInteger(
+            [vr["memory.data[1]"], vr["memory.data[2]"], vr["memory.address"], vr["memory.count"], vr["memory.strobe"]],
+            [5, 6, 0x3FFF, 2, 1],
+        )
     assert any("memory.strobe" in m and "refused" in m for m in errors(chip))
     ax = chip.axis(0)
     ax.SetBufferStart(2, 0x3FFF)
@@ -207,6 +217,7 @@ def raw():
     messages = []
     fmu = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier="PMDMotionProcessor", instanceName="raw")
     from fmpy.fmi2 import fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+
     callbacks = fmi2CallbackFunctions()
     callbacks.logger = fmi2CallbackLoggerTYPE(lambda env, name, status, cat, msg: messages.append(msg.decode()))
     fmu.instantiate(callbacks=callbacks)
@@ -236,7 +247,7 @@ def test_null_arrays_are_errors(raw):
     assert raw._functions["fmi2GetInteger"](raw.component, None, 2, None) == 3
     assert raw._functions["fmi2SetReal"](raw.component, None, 1, None) == 3
     assert any("NULL" in m for m in raw.messages)
-    assert raw._functions["fmi2GetInteger"](raw.component, None, 0, None) == 0   # nothing asked: fine
+    assert raw._functions["fmi2GetInteger"](raw.component, None, 0, None) == 0  # nothing asked: fine
 
 
 def test_unsupported_functions_say_so(raw):
@@ -248,9 +259,13 @@ def test_unsupported_functions_say_so(raw):
 
 def test_a_wrong_guid_is_refused(capfd):
     path = str(pmdfmu.default_fmu())
-    fmu = FMU2Slave(guid="{00000000-0000-0000-0000-000000000000}", unzipDirectory=extract(path),
-                    modelIdentifier="PMDMotionProcessor", instanceName="wrong")
-    with pytest.raises(Exception, match="Failed to instantiate"):     # FMPy's own Exception for a NULL instance
+    fmu = FMU2Slave(
+        guid="{00000000-0000-0000-0000-000000000000}",
+        unzipDirectory=extract(path),
+        modelIdentifier="PMDMotionProcessor",
+        instanceName="wrong",
+    )
+    with pytest.raises(Exception, match="Failed to instantiate"):  # FMPy's own Exception for a NULL instance
         fmu.instantiate()
     assert "fmi2Instantiate: the GUID does not match this binary's" in capfd.readouterr().out
 
@@ -259,6 +274,6 @@ def test_a_wrong_guid_is_refused(capfd):
 def test_a_start_time_off_the_cycle_grid_is_refused(raw, start):
     """Found by fuzzing: a NaN or huge start time must not reach the cycle index."""
     with pytest.raises(FMICallException):
-        raw.setupExperiment(startTime=start)          # refused where it arrives (no state holds it)
+        raw.setupExperiment(startTime=start)  # refused where it arrives (no state holds it)
         raw.enterInitializationMode()
     assert any("fmi2SetupExperiment: time" in m and "2^53 cycles" in m for m in raw.messages)

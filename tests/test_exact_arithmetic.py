@@ -7,6 +7,7 @@ infinity and wrapped into the 32-bit registers - and the electronic gear moves
 the slave by exactly delta * ratio at any ratio and master jump. Through the
 real FMU, FMI 2 and FMI 3; run with the sanitizer build (./dev sanitize) these
 are also the regression tests for the undefined behaviour the review found."""
+
 import random
 import shutil
 import subprocess
@@ -19,13 +20,19 @@ import numpy as np
 import pytest
 
 import pmdfmu
-from pmdfmu import PMDElectronicGearProfile, PMDEventMotionCompleteMask, PMDPositionSourceActual, \
-    PMDPositionSourceCommanded, PMDVelocityContouringProfile, field_ex
+from pmdfmu import (
+    PMDElectronicGearProfile,
+    PMDEventMotionCompleteMask,
+    PMDPositionSourceActual,
+    PMDPositionSourceCommanded,
+    PMDVelocityContouringProfile,
+    field_ex,
+)
 from pmdfmu.profile import load_external_profile, start_external_profile
 from reference import ExternalProfile, wrap32
 
 FMI = pytest.mark.parametrize("fmi", [2, 3], ids=["fmi2", "fmi3"])
-MIN32, MAX32 = 0x80000000, 0x7FFFFFFF          # the extreme raw words (0x80000000 reads -2^31)
+MIN32, MAX32 = 0x80000000, 0x7FFFFFFF  # the extreme raw words (0x80000000 reads -2^31)
 OUT = ["commandedPosition", "commandedVelocity", "commandedAcceleration"]
 
 
@@ -49,7 +56,7 @@ class Segment:
     def exact(self, n):
         """P, V, A after n steps, as integers over D."""
         d, v, a, j = self.D, self.v * 6 << 16, self.a * 6 << 16, self.j
-        return (self.p * d + n * v + n * n * a // 2 + n ** 3 * j, v + n * a + 3 * j * n * n, a + 6 * j * n)
+        return (self.p * d + n * v + n * n * a // 2 + n**3 * j, v + n * a + 3 * j * n * n, a + 6 * j * n)
 
     def registers(self, n):
         P, V, A = self.exact(n)
@@ -59,8 +66,11 @@ class Segment:
         """axisN.position, .velocity, .acceleration: the exact values, the position's whole counts wrapped."""
         P, V, A = self.exact(n)
         whole = P // self.D
-        return (wrap32(whole) + (P - whole * self.D) / self.D, Fraction(V, self.D) / Fraction(cycle_time),
-                Fraction(A, self.D) / Fraction(cycle_time) ** 2)
+        return (
+            wrap32(whole) + (P - whole * self.D) / self.D,
+            Fraction(V, self.D) / Fraction(cycle_time),
+            Fraction(A, self.D) / Fraction(cycle_time) ** 2,
+        )
 
 
 def start_segment(chip, row, then=(0, 0, 0, 0, 0)):
@@ -80,8 +90,16 @@ def registers_now(chip, axis=0):
 
 # ---- the closed form is the seed's recurrence ---------------------------------------
 
-@pytest.mark.parametrize("row", [(5, MIN32, MAX32, MAX32), (-7, MAX32, MIN32, MIN32), (0, 0xE0000000, 0x40000000, 0),
-                                 (MAX32, 0x12345678, 0xFEDCBA98, 0x9E3779B9)])
+
+@pytest.mark.parametrize(
+    "row",
+    [
+        (5, MIN32, MAX32, MAX32),
+        (-7, MAX32, MIN32, MIN32),
+        (0, 0xE0000000, 0x40000000, 0),
+        (MAX32, 0x12345678, 0xFEDCBA98, 0x9E3779B9),
+    ],
+)
 def test_closed_form_is_the_seeds_recurrence(row):
     model = ExternalProfile([row + (400,), (0, 0, 0, 0, 0)])
     assert model.run(400) == [Segment(*row).registers(n) for n in range(400)]
@@ -108,10 +126,11 @@ def test_review_findings_follow_the_exact_recurrence_every_cycle(fmi, finding):
         start_segment(chip, row + (time,), then=(123, 0, 0, 0, 0))
         out = recorded(chip, time + 3)
     assert out[:time] == [seg.registers(n) for n in range(time)]
-    assert out[time:] == [(123, 0, 0)] * 3                  # the next row read: time 0, held
+    assert out[time:] == [(123, 0, 0)] * 3  # the next row read: time 0, held
 
 
 # ---- the Reals, bit for bit -----------------------------------------------------------
+
 
 def documented_reals(seg, n, cycle_time):
     """axisN.position, .velocity, .acceleration as the FMU computes its doubles (status.c,
@@ -127,9 +146,9 @@ def documented_reals(seg, n, cycle_time):
         if -(1 << 63) <= x < 1 << 63:
             return float(x) / float(D)
         c = x // D
-        return float(c) + float((x - c * D) // 3) / 2 ** 33
-    return (float(wrap32(whole)) + (P - whole * D) / D, counts(V) / cycle_time,
-            counts(A) / (cycle_time * cycle_time))
+        return float(c) + float((x - c * D) // 3) / 2**33
+
+    return (float(wrap32(whole)) + (P - whole * D) / D, counts(V) / cycle_time, counts(A) / (cycle_time * cycle_time))
 
 
 @FMI
@@ -137,9 +156,13 @@ def test_the_reals_of_every_axis_are_the_documented_doubles_bit_for_bit(fmi):
     """Four axes at once (the four lanes of pmd_commanded_reals' packed divisions), recorded in bulk
     and read by the getters: velocities and accelerations from 0 through 2^53 in U (rounded before
     the division) to beyond an int64 in U (whole counts plus fraction), both signs."""
-    rows = {0: (0, 0, MAX32, 0), 1: (5, 0xE0000000, 0x40000000, 0), 2: (-7, MAX32, MIN32, MIN32),
-            3: (MAX32, 0x12345678, 0xFEDCBA98, 0x9E3779B9)}
-    time = 11500                                        # axis 1's velocity passes 2^31/6 counts/cycle
+    rows = {
+        0: (0, 0, MAX32, 0),
+        1: (5, 0xE0000000, 0x40000000, 0),
+        2: (-7, MAX32, MIN32, MIN32),
+        3: (MAX32, 0x12345678, 0xFEDCBA98, 0x9E3779B9),
+    }
+    time = 11500  # axis 1's velocity passes 2^31/6 counts/cycle
     segments = {axis: Segment(*row) for axis, row in rows.items()}
     names = [f"axis{axis + 1}.{q}" for axis in rows for q in ("position", "velocity", "acceleration")]
     with pmdfmu.Chip(fmi_version=fmi) as chip:
@@ -152,8 +175,9 @@ def test_the_reals_of_every_axis_are_the_documented_doubles_bit_for_bit(fmi):
             for k, q in enumerate(("position", "velocity", "acceleration")):
                 column = rec[f"axis{axis + 1}.{q}"]
                 assert column.tobytes() == expected[:, k].tobytes(), (axis, q)
-            assert [chip.get(f"axis{axis + 1}.{q}") for q in ("position", "velocity", "acceleration")] == \
-                list(expected[-1])
+            assert [chip.get(f"axis{axis + 1}.{q}") for q in ("position", "velocity", "acceleration")] == list(
+                expected[-1]
+            )
         velocity = abs(segments[0].exact(time - 2)[1])
         assert velocity >= 1 << 63 and any(abs(s.exact(0)[1]) < 1 << 53 for s in segments.values())
 
@@ -165,7 +189,7 @@ def test_the_reals_past_an_int64_in_u_are_the_documented_doubles_bit_for_bit(fmi
     rows = {0: (0, 0, 0, MAX32), 1: (0, 0, 0, MIN32), 2: (1, 0x10000, 0, 0), 3: (-1, 0, 0x10000, 1)}
     segments = {axis: Segment(*row) for axis, row in rows.items()}
     names = [f"axis{axis + 1}.{q}" for axis in rows for q in ("position", "velocity", "acceleration")]
-    start = 10 ** 9
+    start = 10**9
     with pmdfmu.Chip(fmi_version=fmi) as chip:
         cycle_time = chip.cycle_time
         load_external_profile(chip, {axis: [row + (LONGEST,), (0, 0, 0, 0, 0)] for axis, row in rows.items()})
@@ -192,10 +216,12 @@ def test_every_form_of_the_reals_is_the_scalar_expressions(tmp_path):
     program.write_text(REALS_FORMS)
     for flags in ([], ["-DPMD_PORTABLE_LANES"]):
         exe = tmp_path / f"reals{len(flags)}"
-        subprocess.run(["cc", "-std=gnu99", "-O2", "-Wall", "-Werror", *flags, f"-I{tmp_path}", str(program),
-                        "-o", str(exe)], check=True)
+        subprocess.run(
+            ["cc", "-std=gnu99", "-O2", "-Wall", "-Werror", *flags, f"-I{tmp_path}", str(program), "-o", str(exe)],
+            check=True,
+        )
         out = subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout
-        assert out.startswith("differ 0 of ") and int(out.split()[3]) > 10 ** 6, out
+        assert out.startswith("differ 0 of ") and int(out.split()[3]) > 10**6, out
 
 
 # status.c included whole: its static forms are this program's; the reference is 0505d1e's pmd_fixed_double
@@ -280,7 +306,7 @@ EXTREMES = {
 }
 LONGEST = 0xFFFFFFFF
 # cycles (integration steps n) at which a coarse doStep stops and a few cycles are recorded
-CHECKPOINTS = [1, 1000, 65536, 10 ** 6, 123_456_789, 1 << 31, 3_000_000_000, LONGEST - 70_000, LONGEST - 3]
+CHECKPOINTS = [1, 1000, 65536, 10**6, 123_456_789, 1 << 31, 3_000_000_000, LONGEST - 70_000, LONGEST - 3]
 
 
 @FMI
@@ -295,7 +321,7 @@ def test_extreme_segments_stay_exact_for_2_to_the_32_minus_1_cycles(fmi, extreme
         cycle_time = chip.cycle_time
         start_segment(chip, row + (LONGEST,), then=(-99, 0, 0, 0, 0))
         assert recorded(chip, 1) == [seg.registers(0)]
-        n = 0                                               # integration steps done
+        n = 0  # integration steps done
         for checkpoint in CHECKPOINTS:
             chip.run(checkpoint - n - 1)
             n = checkpoint - 1
@@ -307,8 +333,8 @@ def test_extreme_segments_stay_exact_for_2_to_the_32_minus_1_cycles(fmi, extreme
             assert chip.get("axis1.velocity") == pytest.approx(float(velocity), rel=1e-12)
             assert chip.get("axis1.acceleration") == pytest.approx(float(acceleration), rel=1e-12)
             assert field_ex(chip.axis(0).GetActivityStatus(), "PMDActivityProfileSegment") == 1
-        assert n == LONGEST - 1                             # the segment's last cycle
-        assert recorded(chip, 2) == [(-99, 0, 0)] * 2       # then the time-0 row: halted there
+        assert n == LONGEST - 1  # the segment's last cycle
+        assert recorded(chip, 2) == [(-99, 0, 0)] * 2  # then the time-0 row: halted there
         assert field_ex(chip.axis(0).GetActivityStatus(), "PMDActivityProfileSegment") == 0
 
 
@@ -330,13 +356,18 @@ def test_extreme_tables_in_coarse_steps_equal_cycle_by_cycle_and_the_exact_model
     for axis in (0, 1):
         rows = []
         for _ in range(12):
-            row = [rng.randrange(-(1 << 31), 1 << 31), extreme_word(rng), extreme_word(rng), extreme_word(rng),
-                   rng.choice([1, 2, rng.randrange(3, 3000)])]
-            if rng.random() < 0.25:                         # velocity exactly 0 after m cycles: an event
+            row = [
+                rng.randrange(-(1 << 31), 1 << 31),
+                extreme_word(rng),
+                extreme_word(rng),
+                extreme_word(rng),
+                rng.choice([1, 2, rng.randrange(3, 3000)]),
+            ]
+            if rng.random() < 0.25:  # velocity exactly 0 after m cycles: an event
                 m, a = rng.randrange(2, 1000), rng.choice([-1, 1]) * rng.randrange(1, 1 << 15)
                 row[1:4] = [-m * a & 0xFFFFFFFF, a & 0xFFFFFFFF, 0]
             rows.append(tuple(row))
-        long = rng.randrange(len(rows))                     # one long row: past where 64 bits in one unit wrapped
+        long = rng.randrange(len(rows))  # one long row: past where 64 bits in one unit wrapped
         rows[long] = rows[long][:4] + (rng.randrange(12_000, 40_000),)
         tables[axis] = rows + [(rng.randrange(-100, 100), 0, 0, 0, 0)]
     total = sum(r[4] for r in tables[0] + tables[1]) + 10
@@ -356,12 +387,13 @@ def test_extreme_tables_in_coarse_steps_equal_cycle_by_cycle_and_the_exact_model
                 got = [tuple(int(rec[f"axis{axis + 1}.{q}"][i]) for q in OUT) for i in range(n)]
                 assert got == models[axis].run(n), (axis, done)
             assert [coarse.get(name) for name in outputs] == [int(rec[name][-1]) for name in outputs]
-            for chip in (fine, coarse):                     # events are sticky: judge each chunk alone
+            for chip in (fine, coarse):  # events are sticky: judge each chunk alone
                 for axis in (0, 1):
                     chip.axis(axis).ResetEventStatus(0)
 
 
 # ---- electronic gear ---------------------------------------------------------------
+
 
 def gear_model(masters, ratio):
     """The slave's registers each cycle: it moves by exactly wrap32(delta) * ratio / 2^16
@@ -398,11 +430,12 @@ def test_gear_moves_the_slave_exactly_at_any_ratio_and_master_jump(fmi, source, 
         rec = chip.run(len(positions) + 5, record=["axis1.commandedPosition"] + names(1))
         masters = [int(x) for x in rec["axis1.commandedPosition"]]
         got = [tuple(int(rec[n][i]) for n in names(1)) for i in range(len(masters))]
-    assert masters[:len(positions)] == [wrap32(p) for p in positions]
+    assert masters[: len(positions)] == [wrap32(p) for p in positions]
     assert got == gear_model(masters, ratio)
 
 
 # ---- a velocity beyond 16.16 handed to another mode ----------------------------------
+
 
 @FMI
 def test_a_velocity_beyond_the_16_16_range_hands_over_to_velocity_contouring(fmi):
@@ -414,7 +447,7 @@ def test_a_velocity_beyond_the_16_16_range_hands_over_to_velocity_contouring(fmi
         chip.run(1 << 31)
         ax = chip.axis(0)
         before = chip.get("axis1.velocity")
-        assert before > 2.0 ** 59 / chip.cycle_time
+        assert before > 2.0**59 / chip.cycle_time
         ax.SetProfileMode(PMDVelocityContouringProfile)
         ax.SetVelocity(0)
         ax.SetAcceleration(MAX32)

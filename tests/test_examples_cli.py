@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The README's examples and the pmdfmu command, run as a user would."""
+
 import csv
 import subprocess
 import sys
@@ -33,13 +34,21 @@ def test_circle_example_ends_at_rest():
 
 
 def test_run_a_segment_table_writes_csv_and_plot(tmp_path, capsys):
-    assert main(["run", str(EXAMPLES / "square.csv"), "--csv", str(tmp_path / "o.csv"),
-                 "--plot", str(tmp_path / "o.png")]) == 0
+    assert (
+        main(["run", str(EXAMPLES / "square.csv"), "--csv", str(tmp_path / "o.csv"), "--plot", str(tmp_path / "o.png")])
+        == 0
+    )
     rows = list(csv.DictReader(open(tmp_path / "o.csv")))
-    assert len(rows) == 2001                                   # 4 legs of 500 cycles, then the stop row
+    assert len(rows) == 2001  # 4 legs of 500 cycles, then the stop row
     assert [int(rows[i]["axis1.commandedPosition"]) for i in (0, 499, 500, 1000, 2000)] == [0, 998, 1000, 1000, 0]
-    assert [int(rows[i]["axis2.commandedPosition"]) for i in (0, 500, 999, 1000, 1500, 2000)] == \
-        [0, 0, 998, 1000, 1000, 0]
+    assert [int(rows[i]["axis2.commandedPosition"]) for i in (0, 500, 999, 1000, 1500, 2000)] == [
+        0,
+        0,
+        998,
+        1000,
+        1000,
+        0,
+    ]
     assert (tmp_path / "o.png").stat().st_size > 10_000
     assert "axis 1: ended at position 0" in capsys.readouterr().out
 

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """External profile mode (seed 000) against the exact reference model."""
+
 import random
 from fractions import Fraction
 from math import floor
@@ -7,9 +8,18 @@ from math import floor
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDAbruptStop, PMDActivityInMotionMask, PMDBufferFunctionPosition, PMDBufferFunctionVelocity,
-                    PMDError, PMDEventMotionCompleteMask, PMDExternalProfile, PMDSmoothStop, PMDTrapezoidalProfile,
-                    field_ex)
+from pmdfmu import (
+    PMDAbruptStop,
+    PMDActivityInMotionMask,
+    PMDBufferFunctionPosition,
+    PMDBufferFunctionVelocity,
+    PMDError,
+    PMDEventMotionCompleteMask,
+    PMDExternalProfile,
+    PMDSmoothStop,
+    PMDTrapezoidalProfile,
+    field_ex,
+)
 from reference import ExternalProfile, wrap32
 
 OUTPUTS = ["axis{n}.commandedPosition", "axis{n}.commandedVelocity", "axis{n}.commandedAcceleration"]
@@ -101,10 +111,10 @@ def test_time_0_stops_holding_that_rows_position(chip):
     assert out[:4] == ExternalProfile(rows).run(4)
     assert out[4:] == [(1234, 0, 0)] * 6
     ax = chip.axis(0)
-    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0     # halted (seed 1.6)
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0  # halted (seed 1.6)
     assert ax.GetActivityStatus() & PMDActivityInMotionMask == 0
     assert ax.GetEventStatus() & PMDEventMotionCompleteMask
-    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == PMDExternalProfile   # still external
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == PMDExternalProfile  # still external
 
 
 def test_abrupt_stop_holds_position_and_smooth_stop_changes_nothing(chip):
@@ -118,12 +128,12 @@ def test_abrupt_stop_holds_position_and_smooth_stop_changes_nothing(chip):
     ax.Update()
     assert ax.GetStopMode() == 0
     before = record(chip, 20)
-    assert before == model.run(20)                      # seed 1.5: no change in motion
+    assert before == model.run(20)  # seed 1.5: no change in motion
     ax.SetStopMode(PMDAbruptStop)
     ax.Update()
     held = before[-1][0]
     assert held > 0
-    assert record(chip, 5) == [(held, 0, 0)] * 5        # velocity zeroed at once, position held
+    assert record(chip, 5) == [(held, 0, 0)] * 5  # velocity zeroed at once, position held
     assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
 
 
@@ -134,7 +144,7 @@ def test_a_profile_with_jerk_keeps_its_exact_fraction(chip):
     start(chip, 0)
     chip.run(4000)
     n = 3999
-    exact = Fraction(n ** 3, 6 << 32)
+    exact = Fraction(n**3, 6 << 32)
     assert chip.get("axis1.position") == pytest.approx(float(exact), rel=1e-12)
     assert chip.axis(0).GetCommandedPosition() == floor(exact)
     assert chip.axis(0).GetCommandedVelocity() == floor(Fraction(n * n, 2 << 32) * 65536)
@@ -154,7 +164,7 @@ def test_start_is_refused_with_0x04_and_the_mode_unchanged(chip, case):
     with pytest.raises(PMDError) as e:
         ax.Update()
     assert e.value.code == 0x04
-    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == PMDTrapezoidalProfile    # still active
+    assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == PMDTrapezoidalProfile  # still active
     assert field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
     assert ax.GetEventStatus() & pmdfmu.PMDEventInstructionErrorMask
 
@@ -183,8 +193,16 @@ def test_streaming_refill_following_the_read_index_for_100000_cycles(chip):
     entry free so that read == write always means empty.)"""
     rng = random.Random(3)
     segments = 25_000
-    table = [(rng.randrange(-10_000, 10_000), rng.randrange(-0x40000, 0x40000), rng.randrange(-0x800, 0x800),
-              rng.randrange(-(1 << 20), 1 << 20), 4) for _ in range(segments)] + [(7, 0, 0, 0, 0)]
+    table = [
+        (
+            rng.randrange(-10_000, 10_000),
+            rng.randrange(-0x40000, 0x40000),
+            rng.randrange(-0x800, 0x800),
+            rng.randrange(-(1 << 20), 1 << 20),
+            4,
+        )
+        for _ in range(segments)
+    ] + [(7, 0, 0, 0, 0)]
     buffer_length = 64
     ax = chip.axis(0)
     for variable in range(5):
@@ -211,7 +229,7 @@ def test_streaming_refill_following_the_read_index_for_100000_cycles(chip):
     start(chip, 0)
     got = []
     while len(got) < 4 * segments + 10:
-        got += record(chip, 64)                 # 16 segments per 64 cycles; the buffer holds 63
+        got += record(chip, 64)  # 16 segments per 64 cycles; the buffer holds 63
         refill()
     assert len(got) >= 100_000
     assert got == ExternalProfile(table).run(len(got))
@@ -223,17 +241,17 @@ def test_no_drift_over_10_8_cycles(chip):
     a cubic's exact Taylor step, so after n cycles P = P0 + V0 n + A0 n^2/2 + J n^3/6
     exactly; the position register wraps at 32 bits like the chip's."""
     p0, v0, a0, j = 12345, 0x12345, -0x3, 150
-    rows = [(p0, v0, a0, j, 10 ** 8 + 1), (0, 0, 0, 0, 0)]
+    rows = [(p0, v0, a0, j, 10**8 + 1), (0, 0, 0, 0, 0)]
     assign(chip, 0, rows, range(5))
     start(chip, 0)
-    chip.run(10 ** 8)
-    n = 10 ** 8 - 1                       # the first cycle reads, the rest integrate
+    chip.run(10**8)
+    n = 10**8 - 1  # the first cycle reads, the rest integrate
     V0, A0, J = Fraction(v0, 1 << 16), Fraction(a0, 1 << 16), Fraction(j, 1 << 32)
-    p = p0 + V0 * n + A0 * n ** 2 / 2 + J * n ** 3 / 6
-    v = V0 + A0 * n + J * n ** 2 / 2
+    p = p0 + V0 * n + A0 * n**2 / 2 + J * n**3 / 6
+    v = V0 + A0 * n + J * n**2 / 2
     a = A0 + J * n
     ax = chip.axis(0)
     assert ax.GetCommandedPosition() == wrap32(floor(p))
     assert ax.GetCommandedVelocity() == wrap32(floor(v * 65536))
     assert ax.GetCommandedAcceleration() == wrap32(floor(a * 65536))
-    assert ax.GetTime() == 10 ** 8 - 1
+    assert ax.GetTime() == 10**8 - 1

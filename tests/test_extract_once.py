@@ -4,6 +4,7 @@ file shares its folder, model description and FMI prototypes; a rewritten file i
 extracted anew; instances of the shared folder give exactly what an instance of a
 fresh extract gives; closing one leaves the others working; the folder goes when
 the interpreter exits."""
+
 import os
 import shutil
 import subprocess
@@ -19,9 +20,16 @@ import pmdfmu
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SCRIPT = EXAMPLES / "two_axis.script"
-COLUMNS = ["axis1.commandedPosition", "axis2.commandedVelocity", "axis1.position", "axis2.velocity",
-           "axis1.activityStatus", "axis2.eventStatus", "host.interrupt"]
-CYCLES = 3200          # past the script's last command (cycle 3000)
+COLUMNS = [
+    "axis1.commandedPosition",
+    "axis2.commandedVelocity",
+    "axis1.position",
+    "axis2.velocity",
+    "axis1.activityStatus",
+    "axis2.eventStatus",
+    "host.interrupt",
+]
+CYCLES = 3200  # past the script's last command (cycle 3000)
 
 
 def folders(root: Path):
@@ -59,7 +67,7 @@ def test_a_rewritten_fmu_file_is_extracted_anew(version, tmp_path):
     old = pmdfmu.Chip(version, fmu)
     try:
         assert not (Path(old._unzipdir) / "resources" / "marker.txt").exists()
-        with zipfile.ZipFile(fmu, "a") as z:            # the same path, another file
+        with zipfile.ZipFile(fmu, "a") as z:  # the same path, another file
             z.writestr("resources/marker.txt", "rewritten")
         with pmdfmu.Chip(version, fmu) as new:
             assert new._unzipdir != old._unzipdir
@@ -67,7 +75,7 @@ def test_a_rewritten_fmu_file_is_extracted_anew(version, tmp_path):
             assert new.model_description is not old.model_description
             with pmdfmu.Chip(version, fmu) as again:
                 assert again._unzipdir == new._unzipdir
-            assert np.array_equal(run(new)[0], run(old)[0])      # the instance of the old file still runs
+            assert np.array_equal(run(new)[0], run(old)[0])  # the instance of the old file still runs
     finally:
         old.close()
 
@@ -102,7 +110,7 @@ def test_closing_one_instance_leaves_the_others_working(version, tmp_path):
         expected = run(reference)
     a, b = pmdfmu.Chip(version, fmu, script=SCRIPT), pmdfmu.Chip(version, fmu, script=SCRIPT)
     a.close()
-    a.close()                                          # twice: nothing more happens
+    a.close()  # twice: nothing more happens
     try:
         assert Path(b._unzipdir).is_dir()
         assert run(b)[0].tobytes() == expected[0].tobytes() and b.get_state() == expected[1]
@@ -116,12 +124,12 @@ def test_closing_one_instance_leaves_the_others_working(version, tmp_path):
 def test_chips_made_in_threads_at_once_share_one_extract(tmp_path):
     fmu = copy_of(2, tmp_path)
     chips, errors = [], []
-    cwd = os.getcwd()           # FMPy's constructor changes it for a moment: one at a time, it comes back
+    cwd = os.getcwd()  # FMPy's constructor changes it for a moment: one at a time, it comes back
 
     def make():
         try:
             chips.append(pmdfmu.Chip(2, fmu))
-        except Exception as e:              # pragma: no cover - reported below
+        except Exception as e:  # pragma: no cover - reported below
             errors.append(e)
 
     threads = [threading.Thread(target=make) for _ in range(6)]
@@ -140,13 +148,15 @@ def test_chips_made_in_threads_at_once_share_one_extract(tmp_path):
 
 
 def test_the_extracted_folders_are_removed_when_the_interpreter_exits(tmp_path):
-    code = ("import pathlib, pmdfmu\n"
-            "a = pmdfmu.Chip(2)\n"
-            "b = pmdfmu.Chip(3)\n"
-            "a.close()\n"
-            "print(a._unzipdir)\n"
-            "print(b._unzipdir)\n"
-            "assert pathlib.Path(a._unzipdir).is_dir()\n")       # closing does not remove it: b's is open
+    code = (
+        "import pathlib, pmdfmu\n"
+        "a = pmdfmu.Chip(2)\n"
+        "b = pmdfmu.Chip(3)\n"
+        "a.close()\n"
+        "print(a._unzipdir)\n"
+        "print(b._unzipdir)\n"
+        "assert pathlib.Path(a._unzipdir).is_dir()\n"
+    )  # closing does not remove it: b's is open
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     unzipped = [Path(line) for line in out.stdout.split()]
     assert len(unzipped) == 2 and unzipped[0].parent == unzipped[1].parent

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Coarse doSteps fast-forward through external-profile segments in closed form;
 the result is bit-identical to stepping cycle by cycle."""
+
 import random
 
 import pmdfmu
@@ -9,8 +10,13 @@ from pmdfmu.profile import load_external_profile, start_external_profile
 from reference import wrap32
 from scenarios import REAL, load_random_profiles
 
-OUT = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
-                                                      "commandedAcceleration", "activityStatus", "eventStatus")]
+OUT = [
+    f"axis{n}.{q}"
+    for n in range(1, 5)
+    for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus", "eventStatus")
+]
+
+
 def snapshot(chip):
     return [chip.get(n) for n in OUT + REAL + ["chipTime"]]
 
@@ -27,11 +33,11 @@ def test_coarse_steps_equal_cycle_by_cycle_at_every_step_boundary():
             for _ in range(12):
                 n = rng.randrange(1, 4000)
                 rec = fine.run(n, record=OUT)
-                coarse.run(n)                               # one doStep: fast-forwards
+                coarse.run(n)  # one doStep: fast-forwards
                 total += n
-                assert snapshot(coarse)[:len(OUT)] == [int(rec[name][-1]) for name in OUT]
+                assert snapshot(coarse)[: len(OUT)] == [int(rec[name][-1]) for name in OUT]
                 assert snapshot(coarse) == snapshot(fine)
-                for chip in (fine, coarse):                 # events are sticky: judge each chunk alone
+                for chip in (fine, coarse):  # events are sticky: judge each chunk alone
                     for axis in range(4):
                         chip.axis(axis).ResetEventStatus(0)
 
@@ -43,10 +49,10 @@ def test_a_billion_cycles_of_a_100_segment_table_take_one_coarse_step_and_stay_e
         ax = chip.axis(0)
         load_external_profile(chip, {0: segments})
         start_external_profile(chip, [0])
-        chip.run(10 ** 9 - 1)
+        chip.run(10**9 - 1)
         # segment 99 (velocity 1 count/cycle from position 0) has run 9_999_999 of its cycles
         assert ax.GetCommandedPosition() == wrap32(9_999_999 - 1)
-        assert ax.GetTime() == 10 ** 9 - 2
+        assert ax.GetTime() == 10**9 - 2
         chip.run(2)
         assert ax.GetCommandedPosition() == 7 and field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment") == 0
 
@@ -68,12 +74,18 @@ def test_idle_axes_settle_at_the_same_cycle_in_coarse_steps():
                 bits = []
                 for _ in range(20):
                     chip.run(97)
-                    bits.append((ax.GetActivityStatus() & PMDActivityAxisSettledMask,
-                                 ax.GetEventStatus() & PMDEventMotionCompleteMask))
+                    bits.append(
+                        (
+                            ax.GetActivityStatus() & PMDActivityAxisSettledMask,
+                            ax.GetEventStatus() & PMDEventMotionCompleteMask,
+                        )
+                    )
             else:
                 rec = chip.run(97 * 20, record=["axis1.activityStatus", "axis1.eventStatus"])
-                bits = [(int(a) & PMDActivityAxisSettledMask, int(e) & PMDEventMotionCompleteMask)
-                        for a, e in zip(rec["axis1.activityStatus"][96::97], rec["axis1.eventStatus"][96::97])]
+                bits = [
+                    (int(a) & PMDActivityAxisSettledMask, int(e) & PMDEventMotionCompleteMask)
+                    for a, e in zip(rec["axis1.activityStatus"][96::97], rec["axis1.eventStatus"][96::97])
+                ]
             seen.append(bits)
     assert seen[0] == seen[1] and (PMDActivityAxisSettledMask, PMDEventMotionCompleteMask) in seen[0]
     assert seen[0][0] == (0, 0)

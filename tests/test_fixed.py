@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Seed 000, 1.7 and seed 001: the fixed-point examples; the core's floor division."""
+
 import shutil
 import subprocess
 import sys
@@ -52,7 +53,7 @@ def test_out_of_range_raises_instead_of_clamping():
 
 
 def test_words_outside_32_bits_are_refused_not_masked():
-    for word in (2**32, -2**31 - 1, 2**40 + 5):
+    for word in (2**32, -(2**31) - 1, 2**40 + 5):
         with pytest.raises(ValueError, match=f"{word} .*-2147483648 .. 4294967295"):
             from_fixed(word, "16.16")
         with pytest.raises(ValueError, match=str(word)):
@@ -61,8 +62,8 @@ def test_words_outside_32_bits_are_refused_not_masked():
         from_fixed(2.0, "32.0")
     # both readings of the same 32 bits are the same word
     assert from_fixed(-1, "16.16") == from_fixed(0xFFFFFFFF, "16.16") == Fraction(-1, 65536)
-    assert from_fixed(-2**31, "32.0") == from_fixed(0x80000000, "32.0") == -2**31
-    assert signed(-2**31) == signed(0x80000000) == -2**31 and signed(2**31 - 1) == 2**31 - 1
+    assert from_fixed(-(2**31), "32.0") == from_fixed(0x80000000, "32.0") == -(2**31)
+    assert signed(-(2**31)) == signed(0x80000000) == -(2**31) and signed(2**31 - 1) == 2**31 - 1
 
 
 def test_to_word_takes_either_reading_of_the_bits_and_nothing_wider():
@@ -100,7 +101,18 @@ def test_the_cycles_floor_division_equals_cs_signed_division_floored(tmp_path):
     exe, generated = tmp_path / "floor_division", tmp_path / "generated"
     # the chip's headers name tables generated at build time (log_categories.h)
     subprocess.run([sys.executable, str(root / "modelDescription" / "generate.py"), str(generated)], check=True)
-    subprocess.run(["cc", "-O1", "-std=c99", f"-I{root / 'fmu_src' / 'chip'}", f"-I{generated}",
-                    str(root / "tests" / "c" / "floor_division.c"), "-o", str(exe)], check=True)
+    subprocess.run(
+        [
+            "cc",
+            "-O1",
+            "-std=c99",
+            f"-I{root / 'fmu_src' / 'chip'}",
+            f"-I{generated}",
+            str(root / "tests" / "c" / "floor_division.c"),
+            "-o",
+            str(exe),
+        ],
+        check=True,
+    )
     out = subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout
     assert out.startswith("agree ") and int(out.split()[1]) > 10_000_000

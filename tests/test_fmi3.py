@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """FMI 3.0 Co-Simulation: the same core, names and timing as FMI 2."""
+
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
@@ -35,8 +36,8 @@ def test_native_types_arrays_and_the_fixed_internal_step():
     assert v["time"].causality == "independent"
     md2 = read_model_description(str(pmdfmu.default_fmu(2)))
     names2 = {x.name: x.valueReference for x in md2.modelVariables}
-    for name, x in v.items():                       # same names and value references; arrays at element 1
-        if x.type != "Binary":                      # record.data exists in FMI 3 only
+    for name, x in v.items():  # same names and value references; arrays at element 1
+        if x.type != "Binary":  # record.data exists in FMI 3 only
             assert names2.get(name, names2.get(name + "[1]")) == x.valueReference
 
 
@@ -58,7 +59,7 @@ def test_fmu_state_round_trip_through_fmi3():
         chip.set_state(saved)
         assert np.array_equal(chip.run(600, record=BUSY_OUTPUTS), first)
         with pytest.raises(FMICallException):
-            chip.fmu.deserializeFMUState(saved[:-3])              # get_state is the FMU's own bytes
+            chip.fmu.deserializeFMUState(saved[:-3])  # get_state is the FMU's own bytes
         assert any("refused" in m.message for m in chip.messages)
 
 
@@ -66,18 +67,23 @@ def test_bad_fmi3_calls_are_errors_with_messages():
     with pmdfmu.Chip(fmi_version=3) as chip:
         vr = chip.variables["axis1.activityStatus"].valueReference
         with pytest.raises(FMICallException):
-            chip.fmu.getInt32([vr])                                   # it is a UInt16
+            chip.fmu.getInt32([vr])  # it is a UInt16
         with pytest.raises(FMICallException):
             chip.fmu.getUInt16([chip.variables["host.reply"].valueReference], nValues=3)
         with pytest.raises(FMICallException):
             chip.fmu.getInt8([vr])
         with pytest.raises(FMICallException):
-            chip.fmu.setUInt16([vr], [1])                             # an output
+            chip.fmu.setUInt16([vr], [1])  # an output
         with pytest.raises(FMICallException):
             chip.fmu.doStep(0.0, -1.0)
         text = " ".join(m.message for m in chip.messages)
-        for expected in ("is a UInt16, not Int32", "nValues is 3 but the value references hold 64",
-                         "is a UInt16, not Int8", "is an output", "fmi3DoStep"):
+        for expected in (
+            "is a UInt16, not Int32",
+            "nValues is 3 but the value references hold 64",
+            "is a UInt16, not Int8",
+            "is an output",
+            "fmi3DoStep",
+        ):
             assert expected in text
         chip.run(2)
         assert chip.get("chipTime") == 1
@@ -87,7 +93,7 @@ def test_event_mode_and_model_exchange_are_refused():
     md = read_model_description(str(FMU3))
     d = extract(str(FMU3))
     fmu = FMU3Slave(guid=md.guid, unzipDirectory=d, modelIdentifier="PMDMotionProcessor", instanceName="x")
-    with pytest.raises(Exception, match="Failed to instantiate"):     # FMPy's own Exception for a NULL instance
+    with pytest.raises(Exception, match="Failed to instantiate"):  # FMPy's own Exception for a NULL instance
         fmu.instantiate(eventModeUsed=True)
     fmu = FMU3Slave(guid="{0}", unzipDirectory=d, modelIdentifier="PMDMotionProcessor", instanceName="x")
     with pytest.raises(Exception, match="Failed to instantiate"):
@@ -99,8 +105,12 @@ def test_every_fmi3_function_is_exported_and_nothing_else(tmp_path):
     if not shutil.which("nm"):
         pytest.skip("nm not installed")
     zipfile.ZipFile(FMU3).extract("binaries/x86_64-linux/PMDMotionProcessor.so", tmp_path)
-    out = subprocess.run(["nm", "-D", "--defined-only", str(tmp_path / "binaries/x86_64-linux/PMDMotionProcessor.so")],
-                         capture_output=True, text=True, check=True).stdout
+    out = subprocess.run(
+        ["nm", "-D", "--defined-only", str(tmp_path / "binaries/x86_64-linux/PMDMotionProcessor.so")],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
     symbols = {line.split()[-1] for line in out.splitlines() if line.strip()}
     header = (pmdfmu.chip.Path(__import__("fmpy").__file__).parent / "c-code" / "fmi3Functions.h").read_text()
     declared = set(__import__("re").findall(r"FMI3_Export fmi3\w+TYPE\s+(fmi3\w+);", header))

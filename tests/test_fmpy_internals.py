@@ -4,6 +4,7 @@ functions' prototypes in _loadFunctions() into _functions (chip._SharedPrototype
 prototypes of the FMU file's first slave), and keep the loaded library in .dll (recording.extension
 looks the FMU's extension functions up there). pyproject.toml pins fmpy below 0.4; this fails with a
 clear message when a version changes those names."""
+
 import inspect
 
 import fmpy
@@ -15,15 +16,18 @@ import pmdfmu
 
 
 def changed(what: str) -> str:
-    return (f"FMPy {fmpy.__version__} changed {what}, which pmdfmu's harness relies on for speed: pin the "
-            "last FMPy that has it (pyproject.toml) or update python/pmdfmu/chip.py (_SharedPrototypes)")
+    return (
+        f"FMPy {fmpy.__version__} changed {what}, which pmdfmu's harness relies on for speed: pin the "
+        "last FMPy that has it (pyproject.toml) or update python/pmdfmu/chip.py (_SharedPrototypes)"
+    )
 
 
 @pytest.mark.parametrize("slave", [FMU2Slave, FMU3Slave])
 def test_fmpy_still_declares_its_prototypes_in_load_functions(slave):
     constructors = [inspect.getsource(c.__init__) for c in slave.__mro__ if "__init__" in vars(c) and c is not object]
-    assert hasattr(slave, "_loadFunctions") and any("self._loadFunctions()" in source for source in constructors), \
+    assert hasattr(slave, "_loadFunctions") and any("self._loadFunctions()" in source for source in constructors), (
         changed(f"{slave.__name__}._loadFunctions")
+    )
 
 
 @pytest.mark.parametrize("version", [2, 3])
@@ -43,14 +47,19 @@ def test_a_call_that_needs_a_missing_extra_says_which_to_install(monkeypatch, tm
     import sys
     from pmdfmu import extras
     from pmdfmu.sweep import Case
-    monkeypatch.setitem(sys.modules, "distributed", None)      # import distributed raises ImportError
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed raises ImportError
     monkeypatch.setitem(sys.modules, "matplotlib", None)
-    with pytest.raises(ImportError, match=r"a sweep on a local cluster .* needs distributed, which comes with "
-                                          r"pmdfmu's 'sweep' extra: pip install 'pmdfmu\[sweep\]'"):
+    with pytest.raises(
+        ImportError,
+        match=r"a sweep on a local cluster .* needs distributed, which comes with "
+        r"pmdfmu's 'sweep' extra: pip install 'pmdfmu\[sweep\]'",
+    ):
         pmdfmu.sweep([Case("c")])
     with pytest.raises(ImportError, match=r"pip install 'pmdfmu\[plot\]'"):
         extras.pyplot("a plot")
     script = tmp_path / "s.pmd"
-    script.write_text("@0\nSetPosition(Axis1, 100);\nSetVelocity(Axis1, 0x10000);\nSetAcceleration(Axis1, 0x1000);\n"
-                      "Update(Axis1);\n")
+    script.write_text(
+        "@0\nSetPosition(Axis1, 100);\nSetVelocity(Axis1, 0x10000);\nSetAcceleration(Axis1, 0x1000);\nUpdate(Axis1);\n"
+    )
     assert pmdfmu.sweep([Case("c", script=str(script))], scheduler="serial").rows[0]["status"] == "ok"

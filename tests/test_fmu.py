@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The FMU as a co-simulation tool sees it (CONTRACT 2)."""
+
 import re
 import zipfile
 
@@ -24,14 +25,19 @@ def test_the_fmu_holds_binary_description_sources_and_tables():
     names = zipfile.ZipFile(FMU).namelist()
     assert "modelDescription.xml" in names
     assert "binaries/linux64/PMDMotionProcessor.so" in names
-    for f in ("sources/fmi2.c", "sources/profile.c", "sources/variables.c", "sources/fmi2Functions.h",
-              "resources/commands.csv"):
+    for f in (
+        "sources/fmi2.c",
+        "sources/profile.c",
+        "sources/variables.c",
+        "sources/fmi2Functions.h",
+        "resources/commands.csv",
+    ):
         assert f in names
 
 
 def test_model_description_and_c_value_references_agree_with_the_table():
     everything = {v.name: v for v in tables.read_variables(TABLES / "variables.csv")}
-    table = {n: v for n, v in everything.items() if v.type != "Binary"}      # Binary: FMI 3 only
+    table = {n: v for n, v in everything.items() if v.type != "Binary"}  # Binary: FMI 3 only
     md = read_model_description(str(FMU))
     xml = {v.name: v for v in md.modelVariables}
     assert set(xml) == set(table)
@@ -40,10 +46,12 @@ def test_model_description_and_c_value_references_agree_with_the_table():
         assert (x.valueReference, x.type, x.causality, x.variability) == (v.vr, v.type, v.causality, v.variability)
     source = zipfile.ZipFile(FMU).read("sources/variables.c").decode()
     c_rows = re.findall(r'\{(\d+), VAR_\w+, \d+, PMD_(\w+), PMD_(\w+), \d+, "([^"]+)"\}', source)
-    assert {name: (int(vr), t.capitalize(), c.lower()) for vr, t, c, name in c_rows} == \
-        {n: (v.vr, v.type, v.causality) for n, v in everything.items()}
-    guid = re.search(r'PMD_INSTANTIATION_TOKEN "([^"]+)"',
-                     zipfile.ZipFile(FMU).read("sources/variables.h").decode()).group(1)
+    assert {name: (int(vr), t.capitalize(), c.lower()) for vr, t, c, name in c_rows} == {
+        n: (v.vr, v.type, v.causality) for n, v in everything.items()
+    }
+    guid = re.search(
+        r'PMD_INSTANTIATION_TOKEN "([^"]+)"', zipfile.ZipFile(FMU).read("sources/variables.h").decode()
+    ).group(1)
     assert guid == md.guid
 
 
@@ -57,15 +65,38 @@ def test_contract_variable_names():
     md = read_model_description(str(FMU))
     names = {v.name for v in md.modelVariables}
     for n in range(1, 5):
-        for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "position", "velocity",
-                  "acceleration", "activityStatus", "eventStatus", "actualPosition", "positiveLimit",
-                  "negativeLimit", "home"):
+        for q in (
+            "commandedPosition",
+            "commandedVelocity",
+            "commandedAcceleration",
+            "position",
+            "velocity",
+            "acceleration",
+            "activityStatus",
+            "eventStatus",
+            "actualPosition",
+            "positiveLimit",
+            "negativeLimit",
+            "home",
+        ):
             assert f"axis{n}.{q}" in names
     for i in range(1, 65):
         assert {f"host.word[{i}]", f"host.reply[{i}]", f"memory.data[{i}]"} <= names
-    assert {"host.wordCount", "host.strobe", "host.ack", "host.replyCount", "host.error", "host.interrupt",
-            "memory.address", "memory.count", "memory.strobe", "chipTime", "cycleTime", "memorySize",
-            "loopback"} <= names
+    assert {
+        "host.wordCount",
+        "host.strobe",
+        "host.ack",
+        "host.replyCount",
+        "host.error",
+        "host.interrupt",
+        "memory.address",
+        "memory.count",
+        "memory.strobe",
+        "chipTime",
+        "cycleTime",
+        "memorySize",
+        "loopback",
+    } <= names
 
 
 def test_outputs_after_initialization_are_the_reset_values(chip):
@@ -79,19 +110,20 @@ def test_outputs_after_initialization_are_the_reset_values(chip):
     assert (chip.get("host.error"), chip.get("host.replyCount"), chip.get("host.interrupt")) == (0, 0, False)
 
 
-@pytest.mark.parametrize("cycle_time,h,steps", [(1e-3, 2.5e-4, 40), (1e-3, 2.5e-3, 8), (0.065, 0.065, 10),
-                                                (1e-4, 3.3e-4, 30)])
+@pytest.mark.parametrize(
+    "cycle_time,h,steps", [(1e-3, 2.5e-4, 40), (1e-3, 2.5e-3, 8), (0.065, 0.065, 10), (1e-4, 3.3e-4, 30)]
+)
 def test_do_step_runs_exactly_the_cycles_in_t_to_t_plus_h(cycle_time, h, steps):
     with pmdfmu.Chip(cycleTime=cycle_time) as chip:
         ax = chip.axis(0)
         ax.SetVelocity(0x10000)
         ax.SetAcceleration(0x10000)
-        ax.SetPosition(10 ** 6)
+        ax.SetPosition(10**6)
         ax.Update()
         t = 0.0
         for _ in range(steps):
             chip.fmu.doStep(t, h)
-            t += h                                  # accumulated like a master would
+            t += h  # accumulated like a master would
             cycles = int(np.ceil(round(t / cycle_time, 9)))
             assert chip.get("chipTime") == cycles - 1
             assert chip.get("axis1.commandedVelocity") == min(cycles, 1) * 0x10000
@@ -99,9 +131,9 @@ def test_do_step_runs_exactly_the_cycles_in_t_to_t_plus_h(cycle_time, h, steps):
 
 def test_real_outputs_are_in_counts_per_second(chip):
     ax = chip.axis(0)
-    ax.SetVelocity(0x28000)                         # 2.5 counts/cycle
-    ax.SetAcceleration(0x8000)                      # 0.5 counts/cycle^2
-    ax.SetPosition(10 ** 6)
+    ax.SetVelocity(0x28000)  # 2.5 counts/cycle
+    ax.SetAcceleration(0x8000)  # 0.5 counts/cycle^2
+    ax.SetPosition(10**6)
     ax.Update()
     chip.run(3)
     assert chip.get("axis1.velocity") == pytest.approx(1.5 / 1e-4)
@@ -162,11 +194,16 @@ def test_logging_categories_are_honoured():
 def test_only_fmi_functions_are_exported(tmp_path):
     import shutil
     import subprocess
+
     if not shutil.which("nm"):
         pytest.skip("nm not installed")
     zipfile.ZipFile(FMU).extract("binaries/linux64/PMDMotionProcessor.so", tmp_path)
-    out = subprocess.run(["nm", "-D", "--defined-only", str(tmp_path / "binaries/linux64/PMDMotionProcessor.so")],
-                         capture_output=True, text=True, check=True).stdout
+    out = subprocess.run(
+        ["nm", "-D", "--defined-only", str(tmp_path / "binaries/linux64/PMDMotionProcessor.so")],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
     symbols = {line.split()[-1] for line in out.splitlines() if line.strip()}
     # and the two documented extensions (record.data, which FMI 2 has no type for, and the memory the caller
     # lends for its rows; docs/performance.md)
@@ -174,19 +211,28 @@ def test_only_fmi_functions_are_exported(tmp_path):
     assert extensions <= symbols
     symbols -= extensions
     assert symbols and all(s.startswith("fmi2") for s in symbols)
-    assert len(symbols) == 34                                   # every FMI 2.0 Co-Simulation function
+    assert len(symbols) == 34  # every FMI 2.0 Co-Simulation function
 
 
 def test_fmpy_simulate_fmu_drives_a_move_through_the_host_port():
     """A scripted run with FMPy's own master: one host batch at t = 0."""
     from fmpy import simulate_fmu
+
     ops = {n: pmdfmu.COMMANDS[n].opcode for n in ("SetPosition", "SetVelocity", "SetAcceleration", "Update")}
     words = [ops["SetPosition"], 0, 1000, ops["SetVelocity"], 2, 0, ops["SetAcceleration"], 0, 0x4000, ops["Update"]]
     names = [f"host.word[{i + 1}]" for i in range(len(words))] + ["host.wordCount", "host.strobe"]
-    signals = np.array([tuple([t] + words + [len(words), 1]) for t in (0.0, 0.1)],
-                       dtype=[("time", np.float64)] + [(n, np.int32) for n in names])
-    result = simulate_fmu(str(FMU), stop_time=0.1, step_size=1e-3, output_interval=1e-3, input=signals,
-                          output=["axis1.commandedPosition", "axis1.activityStatus", "host.ack"])
+    signals = np.array(
+        [tuple([t] + words + [len(words), 1]) for t in (0.0, 0.1)],
+        dtype=[("time", np.float64)] + [(n, np.int32) for n in names],
+    )
+    result = simulate_fmu(
+        str(FMU),
+        stop_time=0.1,
+        step_size=1e-3,
+        output_interval=1e-3,
+        input=signals,
+        output=["axis1.commandedPosition", "axis1.activityStatus", "host.ack"],
+    )
     assert result["host.ack"][-1] == 1
     assert result["axis1.commandedPosition"][-1] == 1000
     assert not result["axis1.activityStatus"][-1] & pmdfmu.PMDActivityInMotionMask

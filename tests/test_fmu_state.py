@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """FMU state: get, set, free, serialize, deserialize."""
+
 import subprocess
 import sys
 import textwrap
@@ -11,6 +12,7 @@ from fmpy.fmi1 import FMICallException
 import pmdfmu
 from scenarios import BUSY_OUTPUTS, busy_chip
 
+
 def test_step_save_step_restore_step_gives_identical_outputs(chip):
     busy_chip(chip)
     chip.run(300)
@@ -19,7 +21,7 @@ def test_step_save_step_restore_step_gives_identical_outputs(chip):
     chip.set_state(saved)
     again = chip.run(900, record=BUSY_OUTPUTS)
     assert np.array_equal(first, again)
-    assert first["host.interrupt"][-1]                     # the run crossed the end of the profile
+    assert first["host.interrupt"][-1]  # the run crossed the end of the profile
 
 
 def test_restore_in_a_second_instance_and_a_second_process(chip, tmp_path):
@@ -34,8 +36,8 @@ def test_restore_in_a_second_instance_and_a_second_process(chip, tmp_path):
     script = textwrap.dedent(f"""
         import numpy as np, pmdfmu, sys
         with pmdfmu.Chip() as chip:
-            chip.set_state(open({str(tmp_path / 'state.bin')!r}, 'rb').read())
-            np.save({str(tmp_path / 'out.npy')!r}, chip.run(800, record={BUSY_OUTPUTS!r}))
+            chip.set_state(open({str(tmp_path / "state.bin")!r}, 'rb').read())
+            np.save({str(tmp_path / "out.npy")!r}, chip.run(800, record={BUSY_OUTPUTS!r}))
     """)
     subprocess.run([sys.executable, "-c", script], check=True)
     assert np.array_equal(np.load(tmp_path / "out.npy"), expected)
@@ -52,16 +54,17 @@ def test_a_state_with_another_memory_size_resizes_the_memory():
         assert ax.ReadBuffer(2) == 123
 
 
-@pytest.mark.parametrize("damage,reason", [
-    (lambda b: b[:-1], "truncated"),
-    (lambda b: b[:40], "shorter than a snapshot header"),
-    (lambda b: b[:300] + bytes([b[300] ^ 0x10]) + b[301:], "checksum"),
-    (lambda b: b"XXXXXXXX" + b[8:], "magic"),
-    (lambda b: b[:20] + b"{00000000-0000-0000-0000-000000000000}" + b[58:], "instantiation token"),
-    (lambda b: b"", "shorter"),
-])
-
-
+@pytest.mark.parametrize(
+    "damage,reason",
+    [
+        (lambda b: b[:-1], "truncated"),
+        (lambda b: b[:40], "shorter than a snapshot header"),
+        (lambda b: b[:300] + bytes([b[300] ^ 0x10]) + b[301:], "checksum"),
+        (lambda b: b"XXXXXXXX" + b[8:], "magic"),
+        (lambda b: b[:20] + b"{00000000-0000-0000-0000-000000000000}" + b[58:], "instantiation token"),
+        (lambda b: b"", "shorter"),
+    ],
+)
 def test_a_corrupted_or_foreign_state_is_refused_and_nothing_changes(chip, damage, reason):
     busy_chip(chip)
     chip.run(100)

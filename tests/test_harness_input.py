@@ -2,6 +2,7 @@
 """The harness never rounds or masks what the user passes: a value
 that does not fit is refused with a ValueError naming it, before anything reaches the
 FMU; the in-range boundary values do exactly what they say, through FMI 2 and FMI 3."""
+
 import re
 
 import pytest
@@ -38,10 +39,10 @@ def same_effect(chip, *calls):
 
 # ---- batch: host words are 16 bits ----
 
+
 def test_a_batch_word_beyond_16_bits_is_refused_by_both_fmi_versions(any_chip):
     chip = any_chip
-    refused(chip, lambda: chip.batch([0x10010]), r"word 0\b", "65552", "0x10010", r"0 \.\. 0xFFFF",
-            "nothing was sent")
+    refused(chip, lambda: chip.batch([0x10010]), r"word 0\b", "65552", "0x10010", r"0 \.\. 0xFFFF", "nothing was sent")
     refused(chip, lambda: chip.batch([SET_POSITION, 1, 0x10000]), r"word 2\b", "65536")
     refused(chip, lambda: chip.batch([SET_POSITION, -32769, 0]), r"word 1\b", "-32769", "-0x8000")
     refused(chip, lambda: chip.batch([SET_POSITION, 1.0, 0]), r"word 1\b", "not an integer")
@@ -49,24 +50,34 @@ def test_a_batch_word_beyond_16_bits_is_refused_by_both_fmi_versions(any_chip):
 
 def test_batch_words_0xffff_and_minus_1_send_the_same_word(any_chip):
     chip = any_chip
-    same_effect(chip, lambda: chip.batch([SET_POSITION, 0xFFFF, 0xFFFF]),
-                lambda: chip.batch([SET_POSITION, -1, -1]),
-                lambda: chip.batch([SET_POSITION, 0xFFFF, -1]))
+    same_effect(
+        chip,
+        lambda: chip.batch([SET_POSITION, 0xFFFF, 0xFFFF]),
+        lambda: chip.batch([SET_POSITION, -1, -1]),
+        lambda: chip.batch([SET_POSITION, 0xFFFF, -1]),
+    )
     assert chip.batch([GET_POSITION]) == (0, [0xFFFF, 0xFFFF])
-    chip.batch([SET_POSITION, -32768, 0x8000])                   # both halves 0x8000
+    chip.batch([SET_POSITION, -32768, 0x8000])  # both halves 0x8000
     held = chip.get("host.word")[:3] if chip.fmi_version == 3 else [chip.get(f"host.word[{i}]") for i in (1, 2, 3)]
-    assert held == [SET_POSITION, 0x8000, 0x8000]                 # the FMU holds the 16-bit words
+    assert held == [SET_POSITION, 0x8000, 0x8000]  # the FMU holds the 16-bit words
     assert chip.batch([GET_POSITION]) == (0, [0x8000, 0x8000])
 
 
 # ---- write_memory: 32-bit words inside the memory ----
 
+
 def test_a_memory_word_beyond_32_bits_is_refused(any_chip):
     chip = any_chip
-    refused(chip, lambda: chip.write_memory(0x300, [1, 2, 2**40 + 5]), r"words\[2\]", str(2**40 + 5),
-            "-2147483648 .. 4294967295", "nothing was written")
+    refused(
+        chip,
+        lambda: chip.write_memory(0x300, [1, 2, 2**40 + 5]),
+        r"words\[2\]",
+        str(2**40 + 5),
+        "-2147483648 .. 4294967295",
+        "nothing was written",
+    )
     refused(chip, lambda: chip.write_memory(0x300, [2**32]), r"words\[0\]", "4294967296")
-    refused(chip, lambda: chip.write_memory(0x300, [0, -2**31 - 1]), r"words\[1\]", "-2147483649")
+    refused(chip, lambda: chip.write_memory(0x300, [0, -(2**31) - 1]), r"words\[1\]", "-2147483649")
     refused(chip, lambda: chip.write_memory(0x300, [2**70]), r"words\[0\]")
     refused(chip, lambda: chip.write_memory(0x300, [7, 2.5]), r"words\[1\] = 2.5 is not an integer")
 
@@ -78,9 +89,13 @@ def test_a_memory_write_at_a_negative_address_or_leaving_the_memory_is_refused_w
     refused(chip, lambda: chip.write_memory(2**32 - 1, [5, 6]), f"address {2**32 - 1}")
     refused(chip, lambda: chip.write_memory(2**40, [5]), f"address {2**40}")
     # 100 words at size - 70: the first strobe's 64 would fit, the rest not: nothing is written
-    refused(chip, lambda: chip.write_memory(size - 70, list(range(100))), f"100 words at address {size - 70}",
-            f"{size}-word memory")
-    chip.write_memory(size - 1, [9])                              # the last word is still writable
+    refused(
+        chip,
+        lambda: chip.write_memory(size - 70, list(range(100))),
+        f"100 words at address {size - 70}",
+        f"{size}-word memory",
+    )
+    chip.write_memory(size - 1, [9])  # the last word is still writable
 
 
 def test_memory_words_minus_1_and_0xffffffff_store_the_same_word(any_chip):
@@ -88,20 +103,25 @@ def test_memory_words_minus_1_and_0xffffffff_store_the_same_word(any_chip):
     ax = chip.axis(0)
     ax.SetBufferStart(2, 0x300)
     ax.SetBufferLength(2, 4)
-    same_effect(chip, lambda: chip.write_memory(0x300, [-1, -2**31, 2**31 - 1, 0]),
-                lambda: chip.write_memory(0x300, [0xFFFFFFFF, 0x80000000, 0x7FFFFFFF, 0]))
-    assert [ax.ReadBuffer(2) for _ in range(4)] == [-1, -2**31, 2**31 - 1, 0]      # ReadBuffer is signed
+    same_effect(
+        chip,
+        lambda: chip.write_memory(0x300, [-1, -(2**31), 2**31 - 1, 0]),
+        lambda: chip.write_memory(0x300, [0xFFFFFFFF, 0x80000000, 0x7FFFFFFF, 0]),
+    )
+    assert [ax.ReadBuffer(2) for _ in range(4)] == [-1, -(2**31), 2**31 - 1, 0]  # ReadBuffer is signed
 
 
 # ---- C-Motion calls: each argument fits its field ----
 
+
 def test_a_command_argument_that_does_not_fit_its_field_is_refused(any_chip):
     chip = any_chip
     ax = chip.axis(1)
-    message = refused(chip, lambda: ax.SetPosition(2**32), "SetPosition", "position", "4294967296",
-                      "-2147483648 .. 4294967295")
+    message = refused(
+        chip, lambda: ax.SetPosition(2**32), "SetPosition", "position", "4294967296", "-2147483648 .. 4294967295"
+    )
     assert "32 bits" in message
-    refused(chip, lambda: ax.SetPosition(-2**31 - 1), "SetPosition", "position")
+    refused(chip, lambda: ax.SetPosition(-(2**31) - 1), "SetPosition", "position")
     refused(chip, lambda: ax.SetProfileMode(0x10000), "SetProfileMode", "mode", "16 bits", "-32768 .. 65535")
     refused(chip, lambda: ax.SetBreakpoint(0, 16, 0, 0), "SetBreakpoint", "sourceAxis", "4-bit field", r"0 \.\. 15")
     refused(chip, lambda: ax.SetBreakpoint(0, -1, 0, 0), "SetBreakpoint", "sourceAxis", r"0 \.\. 15")
@@ -121,11 +141,12 @@ def test_command_arguments_in_either_reading_of_their_bits_send_the_same_words(a
     ax.SetPosition(0xFFFFFFFF)
     assert ax.GetPosition() == -1
     same_effect(chip, lambda: ax.SetAcceleration(pmdfmu.fixed_16_16(1.5)), lambda: ax.SetAcceleration(0x18000))
-    ax.SetVelocity(pmdfmu.fixed_16_16(-1.95))                      # an unsigned word for a signed argument
+    ax.SetVelocity(pmdfmu.fixed_16_16(-1.95))  # an unsigned word for a signed argument
     assert ax.GetVelocity() == pmdfmu.signed(0xFFFE0CCD)
 
 
 # ---- set: FMU variables take the word of their width ----
+
 
 def test_a_variable_value_that_does_not_fit_is_refused(any_chip):
     chip = any_chip
@@ -133,11 +154,12 @@ def test_a_variable_value_that_does_not_fit_is_refused(any_chip):
     refused(chip, lambda: chip.set("axis1.actualPosition", 1.5), "axis1.actualPosition", "not an integer")
     chip.set("axis1.actualPosition", 0xFFFFFFFF)
     assert chip.get("axis1.actualPosition") == -1
-    chip.set("axis1.actualPosition", -2**31)
-    assert chip.get("axis1.actualPosition") == -2**31
+    chip.set("axis1.actualPosition", -(2**31))
+    assert chip.get("axis1.actualPosition") == -(2**31)
 
 
 # ---- fixed point through the chip ----
+
 
 def test_from_fixed_refuses_what_a_get_call_cannot_return(any_chip):
     ax = any_chip.axis(0)
@@ -148,6 +170,7 @@ def test_from_fixed_refuses_what_a_get_call_cannot_return(any_chip):
 
 
 # ---- bulk recording (FMI 3): never past record.data ----
+
 
 def test_a_sample_time_change_inside_a_bulk_recording_is_recorded_and_the_chip_runs_on(tmp_path):
     script = tmp_path / "slower.script"
@@ -169,8 +192,9 @@ def test_a_bulk_recording_reads_only_the_rows_record_data_holds():
 
         def short(*args):
             status = real(*args)
-            args[3][0] = 4 * (1 + len(RECORDED)) * 3 + 5                # 3 cycles and part of a fourth
+            args[3][0] = 4 * (1 + len(RECORDED)) * 3 + 5  # 3 cycles and part of a fourth
             return status
+
         chip.fmu.fmi3GetBinary = short
         with pytest.raises(RuntimeError, match="holds 3 cycles, not 100"):
             chip.run(100, record=RECORDED)
@@ -178,11 +202,13 @@ def test_a_bulk_recording_reads_only_the_rows_record_data_holds():
 
 # ---- an FMU refusal raised with the FMU's reason; a name that is no variable, with the nearest ----
 
+
 @pytest.mark.parametrize("version", [2, 3])
 def test_a_refused_parameter_raises_with_the_fmus_reason(version):
     """Chip(cycleTime=1.5e-6): the exception itself says what is wrong (1.5 us is inside 1 .. 65535 us but
     not whole), not only the FMI function and status; it is an FMUError and FMPy's FMICallException."""
     from fmpy.fmi1 import FMICallException
+
     with pytest.raises(pmdfmu.FMUError) as info:
         pmdfmu.Chip(fmi_version=version, cycleTime=1.5e-6)
     text = str(info.value)

@@ -6,6 +6,7 @@ would on hardware. The transfer times are checked against values worked by hand,
 the Python and C formulas against each other, and the seed's 1.6 completion
 detection (polling, and the breakpoint interrupt) against the exact reference model
 plus the host's transfer times, computed here independently of the harness."""
+
 import ctypes
 import importlib.util
 import shutil
@@ -16,14 +17,22 @@ from pathlib import Path
 import pytest
 
 import pmdfmu
-from pmdfmu import (COMMANDS, HostInterface, PMDActivityProfileSegmentMask, PMDBreakpoint1,
-                    PMDBreakpointActivityStatus, PMDBreakpointNoAction, PMDEventBreakpoint1Mask, PMDExternalProfile,
-                    field_ex)
+from pmdfmu import (
+    COMMANDS,
+    HostInterface,
+    PMDActivityProfileSegmentMask,
+    PMDBreakpoint1,
+    PMDBreakpointActivityStatus,
+    PMDBreakpointNoAction,
+    PMDEventBreakpoint1Mask,
+    PMDExternalProfile,
+    field_ex,
+)
 from pmdfmu.hosttime import KINDS, cycles_due
 from reference import ExternalProfile
 
 REPO = Path(__file__).resolve().parents[1]
-CYCLE_NS = 100_000          # the FMU's default cycle time, 100 us
+CYCLE_NS = 100_000  # the FMU's default cycle time, 100 us
 
 
 def ceil_div(a, b):
@@ -31,6 +40,7 @@ def ceil_div(a, b):
 
 
 # ---- transfer times, worked by hand ----
+
 
 def test_serial_getversion_at_57600_8n1_as_worked_by_hand():
     serial = HostInterface("serial")
@@ -82,6 +92,7 @@ def test_host_interface_refuses_what_the_table_does_not_have():
 
 def test_every_number_of_the_table_has_a_unit_source_and_confidence():
     import csv
+
     with open(REPO / "modelDescription" / "host_interfaces.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     assert [r["kind"] for r in rows if not r["parameter"]] == ["none"]
@@ -95,6 +106,7 @@ def test_every_number_of_the_table_has_a_unit_source_and_confidence():
 
 # ---- Python and C agree ----
 
+
 @pytest.fixture(scope="module")
 def c_hosttime(tmp_path_factory):
     """host/c/PMDhosttime.c with the generator's header, as a shared library."""
@@ -102,14 +114,33 @@ def c_hosttime(tmp_path_factory):
     if not cc:
         pytest.skip("no C compiler")
     out = tmp_path_factory.mktemp("hosttime")
-    spec = importlib.util.spec_from_file_location("generate_hosttime", REPO / "modelDescription" / "generate_hosttime.py")
+    spec = importlib.util.spec_from_file_location(
+        "generate_hosttime", REPO / "modelDescription" / "generate_hosttime.py"
+    )
     generator = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(generator)
     generator.main(["generate_hosttime.py", str(out)])
     library = out / "libhosttime.so"
-    subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", "-shared", "-fPIC",
-                    "-I", str(out), "-I", str(REPO / "host" / "c"), str(REPO / "host" / "c" / "PMDhosttime.c"),
-                    "-o", str(library)], check=True)
+    subprocess.run(
+        [
+            cc,
+            "-std=c99",
+            "-Wall",
+            "-Wextra",
+            "-Wpedantic",
+            "-Werror",
+            "-shared",
+            "-fPIC",
+            "-I",
+            str(out),
+            "-I",
+            str(REPO / "host" / "c"),
+            str(REPO / "host" / "c" / "PMDhosttime.c"),
+            "-o",
+            str(library),
+        ],
+        check=True,
+    )
     members = list(dict.fromkeys(p for _k, params in generator.read_table() for p in params))
 
     class Interface(ctypes.Structure):
@@ -132,19 +163,27 @@ def c_interface(Interface, generator, host: HostInterface):
     return s
 
 
-INTERFACES = [HostInterface(k) for k in KINDS] + [
-    HostInterface("serial", baud=b, parity=p, stop_bits=s, processing_ns=0)
-    for b in (1200, 9600, 19200, 115200, 250000, 416667) for p in (0, 1) for s in (1, 2)] + [
-    HostInterface("parallel16", checksum=1, bus_cycle_ns=70, processing_ns=1234),
-    HostInterface("parallel8", checksum=1, bus_cycle_ns=333),
-    HostInterface("spi", clock_hz=3_000_000, request_header_words=0, reply_header_words=2),
-    HostInterface("spi", clock_hz=1),
-    HostInterface("fixed", request_ns=0xFFFFFFFF, reply_ns=1)]
+INTERFACES = (
+    [HostInterface(k) for k in KINDS]
+    + [
+        HostInterface("serial", baud=b, parity=p, stop_bits=s, processing_ns=0)
+        for b in (1200, 9600, 19200, 115200, 250000, 416667)
+        for p in (0, 1)
+        for s in (1, 2)
+    ]
+    + [
+        HostInterface("parallel16", checksum=1, bus_cycle_ns=70, processing_ns=1234),
+        HostInterface("parallel8", checksum=1, bus_cycle_ns=333),
+        HostInterface("spi", clock_hz=3_000_000, request_header_words=0, reply_header_words=2),
+        HostInterface("spi", clock_hz=1),
+        HostInterface("fixed", request_ns=0xFFFFFFFF, reply_ns=1),
+    ]
+)
 
 
 def test_python_and_c_agree_on_every_interface_and_word_count(c_hosttime):
     lib, Interface, generator = c_hosttime
-    for k, kind in enumerate(KINDS):          # the same defaults, names and kinds
+    for k, kind in enumerate(KINDS):  # the same defaults, names and kinds
         got = lib.PMDHostInterfaceOf(k)
         assert {m: getattr(got, generator.camel(m)) for m in KINDS[kind]} == KINDS[kind]
         assert got.kind == k and lib.PMDHostInterfaceName(k).decode() == kind
@@ -160,12 +199,21 @@ def test_python_and_c_agree_on_every_interface_and_word_count(c_hosttime):
             for failed in (0, 1):
                 assert lib.PMDHostReplyNs(s, words, failed) == host.reply_ns(words, bool(failed)), (host, words)
                 assert lib.PMDHostTransferNs(s, 1, words, failed) == host.reply_ns(words, bool(failed))
-    for host_ns, next_ns, cycle_ns in [(0, 0, 100), (99, 100, 100), (100, 100, 100), (199, 100, 100),
-                                       (200, 100, 100), (10**15 + 7, 3, 51_200), (5, 0, 0), (2**63, 0, 1)]:
+    for host_ns, next_ns, cycle_ns in [
+        (0, 0, 100),
+        (99, 100, 100),
+        (100, 100, 100),
+        (199, 100, 100),
+        (200, 100, 100),
+        (10**15 + 7, 3, 51_200),
+        (5, 0, 0),
+        (2**63, 0, 1),
+    ]:
         assert lib.PMDHostCyclesDue(host_ns, next_ns, cycle_ns) == cycles_due(host_ns, next_ns, cycle_ns)
 
 
 # ---- the harness ----
+
 
 def command_ns(host: HostInterface, name: str, failed: bool = False) -> int:
     """One command's request and reply, from the command table's word counts."""
@@ -195,8 +243,11 @@ def history(chip):
 
 
 def test_none_is_todays_behaviour_bit_for_bit():
-    with pmdfmu.Chip() as default, pmdfmu.Chip(host_interface="none") as none, \
-            pmdfmu.Chip(host_interface=HostInterface("none")) as explicit:
+    with (
+        pmdfmu.Chip() as default,
+        pmdfmu.Chip(host_interface="none") as none,
+        pmdfmu.Chip(host_interface=HostInterface("none")) as explicit,
+    ):
         assert default.host_interface == HostInterface("none")
         results = [history(c) for c in (default, none, explicit)]
         assert results[0] == results[1] == results[2]
@@ -217,11 +268,11 @@ def test_each_command_runs_the_cycles_due_by_the_host_clock(kind):
         for _ in range(40):
             clock += host.request_ns(1)
             expected = grid_points_at_or_before(clock)
-            assert ax.GetTime() == expected - 1          # GetTime: the last cycle run
+            assert ax.GetTime() == expected - 1  # GetTime: the last cycle run
             clock += host.reply_ns(2)
             assert chip.cycles == expected and chip.host_time_ns == clock
             if kind in ("parallel16", "parallel8"):
-                chip.wait_ns(CYCLE_NS // 3)               # make the polls cross cycles
+                chip.wait_ns(CYCLE_NS // 3)  # make the polls cross cycles
                 clock += CYCLE_NS // 3
 
 
@@ -230,12 +281,12 @@ def test_a_batch_is_timed_command_by_command_and_an_error_reply_is_shorter():
     with pmdfmu.Chip(host_interface=host) as chip:
         # GetTime, GetTime on axis field 10 (refused 0x03), GetTime: executed at 150, 300, 450 us
         error, reply = chip.batch([0x3E, 0x0A3E, 0x3E])
-        assert error == pmdfmu.PMD_ERR_InvalidAxis      # the first error of the batch
-        assert reply == [0, 1, 0, 4]            # cycles 0-1 ran before the first, 0-4 before the third
+        assert error == pmdfmu.PMD_ERR_InvalidAxis  # the first error of the batch
+        assert reply == [0, 1, 0, 4]  # cycles 0-1 ran before the first, 0-4 before the third
         assert chip.host_time_ns == 450_000 and chip.cycles == 5
     serial = HostInterface("serial")
     with pmdfmu.Chip(host_interface=serial) as chip:
-        error, reply = chip.batch([0x0A8F])     # GetVersion on axis 10: refused, a 2-byte reply
+        error, reply = chip.batch([0x0A8F])  # GetVersion on axis 10: refused, a 2-byte reply
         assert error == pmdfmu.PMD_ERR_InvalidAxis and reply == []
         assert chip.host_time_ns == serial.request_ns(1) + serial.reply_ns(2, failed=True)
         # an unknown opcode ends the batch with the words after it: one transfer of all three
@@ -244,34 +295,34 @@ def test_a_batch_is_timed_command_by_command_and_an_error_reply_is_shorter():
         assert chip.host_time_ns == before + serial.request_ns(3) + serial.reply_ns(0, failed=True)
     with pmdfmu.Chip(host_interface="parallel16") as chip:
         with pytest.raises(ValueError, match="timed batch"):
-            chip.batch([0x3E] * 33)             # 66 reply words: refused before anything is sent
+            chip.batch([0x3E] * 33)  # 66 reply words: refused before anything is sent
         assert chip.host_time_ns == 0 and chip.cycles == 0
 
 
 def test_wait_and_run_move_the_host_clock():
-    with pmdfmu.Chip() as chip:                 # wait works with none too
-        chip.wait(0.00035)                      # cycles at 0, 100, 200, 300 us
+    with pmdfmu.Chip() as chip:  # wait works with none too
+        chip.wait(0.00035)  # cycles at 0, 100, 200, 300 us
         assert (chip.cycles, chip.host_time_ns) == (4, 350_000)
-        chip.wait(Fraction(1, 20000))           # to 400 us: its cycle runs
+        chip.wait(Fraction(1, 20000))  # to 400 us: its cycle runs
         assert (chip.cycles, chip.host_time_ns) == (5, 400_000)
         chip.wait(0)
         assert chip.cycles == 5
-        chip.run(10)                            # cycles 5..14: the clock moves to cycle 14's time
+        chip.run(10)  # cycles 5..14: the clock moves to cycle 14's time
         assert (chip.cycles, chip.host_time_ns) == (15, 1_400_000)
         chip.wait_ns(100_000)
         assert chip.cycles == 16
         with pytest.raises(ValueError):
             chip.wait(-1e-6)
-        chip.wait(0.01)                         # to 11.5 ms: cycles up to 11.5 ms
+        chip.wait(0.01)  # to 11.5 ms: cycles up to 11.5 ms
         assert (chip.cycles, chip.host_time_ns) == (116, 11_500_000)
-        chip.run(1)                             # the cycle at 11.6 ms
+        chip.run(1)  # the cycle at 11.6 ms
         assert (chip.cycles, chip.host_time_ns) == (117, 11_600_000)
     host = HostInterface("parallel16")
     with pmdfmu.Chip(host_interface=host, cycleTime=200e-6) as chip:
-        chip.run(3)                             # cycles at 0, 200, 400 us
+        chip.run(3)  # cycles at 0, 200, 400 us
         assert chip.host_time_ns == 400_000
-        assert chip.axis(0).GetTime() == 2      # 400 us + 500 ns: no new cycle
-        chip.axis(0).SetSampleTime(50)          # the grid restarts at 600 us with 50 us cycles
+        assert chip.axis(0).GetTime() == 2  # 400 us + 500 ns: no new cycle
+        chip.axis(0).SetSampleTime(50)  # the grid restarts at 600 us with 50 us cycles
         chip.wait(0.0006)
         t = chip.host_time_ns
         assert t == 400_000 + command_ns(host, "GetTime") + command_ns(host, "SetSampleTime") + 600_000
@@ -321,8 +372,9 @@ def completion_cycle(first):
         k += 1
 
 
-@pytest.mark.parametrize("kind,fmi", [("parallel16", 2), ("parallel16", 3), ("parallel8", 2), ("serial", 2),
-                                      ("spi", 2), ("fixed", 2)])
+@pytest.mark.parametrize(
+    "kind,fmi", [("parallel16", 2), ("parallel16", 3), ("parallel8", 2), ("serial", 2), ("spi", 2), ("fixed", 2)]
+)
 def test_seed_polling_loop_ends_at_the_exact_cycle_plus_the_transfer_time(kind, fmi):
     host = HostInterface(kind)
     with pmdfmu.Chip(fmi, host_interface=host) as chip:
@@ -363,7 +415,7 @@ def test_seed_breakpoint_interrupt_ends_at_the_exact_cycle(kind):
         assert field_ex(hAxis[0].GetActivityStatus(), "PMDActivityProfileSegment") == 0
         assert chip.host_time_ns == done * CYCLE_NS + command_ns(host, "GetActivityStatus")
         assert hAxis[0].GetEventStatus() & PMDEventBreakpoint1Mask
-        assert chip.wait_for_interrupt()        # still high: no time passes
+        assert chip.wait_for_interrupt()  # still high: no time passes
         hAxis[0].ResetEventStatus(~PMDEventBreakpoint1Mask & 0xFFFF)
         t = chip.host_time_ns
         assert not chip.wait_for_interrupt(timeout=0.001)
@@ -391,4 +443,4 @@ def test_readme_example_prints_what_it_says(capsys):
     exec(compile(code, "docs/host-time.md", "exec"), {})
     printed = capsys.readouterr().out.split("\n")
     said = [line.split("# -> ", 1)[1].strip() for line in code.split("\n") if "# -> " in line]
-    assert printed[:len(said)] == said
+    assert printed[: len(said)] == said

@@ -7,6 +7,7 @@ chosen count calls _thread.interrupt_main(), which is what the SIGINT handler's 
 one follows by a real signal 20 or 300 us later, into the first one's cleanup. After each interrupted
 run the same Chip's next recording is byte for byte a fresh Chip's at the same cycle, record.enabled
 is off once the Chip steps again, and the FMU holds none of the memory it was lent."""
+
 import sys
 from pathlib import Path
 
@@ -17,7 +18,7 @@ import pmdfmu
 from interrupted import CAPACITY, RUNS, assert_intact, chip_for, interrupted_run, line_count
 from pmdfmu import recording
 
-pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+pytestmark = pytest.mark.slow  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 
 @pytest.mark.parametrize("run", sorted(RUNS))
@@ -27,7 +28,7 @@ def test_an_interrupt_at_any_point_of_a_recording_run_leaves_the_chip_exact(run,
     points = sorted(set(range(1, 120)) | set(range(total - 80, total + 1)) | set(np.linspace(1, total, 60, dtype=int)))
     fired = {None: 0, 2e-5: 0, 3e-4: 0}
     for k in points:
-        for then in fired:                       # once, and twice: the second a real signal, 20 or 300 us later
+        for then in fired:  # once, and twice: the second a real signal, 20 or 300 us later
             with chip_for(run, tmp_path) as chip:
                 fired[then] += interrupted_run(chip, RUNS[run][1], k, then)
                 assert_intact(chip, run, tmp_path)
@@ -45,17 +46,18 @@ def test_the_recording_cleanup_retries_through_interrupts(monkeypatch):
         def set_interrupted(name, value):
             calls.append(name)
             if len(calls) <= 3:
-                real(name, value)                  # the set ran; the interrupt lands after it
+                real(name, value)  # the set ran; the interrupt lands after it
                 raise KeyboardInterrupt
             real(name, value)
+
         monkeypatch.setattr(chip, "set", set_interrupted)
         with pytest.raises(KeyboardInterrupt):
             recording.close(chip)
         assert not chip._recording and not chip.get("record.enabled") and len(calls) == 4
-        chip._recording = True                        # as if an interrupt had escaped the cleanup entirely
+        chip._recording = True  # as if an interrupt had escaped the cleanup entirely
         monkeypatch.setattr(chip, "set", real)
         chip.set("record.enabled", True)
-        chip._step(CAPACITY + 1)                      # the next doStep closes it first: no capacity error
+        chip._step(CAPACITY + 1)  # the next doStep closes it first: no capacity error
         assert not chip.get("record.enabled") and not chip._recording
 
 
@@ -90,11 +92,11 @@ def test_sigint_at_random_times_leaves_every_kind_of_run_exact(tmp_path):
     import subprocess
     import threading
     import time
+
     code = CHILD.format(tests=str(Path(__file__).parent), tmp=str(tmp_path))
-    child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                             text=True)
+    child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     rng, said = random.Random(20261201), []
-    watchdog = threading.Timer(300, child.kill)       # a child that missed a signal would record forever
+    watchdog = threading.Timer(300, child.kill)  # a child that missed a signal would record forever
     watchdog.start()
     try:
         for _ in RUNS:

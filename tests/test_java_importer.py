@@ -2,6 +2,7 @@
 """A second, independent importer: FMI4j (Java, from Maven Central) runs the
 FMI 2.0 FMU with the example script; its CSV equals FMPy's, with the script as the
 parameter or packed inside the FMU with no parameter set."""
+
 import csv
 import os
 import shutil
@@ -13,24 +14,30 @@ import pytest
 import pmdfmu
 from pmdfmu.pack import pack
 
-pytestmark = [pytest.mark.slow, pytest.mark.tools]          # tests/README.md: ./dev test -m "not slow" leaves them out
+pytestmark = [pytest.mark.slow, pytest.mark.tools]  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 ROOT = Path(__file__).resolve().parent.parent
 PROJECT = ROOT / "importers" / "fmi4j"
 SCRIPT = ROOT / "examples" / "two_axis.script"
-NAMES = [f"axis{n}.{q}" for n in (1, 2) for q in ("commandedPosition", "commandedVelocity",
-                                                  "commandedAcceleration", "activityStatus", "eventStatus")]
+NAMES = [
+    f"axis{n}.{q}"
+    for n in (1, 2)
+    for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus", "eventStatus")
+]
 CYCLES = 3200
 
-needs_java = pytest.mark.skipif(not (shutil.which("java") and shutil.which("mvn")) and not os.environ.get("CI"),
-                                reason="java and mvn not installed (CI installs them)")
+needs_java = pytest.mark.skipif(
+    not (shutil.which("java") and shutil.which("mvn")) and not os.environ.get("CI"),
+    reason="java and mvn not installed (CI installs them)",
+)
 
 
 @pytest.fixture(scope="module")
 def fmi4j_run():
     """importers/fmi4j built once for the module"""
-    subprocess.run(["mvn", "-q", "-B", "-f", str(PROJECT / "pom.xml"), "package", "-DskipTests"], check=True,
-                   timeout=900)
+    subprocess.run(
+        ["mvn", "-q", "-B", "-f", str(PROJECT / "pom.xml"), "package", "-DskipTests"], check=True, timeout=900
+    )
 
 
 @needs_java
@@ -47,10 +54,24 @@ def test_fmi4j_runs_the_scripted_profile_and_its_csv_equals_fmpys(tmp_path, pack
         pack(SCRIPT, fmu)
     out = tmp_path / "fmi4j.csv"
     classpath = f"{PROJECT / 'target' / 'fmi4j-run-1.0.jar'}{os.pathsep}{PROJECT / 'target' / 'lib' / '*'}"
-    subprocess.run(["java", "-cp", classpath, "pmdfmu.Fmi4jRun", str(fmu), "-" if packed else str(SCRIPT), "1e-4",
-                    str(CYCLES), str(out)] + [f"{n}={vrs[n]}" for n in NAMES], check=True, timeout=600)
+    subprocess.run(
+        [
+            "java",
+            "-cp",
+            classpath,
+            "pmdfmu.Fmi4jRun",
+            str(fmu),
+            "-" if packed else str(SCRIPT),
+            "1e-4",
+            str(CYCLES),
+            str(out),
+        ]
+        + [f"{n}={vrs[n]}" for n in NAMES],
+        check=True,
+        timeout=600,
+    )
     rows = list(csv.reader(open(out)))
     assert rows[0] == ["cycle"] + NAMES
     fmi4j = [[int(x) for x in r] for r in rows[1:]]
     assert fmi4j == [[int(r["cycle"])] + [int(r[n]) for n in NAMES] for r in fmpy_rows]
-    assert fmi4j[-1][1] == 750                      # axis 1 finished its table
+    assert fmi4j[-1][1] == 750  # axis 1 finished its table

@@ -2,6 +2,7 @@
 """Short sequences of legal calls that corrupted memory, overflowed or
 changed state they were refused. Each runs through the real FMU in FMI 2 and
 FMI 3; a refused call must leave the FMU state byte for byte as it was."""
+
 import json
 import math
 import subprocess
@@ -45,15 +46,16 @@ def pend_memory_write(chip, address, words, strobe=None):
 
 # ---- 1. the trace writes only into buffer 0 as it is when it writes ----
 
+
 def test_a_trace_armed_on_a_buffer_that_later_shrinks_to_nothing_does_not_start(any_chip):
     chip, ax = any_chip, any_chip.axis(0)
-    chip.set("memory.address", 0)                 # (FMI 3 reads need a defined port)
+    chip.set("memory.address", 0)  # (FMI 3 reads need a defined port)
     ax.SetBufferStart(0, 0x3FFF)
     ax.SetBufferLength(0, 1)
     ax.SetTraceVariable(0, 0, PMDTraceCommandedPosition)
     ax.SetTraceMode(PMDTraceRollingBuffer)
     ax.SetTraceStart(0, PMDTraceConditionUpdate, 0, 0)
-    ax.SetBufferLength(0, 0)                      # accepted: the trace only waits
+    ax.SetBufferLength(0, 0)  # accepted: the trace only waits
     ax.SetBufferStart(0, 0x4000)
     chip.messages.clear()
     ax.Update()
@@ -70,7 +72,7 @@ def test_a_trace_armed_on_a_moved_buffer_writes_into_the_new_one(any_chip):
     ax.SetTraceVariable(0, 0, pmdfmu.PMDTraceTime)
     ax.SetTraceStart(0, PMDTraceConditionUpdate, 0, 0)
     ax.SetBufferLength(0, 2)
-    ax.SetBufferStart(0, 0x3FFE)                  # now the last two words of the memory
+    ax.SetBufferStart(0, 0x3FFE)  # now the last two words of the memory
     ax.Update()
     chip.run(10)
     assert ax.GetTraceCount() == 2
@@ -79,16 +81,18 @@ def test_a_trace_armed_on_a_moved_buffer_writes_into_the_new_one(any_chip):
 
 # ---- 2. recording never writes past record.capacity ----
 
+
 @pytest.mark.parametrize("fmi_version", [2, 3])
 def test_a_script_restarting_the_grid_inside_a_recording_step_records_at_most_the_capacity(tmp_path, fmi_version):
     """FMI 2 records too (record.enabled, record.capacity), though only FMI 3 can read record.data."""
     script = tmp_path / "fine.pmd"
     script.write_text("@0\nSetSampleTime(Axis1, 1);\n")
-    with pmdfmu.Chip(fmi_version=fmi_version, script=script, log_categories=["warnings"],
-                     **{"record.capacity": 100}) as chip:
+    with pmdfmu.Chip(
+        fmi_version=fmi_version, script=script, log_categories=["warnings"], **{"record.capacity": 100}
+    ) as chip:
         chip.set("record.enabled", True)
         chip.messages.clear()
-        chip.fmu.doStep(0.0, 100 * 1e-4)          # Warning: ran the step, recorded what fits
+        chip.fmu.doStep(0.0, 100 * 1e-4)  # Warning: ran the step, recorded what fits
         assert chip.get("chipTime") == 10_000 - 1
         assert any(m.status == "Warning" and "record.data holds the first 100" in m.message for m in chip.messages)
         if fmi_version == 3:
@@ -114,8 +118,10 @@ def test_a_script_that_makes_the_grid_finer_mid_recording_gets_a_stepping_master
     cycle by cycle from its saved state (once it raised), and the rows are a stepping master's."""
     script = tmp_path / "fine.pmd"
     script.write_text("@0\nSetSampleTime(Axis1, 1);\n")
-    with pmdfmu.Chip(fmi_version=version, script=script) as chip, \
-            pmdfmu.Chip(fmi_version=version, script=script) as stepping:
+    with (
+        pmdfmu.Chip(fmi_version=version, script=script) as chip,
+        pmdfmu.Chip(fmi_version=version, script=script) as stepping,
+    ):
         rows = chip.run(1000, record=["axis1.commandedPosition"])
         assert rows.tobytes() == run_stepwise(stepping, 1000, ["axis1.commandedPosition"]).tobytes()
         assert chip.cycles == stepping.cycles
@@ -198,10 +204,17 @@ print(json.dumps({
 """
 
 
-@pytest.mark.parametrize("fmi_version,how,columns", [
-    (2, "pending", ""), (3, "pending", "axis1.commandedPosition,axis2.activityStatus"),
-    (3, "script", ""), (2, "script", "axis1.position,axis1.motorCommand"),
-    (2, "lent", ""), (2, "lent", "axis1.commandedPosition,axis2.activityStatus")])
+@pytest.mark.parametrize(
+    "fmi_version,how,columns",
+    [
+        (2, "pending", ""),
+        (3, "pending", "axis1.commandedPosition,axis2.activityStatus"),
+        (3, "script", ""),
+        (2, "script", "axis1.position,axis1.motorCommand"),
+        (2, "lent", ""),
+        (2, "lent", "axis1.commandedPosition,axis2.activityStatus"),
+    ],
+)
 def test_cycles_past_a_recording_steps_room_run_as_an_unrecorded_step_does(tmp_path, fmi_version, how, columns):
     """The rows past record.capacity (or the memory lent by pmdfmu_fmi2SetRecordBuffer) are not kept: they
     run as a step that records nothing runs them, fast-forwarded (60 000 coarse cycles: 4 * 10^9 fine ones,
@@ -210,14 +223,23 @@ def test_cycles_past_a_recording_steps_room_run_as_an_unrecorded_step_does(tmp_p
     script = tmp_path / "fine.pmd"
     script.write_text("@0\nSetSampleTime(Axis1, 1);\n")
     try:
-        child = subprocess.run([sys.executable, "-c", COARSE_STEP, json.dumps([fmi_version, how, columns, n,
-                                str(script)]), str(Path(__file__).resolve().parent)],
-                               capture_output=True, text=True, timeout=60)
+        child = subprocess.run(
+            [
+                sys.executable,
+                "-c",
+                COARSE_STEP,
+                json.dumps([fmi_version, how, columns, n, str(script)]),
+                str(Path(__file__).resolve().parent),
+            ],
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
     except subprocess.TimeoutExpired:
         pytest.fail("the recording step ran on for more than 60 s: the cycles past its room went one by one")
     assert child.returncode == 0, child.stderr[-2000:]
     found = json.loads(child.stdout)
-    assert [t & 0xFFFFFFFF for t in found["chipTime"]] == [n * 65535 - 1] * 2      # (FMI 2: an Integer)
+    assert [t & 0xFFFFFFFF for t in found["chipTime"]] == [n * 65535 - 1] * 2  # (FMI 2: an Integer)
     assert found["position"][0] == found["position"][1] != 0
     assert found["same state"], "the recorded step ended elsewhere than the unrecorded one"
     assert found["rows"] == n and found["rows as a step of n cycles"]
@@ -227,6 +249,7 @@ def test_cycles_past_a_recording_steps_room_run_as_an_unrecorded_step_does(tmp_p
 
 
 # ---- 4. a refused set changes nothing ----
+
 
 def test_a_refused_memory_address_keeps_the_pending_write(any_chip):
     chip = any_chip
@@ -266,15 +289,16 @@ def test_a_refused_memory_size_in_initialization_keeps_size_memory_and_registers
 def test_memory_size_in_initialization_keeps_the_memory_and_the_registers(fmi_version):
     chip = InitializationChip(fmi_version)
     try:
-        pend_batch(chip, command("SetBufferStart", 2, 0x10) + command("SetBufferLength", 2, 8) +
-                   command("SetPosition", 1234))
+        pend_batch(
+            chip, command("SetBufferStart", 2, 0x10) + command("SetBufferLength", 2, 8) + command("SetPosition", 1234)
+        )
         chip.get("host.ack")
         pend_memory_write(chip, 0x10, [5, 6, 7])
         chip.get("host.ack")
         before = snapshot(chip)
-        chip.set("memorySize", 0x4000)            # the same size: nothing happens
+        chip.set("memorySize", 0x4000)  # the same size: nothing happens
         assert snapshot(chip) == before
-        chip.set("memorySize", 0x18)              # smaller, still holding buffer 2
+        chip.set("memorySize", 0x18)  # smaller, still holding buffer 2
         chip.set("memorySize", 0x8000)
         pend_batch(chip, command("GetBufferStart", 2) + command("GetPosition") + command("ReadBuffer", 2) * 3)
         chip.get("host.ack")
@@ -287,23 +311,25 @@ def test_memory_size_in_initialization_keeps_the_memory_and_the_registers(fmi_ve
 
 # ---- 5. a huge step after a sample-time change ----
 
+
 @pytest.mark.parametrize("fmi_version", [2, 3])
 def test_a_step_that_a_pending_sample_time_change_would_make_too_long_is_refused(fmi_version):
     with pmdfmu.Chip(fmi_version=fmi_version, cycleTime=0.065535) as chip:
         pend_batch(chip, command("SetSampleTime", 1))
-        message = refused_changes_nothing(chip, lambda: chip.fmu.doStep(0.0, 2.0 ** 52 * 0.065535))
+        message = refused_changes_nothing(chip, lambda: chip.fmu.doStep(0.0, 2.0**52 * 0.065535))
         assert "2^53 cycles of 1 us" in message
-        chip.fmu.doStep(0.0, 0.001)                # the instance steps on: 1000 cycles of 1 us
+        chip.fmu.doStep(0.0, 0.001)  # the instance steps on: 1000 cycles of 1 us
         assert chip.get("chipTime") == 999
 
 
 # ---- 9. no silent rounding or wiping ----
 
+
 @pytest.mark.parametrize("fmi_version", [2, 3])
 @pytest.mark.parametrize("cycle_time", [1.0, 123.4567e-6, 0.5e-6, 0.0655355, -1e-4, math.nan])
 def test_a_cycle_time_the_sample_time_register_cannot_hold_is_refused(fmi_version, cycle_time):
     with pmdfmu.Chip(fmi_version=fmi_version) as chip:
-        chip.fmu.reset()                              # instantiated again: parameters may be set
+        chip.fmu.reset()  # instantiated again: parameters may be set
         message = refused_changes_nothing(chip, lambda: chip.set("cycleTime", cycle_time))
         chip.reinitialize()
     assert "whole number of microseconds" in message
@@ -318,15 +344,20 @@ def test_a_whole_number_of_microseconds_is_the_sample_time(fmi_version, cycle_ti
 
 # ---- 10. smaller ones ----
 
+
 def test_a_refused_enter_initialization_changes_nothing():
     chip = pmdfmu.Chip()
     try:
-        fresh = FMU2Slave(guid=chip.model_description.guid, unzipDirectory=chip._unzipdir,
-                          modelIdentifier=chip.model_description.coSimulation.modelIdentifier, instanceName="x")
+        fresh = FMU2Slave(
+            guid=chip.model_description.guid,
+            unzipDirectory=chip._unzipdir,
+            modelIdentifier=chip.model_description.coSimulation.modelIdentifier,
+            instanceName="x",
+        )
         fresh.instantiate(loggingOn=False)
         fresh.setReal([vr(chip, "cycleTime")], [1e-3])
-        fresh.setupExperiment(startTime=1e10)      # 10^13 cycles of 1 ms: on the grid
-        fresh.setReal([vr(chip, "cycleTime")], [1e-6])      # 10^16 cycles of 1 us: no cycle index holds it
+        fresh.setupExperiment(startTime=1e10)  # 10^13 cycles of 1 ms: on the grid
+        fresh.setReal([vr(chip, "cycleTime")], [1e-6])  # 10^16 cycles of 1 us: no cycle index holds it
         probe = type("Probe", (), {"fmu": fresh})()
         before = snapshot(probe)
         with pytest.raises(FMICallException):
@@ -340,13 +371,12 @@ def test_a_refused_enter_initialization_changes_nothing():
 def test_an_fmi2_get_refused_for_an_unknown_value_reference_executes_nothing(chip):
     pend_batch(chip, command("SetPosition", 99))
     refused_changes_nothing(chip, lambda: chip.fmu.getInteger([vr(chip, "host.ack"), 999_999]))
-    assert chip.get("host.ack") == chip.get("host.strobe")       # this get executes it
+    assert chip.get("host.ack") == chip.get("host.strobe")  # this get executes it
 
 
 def test_fmi3_messages_show_uint32_values_unsigned():
     with pmdfmu.Chip(fmi_version=3) as chip:
-        message = refused_changes_nothing(chip, lambda: chip.fmu.setUInt32([vr(chip, "memory.address")],
-                                                                           [0x80000000]))
+        message = refused_changes_nothing(chip, lambda: chip.fmu.setUInt32([vr(chip, "memory.address")], [0x80000000]))
         assert "2147483648" in message and "-2147483648" not in message
 
 
@@ -365,6 +395,7 @@ def test_a_refused_exit_initialization_changes_nothing(fmi_version, tmp_path):
 
 
 # ---- found by review: legal sequences that overflowed ----
+
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
 @pytest.mark.parametrize("sizes", [[0x100000, 16], [16, 0x100000], [0x4000, 16]])
@@ -408,9 +439,9 @@ def test_a_restored_recording_state_records_into_a_buffer_of_the_current_capacit
         chip.set("record.enabled", True)
         state = chip.fmu.getFMUState()
         chip.fmu.reset()
-        chip.set("record.enabled", True)                  # a buffer of 64 rows
+        chip.set("record.enabled", True)  # a buffer of 64 rows
         chip.set("record.capacity", 5000)
-        chip.fmu.setFMUState(state)                       # a state that records: with a buffer of 5000
+        chip.fmu.setFMUState(state)  # a state that records: with a buffer of 5000
         chip.fmu.freeFMUState(state)
         chip.set("record.enabled", True)
         chip.fmu.doStep(0.0, 5000 * 1e-4)
@@ -443,8 +474,9 @@ FMI3_REFUSALS = {
     "an unknown log category": lambda c: c.fmu.setDebugLogging(True, ["nonsense"]),
     "a truncated state blob": lambda c: c.fmu.deserializeFMUState(snapshot(c)[:-100]),
     "a foreign state blob": lambda c: c.fmu.deserializeFMUState(b"FOREIGN!" + bytes(400)),
-    "a get with an unknown value reference while a batch is pending":
-        lambda c: c.fmu.getInt32([vr(c, "host.ack"), 7777]),
+    "a get with an unknown value reference while a batch is pending": lambda c: c.fmu.getInt32(
+        [vr(c, "host.ack"), 7777]
+    ),
 }
 
 
@@ -456,6 +488,6 @@ def test_fmi3_refusals_change_nothing(name):
         chip.axis(1).SetPosition(100_000)
         chip.axis(1).Update()
         chip.run(50)
-        if "pending" in name:                       # the batch is part of the state before the call
+        if "pending" in name:  # the batch is part of the state before the call
             pend_batch(chip, command("SetPosition", 5))
         refused_changes_nothing(chip, lambda: FMI3_REFUSALS[name](chip))

@@ -2,6 +2,7 @@
 """The licence (BSD-2-Clause, LICENSE) is named where tools look for it: every source file's header
 (SPDX), pyproject.toml, both FMUs' model descriptions (tests/test_version.py). The seed's sample code
 (tests/c/seed_1_*.c) is PMD's, as printed, and carries no licence of ours."""
+
 import subprocess
 from pathlib import Path
 
@@ -11,8 +12,11 @@ REPO = Path(__file__).resolve().parent.parent
 def test_every_source_file_names_its_licence():
     files = subprocess.run(["git", "ls-files"], cwd=REPO, capture_output=True, text=True, check=True).stdout.split()
     sources = [f for f in files if f.endswith((".c", ".h", ".py", ".java")) and not f.startswith("tests/c/seed_1_")]
-    missing = [f for f in sources + ["CMakeLists.txt", "dev", ".ci/run"]
-               if "SPDX-License-Identifier: BSD-2-Clause" not in "".join((REPO / f).read_text().splitlines(True)[:3])]
+    missing = [
+        f
+        for f in sources + ["CMakeLists.txt", "dev", ".ci/run"]
+        if "SPDX-License-Identifier: BSD-2-Clause" not in "".join((REPO / f).read_text().splitlines(True)[:3])
+    ]
     assert not missing, missing
 
 

@@ -1,15 +1,31 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Velocity contouring, electronic gear, on-the-fly trapezoidal changes and the
 stops in every mode (seed 001; pmd-reference 5)."""
+
 import numpy as np
 import pytest
 
-from pmdfmu import (PMDAbruptStop, PMDActivityAtMaximumVelocityMask, PMDActivityInMotionMask,
-                    PMDElectronicGearProfile, PMDError, PMDEventMotionCompleteMask, PMDPositionSourceActual,
-                    PMDPositionSourceCommanded, PMDSmoothStop, PMDTrapezoidal, PMDVelocityContouringProfile, field_ex)
+from pmdfmu import (
+    PMDAbruptStop,
+    PMDActivityAtMaximumVelocityMask,
+    PMDActivityInMotionMask,
+    PMDElectronicGearProfile,
+    PMDError,
+    PMDEventMotionCompleteMask,
+    PMDPositionSourceActual,
+    PMDPositionSourceCommanded,
+    PMDSmoothStop,
+    PMDTrapezoidal,
+    PMDVelocityContouringProfile,
+    field_ex,
+)
 
-V = ["axis{n}.commandedPosition", "axis{n}.commandedVelocity", "axis{n}.commandedAcceleration",
-     "axis{n}.activityStatus"]
+V = [
+    "axis{n}.commandedPosition",
+    "axis{n}.commandedVelocity",
+    "axis{n}.commandedAcceleration",
+    "axis{n}.activityStatus",
+]
 
 
 def rec(chip, cycles, *axes):
@@ -26,13 +42,13 @@ def velocity_mode(ax, velocity, acceleration, deceleration=0):
 
 def test_velocity_contouring_ramps_holds_and_reverses(chip):
     ax = chip.axis(0)
-    velocity_mode(ax, -0x30000, 0x1000, 0x2000)                # negative velocity is legal here
+    velocity_mode(ax, -0x30000, 0x1000, 0x2000)  # negative velocity is legal here
     r = rec(chip, 100, 0)
     v = r["axis1.commandedVelocity"]
     assert list(v[:3]) == [-0x1000, -0x2000, -0x3000]
     assert (v[47:] == -0x30000).all() and v[46] == -0x2F000
     assert (r["axis1.activityStatus"][48:] & PMDActivityAtMaximumVelocityMask).all()
-    velocity_mode(ax, 0x10000, 0x1000, 0x2000)                 # reverse: decelerate at 0x2000 through 0
+    velocity_mode(ax, 0x10000, 0x1000, 0x2000)  # reverse: decelerate at 0x2000 through 0
     r = rec(chip, 60, 0)
     v = r["axis1.commandedVelocity"]
     assert v[0] == -0x2E000 and v[23] == 0 and v[24] == 0x1000 and v[-1] == 0x10000
@@ -58,7 +74,7 @@ def test_velocity_zero_ends_the_motion_with_motion_complete(chip):
 def test_gear_follows_the_master_times_the_ratio_exactly(chip, source):
     master, slave = chip.axis(0), chip.axis(2)
     slave.SetGearMaster(0, source)
-    slave.SetGearRatio(-0x18000)                                   # -1.5
+    slave.SetGearRatio(-0x18000)  # -1.5
     slave.SetProfileMode(PMDElectronicGearProfile)
     slave.Update()
     assert slave.GetGearMaster() == (0, source)
@@ -99,11 +115,11 @@ def test_new_destination_inside_the_stopping_distance_overshoots_and_returns(chi
     ax.Update()
     chip.run(300)
     here = ax.GetCommandedPosition()
-    ax.SetPosition(here + 10)                      # far inside the stopping distance (8^2 / 2 / (1/16) = 512)
+    ax.SetPosition(here + 10)  # far inside the stopping distance (8^2 / 2 / (1/16) = 512)
     ax.Update()
     r = rec(chip, 1000, 0)
     p, v = r["axis1.commandedPosition"], r["axis1.commandedVelocity"]
-    assert p.max() > here + 10                     # overshoot
+    assert p.max() > here + 10  # overshoot
     assert p[-1] == here + 10 and v[-1] == 0
     assert (np.abs(np.diff(np.concatenate([[0x80000], v]))) <= 0x1000).all()
 
@@ -137,9 +153,9 @@ def test_acceleration_change_during_a_trapezoidal_move_is_0x0c_and_only_the_posi
         ax.Update()
     assert e.value.code == 0x0C
     chip.run(1)
-    assert ax.GetCommandedVelocity() == 11 * 0x1000        # acceleration unchanged
+    assert ax.GetCommandedVelocity() == 11 * 0x1000  # acceleration unchanged
     chip.run(3000)
-    assert ax.GetCommandedPosition() == 5000               # the new destination was taken
+    assert ax.GetCommandedPosition() == 5000  # the new destination was taken
 
 
 @pytest.mark.parametrize("mode", ["trapezoidal", "velocity"])

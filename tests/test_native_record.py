@@ -4,6 +4,7 @@ through pmdfmu_fmi2GetRecordData) and through the native loop (native/record_loo
 pmdfmu.recording) is the harness's cycle-by-cycle Python loop (tests/stepwise.py,
 kept as the reference), bit for bit: rows, errors, log messages, host clock
 ."""
+
 from ctypes import CFUNCTYPE
 
 import numpy as np
@@ -19,9 +20,23 @@ from stepwise import NativeLoop, Stepwise
 
 # every FMI type the rows hold: UInt32 (chipTime), Int32, Float64, UInt16 (status, an array's element with its
 # high bit set), Int16 (a negative motor command), Boolean (an input and an output)
-EVERY_TYPE = ["chipTime", "axis1.commandedPosition", "axis2.commandedVelocity", "axis1.position", "axis2.velocity",
-              "axis1.acceleration", "axis1.activityStatus", "axis1.eventStatus", "axis3.motorCommand",
-              "io.output[3]", "io.output[16]", "analog[2]", "axis4.home", "host.interrupt", "nextCycleTime"]
+EVERY_TYPE = [
+    "chipTime",
+    "axis1.commandedPosition",
+    "axis2.commandedVelocity",
+    "axis1.position",
+    "axis2.velocity",
+    "axis1.acceleration",
+    "axis1.activityStatus",
+    "axis1.eventStatus",
+    "axis3.motorCommand",
+    "io.output[3]",
+    "io.output[16]",
+    "analog[2]",
+    "axis4.home",
+    "host.interrupt",
+    "nextCycleTime",
+]
 
 
 @pytest.fixture
@@ -43,7 +58,7 @@ def every_type_chip(chip):
     ax.SetMotorMode(pmdfmu.PMDMotorOff)
     ax.SetMotorCommand(-1234)
     ax.Update()
-    chip.axis(0).WriteIO(2, 0xBEEF)                 # io.output[3]: UInt16 above 0x7FFF (FMI 2 reads Integers)
+    chip.axis(0).WriteIO(2, 0xBEEF)  # io.output[3]: UInt16 above 0x7FFF (FMI 2 reads Integers)
     chip.set("analog[2]", 0xFEDC)
     chip.set("axis4.home", True)
 
@@ -129,8 +144,9 @@ def failing_step(chip, at):
     def do_step(instance, t, h, *rest):
         calls[0] += 1
         return step(instance, t, 0.0 if calls[0] == at else h, *rest)
+
     fake = CFUNCTYPE(step.restype, *step.argtypes)(do_step)
-    fake.argtypes, fake.restype = step.argtypes, step.restype       # FMPy's _call reads them
+    fake.argtypes, fake.restype = step.argtypes, step.restype  # FMPy's _call reads them
     return name, fake
 
 
@@ -142,15 +158,22 @@ def test_an_error_mid_run_raises_as_the_python_loop_raised(version, monkeypatch)
             # a doStep a cycle: the native loop's error, and the Python loop's
             m.setattr(pmdfmu.Chip, "recorder", NativeLoop if native else Stepwise)
             with pmdfmu.Chip(fmi_version=version, host_interface="parallel16") as chip:
-                busy_chip(chip)                                     # the commands' host time runs cycles
+                busy_chip(chip)  # the commands' host time runs cycles
                 start = chip.cycles
                 name, fake = failing_step(chip, 300)
-                m.setitem(chip.fmu._functions, name, fake)      # the FMPy slaves of one FMU file may share them
+                m.setitem(chip.fmu._functions, name, fake)  # the FMPy slaves of one FMU file may share them
                 with pytest.raises(FMICallException) as e:
                     chip.run(1000, record=EVERY_TYPE)
-                results.append((type(e.value), str(e.value), chip.cycles - start, chip.host_time_ns,
-                                [(x.status, x.message) for x in chip.messages]))
-                chip.run(5)                                        # the instance goes on
+                results.append(
+                    (
+                        type(e.value),
+                        str(e.value),
+                        chip.cycles - start,
+                        chip.host_time_ns,
+                        [(x.status, x.message) for x in chip.messages],
+                    )
+                )
+                chip.run(5)  # the instance goes on
                 assert chip.cycles == start + results[-1][2] + 5
     assert results[0] == results[1]
     assert results[0][1].startswith(f"fmi{version}DoStep failed with status 3")
@@ -220,7 +243,7 @@ def test_a_failed_bulk_step_raises_and_leaves_recording_off(version, names, monk
         busy_chip(chip)
         name, fake = failing_step(chip, 3)
         with monkeypatch.context() as m:
-            m.setitem(chip.fmu._functions, name, fake)      # the FMPy slaves of one FMU file may share them
+            m.setitem(chip.fmu._functions, name, fake)  # the FMPy slaves of one FMU file may share them
             with pytest.raises(FMICallException, match=f"fmi{version}DoStep failed with status 3"):
                 chip.run(1000, record=names)
         assert not chip.get("record.enabled")

@@ -7,11 +7,19 @@ with the documented code, Reset restores reference 4.2's values, the filter
 group is double-buffered, only the Magellan's opcodes answer 0x02, and a
 C-Motion initialization of the kind the seeds and the MC2440 application
 describe runs without an error."""
+
 import pytest
 
 import pmdfmu
-from pmdfmu import (COMMANDS, PMD_ERR_InvalidInstruction, PMD_ERR_InvalidParameter, PMDActivityInMotionMask,
-                    PMDActivityPhasingInitializedMask, PMDError, tables)
+from pmdfmu import (
+    COMMANDS,
+    PMD_ERR_InvalidInstruction,
+    PMD_ERR_InvalidParameter,
+    PMDActivityInMotionMask,
+    PMDActivityPhasingInitializedMask,
+    PMDError,
+    tables,
+)
 from pmdfmu.docs import hardware, out_of_scope
 from states import command, op
 
@@ -20,33 +28,184 @@ FIELD_RANGE = {"u16": (0, 0xFFFF), "i16": (-0x8000, 0x7FFF), "u32": (0, 0xFFFFFF
 
 # The Navigator's opcodes: the PMDOP* enum of the MC2440's C-Motion (pmd-reference S3, UCtypes.h), transcribed.
 NAVIGATOR = {
-    0x00, 0x06, 0x07, 0x0F, 0x10, 0x11, 0x13, 0x14, 0x1A, 0x1D, 0x1E, 0x25, 0x26, 0x27, 0x2B, 0x2C, 0x2D, 0x2F,
-    0x31, 0x34, 0x36, 0x37, 0x38, 0x39, 0x3A, 0x3E, 0x47, 0x4A, 0x4B, 0x4C, 0x4D, 0x50, 0x51, 0x52, 0x54, 0x56,
-    0x58, 0x59, 0x5B, 0x61, 0x69, 0x6A, 0x6B, 0x6E, 0x72, 0x75, 0x76, 0x77, 0x7A, 0x7B, 0x7C, 0x7D,
-    *range(0x80, 0xCC), 0xCE, 0xCF, *range(0xD0, 0xF0), 0xF2, 0xF3, 0xF5, 0xF8,
+    0x00,
+    0x06,
+    0x07,
+    0x0F,
+    0x10,
+    0x11,
+    0x13,
+    0x14,
+    0x1A,
+    0x1D,
+    0x1E,
+    0x25,
+    0x26,
+    0x27,
+    0x2B,
+    0x2C,
+    0x2D,
+    0x2F,
+    0x31,
+    0x34,
+    0x36,
+    0x37,
+    0x38,
+    0x39,
+    0x3A,
+    0x3E,
+    0x47,
+    0x4A,
+    0x4B,
+    0x4C,
+    0x4D,
+    0x50,
+    0x51,
+    0x52,
+    0x54,
+    0x56,
+    0x58,
+    0x59,
+    0x5B,
+    0x61,
+    0x69,
+    0x6A,
+    0x6B,
+    0x6E,
+    0x72,
+    0x75,
+    0x76,
+    0x77,
+    0x7A,
+    0x7B,
+    0x7C,
+    0x7D,
+    *range(0x80, 0xCC),
+    0xCE,
+    0xCF,
+    *range(0xD0, 0xF0),
+    0xF2,
+    0xF3,
+    0xF5,
+    0xF8,
 }
 # pmd-reference 1.2, "opcode gaps": the Magellan's opcodes the Navigator lacks
-MAGELLAN_GAPS = {*range(0x02, 0x0E), 0x1B, 0x1C, *range(0x40, 0x4A), 0x53, 0x55, 0x57, 0x5A, 0x5E, 0x5F,
-                 *range(0x60, 0x69), 0x6C, 0x6D, 0x71, 0x73, 0x74, 0xF6, 0xF7, *range(0xF9, 0xFD)} - NAVIGATOR
+MAGELLAN_GAPS = {
+    *range(0x02, 0x0E),
+    0x1B,
+    0x1C,
+    *range(0x40, 0x4A),
+    0x53,
+    0x55,
+    0x57,
+    0x5A,
+    0x5E,
+    0x5F,
+    *range(0x60, 0x69),
+    0x6C,
+    0x6D,
+    0x71,
+    0x73,
+    0x74,
+    0xF6,
+    0xF7,
+    *range(0xF9, 0xFD),
+} - NAVIGATOR
 # the commands out_of_scope.csv listed before the Navigator set was complete: the filter group's and the motor's (a4cb061), then the
 # hardware's (all of which hardware.csv describes)
-FILTER_OPCODES = {0x25, 0x50, 0x26, 0x51, 0x27, 0x52, 0x2B, 0x54, 0x93, 0x94, 0x9E, 0x9F, 0x95, 0x96, 0x9C, 0x9D,
-                  0x77, 0x69, 0x3A, 0x9A, 0x9B, 0x06, 0x07, 0x0F, 0x2D}
-HARDWARE_OPCODES = {0xE0, 0x6E, 0x6A, 0x6B, 0x87, 0x88, 0xED, 0xEE, 0x8B, 0x8C, 0x89, 0x8A, 0x82, 0x83, 0xEF, 0xF8,
-                    0xDA, 0xDB, 0x8D, 0x8E, 0xBE, 0xBF, 0xDE, 0xDF, 0xCF, 0xCE, 0xF2, 0xF3, 0x2C, 0x72, 0x75, 0x76,
-                    0x7A, 0x7B, 0x7C, 0x7D, 0xE2, 0xE3, 0xE4, 0xE5, 0xE6, 0xE7, 0xE8, 0xE9, 0xEA, 0x84, 0x85, 0x86}
-CHECKSUM = 0x12345678          # GetChecksum: what the MC2440 application's self-test expects (S3, PMDsetup.c)
+FILTER_OPCODES = {
+    0x25,
+    0x50,
+    0x26,
+    0x51,
+    0x27,
+    0x52,
+    0x2B,
+    0x54,
+    0x93,
+    0x94,
+    0x9E,
+    0x9F,
+    0x95,
+    0x96,
+    0x9C,
+    0x9D,
+    0x77,
+    0x69,
+    0x3A,
+    0x9A,
+    0x9B,
+    0x06,
+    0x07,
+    0x0F,
+    0x2D,
+}
+HARDWARE_OPCODES = {
+    0xE0,
+    0x6E,
+    0x6A,
+    0x6B,
+    0x87,
+    0x88,
+    0xED,
+    0xEE,
+    0x8B,
+    0x8C,
+    0x89,
+    0x8A,
+    0x82,
+    0x83,
+    0xEF,
+    0xF8,
+    0xDA,
+    0xDB,
+    0x8D,
+    0x8E,
+    0xBE,
+    0xBF,
+    0xDE,
+    0xDF,
+    0xCF,
+    0xCE,
+    0xF2,
+    0xF3,
+    0x2C,
+    0x72,
+    0x75,
+    0x76,
+    0x7A,
+    0x7B,
+    0x7C,
+    0x7D,
+    0xE2,
+    0xE3,
+    0xE4,
+    0xE5,
+    0xE6,
+    0xE7,
+    0xE8,
+    0xE9,
+    0xEA,
+    0x84,
+    0x85,
+    0x86,
+}
+CHECKSUM = 0x12345678  # GetChecksum: what the MC2440 application's self-test expects (S3, PMDsetup.c)
 
 
 def valid_args(c):
     """Arguments the command accepts on a chip whose buffers 0 (the trace's) and 2 hold 4 words."""
-    special = {"SetSampleTime": (100,), "SetBufferFunction": (pmdfmu.PMDBufferFunctionPosition, 2),
-               "SetTraceStart": (0, pmdfmu.PMDTraceConditionUpdate, 0, 0)}
+    special = {
+        "SetSampleTime": (100,),
+        "SetBufferFunction": (pmdfmu.PMDBufferFunctionPosition, 2),
+        "SetTraceStart": (0, pmdfmu.PMDTraceConditionUpdate, 0, 0),
+    }
     if c.name in special:
         return special[c.name]
     register = REGISTERS.get(c.name[3:]) if c.name.startswith("Set") else None
-    return tuple(2 if f.name == "bufferID" else register.low if register and register.low is not None else 0
-                 for f in c.args)
+    return tuple(
+        2 if f.name == "bufferID" else register.low if register and register.low is not None else 0 for f in c.args
+    )
 
 
 def ready(chip):
@@ -56,6 +215,7 @@ def ready(chip):
 
 
 # ---- the tables -------------------------------------------------------------------------------------
+
 
 def test_the_command_table_is_the_navigator_set():
     assert {c.opcode for c in COMMANDS.values()} == NAVIGATOR
@@ -76,6 +236,7 @@ def test_the_hardware_table_says_what_every_hardware_command_does_here():
 
 
 # ---- every command is accepted ----------------------------------------------------------------------
+
 
 def test_every_command_is_accepted_as_raw_host_words(any_chip):
     """Each executed (error 0) in a batch that goes on after it: its word counts are right."""
@@ -121,8 +282,12 @@ def test_a_magellan_opcode_answers_invalid_instruction_and_ends_the_batch(chip, 
 
 # ---- the registers keep their whole range -----------------------------------------------------------
 
-HARDWARE_REGISTERS = [name for _, commands, _ in hardware() for name in
-                      (n[3:] for n in commands if n.startswith("Set")) if name in REGISTERS]
+HARDWARE_REGISTERS = [
+    name
+    for _, commands, _ in hardware()
+    for name in (n[3:] for n in commands if n.startswith("Set"))
+    if name in REGISTERS
+]
 
 
 def span(r, kind):
@@ -153,19 +318,31 @@ HARDWARE_ROUND_TRIPS = [
     ("SetEncoderModulus", "GetEncoderModulus", 360, 0),
     ("SetActualPositionUnits", "GetActualPositionUnits", pmdfmu.PMDSteps, pmdfmu.PMDCounts),
     ("SetStepRange", "GetStepRange", 4, 1),
-    ("SetCommutationMode", "GetCommutationMode", pmdfmu.PMDCommutationModeHallBased,
-     pmdfmu.PMDCommutationModeSinusoidal),
+    (
+        "SetCommutationMode",
+        "GetCommutationMode",
+        pmdfmu.PMDCommutationModeHallBased,
+        pmdfmu.PMDCommutationModeSinusoidal,
+    ),
     ("SetNumberPhases", "GetNumberPhases", 2, 3),
     ("SetPhaseInitializeMode", "GetPhaseInitializeMode", pmdfmu.PMDPhaseInitHallBased, pmdfmu.PMDPhaseInitAlgorithmic),
     ("SetPhaseInitializeTime", "GetPhaseInitializeTime", 1000, 0),
     ("SetPhasePrescale", "GetPhasePrescale", pmdfmu.PMDPhasePrescaleOn, pmdfmu.PMDPhasePrescaleOff),
-    ("SetPhaseCorrectionMode", "GetPhaseCorrectionMode", pmdfmu.PMDPhaseCorrectionEnabled,
-     pmdfmu.PMDPhaseCorrectionDisabled),
+    (
+        "SetPhaseCorrectionMode",
+        "GetPhaseCorrectionMode",
+        pmdfmu.PMDPhaseCorrectionEnabled,
+        pmdfmu.PMDPhaseCorrectionDisabled,
+    ),
     ("SetPhaseCounts", "GetPhaseCounts", 2000, 0),
     ("SetPhaseOffset", "GetPhaseOffset", 500, 0),
     ("SetPhaseAngle", "GetPhaseAngle", 1234, 0),
-    ("SetDiagnosticPortMode", "GetDiagnosticPortMode", pmdfmu.PMDDiagnosticPortModeFull,
-     pmdfmu.PMDDiagnosticPortModeLimited),
+    (
+        "SetDiagnosticPortMode",
+        "GetDiagnosticPortMode",
+        pmdfmu.PMDDiagnosticPortModeFull,
+        pmdfmu.PMDDiagnosticPortModeLimited,
+    ),
     ("SetSynchronizationMode", "GetSynchronizationMode", pmdfmu.PMDSynchSlaveNode, pmdfmu.PMDSynchDisabled),
 ]
 
@@ -210,13 +387,23 @@ def test_axis_out_source_keeps_each_field_and_refuses_an_axis_or_register_it_lac
 
 
 SERIAL = ["baud", "parity", "stopBits", "protocol", "multiDropID"]
-SERIAL_VALUES = {"baud": range(8), "parity": range(3), "stopBits": range(2), "protocol": (0, 2, 3),
-                 "multiDropID": range(32)}
+SERIAL_VALUES = {
+    "baud": range(8),
+    "parity": range(3),
+    "stopBits": range(2),
+    "protocol": (0, 2, 3),
+    "multiDropID": range(32),
+}
 
 
 def test_serial_port_mode_keeps_each_field_across_its_values_and_is_chip_wide(chip):
-    base = {"baud": pmdfmu.PMDSerialBaud19200, "parity": pmdfmu.PMDSerialParityOdd, "stopBits": 1,
-            "protocol": pmdfmu.PMDSerialProtocolMultiDropUsingAddressBit, "multiDropID": 17}
+    base = {
+        "baud": pmdfmu.PMDSerialBaud19200,
+        "parity": pmdfmu.PMDSerialParityOdd,
+        "stopBits": 1,
+        "protocol": pmdfmu.PMDSerialProtocolMultiDropUsingAddressBit,
+        "multiDropID": 17,
+    }
     for field in SERIAL:
         for value in SERIAL_VALUES[field]:
             mode = [value if f == field else base[f] for f in SERIAL]
@@ -322,6 +509,7 @@ def test_the_phase_commands_are_the_motor_command_on_phase_a_and_0_on_b_and_c(ch
 
 def test_the_hardware_commands_do_not_disturb_a_move(chip):
     """Idle hardware: the commutation, encoder, step and port settings leave the trajectory as it was."""
+
     def move(c, configure):
         ax = c.axis(0)
         if configure:
@@ -342,6 +530,7 @@ def test_the_hardware_commands_do_not_disturb_a_move(chip):
             c.run(25)
             positions.append((ax.GetCommandedPosition(), ax.GetActualPosition(), ax.GetEventStatus()))
         return positions
+
     with pmdfmu.Chip() as plain:
         assert move(chip, True) == move(plain, False)
     assert chip.axis(0).GetPhaseAngle() == 100
@@ -351,23 +540,70 @@ def test_the_hardware_commands_do_not_disturb_a_move(chip):
 
 # reference 4.2 (and 3.3 for the serial port), by Get command: the value after a Reset
 RESET_4_2 = {
-    "GetKp": 0, "GetKi": 0, "GetKd": 0, "GetKvff": 0, "GetKaff": 0, "GetIntegrationLimit": 0, "GetDerivativeTime": 1,
-    "GetKout": 65535, "GetMotorLimit": 32767, "GetMotorBias": 0, "GetMotorCommand": 0, "GetPositionErrorLimit": 65535,
-    "GetStartVelocity": 0, "GetEncoderModulus": 0, "GetCaptureSource": 0, "GetStepRange": 1,
-    "GetEncoderToStepRatio": (1, 1), "GetAxisMode": pmdfmu.PMDAxisOn, "GetSettleTime": 0, "GetSettleWindow": 0,
-    "GetTrackingWindow": 0, "GetMotionCompleteMode": 0, "GetGearMaster": (0, 0), "GetInterruptMask": 0,
-    "GetSerialPortMode": (pmdfmu.PMDSerialBaud57600, pmdfmu.PMDSerialParityNone, pmdfmu.PMDSerial1StopBit,
-                          pmdfmu.PMDSerialProtocolPoint2Point, 0),
+    "GetKp": 0,
+    "GetKi": 0,
+    "GetKd": 0,
+    "GetKvff": 0,
+    "GetKaff": 0,
+    "GetIntegrationLimit": 0,
+    "GetDerivativeTime": 1,
+    "GetKout": 65535,
+    "GetMotorLimit": 32767,
+    "GetMotorBias": 0,
+    "GetMotorCommand": 0,
+    "GetPositionErrorLimit": 65535,
+    "GetStartVelocity": 0,
+    "GetEncoderModulus": 0,
+    "GetCaptureSource": 0,
+    "GetStepRange": 1,
+    "GetEncoderToStepRatio": (1, 1),
+    "GetAxisMode": pmdfmu.PMDAxisOn,
+    "GetSettleTime": 0,
+    "GetSettleWindow": 0,
+    "GetTrackingWindow": 0,
+    "GetMotionCompleteMode": 0,
+    "GetGearMaster": (0, 0),
+    "GetInterruptMask": 0,
+    "GetSerialPortMode": (
+        pmdfmu.PMDSerialBaud57600,
+        pmdfmu.PMDSerialParityNone,
+        pmdfmu.PMDSerial1StopBit,
+        pmdfmu.PMDSerialProtocolPoint2Point,
+        0,
+    ),
 }
-CHANGED = {   # a value other than the reset value for each Set of RESET_4_2
-    "SetKp": (5,), "SetKi": (6,), "SetKd": (7,), "SetKvff": (8,), "SetKaff": (9,), "SetIntegrationLimit": (1000,),
-    "SetDerivativeTime": (4,), "SetKout": (100,), "SetMotorLimit": (20000,), "SetMotorBias": (-300,),
-    "SetMotorCommand": (2000,), "SetPositionErrorLimit": (5,), "SetStartVelocity": (0x10000,),
-    "SetEncoderModulus": (360,), "SetCaptureSource": (1,), "SetStepRange": (3,), "SetEncoderToStepRatio": (4000, 12800),
-    "SetAxisMode": (pmdfmu.PMDAxisOff,), "SetSettleTime": (10,), "SetSettleWindow": (11,), "SetTrackingWindow": (12,),
-    "SetMotionCompleteMode": (1,), "SetGearMaster": (1, 1), "SetInterruptMask": (0x10,),
-    "SetSerialPortMode": (pmdfmu.PMDSerialBaud416667, pmdfmu.PMDSerialParityEven, pmdfmu.PMDSerial2StopBits,
-                          pmdfmu.PMDSerialProtocolMultiDropUsingIdleLineDetection, 31),
+CHANGED = {  # a value other than the reset value for each Set of RESET_4_2
+    "SetKp": (5,),
+    "SetKi": (6,),
+    "SetKd": (7,),
+    "SetKvff": (8,),
+    "SetKaff": (9,),
+    "SetIntegrationLimit": (1000,),
+    "SetDerivativeTime": (4,),
+    "SetKout": (100,),
+    "SetMotorLimit": (20000,),
+    "SetMotorBias": (-300,),
+    "SetMotorCommand": (2000,),
+    "SetPositionErrorLimit": (5,),
+    "SetStartVelocity": (0x10000,),
+    "SetEncoderModulus": (360,),
+    "SetCaptureSource": (1,),
+    "SetStepRange": (3,),
+    "SetEncoderToStepRatio": (4000, 12800),
+    "SetAxisMode": (pmdfmu.PMDAxisOff,),
+    "SetSettleTime": (10,),
+    "SetSettleWindow": (11,),
+    "SetTrackingWindow": (12,),
+    "SetMotionCompleteMode": (1,),
+    "SetGearMaster": (1, 1),
+    "SetInterruptMask": (0x10,),
+    "SetSerialPortMode": (
+        pmdfmu.PMDSerialBaud416667,
+        pmdfmu.PMDSerialParityEven,
+        pmdfmu.PMDSerial2StopBits,
+        pmdfmu.PMDSerialProtocolMultiDropUsingIdleLineDetection,
+        31,
+    ),
 }
 
 
@@ -387,12 +623,13 @@ def test_reset_restores_reference_4_2_on_every_axis(any_chip):
 
 # ---- the filter group is double-buffered ------------------------------------------------------------
 
+
 def test_the_open_loop_motor_command_acts_at_update_not_before(chip):
     ax = chip.axis(1)
     ax.SetMotorMode(pmdfmu.PMDMotorOff)
     ax.SetMotorCommand(3000)
     chip.run(3)
-    assert (ax.GetMotorCommand(), ax.GetCurrentMotorCommand()) == (3000, 0)   # Get reads the buffered register
+    assert (ax.GetMotorCommand(), ax.GetCurrentMotorCommand()) == (3000, 0)  # Get reads the buffered register
     ax.Update()
     chip.run(1)
     assert ax.GetCurrentMotorCommand() == 3000
@@ -423,44 +660,83 @@ def test_a_gain_acts_at_update_not_before():
 
 # ---- a C-Motion initialization ----------------------------------------------------------------------
 
+
 def initialization(axis):
     """(command, arguments) of one axis's set-up, as the seeds (filter gains and integration limit, seed 004;
     PID, feedforward, motor bias and limit, output, seed 001) and the MC2440 application's chip set-up
     (reference S3, PMDsetup.c) send them, then a trapezoidal move and Update."""
     return [
-        ("SetKp", 200), ("SetKi", 16), ("SetKd", 800), ("SetKvff", 300), ("SetKaff", 0), ("SetKout", 0xFFFF),
-        ("SetIntegrationLimit", 50000), ("SetDerivativeTime", 1), ("SetMotorLimit", 30000), ("SetMotorBias", -200),
+        ("SetKp", 200),
+        ("SetKi", 16),
+        ("SetKd", 800),
+        ("SetKvff", 300),
+        ("SetKaff", 0),
+        ("SetKout", 0xFFFF),
+        ("SetIntegrationLimit", 50000),
+        ("SetDerivativeTime", 1),
+        ("SetMotorLimit", 30000),
+        ("SetMotorBias", -200),
         ("SetOutputMode", pmdfmu.PMDMotorOutputPWMSignMagnitude),
-        ("SetCommutationMode", pmdfmu.PMDCommutationModeSinusoidal), ("SetNumberPhases", 3), ("SetPhaseCounts", 2000),
-        ("SetPhaseInitializeMode", pmdfmu.PMDPhaseInitAlgorithmic), ("SetPhaseInitializeTime", 500),
-        ("SetPhasePrescale", pmdfmu.PMDPhasePrescaleOff), ("SetPhaseCorrectionMode", pmdfmu.PMDPhaseCorrectionEnabled),
-        ("SetPhaseOffset", 0), ("InitializePhase",),
-        ("SetEncoderSource", pmdfmu.PMDEncoderSourceIncremental), ("SetEncoderToStepRatio", 4000, 4000),
+        ("SetCommutationMode", pmdfmu.PMDCommutationModeSinusoidal),
+        ("SetNumberPhases", 3),
+        ("SetPhaseCounts", 2000),
+        ("SetPhaseInitializeMode", pmdfmu.PMDPhaseInitAlgorithmic),
+        ("SetPhaseInitializeTime", 500),
+        ("SetPhasePrescale", pmdfmu.PMDPhasePrescaleOff),
+        ("SetPhaseCorrectionMode", pmdfmu.PMDPhaseCorrectionEnabled),
+        ("SetPhaseOffset", 0),
+        ("InitializePhase",),
+        ("SetEncoderSource", pmdfmu.PMDEncoderSourceIncremental),
+        ("SetEncoderToStepRatio", 4000, 4000),
         ("SetActualPositionUnits", pmdfmu.PMDCounts),
-        ("SetSignalSense", pmdfmu.PMDSignalMotorOutputInvertMask), ("SetLimitSwitchMode", pmdfmu.PMDLimitEnabled),
-        ("SetPositionErrorLimit", 2000), ("SetTrackingWindow", 50), ("SetSettleWindow", 10), ("SetSettleTime", 20),
+        ("SetSignalSense", pmdfmu.PMDSignalMotorOutputInvertMask),
+        ("SetLimitSwitchMode", pmdfmu.PMDLimitEnabled),
+        ("SetPositionErrorLimit", 2000),
+        ("SetTrackingWindow", 50),
+        ("SetSettleWindow", 10),
+        ("SetSettleTime", 20),
         ("SetMotionCompleteMode", pmdfmu.PMDMotionCompleteCommandedPosition),
-        ("SetAutoStopMode", pmdfmu.PMDAutoStopEnabled), ("SetAxisMode", pmdfmu.PMDAxisOn),
-        ("SetMotorMode", pmdfmu.PMDMotorOn), ("SetMotorCommand", 0), ("ResetEventStatus", 0),
-        ("SetProfileMode", pmdfmu.PMDTrapezoidalProfile), ("SetPosition", 1000 * (axis + 1)),
-        ("SetVelocity", 0x100000), ("SetAcceleration", 0x4000), ("SetDeceleration", 0x4000), ("Update",),
+        ("SetAutoStopMode", pmdfmu.PMDAutoStopEnabled),
+        ("SetAxisMode", pmdfmu.PMDAxisOn),
+        ("SetMotorMode", pmdfmu.PMDMotorOn),
+        ("SetMotorCommand", 0),
+        ("ResetEventStatus", 0),
+        ("SetProfileMode", pmdfmu.PMDTrapezoidalProfile),
+        ("SetPosition", 1000 * (axis + 1)),
+        ("SetVelocity", 0x100000),
+        ("SetAcceleration", 0x4000),
+        ("SetDeceleration", 0x4000),
+        ("Update",),
     ]
 
 
-PREAMBLE = [("Reset",), ("GetHostIOError",), ("GetVersion",), ("GetChecksum",), ("SetSampleTime", 200),
-            ("SetSerialPortMode", pmdfmu.PMDSerialBaud57600, 0, 0, 0, 0),
-            ("SetDiagnosticPortMode", pmdfmu.PMDDiagnosticPortModeLimited),
-            ("SetSynchronizationMode", pmdfmu.PMDSynchDisabled)]
+PREAMBLE = [
+    ("Reset",),
+    ("GetHostIOError",),
+    ("GetVersion",),
+    ("GetChecksum",),
+    ("SetSampleTime", 200),
+    ("SetSerialPortMode", pmdfmu.PMDSerialBaud57600, 0, 0, 0, 0),
+    ("SetDiagnosticPortMode", pmdfmu.PMDDiagnosticPortModeLimited),
+    ("SetSynchronizationMode", pmdfmu.PMDSynchDisabled),
+]
 
 
 def check_initialized(chip):
     for n in range(4):
         ax = chip.axis(n)
-        assert (ax.GetKp(), ax.GetKd(), ax.GetIntegrationLimit(), ax.GetMotorLimit(), ax.GetMotorBias()) == \
-            (200, 800, 50000, 30000, -200)
+        assert (ax.GetKp(), ax.GetKd(), ax.GetIntegrationLimit(), ax.GetMotorLimit(), ax.GetMotorBias()) == (
+            200,
+            800,
+            50000,
+            30000,
+            -200,
+        )
         assert ax.GetOutputMode() == pmdfmu.PMDMotorOutputPWMSignMagnitude
-        assert ax.GetActivityStatus() & (PMDActivityInMotionMask | PMDActivityPhasingInitializedMask) == \
-            PMDActivityInMotionMask | PMDActivityPhasingInitializedMask
+        assert (
+            ax.GetActivityStatus() & (PMDActivityInMotionMask | PMDActivityPhasingInitializedMask)
+            == PMDActivityInMotionMask | PMDActivityPhasingInitializedMask
+        )
     assert chip.axis(0).GetSampleTime() == 200
     chip.run(600)
     assert [chip.axis(n).GetCommandedPosition() for n in range(4)] == [1000, 2000, 3000, 4000]
@@ -532,7 +808,7 @@ def test_the_axis_out_level_follows_its_source_bit_in_the_signal_status(chip):
     breakpoint or a trace can key on it; source none reads low; the sense bit inverts it."""
     ax, mover = chip.axis(0), chip.axis(1)
     axis_out = lambda: bool(ax.GetSignalStatus() & pmdfmu.PMDSignalAxisOutMask)
-    assert not axis_out()                                       # reset: source none
+    assert not axis_out()  # reset: source none
     in_motion = pmdfmu.PMDActivityInMotionMask.bit_length() - 1
     ax.SetAxisOutSource(1, in_motion, pmdfmu.PMDAxisOutSourceActivityStatus)
     assert not axis_out()
@@ -540,7 +816,7 @@ def test_the_axis_out_level_follows_its_source_bit_in_the_signal_status(chip):
     mover.SetVelocity(0x10000)
     mover.SetAcceleration(0x1000)
     mover.Update()
-    assert axis_out()                                           # axis 2 in motion
+    assert axis_out()  # axis 2 in motion
     ax.SetSignalSense(pmdfmu.PMDSignalAxisOutMask)
     assert not axis_out()
     ax.SetSignalSense(0)
@@ -554,7 +830,7 @@ def test_the_axis_out_level_follows_its_source_bit_in_the_signal_status(chip):
     # a signal bit of its own status (the home input), read without AxisOut bits: no circle
     home = pmdfmu.PMDSignalEncoderHomeMask.bit_length() - 1
     ax.SetAxisOutSource(0, home, pmdfmu.PMDAxisOutSourceSignalStatus)
-    assert axis_out()                                           # home idle: reads 1
+    assert axis_out()  # home idle: reads 1
     chip.set("axis1.home", True)
     assert not axis_out()
     axis_out_bit = pmdfmu.PMDSignalAxisOutMask.bit_length() - 1

@@ -4,6 +4,7 @@ interface as the table declares it in FMI 2 and 3, the motor's physics against
 closed-form solutions, its fixed-step integration and determinism, the encoder,
 the outputs that change only in doStep, FMU states and the refusals of bad
 calls with a message."""
+
 import csv
 import math
 import os
@@ -51,14 +52,15 @@ class Plant:
             self.fmu = FMU2Slave(**kwargs)
             self._callbacks = fmi2CallbackFunctions()
             self._callbacks.logger = fmi2CallbackLoggerTYPE(
-                lambda env, name, status, category, message:
-                self.messages.append(message.decode().replace("%%", "%")))
+                lambda env, name, status, category, message: self.messages.append(message.decode().replace("%%", "%"))
+            )
             self.fmu.instantiate(callbacks=self._callbacks)
             self.fmu.setupExperiment(startTime=start_time)
         else:
             self.fmu = FMU3Slave(**kwargs)
-            self.fmu.instantiate(logMessage=lambda env, status, category, message:
-                                 self.messages.append(message.decode()))
+            self.fmu.instantiate(
+                logMessage=lambda env, status, category, message: self.messages.append(message.decode())
+            )
         self.time = start_time
         for name, value in (start or {}).items():
             self.set(name, value)
@@ -131,6 +133,7 @@ def plants():
     def make(*args, **kwargs):
         made.append(Plant(*args, **kwargs))
         return made[-1]
+
     yield make
     for p in made:
         p.close()
@@ -146,13 +149,14 @@ def motor(p=START):
 
 # ---- the interface -------------------------------------------------------------------
 
+
 def test_both_model_descriptions_validate_and_declare_the_table(fmi_version):
     assert validate_fmu(str(plant_fmu(fmi_version))) == []
     md = read_model_description(plant_fmu(fmi_version))
     declared = {v.name: v for v in md.modelVariables}
     for r in ROWS:
         if fmi_version == 2 and not r["type"]:
-            assert r["name"] not in declared               # time: FMI 2's independent variable is implicit
+            assert r["name"] not in declared  # time: FMI 2's independent variable is implicit
             continue
         v = declared.pop(r["name"])
         assert v.valueReference == int(r["vr"])
@@ -180,8 +184,12 @@ def test_fmu_manipulation_toolboxs_checker_passes(fmi_version):
         if os.environ.get("CI"):
             raise
         pytest.skip(f"fmu-manipulation-toolbox not installed ({e}): pip install '.[test]'")
-    out = subprocess.run([sys.executable, "-m", "fmu_manipulation_toolbox", "-input", str(plant_fmu(fmi_version)),
-                          "-check"], capture_output=True, text=True, timeout=120)
+    out = subprocess.run(
+        [sys.executable, "-m", "fmu_manipulation_toolbox", "-input", str(plant_fmu(fmi_version)), "-check"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     log = out.stdout + out.stderr
     assert out.returncode == 0, log
     assert f"This FMU seems to be compliant with FMI-{fmi_version}.0." in log
@@ -199,13 +207,17 @@ def test_no_output_depends_on_an_input_without_a_step(fmi_version):
     if fmi_version == 2:
         names = [sv.get("name") for sv in root.find("ModelVariables")]
         outputs = {names[int(u.get("index")) - 1]: u.get("dependencies") for u in structure.find("Outputs")}
-        initial = {names[int(u.get("index")) - 1]: sorted(names[int(i) - 1] for i in u.get("dependencies").split())
-                   for u in structure.find("InitialUnknowns")}
+        initial = {
+            names[int(u.get("index")) - 1]: sorted(names[int(i) - 1] for i in u.get("dependencies").split())
+            for u in structure.find("InitialUnknowns")
+        }
     else:
         by_vr = {v.get("valueReference"): v.get("name") for v in root.find("ModelVariables")}
         outputs = {by_vr[u.get("valueReference")]: u.get("dependencies") for u in structure.iter("Output")}
-        initial = {by_vr[u.get("valueReference")]: sorted(by_vr[i] for i in u.get("dependencies").split())
-                   for u in structure.iter("InitialUnknown")}
+        initial = {
+            by_vr[u.get("valueReference")]: sorted(by_vr[i] for i in u.get("dependencies").split())
+            for u in structure.iter("InitialUnknown")
+        }
     table_outputs = [r for r in ROWS if r["causality"] == "output"]
     assert outputs == {r["name"]: "" for r in table_outputs}
     assert initial == {r["name"]: sorted(r["initialDependencies"].split()) for r in table_outputs}
@@ -218,13 +230,13 @@ def test_inputs_move_no_output_until_the_step(plants, fmi_version):
     before = p.outputs()
     p.set("motorCommand", 20000)
     p.set("loadTorque", 0.5)
-    assert p.outputs() == before                        # initialization: no feedthrough
+    assert p.outputs() == before  # initialization: no feedthrough
     p.exit()
     p.step(1e-4, 10)
     before = p.outputs()
     p.set("motorCommand", -20000)
     p.set("loadTorque", -0.5)
-    assert p.outputs() == before                        # step mode: no feedthrough
+    assert p.outputs() == before  # step mode: no feedthrough
     p.step(1e-4)
     assert p.outputs() != before
 
@@ -233,15 +245,16 @@ def test_outputs_in_initialization_follow_the_parameters_they_declare(plants, fm
     p = plants(fmi_version, initialize=False)
     p.enter()
     cpr = 4 * START["encoderLines"]
-    p.set("initialAngle", 2 * math.pi * 2.25 / cpr)     # two and a quarter counts
+    p.set("initialAngle", 2 * math.pi * 2.25 / cpr)  # two and a quarter counts
     p.set("initialSpeed", 3.0)
     assert (p.get("angle"), p.get("speed"), p.get("encoderCount")) == (2 * math.pi * 2.25 / cpr, 3.0, 2)
     p.set("encoderLines", 2 * int(START["encoderLines"]))
     assert p.get("encoderCount") == 4
-    assert (p.get("current"), p.get("voltage")) == (0.0, 0.0)   # no step yet
+    assert (p.get("current"), p.get("voltage")) == (0.0, 0.0)  # no step yet
 
 
 # ---- the physics -----------------------------------------------------------------------
+
 
 def test_steady_speed_and_current_are_the_closed_form_ones(plants, fmi_version):
     """J dw/dt = k V/R + loadTorque - c w - Tc: at full scale the speed settles at
@@ -249,13 +262,14 @@ def test_steady_speed_and_current_are_the_closed_form_ones(plants, fmi_version):
     fixed point of the implicit step is exactly that speed."""
     J, c, k_over_R, _ = motor()
     p = plants(fmi_version, {"motorCommand": FULL_SCALE})
-    p.step(1e-3, 1000)                                  # 1 s, over 30 time constants
+    p.step(1e-3, 1000)  # 1 s, over 30 time constants
     w = (k_over_R * START["supplyVoltage"] - START["coulombFriction"]) / c
     assert p.get("speed") == pytest.approx(w, rel=1e-12)
     current = (START["supplyVoltage"] - START["torqueConstant"] * p.get("speed")) / START["armatureResistance"]
     assert p.get("current") == pytest.approx(current, rel=1e-12)
     assert START["torqueConstant"] * p.get("current") == pytest.approx(
-        START["viscousFriction"] * w + START["coulombFriction"], rel=1e-9)
+        START["viscousFriction"] * w + START["coulombFriction"], rel=1e-9
+    )
     assert p.get("voltage") == START["supplyVoltage"]
 
 
@@ -277,7 +291,7 @@ def test_spin_up_follows_the_exponential_within_the_implicit_eulers_error(plants
     for h in (START["internalStep"], START["internalStep"] / 2):
         p = plants(2, {"motorCommand": FULL_SCALE, "internalStep": h})
         worst = 0.0
-        for n in range(1, 301):                         # 0.03 s, one time constant
+        for n in range(1, 301):  # 0.03 s, one time constant
             p.step(1e-4)
             worst = max(worst, abs(p.get("speed") - w_ss * (1 - math.exp(-n * 1e-4 / tau))))
         assert worst <= w_ss * h / (2 * math.e * tau) * 1.05
@@ -302,7 +316,7 @@ def test_coulomb_friction_holds_the_shaft_below_breakaway_and_stops_it_without_c
         speeds.append(q.get("speed"))
     first_zero = speeds.index(0.0) + 1
     assert abs(first_zero * 1e-4 - stop) <= 2e-4
-    assert all(s > 0 for s in speeds[:first_zero - 1]) and set(speeds[first_zero - 1:]) == {0.0}
+    assert all(s > 0 for s in speeds[: first_zero - 1]) and set(speeds[first_zero - 1 :]) == {0.0}
 
 
 def test_the_amplifier_scales_the_command_and_saturates_at_minus_full_scale(plants):
@@ -316,17 +330,25 @@ def test_the_amplifier_scales_the_command_and_saturates_at_minus_full_scale(plan
 
 def test_the_encoder_counts_4_per_line_floors_and_wraps_at_32_bits(plants, fmi_version):
     cpr = 4 * START["encoderLines"]
-    cases = [(0.0, 0), (-1e-9, -1), (2 * math.pi * 0.5 / cpr, 0), (2 * math.pi * 1.5 / cpr, 1),
-             (2 * math.pi * (cpr + 0.5) / cpr, cpr), (-2 * math.pi * (cpr + 0.5) / cpr, -cpr - 1),
-             (2 * math.pi * (2 ** 31 + 5.5) / cpr, -2 ** 31 + 5), (2 * math.pi * (-2 ** 31 - 1.5) / cpr, 2 ** 31 - 2)]
+    cases = [
+        (0.0, 0),
+        (-1e-9, -1),
+        (2 * math.pi * 0.5 / cpr, 0),
+        (2 * math.pi * 1.5 / cpr, 1),
+        (2 * math.pi * (cpr + 0.5) / cpr, cpr),
+        (-2 * math.pi * (cpr + 0.5) / cpr, -cpr - 1),
+        (2 * math.pi * (2**31 + 5.5) / cpr, -(2**31) + 5),
+        (2 * math.pi * (-(2**31) - 1.5) / cpr, 2**31 - 2),
+    ]
     for angle, count in cases:
         p = plants(fmi_version, {"initialAngle": angle})
         assert p.get("encoderCount") == count, angle
-        p.step(1e-4)                                    # at rest: the same count after a step
+        p.step(1e-4)  # at rest: the same count after a step
         assert p.get("encoderCount") == count, angle
 
 
 # ---- integration steps and determinism ----------------------------------------------------
+
 
 def run(fmi_version, steps, start_time=0.0, plants=None):
     """Outputs after each of the given communication steps, a drive that reverses."""
@@ -351,7 +373,7 @@ def test_a_step_advances_by_whole_internal_steps_so_splits_on_the_grid_agree(pla
     fine = run(fmi_version, [1e-4] * 400, plants=plants)
     coarse = run(fmi_version, [2e-4] * 200, plants=plants)
     assert coarse == fine[1::2]
-    mixed = run(fmi_version, [1e-4, 3e-4] * 100, plants=plants)   # 3e-4 / 1e-5 is 29.999999999999996
+    mixed = run(fmi_version, [1e-4, 3e-4] * 100, plants=plants)  # 3e-4 / 1e-5 is 29.999999999999996
     assert mixed[1::2] == fine[3::4]
 
 
@@ -382,18 +404,21 @@ def test_fmu_states_restore_the_run_bit_for_bit(plants, fmi_version):
     p.time = t
     p.step(1e-4, 50)
     assert p.outputs() == after
-    other = plants(fmi_version)                         # a state carries the parameters too
+    other = plants(fmi_version)  # a state carries the parameters too
     other.restore(saved)
     other.time = t
     other.step(1e-4, 50)
     assert other.outputs() == after
 
 
-@pytest.mark.parametrize("corrupt, message", [
-    (lambda b: b[:-1], "bytes"),
-    (lambda b: b"x" + b[1:], "not a state of this FMU"),
-    (lambda b: b[:-8] + np.float64(np.nan).tobytes(), "is not in"),
-])
+@pytest.mark.parametrize(
+    "corrupt, message",
+    [
+        (lambda b: b[:-1], "bytes"),
+        (lambda b: b"x" + b[1:], "not a state of this FMU"),
+        (lambda b: b[:-8] + np.float64(np.nan).tobytes(), "is not in"),
+    ],
+)
 def test_a_forged_state_is_refused_with_a_message(plants, fmi_version, corrupt, message):
     p = plants(fmi_version, {"motorCommand": 12000})
     p.step(1e-4, 10)
@@ -406,19 +431,23 @@ def test_a_forged_state_is_refused_with_a_message(plants, fmi_version, corrupt, 
 
 # ---- refusals -------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("call, message", [
-    (lambda p: p.set("motorCommand", 40000), "motorCommand = 40000 is not in -32768 .. 32767"),
-    (lambda p: p.set("encoderCount", 3), "encoderCount is an output and cannot be set"),
-    (lambda p: p.set("armatureResistance", 1.0), "armatureResistance, a parameter, cannot be set in step mode"),
-    (lambda p: p.set("loadTorque", float("nan")), "loadTorque = nan is not in"),
-    (lambda p: p.fmu.setReal([999], [1.0]), "no variable has value reference 999"),
-    (lambda p: p.fmu.setReal([20], [1.0]), "value reference 20 (motorCommand) is of type Integer"),
-    (lambda p: p.fmu.doStep(1.0, 1e-4), "communication point 1 is not the current time 0"),
-    (lambda p: p.fmu.doStep(0.0, 0.0), "the step size must be finite and > 0"),
-    (lambda p: p.fmu.doStep(0.0, 1e6), "internal steps"),
-    (lambda p: p.fmu.getBoolean([1]), "no variable of this type has value reference 1"),
-    (lambda p: p.fmu.setDebugLogging(True, ["nonsense"]), 'unknown log category "nonsense"'),
-])
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda p: p.set("motorCommand", 40000), "motorCommand = 40000 is not in -32768 .. 32767"),
+        (lambda p: p.set("encoderCount", 3), "encoderCount is an output and cannot be set"),
+        (lambda p: p.set("armatureResistance", 1.0), "armatureResistance, a parameter, cannot be set in step mode"),
+        (lambda p: p.set("loadTorque", float("nan")), "loadTorque = nan is not in"),
+        (lambda p: p.fmu.setReal([999], [1.0]), "no variable has value reference 999"),
+        (lambda p: p.fmu.setReal([20], [1.0]), "value reference 20 (motorCommand) is of type Integer"),
+        (lambda p: p.fmu.doStep(1.0, 1e-4), "communication point 1 is not the current time 0"),
+        (lambda p: p.fmu.doStep(0.0, 0.0), "the step size must be finite and > 0"),
+        (lambda p: p.fmu.doStep(0.0, 1e6), "internal steps"),
+        (lambda p: p.fmu.getBoolean([1]), "no variable of this type has value reference 1"),
+        (lambda p: p.fmu.setDebugLogging(True, ["nonsense"]), 'unknown log category "nonsense"'),
+    ],
+)
 def test_fmi2_refuses_bad_calls_naming_what_and_why(plants, call, message):
     p = plants(2)
     before = p.state()
@@ -430,8 +459,13 @@ def test_fmi2_refuses_bad_calls_naming_what_and_why(plants, call, message):
 
 def test_parameters_out_of_range_are_refused_before_initialization(plants, fmi_version):
     p = plants(fmi_version, initialize=False)
-    for name, value in [("armatureResistance", 0.0), ("rotorInertia", 0.0), ("internalStep", 0.0),
-                        ("supplyVoltage", -1.0), ("encoderLines", 0)]:
+    for name, value in [
+        ("armatureResistance", 0.0),
+        ("rotorInertia", 0.0),
+        ("internalStep", 0.0),
+        ("supplyVoltage", -1.0),
+        ("encoderLines", 0),
+    ]:
         with pytest.raises(FMICallException):
             p.set(name, value)
         assert any(m.startswith(f"fmi{fmi_version}Set") and f"{name} = " in m for m in p.messages), name
@@ -442,8 +476,17 @@ def test_parameters_out_of_range_are_refused_before_initialization(plants, fmi_v
 
 
 def test_a_step_that_would_leave_doubles_range_is_refused_and_changes_nothing(plants, fmi_version):
-    p = plants(fmi_version, {"initialSpeed": 1.7e308, "loadTorque": 1e300, "rotorInertia": 1e-12,
-                             "loadInertia": 0.0, "torqueConstant": 0.0, "viscousFriction": 0.0})
+    p = plants(
+        fmi_version,
+        {
+            "initialSpeed": 1.7e308,
+            "loadTorque": 1e300,
+            "rotorInertia": 1e-12,
+            "loadInertia": 0.0,
+            "torqueConstant": 0.0,
+            "viscousFriction": 0.0,
+        },
+    )
     before = p.outputs()
     with pytest.raises(FMICallException):
         p.fmu.doStep(0.0, 1e-4)
@@ -480,8 +523,9 @@ DOC = TABLE.parent.parent / "docs" / "systems.md"
 def test_the_docs_variable_table_is_plant_csv():
     rows = re.findall(r"^\| `(\w+)` \| (\w+) \|([^|]*)\|([^|]*)\|", DOC.read_text(), re.M)
     documented = {name: (causality, unit.strip(), start.strip()) for name, causality, unit, start in rows}
-    assert documented == {r["name"]: (r["causality"], r["unit"], r["start"])
-                          for r in ROWS if r["causality"] != "independent"}
+    assert documented == {
+        r["name"]: (r["causality"], r["unit"], r["start"]) for r in ROWS if r["causality"] != "independent"
+    }
 
 
 def test_the_docs_counts_and_cycles_follow_from_the_start_values():
@@ -491,14 +535,15 @@ def test_the_docs_counts_and_cycles_follow_from_the_start_values():
     acceleration = k_over_R * START["supplyVoltage"] / J
     no_load = (k_over_R * START["supplyVoltage"] - START["coulombFriction"]) / c
     text = DOC.read_text()
-    for fact in (f"{acceleration:.0f} rad/s², a_full = {acceleration * counts_per_rad * cycle ** 2:.3f} counts/cycle²",
-                 f"{J / c:.4f} s, tau = {J / c / cycle:.0f} cycles",
-                 f"{no_load:.0f} rad/s ({no_load * 60 / (2 * math.pi):.0f} rpm), "
-                 f"{no_load * counts_per_rad * cycle:.0f} counts/cycle",
-                 f"{START['coulombFriction'] / (k_over_R * START['supplyVoltage']) * FULL_SCALE:.0f} counts",
-                 f"{10 / counts_per_rad / cycle:.1f} rad/s ({10 / counts_per_rad / cycle * 60 / (2 * math.pi):.0f} rpm)",
-                 f"Kvff = 32768 / (a_full tau) = "
-                 f"{32768 / (acceleration * counts_per_rad * cycle ** 2 * J / c / cycle):.0f}",
-                 f"Kaff = 32768 / a_full = {32768 / (acceleration * counts_per_rad * cycle ** 2):.0f}",
-                 f"4 Kd a_full / 32768 = {4 * 4000 * acceleration * counts_per_rad * cycle ** 2 / 32768:.2f}"):
+    for fact in (
+        f"{acceleration:.0f} rad/s², a_full = {acceleration * counts_per_rad * cycle**2:.3f} counts/cycle²",
+        f"{J / c:.4f} s, tau = {J / c / cycle:.0f} cycles",
+        f"{no_load:.0f} rad/s ({no_load * 60 / (2 * math.pi):.0f} rpm), "
+        f"{no_load * counts_per_rad * cycle:.0f} counts/cycle",
+        f"{START['coulombFriction'] / (k_over_R * START['supplyVoltage']) * FULL_SCALE:.0f} counts",
+        f"{10 / counts_per_rad / cycle:.1f} rad/s ({10 / counts_per_rad / cycle * 60 / (2 * math.pi):.0f} rpm)",
+        f"Kvff = 32768 / (a_full tau) = {32768 / (acceleration * counts_per_rad * cycle**2 * J / c / cycle):.0f}",
+        f"Kaff = 32768 / a_full = {32768 / (acceleration * counts_per_rad * cycle**2):.0f}",
+        f"4 Kd a_full / 32768 = {4 * 4000 * acceleration * counts_per_rad * cycle**2 / 32768:.2f}",
+    ):
         assert fact in text, fact

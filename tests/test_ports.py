@@ -6,6 +6,7 @@ ReadAnalog reads, and the I/O bus `io.input[1..16]` (ReadIO) and
 `io.output[1..16]` (WriteIO), through FMI 2 and FMI 3: their declarations, start
 values, reads and sets and refusals, the chip's Reset (the inputs are wires and
 stay, the latched outputs go to 0), FMU states, recording and the commands."""
+
 import re
 import subprocess
 import sys
@@ -23,12 +24,16 @@ from states import InitializationChip, command, pend_batch, snapshot, vr
 FMU_PAGE = Path(__file__).resolve().parent.parent / "docs" / "fmu.md"
 AXES = range(1, 5)
 # name: (FMI 2 type, FMI 3 type, causality, start, elements, value reference of axis 1 / element 1)
-PER_AXIS = {"motorCommand": ("Integer", "Int16", "output", None, 1, 108),
-            "motorOutput": ("Real", "Float64", "output", None, 1, 109)}
-ARRAYS = {"analog": ("Integer", "UInt16", "input", "0", 8, 1601),
-          "io.input": ("Integer", "UInt16", "input", "0", 16, 1701),
-          "io.output": ("Integer", "UInt16", "output", None, 16, 1801)}
-FULL_SCALE = 32768          # the 16-bit motor command's 2^15: 100/2^15 % of full scale per count
+PER_AXIS = {
+    "motorCommand": ("Integer", "Int16", "output", None, 1, 108),
+    "motorOutput": ("Real", "Float64", "output", None, 1, 109),
+}
+ARRAYS = {
+    "analog": ("Integer", "UInt16", "input", "0", 8, 1601),
+    "io.input": ("Integer", "UInt16", "input", "0", 16, 1701),
+    "io.output": ("Integer", "UInt16", "output", None, 16, 1801),
+}
+FULL_SCALE = 32768  # the 16-bit motor command's 2^15: 100/2^15 % of full scale per count
 
 
 def description(fmi_version):
@@ -63,6 +68,7 @@ def refused(chip, call, *expected):
 
 
 # ---- declarations ----
+
 
 def test_fmi2_declares_the_motor_outputs_and_the_bus_as_scalars():
     v = description(2)
@@ -105,6 +111,7 @@ def test_the_outputs_are_listed_in_both_model_structures():
 
 # ---- start values, reads and sets ----
 
+
 def test_a_new_chip_reads_zero_everywhere(any_chip):
     for n in AXES:
         assert any_chip.get(f"axis{n}.motorCommand") == 0
@@ -120,7 +127,7 @@ def test_an_input_reads_back_what_was_set_over_its_whole_16_bits(any_chip, name)
     values = [0xFFFF, 0, 1, 0x8000, 0x7FFF, 512, 1023, 0xABCD, *range(100, 100 + count - 8)]
     set_words(any_chip, name, values)
     assert list(io_words(any_chip, name)) == values
-    any_chip.run(5)                                                 # the chip does not change a wire
+    any_chip.run(5)  # the chip does not change a wire
     assert any_chip.get(name) == values
     assert [any_chip.get(f"{name}[{i + 1}]") for i in range(count)] == values
 
@@ -128,7 +135,7 @@ def test_an_input_reads_back_what_was_set_over_its_whole_16_bits(any_chip, name)
 def test_the_harness_sets_an_element_or_the_whole_array_by_the_same_names(any_chip):
     any_chip.set("analog[3]", 512)
     any_chip.set("io.input", list(range(16, 32)))
-    any_chip.set("io.input[16]", -1)                                 # the 16-bit two's complement: 0xFFFF
+    any_chip.set("io.input[16]", -1)  # the 16-bit two's complement: 0xFFFF
     assert any_chip.get("analog") == [0, 0, 512, 0, 0, 0, 0, 0]
     assert any_chip.get("analog[3]") == 512
     assert any_chip.get("io.input") == list(range(16, 31)) + [0xFFFF]
@@ -142,14 +149,25 @@ def test_the_harness_sets_an_element_or_the_whole_array_by_the_same_names(any_ch
 @pytest.mark.parametrize("value", [65536, -1, (1 << 31) - 1, -(1 << 31)])
 @pytest.mark.parametrize("name", ["analog[1]", "io.input[16]"])
 def test_fmi2_refuses_an_integer_outside_the_16_bits_naming_variable_and_value(chip, name, value):
-    refused(chip, lambda: chip.fmu.setInteger([vr(chip, name)], [value]),
-            "fmi2SetInteger", f"{name} = {value}", "out of range", "0 .. 65535", "not set")
+    refused(
+        chip,
+        lambda: chip.fmu.setInteger([vr(chip, name)], [value]),
+        "fmi2SetInteger",
+        f"{name} = {value}",
+        "out of range",
+        "0 .. 65535",
+        "not set",
+    )
     assert chip.get(name) == 0
 
 
 def test_fmi2_a_set_call_with_one_bad_value_sets_none_of_them(chip):
-    refused(chip, lambda: chip.fmu.setInteger([vr(chip, "analog[1]"), vr(chip, "io.input[2]")], [7, 70000]),
-            "fmi2SetInteger", "io.input[2] = 70000")
+    refused(
+        chip,
+        lambda: chip.fmu.setInteger([vr(chip, "analog[1]"), vr(chip, "io.input[2]")], [7, 70000]),
+        "fmi2SetInteger",
+        "io.input[2] = 70000",
+    )
     assert chip.get("analog[1]") == 0
 
 
@@ -157,27 +175,76 @@ def test_fmi2_a_set_call_with_one_bad_value_sets_none_of_them(chip):
 def test_the_outputs_cannot_be_set_and_wrong_types_are_refused(fmi_version):
     with pmdfmu.Chip(fmi_version=fmi_version) as chip:
         if fmi_version == 2:
-            refused(chip, lambda: chip.fmu.setInteger([vr(chip, "io.output[1]")], [1]),
-                    "fmi2SetInteger", "value reference 1801", "io.output[1]", "output")
-            refused(chip, lambda: chip.fmu.setInteger([vr(chip, "axis2.motorCommand")], [1]),
-                    "fmi2SetInteger", "value reference 208", "is an output")
-            refused(chip, lambda: chip.fmu.setReal([vr(chip, "axis1.motorOutput")], [0.5]),
-                    "fmi2SetReal", "value reference 109", "is an output")
-            refused(chip, lambda: chip.fmu.getReal([vr(chip, "axis1.motorCommand")]),
-                    "fmi2GetReal", "value reference 108", "is a Integer, not Real")
+            refused(
+                chip,
+                lambda: chip.fmu.setInteger([vr(chip, "io.output[1]")], [1]),
+                "fmi2SetInteger",
+                "value reference 1801",
+                "io.output[1]",
+                "output",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.setInteger([vr(chip, "axis2.motorCommand")], [1]),
+                "fmi2SetInteger",
+                "value reference 208",
+                "is an output",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.setReal([vr(chip, "axis1.motorOutput")], [0.5]),
+                "fmi2SetReal",
+                "value reference 109",
+                "is an output",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.getReal([vr(chip, "axis1.motorCommand")]),
+                "fmi2GetReal",
+                "value reference 108",
+                "is a Integer, not Real",
+            )
         else:
-            refused(chip, lambda: chip.fmu.setUInt16([vr(chip, "io.output")], [1] * 16),
-                    "fmi3SetUInt16", "value reference 1801", "is an output")
-            refused(chip, lambda: chip.fmu.setInt16([vr(chip, "axis2.motorCommand")], [1]),
-                    "fmi3SetInt16", "value reference 208", "is an output")
-            refused(chip, lambda: chip.fmu.getUInt16([vr(chip, "axis1.motorCommand")]),
-                    "fmi3GetUInt16", "value reference 108", "is a Int16, not UInt16")
-            refused(chip, lambda: chip.fmu.getInt16([vr(chip, "analog")], nValues=8),
-                    "fmi3GetInt16", "value reference 1601", "is a UInt16, not Int16")
-            refused(chip, lambda: chip.fmu.getUInt16([vr(chip, "analog")], nValues=3),
-                    "fmi3GetUInt16", "nValues is 3 but the value references hold 8")
-            refused(chip, lambda: chip.fmu.getInt16([vr(chip, "axis1.motorCommand"), vr(chip, "axis2.motorCommand")],
-                                                    nValues=1), "fmi3GetInt16", "nValues is 1")
+            refused(
+                chip,
+                lambda: chip.fmu.setUInt16([vr(chip, "io.output")], [1] * 16),
+                "fmi3SetUInt16",
+                "value reference 1801",
+                "is an output",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.setInt16([vr(chip, "axis2.motorCommand")], [1]),
+                "fmi3SetInt16",
+                "value reference 208",
+                "is an output",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.getUInt16([vr(chip, "axis1.motorCommand")]),
+                "fmi3GetUInt16",
+                "value reference 108",
+                "is a Int16, not UInt16",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.getInt16([vr(chip, "analog")], nValues=8),
+                "fmi3GetInt16",
+                "value reference 1601",
+                "is a UInt16, not Int16",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.getUInt16([vr(chip, "analog")], nValues=3),
+                "fmi3GetUInt16",
+                "nValues is 3 but the value references hold 8",
+            )
+            refused(
+                chip,
+                lambda: chip.fmu.getInt16([vr(chip, "axis1.motorCommand"), vr(chip, "axis2.motorCommand")], nValues=1),
+                "fmi3GetInt16",
+                "nValues is 1",
+            )
 
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
@@ -195,6 +262,7 @@ def test_inputs_set_in_initialization_mode_are_kept_by_its_end(fmi_version):
 
 # ---- the motor output ----
 
+
 def test_motor_command_is_get_current_motor_command_and_motor_output_its_fraction(any_chip):
     """Open loop (motor off) the motor command is SetMotorCommand's value, applied by Update;
     closed loop with the ideal servo (loopback) and no gains it is the motor bias."""
@@ -202,12 +270,20 @@ def test_motor_command_is_get_current_motor_command_and_motor_output_its_fractio
     ax1.SetMotorMode(0)
     ax1.SetMotorCommand(-12345)
     any_chip.run(1)
-    assert any_chip.get("axis1.motorCommand") == 0                  # buffered: not before the Update
+    assert any_chip.get("axis1.motorCommand") == 0  # buffered: not before the Update
     ax1.Update()
     ax3.SetKp(0)
     ax3.SetMotorBias(16384)
-    rows = any_chip.run(3, record=["axis1.motorCommand", "axis1.motorOutput", "axis3.motorCommand",
-                                   "axis3.motorOutput", "axis2.motorCommand"])
+    rows = any_chip.run(
+        3,
+        record=[
+            "axis1.motorCommand",
+            "axis1.motorOutput",
+            "axis3.motorCommand",
+            "axis3.motorOutput",
+            "axis2.motorCommand",
+        ],
+    )
     assert rows.dtype["axis1.motorCommand"] == np.int16 and rows.dtype["axis1.motorOutput"] == np.float64
     assert list(rows["axis1.motorCommand"]) == [-12345] * 3
     assert list(rows["axis1.motorOutput"]) == [-12345 / FULL_SCALE] * 3
@@ -225,8 +301,11 @@ def test_motor_output_spans_full_scale(any_chip, value):
     ax.SetMotorCommand(value)
     ax.Update()
     any_chip.run(1)
-    raw = any_chip.fmu.getInteger([vr(any_chip, "axis2.motorCommand")])[0] if any_chip.fmi_version == 2 else \
-        any_chip.fmu.getInt16([vr(any_chip, "axis2.motorCommand")])[0]
+    raw = (
+        any_chip.fmu.getInteger([vr(any_chip, "axis2.motorCommand")])[0]
+        if any_chip.fmi_version == 2
+        else any_chip.fmu.getInt16([vr(any_chip, "axis2.motorCommand")])[0]
+    )
     assert raw == value
     assert any_chip.get("axis2.motorOutput") == value / FULL_SCALE
     assert -1.0 <= any_chip.get("axis2.motorOutput") < 1.0
@@ -234,13 +313,20 @@ def test_motor_output_spans_full_scale(any_chip, value):
 
 # ---- recording ----
 
+
 @pytest.mark.parametrize("fmi_version", [2, 3])
 def test_recorded_columns_have_the_registers_widths(fmi_version):
     with pmdfmu.Chip(fmi_version=fmi_version) as chip:
         chip.set("analog[8]", 0xFFFF)
         chip.set("io.input[1]", 0x8001)
-        names = ["axis4.motorCommand", "axis4.motorOutput", "analog[8]", "io.input[1]", "io.output[16]",
-                 "axis1.commandedPosition"]
+        names = [
+            "axis4.motorCommand",
+            "axis4.motorOutput",
+            "analog[8]",
+            "io.input[1]",
+            "io.output[16]",
+            "axis1.commandedPosition",
+        ]
         rows = chip.run(4, record=names)
         assert [rows.dtype[n] for n in names] == [np.int16, np.float64, np.uint16, np.uint16, np.uint16, np.int32]
         assert list(rows["analog[8]"]) == [0xFFFF] * 4 and list(rows["io.input[1]"]) == [0x8001] * 4
@@ -267,6 +353,7 @@ def test_bulk_recording_of_commanded_values_is_unchanged_by_the_new_columns():
 
 # ---- Reset, FMU states ----
 
+
 def test_the_chips_reset_keeps_the_inputs_and_clears_the_motor_command(any_chip):
     ax = any_chip.axis(0)
     any_chip.set("analog", [1000 + i for i in range(8)])
@@ -278,7 +365,7 @@ def test_the_chips_reset_keeps_the_inputs_and_clears_the_motor_command(any_chip)
     assert any_chip.get("axis1.motorCommand") == 777
     any_chip.batch(command("Reset"))
     any_chip.run(1)
-    assert any_chip.get("analog") == [1000 + i for i in range(8)]          # wires, not registers
+    assert any_chip.get("analog") == [1000 + i for i in range(8)]  # wires, not registers
     assert any_chip.get("io.input") == [0xF000 + i for i in range(16)]
     assert any_chip.get("axis1.motorCommand") == ax.GetCurrentMotorCommand()
     assert ax.GetMotorCommand() == 0
@@ -309,6 +396,7 @@ def test_an_fmu_state_restores_the_inputs_and_the_motor_command(any_chip):
 
 
 # ---- the peripheral commands (ReadAnalog, ReadIO, WriteIO) ----
+
 
 def test_read_analog_reads_the_analog_input_of_its_channel(any_chip):
     ax = any_chip.axis(0)
@@ -363,12 +451,14 @@ def test_write_io_outputs_go_to_zero_on_reset_and_come_back_with_an_fmu_state(an
 
 # ---- docs/fmu.md ----
 
+
 def test_the_docs_peripheral_snippet_runs(tmp_path):
     text = FMU_PAGE.read_text()
-    section = text[text.index("**Peripheral inputs.**"):]
+    section = text[text.index("**Peripheral inputs.**") :]
     snippet = re.search(r"```python\n(.*?)```", section, re.S).group(1)
     (tmp_path / "snippet.py").write_text(snippet)
-    out = subprocess.run([sys.executable, str(tmp_path / "snippet.py")], capture_output=True, text=True,
-                         check=True).stdout
+    out = subprocess.run(
+        [sys.executable, str(tmp_path / "snippet.py")], capture_output=True, text=True, check=True
+    ).stdout
     expected = re.findall(r"# -> (.*)", snippet)
     assert out.splitlines() == expected

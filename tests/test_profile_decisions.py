@@ -5,14 +5,26 @@ after it (docs/decisions.md, "Breakpoint actions and profile decisions"):
 profile runs and a restart after it stopped, (c) when Update takes effect,
 (d) an S-curve parameter change in motion, (e) the velocity-contouring
 direction, (f) buffers of different lengths."""
+
 import numpy as np
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDAbruptStop, PMDActivityInMotionMask, PMDBufferFunctionPosition, PMDBufferFunctionTime,
-                    PMDBufferFunctionVelocity, PMDError, PMDEventInstructionErrorMask, PMDEventMotionCompleteMask,
-                    PMDExternalProfile, PMDSCurveProfile, PMDTrapezoidalProfile, PMDVelocityContouringProfile,
-                    field_ex)
+from pmdfmu import (
+    PMDAbruptStop,
+    PMDActivityInMotionMask,
+    PMDBufferFunctionPosition,
+    PMDBufferFunctionTime,
+    PMDBufferFunctionVelocity,
+    PMDError,
+    PMDEventInstructionErrorMask,
+    PMDEventMotionCompleteMask,
+    PMDExternalProfile,
+    PMDSCurveProfile,
+    PMDTrapezoidalProfile,
+    PMDVelocityContouringProfile,
+    field_ex,
+)
 
 TRAJECTORY = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration"]
 FUNCTIONS = (PMDBufferFunctionPosition, PMDBufferFunctionVelocity, PMDBufferFunctionTime)
@@ -50,6 +62,7 @@ ROWS = [(100, 0x10000, 3), (200, 0x10000, 3), (300, 0x10000, 3), (400, 0, 0), (5
 
 # ---- (a) where an external profile starts reading ------------------------------------------------
 
+
 def test_external_profile_starts_at_offset_0_after_the_buffers_are_set_up(chip):
     """Seed 000: "When the external profile is first started, the data at offset 0 ... is read":
     setting a buffer's start or length puts its read index at 0, so a first start reads row 0."""
@@ -66,13 +79,14 @@ def test_external_profile_starts_at_the_position_buffers_read_index(chip):
     external_rows(chip, ROWS)
     ax = chip.axis(0)
     ax.SetBufferReadIndex(2, 4)
-    ax.ReadBuffer(3)                             # moves only the velocity buffer's index: not used
+    ax.ReadBuffer(3)  # moves only the velocity buffer's index: not used
     start_external(chip)
     assert positions(chip, 5) == [500, 501, 502, 600, 600]
     assert ax.GetBufferReadIndex(2) == ax.GetBufferReadIndex(3) == ax.GetBufferReadIndex(4) == 0
 
 
 # ---- (b) an Update while an external profile runs; a restart after it stopped --------------------
+
 
 def test_update_while_an_external_profile_runs_changes_nothing():
     """An Update (no stop mode, profile mode still external) neither restarts nor re-reads: the
@@ -118,6 +132,7 @@ def test_restart_after_an_abrupt_stop_reads_the_next_row(chip):
 
 # ---- (c) when Update takes effect ---------------------------------------------------------------
 
+
 def test_update_takes_effect_at_the_next_cycle(chip):
     """Seed 004: an Update applies the registers "at the next servo loop". The FMU applies them
     when the command runs, between two cycles: the outputs read right after it still show the
@@ -127,17 +142,17 @@ def test_update_takes_effect_at_the_next_cycle(chip):
     ax.SetPosition(3_000)
     ax.SetVelocity(0x30000)
     ax.SetAcceleration(0x2000)
-    started_at_0 = chip.run(1_200, record=TRAJECTORY)           # not yet: no Update
+    started_at_0 = chip.run(1_200, record=TRAJECTORY)  # not yet: no Update
     assert (started_at_0["axis1.commandedVelocity"] == 0).all()
     ax.Update()
-    assert [chip.get(n) for n in TRAJECTORY] == [0, 0, 0]        # nothing moves before the next cycle
+    assert [chip.get(n) for n in TRAJECTORY] == [0, 0, 0]  # nothing moves before the next cycle
     after = chip.run(1_200, record=TRAJECTORY)
     with pmdfmu.Chip() as fresh:
         a = fresh.axis(0)
         a.SetPosition(3_000)
         a.SetVelocity(0x30000)
         a.SetAcceleration(0x2000)
-        a.Update()                                             # after no cycle: cycle 0 is its first
+        a.Update()  # after no cycle: cycle 0 is its first
         reference = fresh.run(1_200, record=TRAJECTORY)
     for name in TRAJECTORY:
         assert np.array_equal(after[name], reference[name])
@@ -168,6 +183,7 @@ def test_an_abrupt_stop_shows_at_once_and_the_next_cycle_holds_the_position(chip
 
 # ---- (d) an S-curve parameter change in motion -----------------------------------------------------
 
+
 def test_scurve_change_in_motion_keeps_the_new_position_buffered_for_the_next_update(chip):
     """Seed 001: a change during an S-curve is a command error and "all new parameters will be
     ignored except the position". The FMU refuses the Update with 0x0C and applies nothing: the
@@ -181,19 +197,20 @@ def test_scurve_change_in_motion_keeps_the_new_position_buffered_for_the_next_up
     ax.SetJerk(0x1000000)
     ax.Update()
     chip.run(1_000)
-    ax.SetPosition(8_000)                        # behind the axis, which is past 2000 by now
+    ax.SetPosition(8_000)  # behind the axis, which is past 2000 by now
     with pytest.raises(PMDError) as e:
         ax.Update()
     assert e.value.code == 0x0C and ax.GetEventStatus() & PMDEventInstructionErrorMask
-    assert ax.GetPosition() == 8_000              # kept, buffered
+    assert ax.GetPosition() == 8_000  # kept, buffered
     chip.run(6_000)
     assert ax.GetCommandedPosition() == 20_000 and not ax.GetActivityStatus() & PMDActivityInMotionMask
-    ax.Update()                                   # at rest: the kept position is the next destination
+    ax.Update()  # at rest: the kept position is the next destination
     chip.run(6_000)
     assert ax.GetCommandedPosition() == 8_000
 
 
 # ---- (e) velocity contouring direction ----------------------------------------------------------
+
 
 def test_velocity_contouring_direction_is_the_signed_velocity(chip):
     """The Navigator (reference 5): the velocity is signed and sets the direction; the
@@ -209,12 +226,13 @@ def test_velocity_contouring_direction_is_the_signed_velocity(chip):
     assert list(rec["axis1.commandedVelocity"][:5]) == [-0x8000, -0x10000, -0x18000, -0x20000, -0x20000]
     assert rec["axis1.commandedPosition"][-1] < 0
     with pytest.raises(PMDError) as e:
-        ax.SetAcceleration(-127_795)             # seed 001: -1.95 * 65536, sent as fffe0ccd
+        ax.SetAcceleration(-127_795)  # seed 001: -1.95 * 65536, sent as fffe0ccd
     assert e.value.code == 0x0B
     assert ax.GetAcceleration() == 0x8000
 
 
 # ---- (f) buffers of different lengths ----------------------------------------------------------
+
 
 def test_buffers_of_different_lengths_refuse_the_update_until_they_match(chip):
     """Seed 000: "each buffer must have the same length". An Update into external mode with
@@ -239,7 +257,7 @@ def test_buffer_lengths_changed_while_running_halt_the_profile():
         external_rows(chip, ROWS)
         start_external(chip)
         assert positions(chip, 2) == [100, 101]
-        chip.axis(0).SetBufferLength(3, len(ROWS) + 1)       # the velocity buffer's length
-        assert positions(chip, 4) == [102, 102, 102, 102]     # the segment ends; the next read halts
+        chip.axis(0).SetBufferLength(3, len(ROWS) + 1)  # the velocity buffer's length
+        assert positions(chip, 4) == [102, 102, 102, 102]  # the segment ends; the next read halts
         assert segment(chip) == 0
         assert any("lengths differ" in m.message for m in chip.messages if m.category == "warnings")

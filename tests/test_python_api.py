@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The Python API explains itself: the C-Motion methods made from the command table
 have real signatures, names and docstrings, and wrong calls say which call was wrong."""
+
 import ast
 import inspect
 import pydoc
@@ -20,7 +21,7 @@ PACKAGE = Path(pmdfmu.__file__).parent
 def test_every_command_is_a_method_of_the_class_with_its_arguments_as_parameters(chip):
     ax = chip.axis(0)
     for name, command in COMMANDS.items():
-        method = vars(Axis)[name]              # on the class itself, not made on attribute lookup
+        method = vars(Axis)[name]  # on the class itself, not made on attribute lookup
         assert method.__name__ == name
         assert method.__qualname__ == f"Axis.{name}"
         assert method.__module__ == "pmdfmu.chip"
@@ -69,8 +70,11 @@ def test_a_wrong_number_of_arguments_raises_type_error_naming_the_call_and_sends
     strobe = any_chip.get("host.strobe")
     with pytest.raises(TypeError, match=r"^SetPosition\(position\): too many positional arguments"):
         ax.SetPosition(1, 2)
-    with pytest.raises(TypeError, match=r"^SetBufferStart\(bufferID, address\): missing a required argument: "
-                                        r"'address'"):
+    with pytest.raises(
+        TypeError,
+        match=r"^SetBufferStart\(bufferID, address\): missing a required argument: "
+        r"'address'",
+    ):
         ax.SetBufferStart(2)
     with pytest.raises(TypeError, match=r"^GetPosition\(\): too many positional arguments"):
         ax.GetPosition(0)
@@ -100,7 +104,7 @@ def test_an_unknown_method_says_it_is_not_a_command(chip):
 
 
 def test_a_batch_the_fmu_did_not_acknowledge_raises_fmu_error(chip, monkeypatch):
-    real = chip.fmu.fmi2GetInteger          # the FMI call the host port reads host.ack with
+    real = chip.fmu.fmi2GetInteger  # the FMI call the host port reads host.ack with
     ack = chip._vr["host.ack"]
 
     def stale_ack(component, vrs, n, values):
@@ -124,6 +128,7 @@ def test_no_assert_statement_does_a_runtime_check_in_the_package():
 
 # ---- the harness keeps no copy of what the FMU knows ----
 
+
 def test_get_state_is_the_fmus_serialized_state_as_it_is(any_chip):
     busy_chip(any_chip)
     any_chip.run(10)
@@ -135,8 +140,8 @@ def test_a_grid_a_script_changes_is_read_from_the_fmu_cycle_by_cycle(tmp_path, f
     script = tmp_path / "slower.script"
     script.write_text("@10\nSetSampleTime(Axis1, 200)\n")
     with pmdfmu.Chip(fmi_version=fmi_version, script=script) as chip:
-        rec = chip.run(30, record=["axis1.activityStatus"])        # one doStep per cycle, in FMI 3 too
-        assert list(rec["cycle"]) == list(range(30))               # no cycle skipped or run twice
+        rec = chip.run(30, record=["axis1.activityStatus"])  # one doStep per cycle, in FMI 3 too
+        assert list(rec["cycle"]) == list(range(30))  # no cycle skipped or run twice
         assert chip.cycle_time == chip.get("activeCycleTime") == 200e-6
         assert chip.cycles == chip.get("nextCycle") == 30
         assert chip.time == chip.get("nextCycleTime")
@@ -144,14 +149,16 @@ def test_a_grid_a_script_changes_is_read_from_the_fmu_cycle_by_cycle(tmp_path, f
 
 def test_what_a_script_addresses_comes_from_the_compiled_script(tmp_path):
     script = tmp_path / "axes.script"
-    script.write_text("# Axis3 is named only in this comment\n"
-                      "@ 0\nSetPosition(Axis2, 5);\nMultiUpdate(Axis4, PMDAxis2Mask);\n"
-                      "@ 250\nSetStopMode(Axis2, PMDAbruptStop);\nUpdate(Axis2);\n")
+    script.write_text(
+        "# Axis3 is named only in this comment\n"
+        "@ 0\nSetPosition(Axis2, 5);\nMultiUpdate(Axis4, PMDAxis2Mask);\n"
+        "@ 250\nSetStopMode(Axis2, PMDAbruptStop);\nUpdate(Axis2);\n"
+    )
     with pmdfmu.Chip(script=script) as chip:
         assert profile.script_axes(chip) == [1, 3]
         rec = profile.run_script(chip)
         assert rec["cycle"][-1] >= 250 and "axis4.commandedPosition" in rec.dtype.names
-    with pmdfmu.Chip() as chip:                                    # no script: axis 1 alone
+    with pmdfmu.Chip() as chip:  # no script: axis 1 alone
         assert profile.script_axes(chip) == [0]
 
 
@@ -164,6 +171,7 @@ def test_no_module_of_the_package_parses_scripts_again():
 
 # ---- register fields: declared once, in constants.csv ----
 
+
 def test_field_ex_reads_a_field_of_a_word_or_of_a_recorded_column(chip):
     assert pmdfmu.field_ex(pmdfmu.PMDActivityProfileSegmentMask, "PMDActivityProfileSegment") == 7
     assert pmdfmu.field_ex(pmdfmu.PMDActivityProfileModeMask, "PMDActivityProfileSegment") == 0
@@ -173,8 +181,10 @@ def test_field_ex_reads_a_field_of_a_word_or_of_a_recorded_column(chip):
     ax.SetAcceleration(pmdfmu.fixed_16_16(1))
     ax.Update()
     rec = chip.run(3, record=["axis1.activityStatus"])
-    assert list(pmdfmu.field_ex(rec["axis1.activityStatus"], "PMDActivityProfileMode")) == \
-        [pmdfmu.PMDVelocityContouringProfile] * 3
+    assert (
+        list(pmdfmu.field_ex(rec["axis1.activityStatus"], "PMDActivityProfileMode"))
+        == [pmdfmu.PMDVelocityContouringProfile] * 3
+    )
     assert pmdfmu.field_ex(ax.GetActivityStatus(), "PMDActivityProfileMode") == pmdfmu.PMDVelocityContouringProfile
 
 
@@ -187,6 +197,7 @@ def test_field_dp_puts_a_value_into_a_field_and_leaves_the_others():
 
 def test_the_instruction_word_is_made_of_its_declared_fields(chip):
     from pmdfmu.chip import instruction_word
+
     set_position = COMMANDS["SetPosition"].opcode
     word = instruction_word(set_position, pmdfmu.PMDAxis3)
     assert pmdfmu.field_ex(word, "PMDInstructionOpcode") == set_position
@@ -197,6 +208,10 @@ def test_the_instruction_word_is_made_of_its_declared_fields(chip):
 
 def test_profile_keeps_no_status_constants_of_its_own():
     tree = ast.parse((PACKAGE / "profile.py").read_text())
-    numbers = [t.id for node in tree.body if isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant)
-               and isinstance(node.value.value, int) for t in node.targets]
+    numbers = [
+        t.id
+        for node in tree.body
+        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant) and isinstance(node.value.value, int)
+        for t in node.targets
+    ]
     assert not numbers, f"profile.py defines {numbers}: use the constants and fields of constants.csv"

@@ -5,6 +5,7 @@ or waits and no switch is active. Pinned here: the same runs with a
 breakpoint armed that never fires, which makes every cycle do all of its checks,
 give the same outputs at every cycle, through FMI 2 cycle by cycle and through
 FMI 3's bulk recording."""
+
 import random
 
 import numpy as np
@@ -13,17 +14,20 @@ import pytest
 import pmdfmu
 from scenarios import REAL, load_random_profiles
 
-STATUS = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
-                                                         "commandedAcceleration", "activityStatus",
-                                                         "eventStatus")]
-BULK = [f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity",
-                                                       "commandedAcceleration")]
+STATUS = [
+    f"axis{n}.{q}"
+    for n in range(1, 5)
+    for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus", "eventStatus")
+]
+BULK = [
+    f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")
+]
 
 
 def never_fires(chip):
     """A breakpoint on chip time 2^31 - 1: armed all run long, never reached."""
     ax = chip.axis(3)
-    ax.SetBreakpointValue(0, 2 ** 31 - 1)
+    ax.SetBreakpointValue(0, 2**31 - 1)
     ax.SetBreakpoint(0, 3, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointTime)
 
 
@@ -48,8 +52,10 @@ def run(chip, cycles, names, chunk=97):
 
 def servo(chip):
     """What the outputs do not show: actual positions, velocities, errors."""
-    return [(chip.axis(n).GetActualPosition(), chip.axis(n).GetActualVelocity(), chip.axis(n).GetPositionError())
-            for n in range(4)]
+    return [
+        (chip.axis(n).GetActualPosition(), chip.axis(n).GetActualVelocity(), chip.axis(n).GetPositionError())
+        for n in range(4)
+    ]
 
 
 @pytest.mark.parametrize("seed", range(3))
@@ -64,7 +70,7 @@ def test_quiet_runs_equal_fully_checked_runs_cycle_by_cycle(seed):
             chip.axis(3).SetProfileMode(pmdfmu.PMDVelocityContouringProfile)
             chip.axis(3).SetVelocity(-0x8000)
             chip.axis(3).Update()
-            chip.axis(2).SetMotorMode(0)                   # motor off: the actual position holds
+            chip.axis(2).SetMotorMode(0)  # motor off: the actual position holds
             runs.append((np.concatenate([rec, run(chip, 1940, STATUS + REAL)]), servo(chip)))
     assert np.array_equal(runs[0][0], runs[1][0]) and runs[0][1] == runs[1][1]
 

@@ -2,6 +2,7 @@
 """The README is a front door whose examples run: its Python blocks print what their `# ->` lines
 say, its C program compiles against the C-Motion library and prints what it says (the CI gate's
 commands are run by tests/test_verify_cli.py, the systems' by tests/test_systems.py)."""
+
 import os
 import re
 import subprocess
@@ -26,7 +27,7 @@ def test_the_readme_is_a_front_door():
 
 def test_every_python_block_prints_what_it_says(tmp_path):
     for code in blocks("python"):
-        expected = [line[len("# -> "):] for line in code.splitlines() if line.startswith("# -> ")]
+        expected = [line[len("# -> ") :] for line in code.splitlines() if line.startswith("# -> ")]
         done = subprocess.run([sys.executable, "-c", code], cwd=REPO, capture_output=True, text=True)
         assert done.returncode == 0, done.stderr
         if expected:

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """record.columns: bulk recording of any variables in FMI 2 and FMI 3: the
 FMU's rows equal a master's stepping cycle by cycle (tests/stepwise.py), bad names are refused."""
+
 from ctypes import POINTER, byref, c_int, c_size_t, c_void_p, string_at
 
 import numpy as np
@@ -25,10 +26,12 @@ def reference(version, names, cycles, set_up=busy_chip, **parameters):
 
 @VERSIONS
 def test_columns_changed_between_runs_each_record_as_the_reference(version):
-    sets = [record_outputs(range(4)), ["axis2.eventStatus", "io.output[1]", "host.interrupt", "nextCycle"],
-            ["axis3.motorOutput"]]
-    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 700}) as chip, \
-            pmdfmu.Chip(fmi_version=version) as ref:
+    sets = [
+        record_outputs(range(4)),
+        ["axis2.eventStatus", "io.output[1]", "host.interrupt", "nextCycle"],
+        ["axis3.motorOutput"],
+    ]
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 700}) as chip, pmdfmu.Chip(fmi_version=version) as ref:
         busy_chip(chip)
         busy_chip(ref)
         for names in sets:
@@ -38,16 +41,22 @@ def test_columns_changed_between_runs_each_record_as_the_reference(version):
 
 
 @VERSIONS
-@pytest.mark.parametrize("value, why", [("axis1.nothing", "is not a variable"), ("script", "is not a number"),
-                                        ("time", "is the independent variable"), ("chipTime,,axis1.position",
-                                                                                   "is no name")])
+@pytest.mark.parametrize(
+    "value, why",
+    [
+        ("axis1.nothing", "is not a variable"),
+        ("script", "is not a number"),
+        ("time", "is the independent variable"),
+        ("chipTime,,axis1.position", "is no name"),
+    ],
+)
 def test_a_bad_column_is_refused_naming_the_value_and_changes_nothing(version, value, why):
     with pmdfmu.Chip(fmi_version=version) as chip:
         chip.set("record.columns", "axis1.position")
         with pytest.raises(FMICallException):
             chip.set("record.columns", value)
         errors = [m.message for m in chip.messages if m.status == "Error"]
-        assert any(f"fmi{version}SetString: record.columns = \"{value}\"" in m and why in m for m in errors), errors
+        assert any(f'fmi{version}SetString: record.columns = "{value}"' in m and why in m for m in errors), errors
         assert chip.get("record.columns") == "axis1.position" and chip.get("record.rowSize") == 12
 
 
@@ -111,17 +120,17 @@ def test_rows_recorded_into_lent_memory_are_record_datas_rows(names):
         lent = np.full(400 * size + 8, 0xA5, dtype=np.uint8)
         lend = lend_function(chip)
         assert lend(chip.fmu.component, lent.ctypes.data, 400 * size) == 0
-        assert record_data(chip)[1] == 0                     # nothing recorded there yet
+        assert record_data(chip)[1] == 0  # nothing recorded there yet
         chip._step(400)
         ref._step(400)
         address, nbytes = record_data(chip)
         assert (address, nbytes) == (lent.ctypes.data, 400 * size)
         assert lent[:nbytes].tobytes() == string_at(*record_data(ref))
-        assert (lent[nbytes:] == 0xA5).all()                  # nothing past the lent size
+        assert (lent[nbytes:] == 0xA5).all()  # nothing past the lent size
         with pytest.raises(FMICallException):
             chip._step(401)
         assert any("holds 400 rows" in m.message for m in chip.messages if m.status == "Error")
-        assert chip.cycles == ref.cycles                        # the refused step ran nothing
+        assert chip.cycles == ref.cycles  # the refused step ran nothing
         assert lend(chip.fmu.component, None, 0) == 0
         chip._step(1000)
         ref._step(1000)
@@ -135,23 +144,26 @@ def test_lent_memory_is_checked_and_a_reset_forgets_it():
         buffer = np.zeros(64, dtype=np.uint8)
         chip.set("record.enabled", True)
         assert lend(chip.fmu.component, buffer.ctypes.data + 1, 60) == 0
-        with pytest.raises(FMICallException):                # the default rows are int32 words
+        with pytest.raises(FMICallException):  # the default rows are int32 words
             chip._step(1)
-        assert any("pmdfmu_fmi2SetRecordBuffer" in m.message and "not aligned to 4 bytes" in m.message
-                   for m in chip.messages if m.status == "Error")
+        assert any(
+            "pmdfmu_fmi2SetRecordBuffer" in m.message and "not aligned to 4 bytes" in m.message
+            for m in chip.messages
+            if m.status == "Error"
+        )
         assert chip.cycles == 0 and (buffer == 0).all()
-        chip.set("record.columns", "axis1.activityStatus")   # 6-byte rows: any address
+        chip.set("record.columns", "axis1.activityStatus")  # 6-byte rows: any address
         chip._step(10)
         assert record_data(chip) == (buffer.ctypes.data + 1, 60) and buffer[1:61].any()
         chip.set("record.enabled", False)
         buffer[:] = 0
         assert lend(None, buffer.ctypes.data, 64) == 3
         assert lend(chip.fmu.component, buffer.ctypes.data, 64) == 0
-        chip.fmu.reset()                                       # the instance as instantiated: nothing lent
+        chip.fmu.reset()  # the instance as instantiated: nothing lent
         chip.set("record.enabled", True)
         chip.fmu.enterInitializationMode()
         chip.fmu.exitInitializationMode()
-        chip._step(10)                                         # 10 rows would not fit the 64 bytes
+        chip._step(10)  # 10 rows would not fit the 64 bytes
         assert record_data(chip)[0] != buffer.ctypes.data and (buffer == 0).all()
 
 
@@ -163,6 +175,7 @@ def spy_loans(monkeypatch):
     def spy(chip):
         step_into = real(chip)
         return lambda address, size, *step: (loans.append((address, size)), step_into(address, size, *step))[1]
+
     monkeypatch.setattr(recording, "lent_stepper", spy)
     return loans
 
@@ -191,7 +204,7 @@ def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkey
         assert holds_no_loan(chip, loans)
         loans.clear()
         with pytest.raises(ValueError):
-            chip.run(10, record=names + ["axis1.nothing"])      # refused before any loan
+            chip.run(10, record=names + ["axis1.nothing"])  # refused before any loan
         assert not loans
 
 
@@ -202,12 +215,14 @@ def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(monkeypatch, tmp_path)
     script = tmp_path / "finer.pmd"
     script.write_text("@500\nSetSampleTime(Axis1, 50);\n@900\nSetSampleTime(Axis1, 20);\n")
     names = record_outputs(range(2))
-    with pmdfmu.Chip(fmi_version=2, script=script, **{"record.capacity": 300}) as chip, \
-            pmdfmu.Chip(fmi_version=2, script=script) as ref:
+    with (
+        pmdfmu.Chip(fmi_version=2, script=script, **{"record.capacity": 300}) as chip,
+        pmdfmu.Chip(fmi_version=2, script=script) as ref,
+    ):
         rows = chip.run(2000, record=names)
         assert rows.tobytes() == run_stepwise(ref, 2000, names).tobytes()
         assert chip.cycles == ref.cycles
-        assert len(loans) == 7 and holds_no_loan(chip, loans)    # 7 chunks of at most 300 cycles
+        assert len(loans) == 7 and holds_no_loan(chip, loans)  # 7 chunks of at most 300 cycles
 
 
 def test_an_interrupt_after_a_lent_step_leaves_no_loan_and_recording_off(monkeypatch):
@@ -227,7 +242,9 @@ def test_an_interrupt_after_a_lent_step_leaves_no_loan_and_recording_off(monkeyp
                 if len(loans) == 2:
                     raise KeyboardInterrupt
                 return result
+
             return step
+
         monkeypatch.setattr(recording, "lent_stepper", interrupting)
         with pytest.raises(KeyboardInterrupt):
             chip.run(300, record=record_outputs([0]))
@@ -275,6 +292,7 @@ def test_the_bulk_path_is_taken_for_any_columns(version, monkeypatch):
 
 # ---- every column kind in bulk == a master stepping cycle by cycle --------------------------------
 
+
 def every_column():
     """Every variable record.columns accepts: each Real, Integer and Boolean but time (FMI 2 names); the
     record.* ones apart (they describe the recording itself: record.enabled is on only in the bulk run)."""
@@ -314,22 +332,26 @@ def a_move_that_settles(chip):
 def run_in_parts(chip, names, bulk):
     """Runs in parts with commands between them (motor off and on, a breakpoint armed, then none):
     the bulk rows or the stepwise ones."""
+
     def part(cycles):
         return chip.run(cycles, record=names) if bulk else run_stepwise(chip, cycles, names)
+
     rows = [part(700)]
-    chip.axis(1).SetMotorMode(pmdfmu.PMDMotorOff)     # the trapezoid's motor off: its filter runs open loop
+    chip.axis(1).SetMotorMode(pmdfmu.PMDMotorOff)  # the trapezoid's motor off: its filter runs open loop
     rows.append(part(300))
     chip.axis(1).SetMotorMode(pmdfmu.PMDMotorOn)
     chip.axis(0).SetBreakpoint(0, 0, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointDisable)
-    rows.append(part(900))                           # no breakpoint armed: a quiet run
+    rows.append(part(900))  # no breakpoint armed: a quiet run
     return np.concatenate(rows)
 
 
 @VERSIONS
 @pytest.mark.parametrize("loopback", (True, False))
 def test_every_column_kind_in_bulk_is_the_stepwise_value(version, loopback):
-    with pmdfmu.Chip(fmi_version=version, loopback=loopback, **{"record.capacity": 500}) as chip, \
-            pmdfmu.Chip(fmi_version=version, loopback=loopback) as ref:
+    with (
+        pmdfmu.Chip(fmi_version=version, loopback=loopback, **{"record.capacity": 500}) as chip,
+        pmdfmu.Chip(fmi_version=version, loopback=loopback) as ref,
+    ):
         names = every_column()
         assert len(names) > 250 and {"axis1.motorOutput", "io.output[16]", "host.interrupt"} <= set(names)
         assert chip.run(1, record=["record.enabled", "record.capacity"])[0].tolist()[1:] == (True, 500)
@@ -347,8 +369,10 @@ def test_every_column_but_the_filters_in_bulk_is_the_stepwise_value(version, loo
     pmd_chip_run_every_cycle_with_rows), an ideal servo's filter advanced at its end: every other column (status bits of
     position error and settling, events, the Reals) as a master stepping cycle by cycle."""
     names = [n for n in every_column() if not n.endswith((".motorCommand", ".motorOutput"))]
-    with pmdfmu.Chip(fmi_version=version, loopback=loopback, **{"record.capacity": 450}) as chip, \
-            pmdfmu.Chip(fmi_version=version, loopback=loopback) as ref:
+    with (
+        pmdfmu.Chip(fmi_version=version, loopback=loopback, **{"record.capacity": 450}) as chip,
+        pmdfmu.Chip(fmi_version=version, loopback=loopback) as ref,
+    ):
         a_move_that_settles(chip)
         a_move_that_settles(ref)
         rows = run_in_parts(chip, names, bulk=True)
@@ -361,13 +385,18 @@ def test_every_column_but_the_filters_in_bulk_is_the_stepwise_value(version, loo
 
 
 @VERSIONS
-@pytest.mark.parametrize("names", [record_outputs(range(4)), ["axis1.activityStatus", "axis2.activityStatus"],
-                                   ["axis1.motorCommand", "axis2.motorOutput", "axis4.motorCommand"],
-                                   ["axis2.eventStatus", "host.interrupt", "axis1.velocity"]])
+@pytest.mark.parametrize(
+    "names",
+    [
+        record_outputs(range(4)),
+        ["axis1.activityStatus", "axis2.activityStatus"],
+        ["axis1.motorCommand", "axis2.motorOutput", "axis4.motorCommand"],
+        ["axis2.eventStatus", "host.interrupt", "axis1.velocity"],
+    ],
+)
 def test_column_sets_in_bulk_are_the_stepwise_values(version, names):
     """Sets that read no servo filter, only filters, or events: each as a master stepping cycle by cycle."""
-    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 333}) as chip, \
-            pmdfmu.Chip(fmi_version=version) as ref:
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 333}) as chip, pmdfmu.Chip(fmi_version=version) as ref:
         motors_and_idle_axes(chip)
         motors_and_idle_axes(ref)
         assert run_in_parts(chip, names, True).tobytes() == run_in_parts(ref, names, False).tobytes()
@@ -381,8 +410,15 @@ def test_a_set_sample_time_inside_a_recording_step_records_the_cycles_stepwise(v
     stepwise, tests/test_native_record.py.)"""
     script = tmp_path / "grid.script"
     script.write_text("@40\nSetSampleTime(Axis1, 200)\n@90\nSetSampleTime(Axis1, 500)\n")
-    names = ["nextCycleTime", "activeCycleTime", "nextCycle", "axis1.velocity", "axis1.acceleration",
-             "axis2.activityStatus", "chipTime"]
+    names = [
+        "nextCycleTime",
+        "activeCycleTime",
+        "nextCycle",
+        "axis1.velocity",
+        "axis1.acceleration",
+        "axis2.activityStatus",
+        "chipTime",
+    ]
     with pmdfmu.Chip(fmi_version=version, script=script) as chip:
         busy_chip(chip)
         _, dtype = chip._columns(names)
@@ -401,8 +437,7 @@ def test_a_set_sample_time_inside_a_recording_step_records_the_cycles_stepwise(v
 def test_a_run_of_many_chunks_holds_the_stepwise_rows(version, names):
     """Five chunks of record.capacity cycles: the rows are a stepping master's, in FMI 2 (rows lent), FMI 3
     (record.data copied) and the commanded table."""
-    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 333}) as chip, \
-            pmdfmu.Chip(fmi_version=version) as ref:
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 333}) as chip, pmdfmu.Chip(fmi_version=version) as ref:
         for c in (chip, ref):
             motors_and_idle_axes(c)
         rows = chip.run(1500, record=names)
@@ -413,8 +448,7 @@ def test_a_run_of_many_chunks_holds_the_stepwise_rows(version, names):
 def test_a_chip_with_record_capacity_0_records_cycle_by_cycle(version):
     """record.capacity 0: the FMU records nothing in bulk, so Chip.run records as a stepping master does."""
     names = record_outputs([0])
-    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 0}) as chip, \
-            pmdfmu.Chip(fmi_version=version) as ref:
+    with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 0}) as chip, pmdfmu.Chip(fmi_version=version) as ref:
         for c in (chip, ref):
             busy_chip(c)
         assert chip.run(300, record=names).tobytes() == run_stepwise(ref, 300, names).tobytes()

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Bulk recording through FMI 3 record.data: the same rows as
 recording cycle by cycle, far fewer FMI calls."""
+
 import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
@@ -16,7 +17,7 @@ def test_bulk_recording_equals_cycle_by_cycle_recording_through_fmi2():
     for version in (2, 3):
         with pmdfmu.Chip(fmi_version=version, **({"record.capacity": 1000} if version == 3 else {})) as chip:
             busy_chip(chip)
-            runs.append(chip.run(2500, record=RECORDED))           # FMI 3: three record chunks
+            runs.append(chip.run(2500, record=RECORDED))  # FMI 3: three record chunks
     assert np.array_equal(runs[0], runs[1])
 
 
@@ -55,14 +56,17 @@ def test_recording_an_unknown_variable_is_refused_before_any_cycle_runs(version)
 
 @pytest.mark.parametrize("version", [2, 3])
 def test_a_script_changing_the_sample_time_during_a_bulk_recording_is_recorded_as_a_stepping_master_sees_it(
-        tmp_path, version):
+    tmp_path, version
+):
     """A chunk whose grid a script step changes (a step of 100 cycles then holds 55) is redone from its
     saved state cycle by cycle: the rows of a master stepping cycle by cycle, and the run ends where
     that master's would (once this raised and left the chip 55 cycles on)."""
     script = tmp_path / "slower.script"
     script.write_text("@10\nSetSampleTime(Axis1, 200)\n")
-    with pmdfmu.Chip(fmi_version=version, script=script) as bulk, \
-            pmdfmu.Chip(fmi_version=version, script=script) as stepping:
+    with (
+        pmdfmu.Chip(fmi_version=version, script=script) as bulk,
+        pmdfmu.Chip(fmi_version=version, script=script) as stepping,
+    ):
         rows = bulk.run(100, record=RECORDED)
         expected = run_stepwise(stepping, 100, RECORDED)
         assert rows.tobytes() == expected.tobytes() and len(rows) == 100

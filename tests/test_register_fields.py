@@ -2,6 +2,7 @@
 """Register fields are declared once, as the *Mask constants of constants.csv
 : the command table's packed values name them, and the C
 header the FMU's sources carry derives NAME_SHIFT and NAME_LENGTH from them."""
+
 import re
 import zipfile
 
@@ -30,8 +31,7 @@ def test_a_mask_that_is_not_one_run_of_bits_is_no_field(mask):
 
 
 def test_packed_values_name_declared_fields():
-    packed = [f for c in tables.read_commands(TABLES / "commands.csv") for f in c.args + c.reply
-              if f.kind == "bits"]
+    packed = [f for c in tables.read_commands(TABLES / "commands.csv") for f in c.args + c.reply if f.kind == "bits"]
     assert packed
     for f in packed:
         declared = FIELDS[f.register_field]
@@ -42,7 +42,7 @@ def test_a_packed_value_must_name_a_mask():
     with pytest.raises(ValueError, match="not a mask"):
         tables.parse_fields("axis@PMDNoSuchField", FIELDS)
     with pytest.raises(ValueError):
-        tables.parse_fields("axis@0:4", FIELDS)              # bit positions are the constants' business
+        tables.parse_fields("axis@0:4", FIELDS)  # bit positions are the constants' business
     with pytest.raises(ValueError, match="overlapping"):
         tables.parse_fields("a@PMDActivityProfileMode|b@PMDActivityAtMaximumVelocity|c@PMDTraceCondition", FIELDS)
 

@@ -3,6 +3,7 @@
 plain stored register resets to its row's value, keeps what its Set stores,
 refuses a value outside its range with its row's error code and message, and
 has no hand-written handler."""
+
 import re
 import zipfile
 

@@ -1,14 +1,28 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Breakpoints, interrupts, Reset, actual position and the ports' order (pmd-reference 2.5, 4.1, 4.2)."""
+
 import numpy as np
 
 import pmdfmu
-from pmdfmu import (PMDBreakpoint1, PMDBreakpoint2, PMDBreakpointActionAbruptStop, PMDBreakpointActionMotorOff,
-                    PMDBreakpointActionSmoothStop, PMDBreakpointActionUpdate, PMDBreakpointCommandedPositionCrossed,
-                    PMDBreakpointEventStatus, PMDBreakpointGreaterOrEqualCommandedPosition,
-                    PMDBreakpointLessOrEqualActualPosition, PMDBreakpointNoAction, PMDBreakpointSignalStatus,
-                    PMDBreakpointTime, PMDEventBreakpoint1Mask, PMDEventBreakpoint2Mask,
-                    PMDEventMotionCompleteMask, PMDSignalEncoderHomeMask)
+from pmdfmu import (
+    PMDBreakpoint1,
+    PMDBreakpoint2,
+    PMDBreakpointActionAbruptStop,
+    PMDBreakpointActionMotorOff,
+    PMDBreakpointActionSmoothStop,
+    PMDBreakpointActionUpdate,
+    PMDBreakpointCommandedPositionCrossed,
+    PMDBreakpointEventStatus,
+    PMDBreakpointGreaterOrEqualCommandedPosition,
+    PMDBreakpointLessOrEqualActualPosition,
+    PMDBreakpointNoAction,
+    PMDBreakpointSignalStatus,
+    PMDBreakpointTime,
+    PMDEventBreakpoint1Mask,
+    PMDEventBreakpoint2Mask,
+    PMDEventMotionCompleteMask,
+    PMDSignalEncoderHomeMask,
+)
 
 
 def start_move(ax, position=1_000_000, velocity=0x40000, acceleration=0x1000):
@@ -26,7 +40,7 @@ def test_time_breakpoint_with_update_applies_the_buffered_registers_at_that_cycl
     ax.SetBreakpointValue(PMDBreakpoint2, 100)
     ax.SetBreakpoint(PMDBreakpoint2, 0, PMDBreakpointActionUpdate, PMDBreakpointTime)
     rec = chip.run(110, record=["axis1.commandedVelocity", "axis1.eventStatus"])
-    assert (rec["axis1.commandedVelocity"][:101] == 0).all()        # the update happens at the end of cycle 100
+    assert (rec["axis1.commandedVelocity"][:101] == 0).all()  # the update happens at the end of cycle 100
     assert rec["axis1.commandedVelocity"][101] == 0x10000
     assert not rec["axis1.eventStatus"][99] & PMDEventBreakpoint2Mask
     assert rec["axis1.eventStatus"][100] & PMDEventBreakpoint2Mask
@@ -39,7 +53,7 @@ def test_position_breakpoint_on_another_axis_stops_this_one(chip):
     start_move(a2)
     a2.SetBreakpointValue(PMDBreakpoint1, 2000)
     a2.SetBreakpoint(PMDBreakpoint1, 0, PMDBreakpointActionAbruptStop, PMDBreakpointGreaterOrEqualCommandedPosition)
-    rec = chip.run(700, record=["axis1.commandedPosition", "axis2.commandedVelocity"])   # 2000 at ~530
+    rec = chip.run(700, record=["axis1.commandedPosition", "axis2.commandedVelocity"])  # 2000 at ~530
     assert rec["axis1.commandedPosition"][-1] > 2000
     fired = int(np.argmax(rec["axis1.commandedPosition"] >= 2000))
     assert rec["axis2.commandedVelocity"][fired] == 0 and rec["axis2.commandedVelocity"][fired - 1] > 0
@@ -73,7 +87,7 @@ def test_status_breakpoints_use_select_and_sense_masks(chip):
     ax = chip.axis(0)
     ax.SetInterruptMask(PMDEventBreakpoint1Mask)
     # a status breakpoint's value: the select mask in the high word, the sense mask in the low word
-    ax.SetBreakpointValue(PMDBreakpoint1, (PMDSignalEncoderHomeMask << 16) | 0)   # home reads 0: active (low)
+    ax.SetBreakpointValue(PMDBreakpoint1, (PMDSignalEncoderHomeMask << 16) | 0)  # home reads 0: active (low)
     ax.SetBreakpoint(PMDBreakpoint1, 0, PMDBreakpointNoAction, PMDBreakpointSignalStatus)
     chip.run(10)
     assert not chip.get("host.interrupt")
@@ -138,9 +152,19 @@ def test_host_batch_executes_before_the_memory_write_of_the_same_step(chip):
     ax.SetBufferLength(2, 1)
     vr = {n: v.valueReference for n, v in chip.variables.items()}
     read_buffer = pmdfmu.COMMANDS["ReadBuffer"].opcode
-    chip.fmu.setInteger([vr["memory.address"], vr["memory.count"], vr["memory.data[1]"], vr["memory.strobe"],
-                         vr["host.word[1]"], vr["host.word[2]"], vr["host.wordCount"], vr["host.strobe"]],
-                        [0x300, 1, 77, 1, read_buffer, 2, 2, chip.get("host.strobe") + 1])
+    chip.fmu.setInteger(
+        [
+            vr["memory.address"],
+            vr["memory.count"],
+            vr["memory.data[1]"],
+            vr["memory.strobe"],
+            vr["host.word[1]"],
+            vr["host.word[2]"],
+            vr["host.wordCount"],
+            vr["host.strobe"],
+        ],
+        [0x300, 1, 77, 1, read_buffer, 2, 2, chip.get("host.strobe") + 1],
+    )
     chip.fmu.doStep(0.0, 1e-4)
     assert chip.fmu.getInteger([vr["host.replyCount"], vr["host.reply[1]"], vr["host.reply[2]"]]) == [2, 0, 0]
     assert ax.ReadBuffer(2) == 77

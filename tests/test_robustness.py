@@ -3,6 +3,7 @@
 while it runs a busy profile; instance B runs the same profile untouched. A
 refused FMI call leaves A's FMU state byte for byte as it was; a refused chip
 command is not executed: A's next 400 cycles equal B's. B never notices."""
+
 import math
 
 import numpy as np
@@ -31,14 +32,18 @@ FMI_CALLS = {
     "a step not at the last communication point": lambda c: c.fmu.doStep(c.time + 1.0, 1e-4),
     "SetupExperiment after initialization": lambda c: c.fmu.setupExperiment(startTime=0.0),
     "EnterInitializationMode twice": lambda c: c.fmu.enterInitializationMode(),
-    "NULL value arrays": lambda c: c.fmu._functions["fmi2GetInteger"](c.fmu.component, None, 3, None) == 3
-                                    and (_ for _ in ()).throw(FMICallException("fmi2GetInteger", 3)),
+    "NULL value arrays": lambda c: (
+        c.fmu._functions["fmi2GetInteger"](c.fmu.component, None, 3, None) == 3
+        and (_ for _ in ()).throw(FMICallException("fmi2GetInteger", 3))
+    ),
     "an unknown log category": lambda c: c.fmu.setDebugLogging(True, ["nonsense"]),
     "a truncated state blob": lambda c: c.fmu.deserializeFMUState(snapshot(c)[:-100]),
     "a corrupted state blob": lambda c: c.fmu.deserializeFMUState(snapshot(c)[:200] + b"\x55" + snapshot(c)[201:]),
     "a foreign state blob": lambda c: c.fmu.deserializeFMUState(b"FOREIGN!" + bytes(400)),
-    "an unsupported function": lambda c: c.fmu._functions["fmi2CancelStep"](c.fmu.component) == 3
-                                         and (_ for _ in ()).throw(FMICallException("fmi2CancelStep", 3)),
+    "an unsupported function": lambda c: (
+        c.fmu._functions["fmi2CancelStep"](c.fmu.component) == 3
+        and (_ for _ in ()).throw(FMICallException("fmi2CancelStep", 3))
+    ),
 }
 
 # refused chip commands: (row, batch of words, expected host I/O error)
@@ -62,7 +67,7 @@ def pair():
         for chip in (a, b):
             busy_chip(chip)
             chip.run(150)
-            chip.axis(0).GetHostIOError()        # 1 since reset: read, so the next error shows
+            chip.axis(0).GetHostIOError()  # 1 since reset: read, so the next error shows
         yield a, b
 
 
@@ -84,17 +89,19 @@ def test_a_refused_chip_command_is_not_executed_and_the_other_instance_goes_on(p
     error, _ = a.batch(words)
     assert error == code
     assert a.axis(0).GetHostIOError() == code
-    assert a.axis(0).GetEventStatus() & pmdfmu.PMDEventInstructionErrorMask     # the chip's answer ...
+    assert a.axis(0).GetEventStatus() & pmdfmu.PMDEventInstructionErrorMask  # the chip's answer ...
     ra, rb = a.run(400, record=BUSY_OUTPUTS), b.run(400, record=BUSY_OUTPUTS)
-    ra["axis1.eventStatus"] &= ~np.uint16(pmdfmu.PMDEventInstructionErrorMask)     # ... and all it changed
+    ra["axis1.eventStatus"] &= ~np.uint16(pmdfmu.PMDEventInstructionErrorMask)  # ... and all it changed
     assert np.array_equal(ra, rb)
 
 
 def test_a_refused_memory_write_writes_nothing(pair):
     a, b = pair
     with pytest.raises(FMICallException):
-        a.fmu.setInteger([vr(a, "memory.data[1]"), vr(a, "memory.address"), vr(a, "memory.count"),
-                          vr(a, "memory.strobe")], [12345, 0x3FFF, 5, a.get("memory.strobe") + 1])
+        a.fmu.setInteger(
+            [vr(a, "memory.data[1]"), vr(a, "memory.address"), vr(a, "memory.count"), vr(a, "memory.strobe")],
+            [12345, 0x3FFF, 5, a.get("memory.strobe") + 1],
+        )
     assert np.array_equal(a.run(400, record=BUSY_OUTPUTS), b.run(400, record=BUSY_OUTPUTS))
     a.axis(0).SetBufferStart(9, 0x3FFF)
     a.axis(0).SetBufferLength(9, 1)

@@ -6,16 +6,31 @@ buffer_length, so its buffers overlap (axis 1's five buffers all start at
 0x200, and so does axis 2's position buffer). The chip does what it is told;
 so do we. Each axis's profile is checked against the reference model over
 the memory the seed's writes really leave behind."""
+
 import pytest
 
-from pmdfmu import (PMDAbruptStop, PMDActivityInMotionMask, PMDAxis1, PMDAxis1Mask, PMDAxis2Mask, PMDAxis3Mask,
-                    PMDBreakpoint1, PMDBreakpointActivityStatus, PMDBreakpointNoAction, PMDBufferFunctionPosition,
-                    PMDBufferFunctionTime, PMDEventBreakpoint1Mask, PMDExternalProfile, PMDTrapezoidal, field_ex)
+from pmdfmu import (
+    PMDAbruptStop,
+    PMDActivityInMotionMask,
+    PMDAxis1,
+    PMDAxis1Mask,
+    PMDAxis2Mask,
+    PMDAxis3Mask,
+    PMDBreakpoint1,
+    PMDBreakpointActivityStatus,
+    PMDBreakpointNoAction,
+    PMDBufferFunctionPosition,
+    PMDBufferFunctionTime,
+    PMDEventBreakpoint1Mask,
+    PMDExternalProfile,
+    PMDTrapezoidal,
+    field_ex,
+)
 from reference import ExternalProfile
 
 num_variables = 5
-max_vel = 0x20000      # 2 counts/cycle
-max_acc = 0x800        # 1/32 count/cycle^2
+max_vel = 0x20000  # 2 counts/cycle
+max_acc = 0x800  # 1/32 count/cycle^2
 SEGMENT_CYCLES = 256
 
 
@@ -26,8 +41,9 @@ def make_data(num_axes):
     data = []
     for axis in range(num_axes):
         waypoints = [400 * (axis + 1), 1200 + 100 * axis, 800, 1600 - 200 * axis, 0]
-        rows = [(p, (q - p) * 65536 // SEGMENT_CYCLES, 0, 0, SEGMENT_CYCLES)
-                for p, q in zip(waypoints, waypoints[1:])] + [(0, 0, 0, 0, 0)]
+        rows = [
+            (p, (q - p) * 65536 // SEGMENT_CYCLES, 0, 0, SEGMENT_CYCLES) for p, q in zip(waypoints, waypoints[1:])
+        ] + [(0, 0, 0, 0, 0)]
         data.append([[row[v] for row in rows] for v in range(num_variables)])
     return data
 
@@ -104,9 +120,11 @@ def wait_at_rest(chip, hAxis, num_axes):
 
 
 def recorded_names(num_axes):
-    return [f"axis{a + 1}.{q}" for a in range(num_axes)
-            for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus")] + \
-        ["host.interrupt", "axis1.eventStatus"]
+    return [
+        f"axis{a + 1}.{q}"
+        for a in range(num_axes)
+        for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus")
+    ] + ["host.interrupt", "axis1.eventStatus"]
 
 
 @pytest.mark.parametrize("num_axes", [2, 3])
@@ -146,8 +164,13 @@ def test_seed_sample_code_runs_as_the_chip_would(any_chip, num_axes):
     memory = memory_after_writes(num_axes, data, memory_start, buffer_length)
     for a in range(num_axes):
         model = expected_profile(a, memory, memory_start, buffer_length)
-        got = list(zip(rec[f"axis{a + 1}.commandedPosition"], rec[f"axis{a + 1}.commandedVelocity"],
-                       rec[f"axis{a + 1}.commandedAcceleration"]))
+        got = list(
+            zip(
+                rec[f"axis{a + 1}.commandedPosition"],
+                rec[f"axis{a + 1}.commandedVelocity"],
+                rec[f"axis{a + 1}.commandedAcceleration"],
+            )
+        )
         assert got == model.run(len(rec)), f"axis {a + 1}"
 
     # the last axis's table is where the seed meant it to be: it runs its legs exactly
@@ -168,10 +191,10 @@ def test_seed_sample_code_runs_as_the_chip_would(any_chip, num_axes):
     assert done > 0
     assert not rec["host.interrupt"][:done].any() and rec["host.interrupt"][done:].all()
     assert rec["axis1.eventStatus"][done] & PMDEventBreakpoint1Mask
-    assert hAxis[PMDAxis1].GetBreakpoint(PMDBreakpoint1)[2] == 0      # trigger disarmed after firing
+    assert hAxis[PMDAxis1].GetBreakpoint(PMDBreakpoint1)[2] == 0  # trigger disarmed after firing
     hAxis[PMDAxis1].ResetEventStatus(~PMDEventBreakpoint1Mask)
     chip.run(100)
-    assert not chip.get("host.interrupt")                            # fired once: no new event
+    assert not chip.get("host.interrupt")  # fired once: no new event
 
 
 @pytest.mark.parametrize("num_axes", [2, 3])
@@ -199,4 +222,4 @@ def test_seed_abrupt_stop_halts_all_axes_in_one_cycle(any_chip, num_axes):
         assert (rec[f"axis{a + 1}.commandedVelocity"] == 0).all()
         assert (rec[f"axis{a + 1}.commandedAcceleration"] == 0).all()
         assert (field_ex(rec[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0).all()
-        assert hAxis[a].GetStopMode() == 0          # the stop mode resets itself after the Update
+        assert hAxis[a].GetStopMode() == 0  # the stop mode resets itself after the Update

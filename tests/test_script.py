@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Stand-alone scripts: the `script` parameter (docs/scripts.md)."""
+
 import os
 import threading
 from pathlib import Path
@@ -12,8 +13,14 @@ from pmdfmu import FMUError
 from pmdfmu.cli import main
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-NAMES = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis2.commandedPosition",
-         "axis2.commandedAcceleration", "axis1.activityStatus", "axis2.activityStatus"]
+NAMES = [
+    "axis1.commandedPosition",
+    "axis1.commandedVelocity",
+    "axis2.commandedPosition",
+    "axis2.commandedAcceleration",
+    "axis1.activityStatus",
+    "axis2.activityStatus",
+]
 
 
 @pytest.mark.parametrize("version", [2, 3])
@@ -24,8 +31,12 @@ def test_the_example_script_runs_as_the_same_calls_from_python(version):
     with pmdfmu.Chip(fmi_version=version) as chip:
         a1, a2 = chip.axis(0), chip.axis(1)
         # LoadSegmentTable(Axis1, "two_axis_table.csv", 0x200, 2): counts/cycle units, exactly
-        rows = [(0, 0, pmdfmu.fixed_16_16("0.001"), 0, 500), (125, 0x8000, 0, 0, 1000),
-                (625, 0x8000, pmdfmu.fixed_16_16("-0.001"), 0, 500), (750, 0, 0, 0, 0)]
+        rows = [
+            (0, 0, pmdfmu.fixed_16_16("0.001"), 0, 500),
+            (125, 0x8000, 0, 0, 1000),
+            (625, 0x8000, pmdfmu.fixed_16_16("-0.001"), 0, 500),
+            (750, 0, 0, 0, 0),
+        ]
         for k in range(5):
             a1.SetBufferStart(2 + k, 0x200 + 4 * k)
             a1.SetBufferLength(2 + k, 4)
@@ -50,14 +61,15 @@ def test_the_example_script_runs_as_the_same_calls_from_python(version):
 
 def test_decimals_are_exact_and_the_chip_still_refuses_what_it_refuses(tmp_path):
     script = tmp_path / "s.script"
-    script.write_text("@0\nSetVelocity(Axis3, 2.75)\nSetJerk(PMDAxis3, .0075)\nSetGearRatio(Axis3, -1.95)\n"
-                      "SetBufferReadIndex(Axis1, 2, 5)   # 0x07: buffer 2 has length 0\n")
+    script.write_text(
+        "@0\nSetVelocity(Axis3, 2.75)\nSetJerk(PMDAxis3, .0075)\nSetGearRatio(Axis3, -1.95)\n"
+        "SetBufferReadIndex(Axis1, 2, 5)   # 0x07: buffer 2 has length 0\n"
+    )
     with pmdfmu.Chip(script=script, log_categories=["warnings"]) as chip:
         chip.run(1)
         ax = chip.axis(2)
         assert (ax.GetVelocity(), ax.GetJerk(), ax.GetGearRatio()) == (0x2C000, 0x1EB851F, pmdfmu.signed(0xFFFE0CCD))
-        assert [m.message for m in chip.messages] == \
-            [f"{script}:5: the chip refused the command: host I/O error 0x07"]
+        assert [m.message for m in chip.messages] == [f"{script}:5: the chip refused the command: host I/O error 0x07"]
 
 
 BAD = {
@@ -103,14 +115,28 @@ def test_fmu_state_keeps_the_scripts_progress():
 
 
 def test_pmdfmu_run_a_script_writes_csv_and_plot(tmp_path):
-    assert main(["run", str(EXAMPLES / "two_axis.script"), "--csv", str(tmp_path / "o.csv"),
-                 "--plot", str(tmp_path / "o.png"), "--fmi-version", "3"]) == 0
+    assert (
+        main(
+            [
+                "run",
+                str(EXAMPLES / "two_axis.script"),
+                "--csv",
+                str(tmp_path / "o.csv"),
+                "--plot",
+                str(tmp_path / "o.png"),
+                "--fmi-version",
+                "3",
+            ]
+        )
+        == 0
+    )
     lines = (tmp_path / "o.csv").read_text().splitlines()
     assert lines[0].startswith("cycle,axis1.commandedPosition") and "axis2.commandedPosition" in lines[0]
     assert len(lines) > 3000 and (tmp_path / "o.png").stat().st_size > 10_000
 
 
 # ---- files that are not a script or a table (hangs and silent acceptance once) ----
+
 
 def refusal(version, script, seconds=60):
     """What the FMU says when it refuses the script; a hang fails the test instead of stalling the suite."""
@@ -122,6 +148,7 @@ def refusal(version, script, seconds=60):
             said.append(None)
         except FMUError as e:
             said.append(str(e))
+
     thread = threading.Thread(target=initialize, daemon=True)
     thread.start()
     thread.join(seconds)
@@ -142,8 +169,9 @@ def test_a_table_that_never_ends_or_blocks_is_refused_as_not_a_regular_file(tmp_
     fifo = tmp_path / "fifo.csv"
     os.mkfifo(fifo)
     for table in ("/dev/zero", fifo):
-        assert f"s.script:1: cannot open segment table {table}: not a regular file" in \
-            refusal(version, script_loading(tmp_path, table))
+        assert f"s.script:1: cannot open segment table {table}: not a regular file" in refusal(
+            version, script_loading(tmp_path, table)
+        )
 
 
 @pytest.mark.parametrize("version", [2, 3])
@@ -157,11 +185,12 @@ def test_a_script_that_is_a_fifo_a_device_or_a_folder_is_refused_as_not_a_regula
 @pytest.mark.parametrize("version", [2, 3])
 def test_a_script_or_table_over_1_GiB_is_refused_unread(tmp_path, version):
     huge = tmp_path / "huge.csv"
-    with open(huge, "wb") as f:                     # sparse: nothing is written
+    with open(huge, "wb") as f:  # sparse: nothing is written
         f.truncate((1 << 30) + 1)
     assert f"{huge.resolve()}: cannot open the script: larger than 1 GiB" in refusal(version, huge)
-    assert f"s.script:1: cannot open segment table {huge}: larger than 1 GiB" in \
-        refusal(version, script_loading(tmp_path, huge))
+    assert f"s.script:1: cannot open segment table {huge}: larger than 1 GiB" in refusal(
+        version, script_loading(tmp_path, huge)
+    )
 
 
 @pytest.mark.skipif(not Path("/proc/self/mem").exists(), reason="needs Linux's /proc/self/mem")
@@ -198,22 +227,34 @@ BAD_FILES = {
     "hex with a sign": ("SetPosition(Axis1, 0x+7)", None, "s.script:2: '0x+7' is not a 32-bit hexadecimal number"),
     "hex past 32 bits": ("@ 0x000100000000", None, "s.script:2: '0x000100000000' is not a 32-bit hexadecimal"),
     "empty argument": ("SetPosition(Axis1, )", None, "s.script:2: a value is missing"),
-    "quote in a path": ('LoadSegmentTable(Axis1, "t"x".csv", 0x200, 2)', None,
-                        's.script:2: LoadSegmentTable: a quote inside the file name "t"x".csv"'),
-    "path too long": (f'LoadSegmentTable(Axis1, "{"d/" * 600}t.csv", 0x200, 2)', None,
-                      "s.script:2: LoadSegmentTable: the table's path is longer than 1023 characters"),
+    "quote in a path": (
+        'LoadSegmentTable(Axis1, "t"x".csv", 0x200, 2)',
+        None,
+        's.script:2: LoadSegmentTable: a quote inside the file name "t"x".csv"',
+    ),
+    "path too long": (
+        f'LoadSegmentTable(Axis1, "{"d/" * 600}t.csv", 0x200, 2)',
+        None,
+        "s.script:2: LoadSegmentTable: the table's path is longer than 1023 characters",
+    ),
     "table comment too long": (None, "# " + LONG + "\nposition\n1\n", "t.csv:1: line longer than 4095 characters"),
     "NUL in a table": (None, "position\n1\0\n", "t.csv:2: NUL byte in the line"),
-    "17 columns": (None, HEADER_17 + "\n" + "1," * 16 + "1\n", "t.csv:1: 17 columns: a segment table has at most "
-                   "one each of position, velocity, acceleration, jerk, time"),
+    "17 columns": (
+        None,
+        HEADER_17 + "\n" + "1," * 16 + "1\n",
+        "t.csv:1: 17 columns: a segment table has at most one each of position, velocity, acceleration, jerk, time",
+    ),
     "column twice": (None, "position,time,position\n1,2,3\n", "t.csv:1: column 'position' named twice"),
     "row too long": (None, "position,time\n1,2\n3,4,5\n", "t.csv:3: expected 2 values (one per column), found 3"),
     "row too short": (None, "position,time\n1\n", "t.csv:2: expected 2 values (one per column), found 1"),
     "empty cell": (None, "position,time\n1,\n", "t.csv:2: a value is missing"),
     "trailing garbage": (None, "position\n5x\n", "t.csv:2: '5x' is not a number"),
     "hex in a table": (None, "position\n0x 5\n", "t.csv:2: '0x 5' is not a 32-bit hexadecimal number"),
-    "units contradicted": (None, "# units: raw\nposition,velocity\n1,2\n# units: counts/cycle\n",
-                           "t.csv:4: units 'counts/cycle' contradict the units stated before"),
+    "units contradicted": (
+        None,
+        "# units: raw\nposition,velocity\n1,2\n# units: counts/cycle\n",
+        "t.csv:4: units 'counts/cycle' contradict the units stated before",
+    ),
 }
 
 
@@ -231,10 +272,11 @@ def test_a_bad_file_is_refused_with_file_line_and_reason(tmp_path, version, case
 
 @pytest.mark.parametrize("version", [2, 3])
 def test_lines_of_4095_characters_and_blanks_around_cells_are_accepted(tmp_path, version):
-    (tmp_path / "t.csv").write_text("# units: raw\n#" + "x" * 4094 + "\n position , time \n 7 , 0x10 \n-3,0\n"
-                                    "# units: raw\n")
+    (tmp_path / "t.csv").write_text(
+        "# units: raw\n#" + "x" * 4094 + "\n position , time \n 7 , 0x10 \n-3,0\n# units: raw\n"
+    )
     script = tmp_path / "s.script"
-    script.write_text("#" + "y" * 4094 + '\nLoadSegmentTable(Axis1, "t.csv", 0x200, 2)')    # no final newline
+    script.write_text("#" + "y" * 4094 + '\nLoadSegmentTable(Axis1, "t.csv", 0x200, 2)')  # no final newline
     with pmdfmu.Chip(fmi_version=version, script=script) as chip:
         chip.run(1)
         ax = chip.axis(0)

@@ -2,6 +2,7 @@
 """What the compiled script knows about itself: the axes its
 calls address (script.axes) and the time of its last @ line (script.lastCycle),
 as FMU outputs, so that no one parses a script again to find them."""
+
 from pathlib import Path
 
 import pytest
@@ -19,13 +20,15 @@ def facts(chip):
 @pytest.mark.parametrize("version", [2, 3])
 def test_the_axes_and_the_last_time_of_a_script(version, tmp_path):
     script = tmp_path / "s.pmd"
-    script.write_text("# Axis4 is named only in this comment\n"
-                      "@ 0\n"
-                      "SetPosition(Axis1, 100);      // and Axis2 only here\n"
-                      "SetSampleTime(PMDAxis3, 200)   # a chip-wide command: its axis argument counts\n"
-                      "@ 0x20\n"
-                      "Update(Axis1);\n"
-                      "@ 500\n")                      # a last time with no call after it
+    script.write_text(
+        "# Axis4 is named only in this comment\n"
+        "@ 0\n"
+        "SetPosition(Axis1, 100);      // and Axis2 only here\n"
+        "SetSampleTime(PMDAxis3, 200)   # a chip-wide command: its axis argument counts\n"
+        "@ 0x20\n"
+        "Update(Axis1);\n"
+        "@ 500\n"
+    )  # a last time with no call after it
     with pmdfmu.Chip(fmi_version=version, script=script) as chip:
         assert facts(chip) == (0b101, 500.0)
         chip.run(10)
@@ -49,7 +52,7 @@ def test_the_example_script_and_a_large_time(tmp_path):
     with pmdfmu.Chip(script=EXAMPLES / "two_axis.script") as chip:
         assert facts(chip) == (0b11, 3000.0)
     script = tmp_path / "far.pmd"
-    script.write_text("@ 100000000000000000\nUpdate(Axis1)\n")       # 10^17 cycles: a double holds it exactly
+    script.write_text("@ 100000000000000000\nUpdate(Axis1)\n")  # 10^17 cycles: a double holds it exactly
     with pmdfmu.Chip(fmi_version=3, script=script) as chip:
         assert facts(chip) == (0b1, 1e17)
 

@@ -11,6 +11,7 @@ directory. A file not found names each place it was looked for. `pmdfmu pack`
 writes a copy of the FMU with the script and its tables inside and `script`
 starting at it. Most tests here run the FMU below the harness, as a tool does:
 FMPy's simulate_fmu, or FMPy's classes with the resource location a tool gives."""
+
 import os
 import re
 import shutil
@@ -25,8 +26,14 @@ import fmpy
 import numpy as np
 import pytest
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2CoSimulation
-from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3InstanceEnvironment, fmi3IntermediateUpdateCallback, \
-    fmi3LogMessageCallback, fmi3ValueReference
+from fmpy.fmi3 import (
+    FMU3Slave,
+    fmi3Boolean,
+    fmi3InstanceEnvironment,
+    fmi3IntermediateUpdateCallback,
+    fmi3LogMessageCallback,
+    fmi3ValueReference,
+)
 
 import pmdfmu
 from pmdfmu.cli import main
@@ -37,21 +44,29 @@ EXAMPLES = REPO / "examples"
 SCRIPT = EXAMPLES / "two_axis.script"
 TABLE = EXAMPLES / "two_axis_table.csv"
 VERSIONS = pytest.mark.parametrize("version", [2, 3])
-OUTPUTS = ["axis1.commandedPosition", "axis2.commandedPosition", "axis1.commandedVelocity",
-           "axis2.commandedVelocity", "axis1.commandedAcceleration"]
+OUTPUTS = [
+    "axis1.commandedPosition",
+    "axis2.commandedPosition",
+    "axis1.commandedVelocity",
+    "axis2.commandedVelocity",
+    "axis1.commandedAcceleration",
+]
 
 
 def move(position: int) -> str:
     """A script moving axis 2 to position with a trapezoidal profile."""
-    return ("@ 0\nSetProfileMode(Axis2, PMDTrapezoidalProfile)\n"
-            f"SetPosition(Axis2, {position})\nSetVelocity(Axis2, 4.0)\nSetAcceleration(Axis2, 0.0625)\n"
-            "SetDeceleration(Axis2, 0.0625)\nUpdate(Axis2)\n")
+    return (
+        "@ 0\nSetProfileMode(Axis2, PMDTrapezoidalProfile)\n"
+        f"SetPosition(Axis2, {position})\nSetVelocity(Axis2, 4.0)\nSetAcceleration(Axis2, 0.0625)\n"
+        "SetDeceleration(Axis2, 0.0625)\nUpdate(Axis2)\n"
+    )
 
 
 def simulate(fmu, start_values=None, stop_time=0.4):
     """FMPy's simulate_fmu as a tool runs an FMU: no parameter but those given."""
-    return fmpy.simulate_fmu(str(fmu), start_values=start_values or {}, stop_time=stop_time, output_interval=1e-3,
-                             output=OUTPUTS)
+    return fmpy.simulate_fmu(
+        str(fmu), start_values=start_values or {}, stop_time=stop_time, output_interval=1e-3, output=OUTPUTS
+    )
 
 
 def final(result, name="axis2.commandedPosition"):
@@ -68,7 +83,7 @@ def with_resources(fmu: Path, out: Path, files: dict) -> Path:
     return out
 
 
-DEFAULT = object()        # the resource location FMPy gives
+DEFAULT = object()  # the resource location FMPy gives
 
 
 class Raw:
@@ -81,28 +96,50 @@ class Raw:
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
         self.unzipdir = fmpy.extract(str(fmu), unzipdir=str(unzipdir) if unzipdir else None)
         self.messages = []
-        kwargs = dict(guid=self.md.guid, unzipDirectory=self.unzipdir,
-                      modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName="raw")
+        kwargs = dict(
+            guid=self.md.guid,
+            unzipDirectory=self.unzipdir,
+            modelIdentifier=self.md.coSimulation.modelIdentifier,
+            instanceName="raw",
+        )
         resources = Path(self.unzipdir, "resources")
         if version == 2:
             self.fmu = FMU2Slave(**kwargs)
             self.callbacks = fmi2CallbackFunctions()
             self.callbacks.logger = fmi2CallbackLoggerTYPE(
-                lambda env, name, status, category, message: self.messages.append(message.decode().replace("%%", "%")))
+                lambda env, name, status, category, message: self.messages.append(message.decode().replace("%%", "%"))
+            )
             uri = resources.as_uri() if location is DEFAULT else location
-            self.fmu.component = self.fmu.fmi2Instantiate(b"raw", fmi2CoSimulation, self.md.guid.encode(),
-                                                          uri.encode() if uri is not None else None,
-                                                          byref(self.callbacks), 0, 1)
+            self.fmu.component = self.fmu.fmi2Instantiate(
+                b"raw",
+                fmi2CoSimulation,
+                self.md.guid.encode(),
+                uri.encode() if uri is not None else None,
+                byref(self.callbacks),
+                0,
+                1,
+            )
         else:
             self.fmu = FMU3Slave(**kwargs)
-            self.log = fmi3LogMessageCallback(lambda env, status, category, message:
-                                              self.messages.append(message.decode()))
+            self.log = fmi3LogMessageCallback(
+                lambda env, status, category, message: self.messages.append(message.decode())
+            )
             self.update = fmi3IntermediateUpdateCallback()
             path = str(resources) + os.sep if location is DEFAULT else location
             self.fmu.component = self.fmu.fmi3InstantiateCoSimulation(
-                b"raw", self.md.guid.encode(), path.encode() if path is not None else None, fmi3Boolean(False),
-                fmi3Boolean(True), fmi3Boolean(False), fmi3Boolean(False), (fmi3ValueReference * 0)(), 0,
-                fmi3InstanceEnvironment(), self.log, self.update)
+                b"raw",
+                self.md.guid.encode(),
+                path.encode() if path is not None else None,
+                fmi3Boolean(False),
+                fmi3Boolean(True),
+                fmi3Boolean(False),
+                fmi3Boolean(False),
+                (fmi3ValueReference * 0)(),
+                0,
+                fmi3InstanceEnvironment(),
+                self.log,
+                self.update,
+            )
         self.instantiated = bool(self.fmu.component)
 
     def initialize(self, script=None) -> bool:
@@ -134,8 +171,9 @@ class Raw:
 
     def close(self):
         if self.instantiated:
-            self.fmu.fmi2FreeInstance(self.fmu.component) if self.version == 2 else \
-                self.fmu.fmi3FreeInstance(self.fmu.component)
+            self.fmu.fmi2FreeInstance(self.fmu.component) if self.version == 2 else self.fmu.fmi3FreeInstance(
+                self.fmu.component
+            )
         self.fmu.freeLibrary()
         shutil.rmtree(self.unzipdir, ignore_errors=True)
 
@@ -174,6 +212,7 @@ def by_path():
 
 # ---- the script parameter: where a path is looked for ----
 
+
 @VERSIONS
 def test_a_relative_path_is_looked_for_in_the_resources_folder_first(tmp_path, monkeypatch, built, version):
     fmu = with_resources(built[version], tmp_path / "r.fmu", {"p/s.script": move(5000)})
@@ -187,8 +226,9 @@ def test_a_relative_path_is_looked_for_in_the_resources_folder_first(tmp_path, m
 
 
 @VERSIONS
-def test_a_relative_path_the_fmu_does_not_hold_is_taken_from_the_working_directory(tmp_path, monkeypatch, built,
-                                                                                   version, by_path):
+def test_a_relative_path_the_fmu_does_not_hold_is_taken_from_the_working_directory(
+    tmp_path, monkeypatch, built, version, by_path
+):
     (tmp_path / "sub").mkdir()
     shutil.copy(SCRIPT, tmp_path / "sub")
     shutil.copy(TABLE, tmp_path / "sub")
@@ -196,12 +236,15 @@ def test_a_relative_path_the_fmu_does_not_hold_is_taken_from_the_working_directo
     result = simulate(built[version], {"script": "sub/two_axis.script"})
     assert np.array_equal(result, by_path)
     assert tables_read(built[version], version, "sub/two_axis.script") == (
-        ["sub/two_axis.script"], ["sub/two_axis_table.csv"])
+        ["sub/two_axis.script"],
+        ["sub/two_axis_table.csv"],
+    )
 
 
 @VERSIONS
-def test_without_a_resources_folder_a_relative_path_is_taken_from_the_working_directory(tmp_path, monkeypatch, built,
-                                                                                        version):
+def test_without_a_resources_folder_a_relative_path_is_taken_from_the_working_directory(
+    tmp_path, monkeypatch, built, version
+):
     (tmp_path / "s.script").write_text(move(1234))
     monkeypatch.chdir(tmp_path)
     location = None if version == 3 else ""
@@ -241,11 +284,17 @@ def test_a_table_is_looked_for_in_the_scripts_folder_then_the_resources_folder(t
 
 
 @VERSIONS
-def test_a_script_in_the_fmu_loads_its_tables_from_its_own_folder_in_the_fmu(tmp_path, monkeypatch, built, version,
-                                                                             by_path):
-    fmu = with_resources(built[version], tmp_path / "r.fmu",
-                         {"a/b/s.script": SCRIPT.read_text().replace('"two_axis_table.csv"', '"../t/table.csv"'),
-                          "a/t/table.csv": TABLE.read_text()})
+def test_a_script_in_the_fmu_loads_its_tables_from_its_own_folder_in_the_fmu(
+    tmp_path, monkeypatch, built, version, by_path
+):
+    fmu = with_resources(
+        built[version],
+        tmp_path / "r.fmu",
+        {
+            "a/b/s.script": SCRIPT.read_text().replace('"two_axis_table.csv"', '"../t/table.csv"'),
+            "a/t/table.csv": TABLE.read_text(),
+        },
+    )
     monkeypatch.chdir(tmp_path)
     assert np.array_equal(simulate(fmu, {"script": "a/b/s.script"}), by_path)
 
@@ -258,9 +307,11 @@ def test_a_table_found_nowhere_is_refused_naming_each_place_looked_in(tmp_path, 
     try:
         assert not raw.initialize(str(script))
         resources = Path(raw.unzipdir, "resources")
-        assert (f"ExitInitializationMode: script refused: {script}:2: cannot open segment table sub/none.csv: "
-                f"not found in the script's folder ({tmp_path}/sub/none.csv: No such file or directory) nor in the "
-                f"FMU's resources folder ({resources}/sub/none.csv: No such file or directory)") in raw.errors()
+        assert (
+            f"ExitInitializationMode: script refused: {script}:2: cannot open segment table sub/none.csv: "
+            f"not found in the script's folder ({tmp_path}/sub/none.csv: No such file or directory) nor in the "
+            f"FMU's resources folder ({resources}/sub/none.csv: No such file or directory)"
+        ) in raw.errors()
     finally:
         raw.close()
 
@@ -275,9 +326,10 @@ def test_an_absolute_table_path_is_taken_as_it_is(tmp_path, built, version):
 
 # ---- the script's text as the value ----
 
+
 @VERSIONS
 def test_a_value_holding_a_line_feed_is_the_scripts_text(tmp_path, monkeypatch, built, version, by_path):
-    monkeypatch.chdir(EXAMPLES)                      # its table: from the working directory
+    monkeypatch.chdir(EXAMPLES)  # its table: from the working directory
     text = SCRIPT.read_text()
     assert np.array_equal(simulate(built[version], {"script": text}), by_path)
     assert np.array_equal(simulate(built[version], {"script": text.replace("\n", "\r\n")}), by_path)
@@ -287,7 +339,7 @@ def test_a_value_holding_a_line_feed_is_the_scripts_text(tmp_path, monkeypatch, 
 @VERSIONS
 def test_a_text_scripts_tables_come_from_the_resources_folder_first(tmp_path, monkeypatch, built, version, by_path):
     fmu = with_resources(built[version], tmp_path / "r.fmu", {"two_axis_table.csv": TABLE.read_text()})
-    (tmp_path / "two_axis_table.csv").write_text(TABLE_B)        # not this one
+    (tmp_path / "two_axis_table.csv").write_text(TABLE_B)  # not this one
     monkeypatch.chdir(tmp_path)
     assert np.array_equal(simulate(fmu, {"script": SCRIPT.read_text()}), by_path)
     assert tables_read(fmu, version, SCRIPT.read_text())[1][0].endswith("/resources/two_axis_table.csv")
@@ -296,20 +348,27 @@ def test_a_text_scripts_tables_come_from_the_resources_folder_first(tmp_path, mo
 @VERSIONS
 def test_a_one_line_script_is_its_line_and_a_line_feed(built, version):
     for text in ("SetSampleTime(Axis1, 250)\n", "SetSampleTime(Axis1, 250);\r\n", "\nSetSampleTime(Axis1, 250)"):
-        result = fmpy.simulate_fmu(str(built[version]), start_values={"script": text}, stop_time=0.01,
-                                   output_interval=1e-3, output=["activeCycleTime"])
+        result = fmpy.simulate_fmu(
+            str(built[version]),
+            start_values={"script": text},
+            stop_time=0.01,
+            output_interval=1e-3,
+            output=["activeCycleTime"],
+        )
         assert result["activeCycleTime"][-1] == 250e-6, repr(text)
     # without one, the same words are a path
     said = refusal(built[version], version, "SetSampleTime(Axis1, 250)")
-    assert "script refused: SetSampleTime(Axis1, 250): cannot open the script: not found in the FMU's resources " \
-           "folder" in said
+    assert (
+        "script refused: SetSampleTime(Axis1, 250): cannot open the script: not found in the FMU's resources "
+        "folder" in said
+    )
 
 
 @VERSIONS
 def test_a_bad_text_script_is_refused_with_line_and_reason(built, version):
     said = refusal(built[version], version, "@ 0\nFrobnicate(Axis1, 3)\n")
     assert "ExitInitializationMode: script refused: (script text):2: 'Frobnicate' is not a command" in said
-    raw = Raw(built[version], version)               # what the chip refuses while it runs: a warning, with the line
+    raw = Raw(built[version], version)  # what the chip refuses while it runs: a warning, with the line
     try:
         assert raw.initialize("@0\nSetBufferReadIndex(Axis1, 2, 5)\n"), raw.errors()
         raw.fmu.doStep(0.0, 1e-4)
@@ -318,8 +377,10 @@ def test_a_bad_text_script_is_refused_with_line_and_reason(built, version):
         raw.close()
     said = refusal(built[version], version, 'LoadSegmentTable(Axis1, "none.csv", 0x200, 2)\n')
     assert "(script text):1: cannot open segment table none.csv: not found in the FMU's resources folder (" in said
-    assert f"none.csv: No such file or directory) nor in the working directory ({os.getcwd()}/none.csv: No such " \
-           "file or directory)" in said
+    assert (
+        f"none.csv: No such file or directory) nor in the working directory ({os.getcwd()}/none.csv: No such "
+        "file or directory)" in said
+    )
 
 
 @VERSIONS
@@ -349,14 +410,15 @@ def test_the_harness_passes_text_and_paths_inside_the_fmu(tmp_path, monkeypatch,
 
 # ---- the resource location an importer gives ----
 
+
 @pytest.mark.parametrize("form", ["file:///{}", "file://localhost/{}", "file:/{}", "file:///{}/", "FILE:///{}"])
 def test_fmi2_resource_locations_are_file_uris_decoded(tmp_path, built, form):
-    folder = tmp_path / "a folder 100%" / "ü"          # a blank, a percent sign and a non-ASCII letter
+    folder = tmp_path / "a folder 100%" / "ü"  # a blank, a percent sign and a non-ASCII letter
     fmu = with_resources(built[2], tmp_path / "r.fmu", {"s.script": move(10)})
     raw = Raw(fmu, 2, unzipdir=folder)
     raw.close()
     resources = folder / "resources"
-    encoded = resources.as_uri()[len("file:///"):]     # percent-encoded by pathlib
+    encoded = resources.as_uri()[len("file:///") :]  # percent-encoded by pathlib
     assert "%20" in encoded and "%25" in encoded and "%C3%BC" in encoded
     raw = Raw(fmu, 2, location=form.format(encoded), unzipdir=folder)
     try:
@@ -365,26 +427,35 @@ def test_fmi2_resource_locations_are_file_uris_decoded(tmp_path, built, form):
         raw.close()
 
 
-@pytest.mark.parametrize("location, why", [
-    ("", "the importer gave no fmuResourceLocation"),
-    (None, "the importer gave no fmuResourceLocation"),
-    ("http://example.com/resources", "fmuResourceLocation is not a file: URI"),
-    ("file://elsewhere/tmp/resources", "fmuResourceLocation names another host"),
-    ("file:///tmp/a%zzb/resources", "fmuResourceLocation has a bad percent-encoding"),
-    ("file:///tmp/a%00b/resources", "fmuResourceLocation has a bad percent-encoding"),
-    ("file:relative/resources", "fmuResourceLocation's path is not absolute"),
-])
+@pytest.mark.parametrize(
+    "location, why",
+    [
+        ("", "the importer gave no fmuResourceLocation"),
+        (None, "the importer gave no fmuResourceLocation"),
+        ("http://example.com/resources", "fmuResourceLocation is not a file: URI"),
+        ("file://elsewhere/tmp/resources", "fmuResourceLocation names another host"),
+        ("file:///tmp/a%zzb/resources", "fmuResourceLocation has a bad percent-encoding"),
+        ("file:///tmp/a%00b/resources", "fmuResourceLocation has a bad percent-encoding"),
+        ("file:relative/resources", "fmuResourceLocation's path is not absolute"),
+    ],
+)
 def test_an_fmi2_resource_location_that_is_no_local_folder_is_named_when_a_script_is_not_found(built, location, why):
     said = refusal(built[2], 2, "none.script", location=location)
-    assert f"none.script: cannot open the script: not found in the FMU's resources folder (none: {why}) nor in the " \
-           f"working directory ({os.getcwd()}/none.script: No such file or directory)" in said
+    assert (
+        f"none.script: cannot open the script: not found in the FMU's resources folder (none: {why}) nor in the "
+        f"working directory ({os.getcwd()}/none.script: No such file or directory)" in said
+    )
 
 
 def test_fmi3_resource_paths_with_and_without_a_separator_or_null(tmp_path, built):
     fmu = with_resources(built[3], tmp_path / "r.fmu", {"s.script": move(10)})
     folder = tmp_path / "unzipped"
-    for path, found in ((str(folder / "resources") + os.sep, True), (str(folder / "resources"), True),
-                        (None, False), ("", False)):
+    for path, found in (
+        (str(folder / "resources") + os.sep, True),
+        (str(folder / "resources"), True),
+        (None, False),
+        ("", False),
+    ):
         raw = Raw(fmu, 3, location=path, unzipdir=folder)
         try:
             assert raw.initialize("s.script") == found, raw.errors()
@@ -398,6 +469,7 @@ def test_fmi3_resource_paths_with_and_without_a_separator_or_null(tmp_path, buil
 
 # ---- a start value inside the FMU (resources/script.start) ----
 
+
 @VERSIONS
 def test_the_start_value_a_packed_fmu_carries_is_the_value_until_set(tmp_path, built, version):
     fmu = with_resources(built[version], tmp_path / "r.fmu", {"p/s.script": move(4321), "script.start": "p/s.script"})
@@ -405,10 +477,10 @@ def test_the_start_value_a_packed_fmu_carries_is_the_value_until_set(tmp_path, b
     try:
         assert raw.initialize(), raw.errors()
         assert raw.script() == "p/s.script"
-        raw.fmu.reset()                              # a reset goes back to it
+        raw.fmu.reset()  # a reset goes back to it
         assert raw.initialize(), raw.errors()
         assert raw.script() == "p/s.script"
-        raw.fmu.reset()                              # set empty: no script
+        raw.fmu.reset()  # set empty: no script
         assert raw.initialize("") and raw.script() == ""
     finally:
         raw.close()
@@ -421,28 +493,35 @@ def test_a_start_value_file_that_cannot_be_read_refuses_instantiation(tmp_path, 
     raw = Raw(fmu, version)
     try:
         assert not raw.instantiated
-        assert f"Instantiate{'' if version == 2 else 'CoSimulation'}: the script parameter's start value: " \
-               f"{raw.unzipdir}{os.sep}resources{os.sep}script.start: cannot open: not a regular file" in raw.errors()
+        assert (
+            f"Instantiate{'' if version == 2 else 'CoSimulation'}: the script parameter's start value: "
+            f"{raw.unzipdir}{os.sep}resources{os.sep}script.start: cannot open: not a regular file" in raw.errors()
+        )
     finally:
         raw.close()
 
 
 # ---- pmdfmu pack ----
 
+
 @VERSIONS
-def test_a_packed_fmu_runs_its_profile_with_no_parameter_set_from_any_directory(tmp_path, monkeypatch, built,
-                                                                                version, by_path):
+def test_a_packed_fmu_runs_its_profile_with_no_parameter_set_from_any_directory(
+    tmp_path, monkeypatch, built, version, by_path
+):
     packed = pack(SCRIPT, tmp_path / "my-profile.fmu", version)
     assert packed.start == "profile/two_axis.script"
-    assert packed.files == ["resources/profile/two_axis.script", "resources/profile/two_axis_table.csv",
-                            "resources/script.start"]
+    assert packed.files == [
+        "resources/profile/two_axis.script",
+        "resources/profile/two_axis_table.csv",
+        "resources/script.start",
+    ]
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
     monkeypatch.chdir(elsewhere)
     result = simulate(packed.fmu)
     assert np.array_equal(result, by_path)
     assert np.array_equal(result, simulate(built[version], {"script": str(SCRIPT)}))
-    with pmdfmu.Chip(version, packed.fmu) as chip:   # the harness too, with no script given
+    with pmdfmu.Chip(version, packed.fmu) as chip:  # the harness too, with no script given
         assert chip.get("script") == "profile/two_axis.script"
         rec = pmdfmu.profile.run_script(chip)
     with pmdfmu.Chip(version, script=SCRIPT) as chip:
@@ -459,8 +538,11 @@ def test_pack_changes_only_the_start_value_and_adds_the_profile(tmp_path, built,
     for name in old:
         if name != "modelDescription.xml":
             assert new[name] == old[name], name
-    empty, start = ('<String start=""/>', '<String start="profile/two_axis.script"/>') if version == 2 else \
-        ('<Start value=""/>', '<Start value="profile/two_axis.script"/>')
+    empty, start = (
+        ('<String start=""/>', '<String start="profile/two_axis.script"/>')
+        if version == 2
+        else ('<Start value=""/>', '<Start value="profile/two_axis.script"/>')
+    )
     xml = old["modelDescription.xml"].decode()
     # the first empty String start is the script's (record.columns, an input, has one too)
     script = xml.index('name="script"')
@@ -470,7 +552,7 @@ def test_pack_changes_only_the_start_value_and_adds_the_profile(tmp_path, built,
     assert new["resources/profile/two_axis.script"] == SCRIPT.read_bytes()
     assert new["resources/profile/two_axis_table.csv"] == TABLE.read_bytes()
     md_old, md_new = (fmpy.read_model_description(str(f)) for f in (built[version], packed.fmu))
-    assert md_new.guid == md_old.guid                # the variables are the same: the token check passes
+    assert md_new.guid == md_old.guid  # the variables are the same: the token check passes
     raw = Raw(packed.fmu, version)
     try:
         assert raw.instantiated and raw.initialize() and raw.script() == "profile/two_axis.script"
@@ -484,7 +566,7 @@ def test_pack_keeps_the_relative_layout_of_the_tables(tmp_path, monkeypatch, ver
     (tmp_path / "profiles" / "tables").mkdir()
     shutil.copy(TABLE, tmp_path / "profiles" / "tables" / "t.csv")
     text = SCRIPT.read_text().replace('"two_axis_table.csv"', '"../tables/t.csv"')
-    text += 'LoadSegmentTable(Axis3, "../tables/t.csv", 0x1000, 10)\n'           # the same table twice
+    text += 'LoadSegmentTable(Axis3, "../tables/t.csv", 0x1000, 10)\n'  # the same table twice
     (tmp_path / "profiles" / "x" / "s.script").write_text(text)
     monkeypatch.chdir(tmp_path / "profiles" / "x")
     assert main(["pack", "s.script", "--out", str(tmp_path / "p.fmu"), "--fmi", str(version)]) == 0
@@ -531,20 +613,19 @@ def test_a_start_value_holding_text_survives_the_xml(built, version):
 
 def test_the_docs_pack_example_runs_as_written(tmp_path):
     text = (REPO / "docs" / "scripts.md").read_text()
-    section = text[text.index("**A profile inside the FMU: `pmdfmu pack`.**"):]
+    section = text[text.index("**A profile inside the FMU: `pmdfmu pack`.**") :]
     block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
     commands = [line for line in block.splitlines() if line and not line.startswith("#")]
-    expected = [line[len("# -> "):] for line in block.splitlines() if line.startswith("# -> ")]
+    expected = [line[len("# -> ") :] for line in block.splitlines() if line.startswith("# -> ")]
     assert commands[0].startswith("pmdfmu pack examples/") and expected
-    for example in ("two_axis.script", "two_axis_table.csv"):           # the repository's examples, from elsewhere
+    for example in ("two_axis.script", "two_axis_table.csv"):  # the repository's examples, from elsewhere
         (tmp_path / "examples").mkdir(exist_ok=True)
         shutil.copy(EXAMPLES / example, tmp_path / "examples")
     out = []
     for command in commands:
         if command.startswith("pmdfmu "):
-            command = f"{sys.executable} -m pmdfmu.cli " + command[len("pmdfmu "):]
+            command = f"{sys.executable} -m pmdfmu.cli " + command[len("pmdfmu ") :]
         elif command.startswith("python "):
-            command = sys.executable + command[len("python"):]
-        out.append(subprocess.run(command, shell=True, cwd=tmp_path, capture_output=True, text=True,
-                                  check=True).stdout)
+            command = sys.executable + command[len("python") :]
+        out.append(subprocess.run(command, shell=True, cwd=tmp_path, capture_output=True, text=True, check=True).stdout)
     assert out[-1].splitlines() == expected

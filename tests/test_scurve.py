@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """S-curve point-to-point (seed 001: jerk-limited, phases I-VII, symmetric)."""
+
 import random
 import shutil
 import subprocess
@@ -10,8 +11,13 @@ import pytest
 
 from pmdfmu import PMDActivityInMotionMask, PMDError, PMDSCurveProfile, PMDSmoothStop, field_ex
 
-NAMES = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration",
-         "axis1.activityStatus", "axis1.position"]
+NAMES = [
+    "axis1.commandedPosition",
+    "axis1.commandedVelocity",
+    "axis1.commandedAcceleration",
+    "axis1.activityStatus",
+    "axis1.position",
+]
 
 
 def scurve(chip, position, velocity, acceleration, jerk, cycles):
@@ -57,25 +63,25 @@ def test_phases_i_to_vii_show_in_the_profile_segment_and_the_curve_is_symmetric(
     phases = field_ex(run["axis1.activityStatus"], "PMDActivityProfileSegment")
     assert list(dict.fromkeys(phases)) == [1, 2, 3, 4, 5, 6, 7]
     assert (np.diff(phases) >= 0).all()
-    assert (field_ex(rec["axis1.activityStatus"][len(run):], "PMDActivityProfileSegment") == 0).all()
-    v = run["axis1.commandedVelocity"]                     # cycles 1 .. T-1; cycle T ends at rest
-    assert np.array_equal(v, v[::-1])                      # V(k) = V(T - k)
+    assert (field_ex(rec["axis1.activityStatus"][len(run) :], "PMDActivityProfileSegment") == 0).all()
+    v = run["axis1.commandedVelocity"]  # cycles 1 .. T-1; cycle T ends at rest
+    assert np.array_equal(v, v[::-1])  # V(k) = V(T - k)
     assert (run["axis1.commandedVelocity"][phases == 4] == run["axis1.commandedVelocity"][phases == 4][0]).all()
 
 
 def test_duration_is_close_to_the_continuous_optimum(chip):
-    d, v, a, j = 50_000, 4.0, 1 / 64, 1 / 2 ** 14
-    rec = scurve(chip, d, int(v * 65536), int(a * 65536), int(j * 2 ** 32), 20_000)
+    d, v, a, j = 50_000, 4.0, 1 / 64, 1 / 2**14
+    rec = scurve(chip, d, int(v * 65536), int(a * 65536), int(j * 2**32), 20_000)
     t1, t2 = a / j, v / a - a / j
     optimum = d / v + 2 * t1 + t2
-    cycles = moving(rec).sum() + 1                         # the last cycle lands and clears InMotion
+    cycles = moving(rec).sum() + 1  # the last cycle lands and clears InMotion
     assert optimum <= cycles <= optimum + 4
 
 
 def test_parameters_may_not_change_during_the_move(chip):
     scurve(chip, 100_000, 0x40000, 0x400, 0x1000000, 100)
     ax = chip.axis(0)
-    ax.Update()                                            # nothing changed: fine
+    ax.Update()  # nothing changed: fine
     ax.SetVelocity(0x50000)
     with pytest.raises(PMDError) as e:
         ax.Update()
@@ -112,7 +118,7 @@ def test_negative_velocity_and_zero_limits_are_refused(chip):
     ax.SetVelocity(0x10000)
     ax.SetAcceleration(0x100)
     with pytest.raises(PMDError) as e:
-        ax.Update()                                        # jerk 0: no S-curve
+        ax.Update()  # jerk 0: no S-curve
     assert e.value.code == 0x04
 
 
@@ -120,7 +126,7 @@ def test_negative_velocity_and_zero_limits_are_refused(chip):
 def test_portable_128_bit_arithmetic_agrees_with_the_native_one(tmp_path):
     src = Path(__file__).resolve().parent.parent / "fmu_src" / "chip"
     program = tmp_path / "wide_test.c"
-    program.write_text(r'''
+    program.write_text(r"""
 #include <inttypes.h>
 #include <stdio.h>
 #include "wide.h"
@@ -137,11 +143,26 @@ int main(void) {
     }
     return 0;
 }
-''')
+""")
     outputs = []
     for flags in ([], ["-DPMD_PORTABLE_WIDE"]):
         exe = tmp_path / f"wide{len(flags)}"
-        subprocess.run(["cc", "-std=c99", "-O1", "-Wall", "-Wextra", "-Wpedantic", "-Werror", *flags, f"-I{src}",
-                        str(program), "-o", str(exe)], check=True)
+        subprocess.run(
+            [
+                "cc",
+                "-std=c99",
+                "-O1",
+                "-Wall",
+                "-Wextra",
+                "-Wpedantic",
+                "-Werror",
+                *flags,
+                f"-I{src}",
+                str(program),
+                "-o",
+                str(exe),
+            ],
+            check=True,
+        )
         outputs.append(subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout)
     assert outputs[0] == outputs[1] and outputs[0].count("\n") > 1000

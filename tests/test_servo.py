@@ -3,23 +3,43 @@
 "Servo filter and motor output", pinned cycle by cycle against tests/reference.py's
 ServoFilter (written from that page), with `loopback` false and a scripted encoder;
 double buffering, open loop, the ideal servo and coarse steps."""
+
 import random
 
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDActivityMotorOnMask, PMDBreakpointActionMotorOff, PMDBreakpointActionUpdate,
-                    PMDBreakpointDisable, PMDBreakpointGreaterOrEqualCommandedPosition, PMDBreakpointTime,
-                    PMDEventMotionErrorMask, PMDMotorOff, PMDMotorOn, PMDTraceConditionImmediate,
-                    PMDTrapezoidalProfile, PMDVelocityContouringProfile)
+from pmdfmu import (
+    PMDActivityMotorOnMask,
+    PMDBreakpointActionMotorOff,
+    PMDBreakpointActionUpdate,
+    PMDBreakpointDisable,
+    PMDBreakpointGreaterOrEqualCommandedPosition,
+    PMDBreakpointTime,
+    PMDEventMotionErrorMask,
+    PMDMotorOff,
+    PMDMotorOn,
+    PMDTraceConditionImmediate,
+    PMDTrapezoidalProfile,
+    PMDVelocityContouringProfile,
+)
 from pmdfmu.profile import load_external_profile, start_external_profile
 from reference import ServoFilter, wrap32
 from states import snapshot
 
 # the filter group (reference 4.1): the model's field -> the register's command name
-GROUP = {"kp": "Kp", "ki": "Ki", "kd": "Kd", "kvff": "Kvff", "kaff": "Kaff", "kout": "Kout",
-         "integration_limit": "IntegrationLimit", "derivative_time": "DerivativeTime", "motor_command": "MotorCommand"}
-INT32_MAX = 2 ** 31 - 1
+GROUP = {
+    "kp": "Kp",
+    "ki": "Ki",
+    "kd": "Kd",
+    "kvff": "Kvff",
+    "kaff": "Kaff",
+    "kout": "Kout",
+    "integration_limit": "IntegrationLimit",
+    "derivative_time": "DerivativeTime",
+    "motor_command": "MotorCommand",
+}
+INT32_MAX = 2**31 - 1
 
 
 class Rig:
@@ -58,8 +78,10 @@ class Rig:
 
     def registers(self):
         """commanded position, velocity and acceleration as the last cycle left them"""
-        return tuple(self.chip.get(f"{self.name}.{q}") for q in
-                     ("commandedPosition", "commandedVelocity", "commandedAcceleration"))
+        return tuple(
+            self.chip.get(f"{self.name}.{q}")
+            for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")
+        )
 
     def cycle(self, encoder, check_gets=True):
         """One cycle with the encoder at `encoder`; the FMU's motor command,
@@ -77,8 +99,11 @@ class Rig:
         assert self.chip.get(f"{self.name}.motorCommand") == expected
         assert self.chip.get(f"{self.name}.motorOutput") == expected / 32768.0
         if check_gets:
-            assert (self.ax.GetCurrentMotorCommand(), self.ax.GetIntegral(), self.ax.GetDerivative()) == \
-                (expected, self.model.integral, self.model.derivative)
+            assert (self.ax.GetCurrentMotorCommand(), self.ax.GetIntegral(), self.ax.GetDerivative()) == (
+                expected,
+                self.model.integral,
+                self.model.derivative,
+            )
         return expected
 
 
@@ -92,11 +117,18 @@ def start_trapezoid(ax, position, velocity, acceleration):
 def random_registers(rng):
     def gain():
         return rng.choice([0, rng.randrange(1, 64), rng.randrange(64, 4096), rng.randrange(0x10000), 0xFFFF])
-    return dict(kp=gain(), ki=gain(), kd=gain(), kvff=gain(), kaff=gain(),
-                kout=rng.choice([0xFFFF, 0x8000, 1, rng.randrange(0x10000)]),
-                integration_limit=rng.choice([0, rng.randrange(1, 1000), rng.randrange(1, 1 << 24), INT32_MAX]),
-                derivative_time=rng.choice([1, 1, rng.randrange(2, 8), rng.randrange(8, 40)]),
-                motor_command=rng.randrange(-0x8000, 0x8000))
+
+    return dict(
+        kp=gain(),
+        ki=gain(),
+        kd=gain(),
+        kvff=gain(),
+        kaff=gain(),
+        kout=rng.choice([0xFFFF, 0x8000, 1, rng.randrange(0x10000)]),
+        integration_limit=rng.choice([0, rng.randrange(1, 1000), rng.randrange(1, 1 << 24), INT32_MAX]),
+        derivative_time=rng.choice([1, 1, rng.randrange(2, 8), rng.randrange(8, 40)]),
+        motor_command=rng.randrange(-0x8000, 0x8000),
+    )
 
 
 def random_offset(rng, offset):
@@ -104,13 +136,14 @@ def random_offset(rng, offset):
     and then a jump anywhere in 32 bits (sums and differences saturate)."""
     r = rng.random()
     if r < 0.03:
-        return rng.randrange(-2 ** 31, 2 ** 31)
+        return rng.randrange(-(2**31), 2**31)
     if r < 0.06:
         return 0
     return offset + rng.randrange(-40, 41)
 
 
 # ---- the formula, by hand, then the model ---------------------------------------
+
 
 def test_reset_values_and_a_first_closed_loop_cycle_by_hand():
     with pmdfmu.Chip(loopback=False) as chip:
@@ -129,7 +162,7 @@ def test_reset_values_and_a_first_closed_loop_cycle_by_hand():
         chip.run(1)
         # E = 0 - (-10) = 10; I = 10; D = 10 - 0; S = 300*10 + 40*10 + 512*10/256 = 3420; u = 3420/2 - 7
         assert (ax.GetIntegral(), ax.GetDerivative(), ax.GetCurrentMotorCommand()) == (10, 10, 1703)
-        assert ax.GetPositionError() == -10                          # actual - commanded: -E
+        assert ax.GetPositionError() == -10  # actual - commanded: -E
         chip.set("axis1.actualPosition", -13)
         chip.run(1)
         # E = 13; I = 23; D = 3; S = 3900 + 120 + floor(512*23/256) = 4066; u = 2033 - 7
@@ -159,7 +192,7 @@ def test_random_filters_match_the_reference_model_cycle_by_cycle(seed):
         for k in range(250):
             if k % 25 == 24:
                 event = rng.randrange(6)
-                if event == 0:                   # buffered only: the Gets read them, the filter does not
+                if event == 0:  # buffered only: the Gets read them, the filter does not
                     regs = {name: value for name, value in random_registers(rng).items() if rng.random() < 0.5}
                     rig.set(**regs)
                     assert {name: getattr(rig.ax, "Get" + GROUP[name])() for name in regs} == regs
@@ -183,21 +216,21 @@ def test_saturations_and_clamps():
         rig.bias(-32767)
         # S = 65535 * 2^30 saturates to 2^31 - 1: Kout 1 makes it 32767, the bias brings it to 0
         # (unsaturated it would be 2^30 - 32767, limited to 32767)
-        assert rig.cycle(-2 ** 30) == 0
-        assert chip.axis(0).GetIntegral() == 5000                   # I clamped at the integration limit
-        assert chip.axis(0).GetDerivative() == 32767                # D = 2^30, saturated to 16 bits
-        assert rig.cycle(2 ** 30) == -32767                          # S = -2^31: u = -32768 - 32767, limited
+        assert rig.cycle(-(2**30)) == 0
+        assert chip.axis(0).GetIntegral() == 5000  # I clamped at the integration limit
+        assert chip.axis(0).GetDerivative() == 32767  # D = 2^30, saturated to 16 bits
+        assert rig.cycle(2**30) == -32767  # S = -2^31: u = -32768 - 32767, limited
         assert chip.axis(0).GetIntegral() == -5000 and chip.axis(0).GetDerivative() == -32768
         # E = 0 - (-2^31) wraps to -2^31; GetPositionError (actual - commanded) reads -2^31 too
-        rig.cycle(-2 ** 31)
-        assert chip.axis(0).GetPositionError() == -2 ** 31
-        rig.set(kp=0, kout=0xFFFF, integration_limit=100)           # lowered: clamps at the next cycle
+        rig.cycle(-(2**31))
+        assert chip.axis(0).GetPositionError() == -(2**31)
+        rig.set(kp=0, kout=0xFFFF, integration_limit=100)  # lowered: clamps at the next cycle
         rig.update()
         rig.bias(0)
         rig.limit(1000)
-        assert rig.cycle(0) == -1000 and chip.axis(0).GetIntegral() == -100     # S = 65535 * -100 / 256
+        assert rig.cycle(0) == -1000 and chip.axis(0).GetIntegral() == -100  # S = 65535 * -100 / 256
         rig.limit(0)
-        assert rig.cycle(12345) == 0                                 # motor limit 0: nothing goes out
+        assert rig.cycle(12345) == 0  # motor limit 0: nothing goes out
 
 
 def test_the_derivative_samples_every_derivative_time_cycles_and_holds():
@@ -207,11 +240,11 @@ def test_the_derivative_samples_every_derivative_time_cycles_and_holds():
         rig.update()
         derivatives = []
         for k in range(7):
-            rig.cycle(-3 * k * k)                                    # E = 3 k^2
+            rig.cycle(-3 * k * k)  # E = 3 k^2
             derivatives.append(chip.axis(0).GetDerivative())
         # a sample at the fourth cycle (k = 3): E - E at the previous sample (0 before the first)
         assert derivatives == [0, 0, 0, 27, 27, 27, 27]
-        rig.set(derivative_time=2)               # lowered below the count (3): samples at the next cycle
+        rig.set(derivative_time=2)  # lowered below the count (3): samples at the next cycle
         rig.update()
         for k in range(7, 10):
             rig.cycle(-3 * k * k)
@@ -221,14 +254,24 @@ def test_the_derivative_samples_every_derivative_time_cycles_and_holds():
 
 # ---- double buffering ------------------------------------------------------------
 
+
 def test_set_without_update_changes_nothing_and_update_applies_the_filter_group():
     with pmdfmu.Chip(loopback=False) as chip:
         rig = Rig(chip)
         rig.set(kp=100)
         rig.update()
-        assert rig.cycle(-5) == 500 - 1                              # Kout 65535: floor(500 * 65535 / 65536)
-        rig.set(kp=200, ki=0xFFFF, kd=7, kvff=3, kaff=4, kout=0x4000, integration_limit=77, derivative_time=9,
-                motor_command=-1234)
+        assert rig.cycle(-5) == 500 - 1  # Kout 65535: floor(500 * 65535 / 65536)
+        rig.set(
+            kp=200,
+            ki=0xFFFF,
+            kd=7,
+            kvff=3,
+            kaff=4,
+            kout=0x4000,
+            integration_limit=77,
+            derivative_time=9,
+            motor_command=-1234,
+        )
         for _ in range(3):
             assert rig.cycle(-5) == 499 and chip.axis(0).GetIntegral() == 0
         assert chip.axis(0).GetKp() == 200 and chip.axis(0).GetMotorCommand() == -1234
@@ -256,7 +299,7 @@ def test_multi_update_applies_the_filter_group_of_the_masked_axes_only():
 def test_an_update_breakpoint_applies_the_filter_group_in_the_cycle_it_fires():
     with pmdfmu.Chip(loopback=False) as chip:
         rig = Rig(chip)
-        start_trapezoid(rig.ax, 1000, 0x10000, 0x10000)              # 1 count per cycle
+        start_trapezoid(rig.ax, 1000, 0x10000, 0x10000)  # 1 count per cycle
         rig.update()
         rig.set(kp=50)
         rig.ax.SetBreakpointValue(0, 10)
@@ -268,12 +311,13 @@ def test_an_update_breakpoint_applies_the_filter_group_in_the_cycle_it_fires():
             c, v, a = rig.registers()
             rig.commanded = c
             if c == 10:
-                rig.model.update()                # the breakpoint fires in this cycle, before the filter runs
+                rig.model.update()  # the breakpoint fires in this cycle, before the filter runs
             assert chip.get("axis1.motorCommand") == rig.model.cycle(c, encoder, v, a, True), k
         assert rig.model.active.kp == 50 and chip.get("axis1.motorCommand") == 50 * 4 - 1
 
 
 # ---- open loop -------------------------------------------------------------------
+
 
 def test_open_loop_sends_the_motor_command_register_without_bias_or_limit():
     with pmdfmu.Chip(loopback=False) as chip:
@@ -286,12 +330,12 @@ def test_open_loop_sends_the_motor_command_register_without_bias_or_limit():
             rig.cycle(-20)
         rig.motor(False)
         rig.set(motor_command=-20000)
-        assert rig.cycle(-20) == 0                                   # the active motor command: not updated yet
+        assert rig.cycle(-20) == 0  # the active motor command: not updated yet
         assert (chip.axis(0).GetIntegral(), chip.axis(0).GetDerivative()) == (0, 0)
         rig.update()
-        assert rig.cycle(-25) == -20000                              # no bias, no limit
+        assert rig.cycle(-25) == -20000  # no bias, no limit
         assert not chip.axis(0).GetActivityStatus() & PMDActivityMotorOnMask
-        rig.motor(True)                                              # closes again: empty integral, no kick
+        rig.motor(True)  # closes again: empty integral, no kick
         for k in range(6):
             rig.cycle(-25 - k)
         assert chip.axis(0).GetIntegral() == 25 + 26 + 27 + 28 + 29 + 30
@@ -310,7 +354,7 @@ def test_a_motor_off_breakpoint_switches_the_output_in_the_cycle_it_fires():
             chip.set("axis1.actualPosition", 0)
             chip.run(1)
             outputs.append((rig.registers()[0], chip.get("axis1.motorCommand")))
-        assert [c for c, u in outputs] == list(range(1, 15))         # positions 1, 2, ...: fires at 10
+        assert [c for c, u in outputs] == list(range(1, 15))  # positions 1, 2, ...: fires at 10
         assert [u for c, u in outputs if c < 10] == [100 * c - 1 for c, u in outputs if c < 10]
         assert [u for c, u in outputs if c >= 10] == [321] * sum(c >= 10 for c, u in outputs)
 
@@ -323,13 +367,14 @@ def test_auto_stop_on_a_motion_error_switches_to_the_open_loop_command_at_once()
         rig.ax.SetPositionErrorLimit(100)
         rig.ax.SetAutoStopMode(pmdfmu.PMDAutoStopEnabled)
         assert rig.cycle(-100) == 999
-        rig.motor_on = False                                         # |error| 101 > 100: the motor turns off
+        rig.motor_on = False  # |error| 101 > 100: the motor turns off
         assert rig.cycle(-101) == -5
         assert rig.ax.GetEventStatus() & PMDEventMotionErrorMask
         assert not rig.ax.GetActivityStatus() & PMDActivityMotorOnMask
 
 
 # ---- the ideal servo ---------------------------------------------------------------
+
 
 def test_loopback_keeps_the_ideal_servo_and_outputs_feedforward_and_bias():
     with pmdfmu.Chip() as chip:
@@ -338,9 +383,10 @@ def test_loopback_keeps_the_ideal_servo_and_outputs_feedforward_and_bias():
         ax.SetMotorBias(-300)
         model.motor_bias = -300
         chip.run(3)
-        assert chip.get("axis2.motorCommand") == -300               # reset gains: the bias
-        for name, value in dict(kp=0xFFFF, ki=0xFFFF, kd=0xFFFF, kvff=900, kaff=5000, kout=0xC000,
-                                integration_limit=INT32_MAX).items():
+        assert chip.get("axis2.motorCommand") == -300  # reset gains: the bias
+        for name, value in dict(
+            kp=0xFFFF, ki=0xFFFF, kd=0xFFFF, kvff=900, kaff=5000, kout=0xC000, integration_limit=INT32_MAX
+        ).items():
             getattr(ax, "Set" + GROUP[name])(value)
             setattr(model.buffered, name, value)
         start_trapezoid(ax, -3000, 0x28000, 0x3000)
@@ -348,12 +394,13 @@ def test_loopback_keeps_the_ideal_servo_and_outputs_feedforward_and_bias():
         model.update()
         for _ in range(300):
             chip.run(1)
-            c, v, a = (chip.get(f"axis2.{q}") for q in ("commandedPosition", "commandedVelocity",
-                                                         "commandedAcceleration"))
+            c, v, a = (
+                chip.get(f"axis2.{q}") for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")
+            )
             assert ax.GetPositionError() == 0
             assert chip.get("axis2.motorCommand") == model.cycle(c, c, v, a, True)
             assert (ax.GetIntegral(), ax.GetDerivative()) == (0, 0)
-        chip.run(2000)                                               # at rest: no feedforward, the bias
+        chip.run(2000)  # at rest: no feedforward, the bias
         assert ax.GetCommandedPosition() == -3000 and chip.get("axis2.motorCommand") == -300
 
 
@@ -381,6 +428,7 @@ def test_motor_on_after_an_open_loop_move_in_loopback_gives_one_derivative_sampl
 
 # ---- trace ---------------------------------------------------------------------------
 
+
 def test_trace_variables_7_10_11_sample_the_filter_every_cycle():
     with pmdfmu.Chip(loopback=False) as chip:
         rig = Rig(chip, 2)
@@ -398,10 +446,11 @@ def test_trace_variables_7_10_11_sample_the_filter_every_cycle():
             rig.cycle(rng.randrange(-80, 80), check_gets=False)
             expected.append((rig.model.output, rig.model.integral, rig.model.derivative))
         values = [pmdfmu.signed(ax.ReadBuffer(0)) for _ in range(180)]
-        assert [tuple(values[i:i + 3]) for i in range(0, 180, 3)] == expected
+        assert [tuple(values[i : i + 3]) for i in range(0, 180, 3)] == expected
 
 
 # ---- coarse steps ----------------------------------------------------------------------
+
 
 def twins(loopback, count=2):
     """Chips alike (FMI 3) but for a breakpoint armed far in the future on axis 4
@@ -415,8 +464,15 @@ def twins(loopback, count=2):
 
 
 def filter_registers(chip):
-    return [(chip.axis(n).GetIntegral(), chip.axis(n).GetDerivative(), chip.axis(n).GetCurrentMotorCommand(),
-             chip.get(f"axis{n + 1}.motorCommand")) for n in range(4)]
+    return [
+        (
+            chip.axis(n).GetIntegral(),
+            chip.axis(n).GetDerivative(),
+            chip.axis(n).GetCurrentMotorCommand(),
+            chip.get(f"axis{n + 1}.motorCommand"),
+        )
+        for n in range(4)
+    ]
 
 
 def run_twins(chips, chunks, between, recorded=()):
@@ -431,10 +487,10 @@ def run_twins(chips, chunks, between, recorded=()):
         first = filter_registers(chips[0])
         for chip in chips[1:]:
             assert filter_registers(chip) == first, k
-    for chip in chips:                           # the same batches for all: the host port's strobes agree
+    for chip in chips:  # the same batches for all: the host port's strobes agree
         chip.axis(3).SetBreakpoint(0, 3, 0, PMDBreakpointDisable)
     for chip in chips[1:]:
-        assert snapshot(chip) == snapshot(chips[0])                  # derivative counts and all
+        assert snapshot(chip) == snapshot(chips[0])  # derivative counts and all
 
 
 @pytest.mark.parametrize("seed", range(3))
@@ -445,8 +501,9 @@ def test_coarse_steps_with_loopback_equal_cycle_by_cycle(seed):
     fine, coarse, recorded = twins(True, 3)
     with fine, coarse, recorded:
         for chip in (fine, coarse, recorded):
-            load_external_profile(chip, {0: [(0, 0x18000, 0x20, 0, 3000), (5000, -0x8000, 0, 0x100, 2000),
-                                             (0, 0, 0, 0, 0)]})
+            load_external_profile(
+                chip, {0: [(0, 0x18000, 0x20, 0, 3000), (5000, -0x8000, 0, 0x100, 2000), (0, 0, 0, 0, 0)]}
+            )
             for n in range(3):
                 ax = chip.axis(n)
                 ax.SetKvff(300 * (n + 1))
@@ -463,8 +520,8 @@ def test_coarse_steps_with_loopback_equal_cycle_by_cycle(seed):
 
         def between(chip, k):
             if k == 3:
-                chip.axis(2).SetMotorMode(PMDMotorOn)      # the held error drops to 0: one derivative sample
-            if k == 4:                                     # below the count: samples at the next cycle
+                chip.axis(2).SetMotorMode(PMDMotorOn)  # the held error drops to 0: one derivative sample
+            if k == 4:  # below the count: samples at the next cycle
                 chip.axis(1).SetDerivativeTime(3)
                 chip.axis(1).Update()
             if k == 6:
@@ -526,7 +583,7 @@ def test_a_refused_update_applies_no_filter_register():
         assert refusal.value.code == pmdfmu.PMD_ERR_InvalidParameterChange
         chip.run(1)
         assert ax.GetCurrentMotorCommand() == 0 and ax.GetMotorCommand() == -3000
-        chip.run(5000)                                               # at rest: the same Update is accepted
+        chip.run(5000)  # at rest: the same Update is accepted
         ax.Update()
         chip.run(1)
         assert ax.GetCurrentMotorCommand() == -3000

@@ -2,6 +2,7 @@
 """Source FMU: sources/ is self-contained; FMPy's build support rebuilds the
 binary from it (FMI 2 SourceFiles, FMI 3 buildDescription.xml) and the rebuilt
 FMU runs the seed's worked example."""
+
 import shutil
 import zipfile
 
@@ -12,7 +13,7 @@ from fmpy.util import create_zip_archive
 import pmdfmu
 from scenarios import WORKED_TABLE, run_worked_example
 
-pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+pytestmark = pytest.mark.slow  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 
 @pytest.mark.skipif(not shutil.which("cmake"), reason="cmake not installed")
@@ -34,8 +35,9 @@ def test_the_binary_rebuilt_from_sources_runs_the_worked_example(tmp_path, versi
 @pytest.mark.parametrize("version", [2, 3])
 def test_sources_hold_every_header_they_include(version):
     import re
+
     names = zipfile.ZipFile(pmdfmu.default_fmu(version)).namelist()
-    sources = {n[len("sources/"):] for n in names if n.startswith("sources/")}
+    sources = {n[len("sources/") :] for n in names if n.startswith("sources/")}
     archive = zipfile.ZipFile(pmdfmu.default_fmu(version))
     for name in sources:
         if name.endswith((".c", ".h")):

@@ -4,6 +4,7 @@ field was changed must still be refused when the field holds a value the model
 never gives it, with a message naming the field, and the instance must stay as
 it was. The declared field list (fmu_src/fmi/state_fields.c) drives the forger;
 the compiler's debug information checks that the list names every struct member."""
+
 import shutil
 import struct
 import subprocess
@@ -14,8 +15,7 @@ import pytest
 from fmpy.fmi1 import FMICallException
 
 import pmdfmu
-from pmdfmu import (PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer,
-                    PMDTraceTime, field_dp)
+from pmdfmu import PMDTraceCommandedPosition, PMDTraceConditionUpdate, PMDTraceRollingBuffer, PMDTraceTime, field_dp
 from pmdfmu.profile import load_external_profile, start_external_profile
 from states import InitializationChip, command, pend_batch, snapshot
 
@@ -41,8 +41,19 @@ def generated(tmp_path_factory) -> Path:
 def declared(generated, tmp_path_factory):
     """The declared state as tests/c/state_fields_list.c prints it, compiled like the FMU's sources."""
     exe = tmp_path_factory.mktemp("lister") / "state_fields_list"
-    subprocess.run(["cc", "-std=c99", *includes(generated), str(ROOT / "tests" / "c" / "state_fields_list.c"),
-                    str(ROOT / "fmu_src" / "fmi" / "state_fields.c"), "-lm", "-o", str(exe)], check=True)
+    subprocess.run(
+        [
+            "cc",
+            "-std=c99",
+            *includes(generated),
+            str(ROOT / "tests" / "c" / "state_fields_list.c"),
+            str(ROOT / "fmu_src" / "fmi" / "state_fields.c"),
+            "-lm",
+            "-o",
+            str(exe),
+        ],
+        check=True,
+    )
     header, leaves, members = None, [], {}
     for line in subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout.splitlines():
         kind, *rest = line.split()
@@ -74,8 +85,11 @@ def test_every_member_of_the_instance_structs_is_declared(generated, declared, t
                 name = die.attributes["DW_AT_name"].value.decode()
                 target = die.get_DIE_from_attribute("DW_AT_type")
                 if name in declared[2] and target.tag == "DW_TAG_structure_type":
-                    found[name] = [c.attributes["DW_AT_name"].value.decode() for c in target.iter_children()
-                                   if c.tag == "DW_TAG_member"]
+                    found[name] = [
+                        c.attributes["DW_AT_name"].value.decode()
+                        for c in target.iter_children()
+                        if c.tag == "DW_TAG_member"
+                    ]
     assert set(found) == set(declared[2]), "every struct the list describes appears in the debug information"
     for name, members in found.items():
         assert members == declared[2][name], f"{name}: the struct's members (left) and state_fields.c's list"
@@ -110,7 +124,7 @@ def rich_state_chip(fmi_version):
     ax.SetTraceVariable(0, 0, PMDTraceTime)
     ax.SetTraceVariable(1, 1, PMDTraceCommandedPosition)
     ax.SetTraceStart(1, PMDTraceConditionUpdate, 0, 0)
-    ax2.Update()                                # no change: the trace starts on this update
+    ax2.Update()  # no change: the trace starts on this update
     chip.run(25)
     return chip
 
@@ -129,8 +143,8 @@ class Forger:
     def forge(self, offset: int, raw: bytes, in_header: bool = False) -> bytes:
         data = bytearray(self.blob)
         at = offset if in_header else self.header + offset
-        data[at:at + len(raw)] = raw
-        data[self.checksum_at:self.checksum_at + 8] = fnv1a(bytes(data[self.header:])).to_bytes(8, "little")
+        data[at : at + len(raw)] = raw
+        data[self.checksum_at : self.checksum_at + 8] = fnv1a(bytes(data[self.header :])).to_bytes(8, "little")
         return bytes(data)
 
 
@@ -169,7 +183,7 @@ def rich(request):
 def test_the_snapshot_resigned_unchanged_is_accepted(rich, declared):
     blob = snapshot(rich)
     forger = Forger(blob, declared[0])
-    restore(rich, forger.forge(0, blob[declared[0][0]:declared[0][0] + 1]))
+    restore(rich, forger.forge(0, blob[declared[0][0] : declared[0][0] + 1]))
     assert snapshot(rich) == blob
 
 
@@ -193,7 +207,7 @@ def test_every_field_just_outside_its_range_is_refused_naming_it(rich, declared)
 
 # a trace slot's word (SetTraceVariable): commanded position of axis 15, which the chip does not have
 TRACE_AXIS_15 = field_dp(field_dp(0, "PMDTraceVariableID", PMDTraceCommandedPosition), "PMDTraceVariableAxis", 15)
-FORGERIES = {                    # finding: the fields changed, and what the message must name
+FORGERIES = {  # finding: the fields changed, and what the message must name
     "host word count 100000 with a batch pending": ({"hostWordCount": 100000, "hostStrobe": 12345}, "hostWordCount"),
     "gear master axis 60000": ({"chip.s.axis[2].gearMasterAxis": 60000}, "gearMasterAxis"),
     "a segment start near 2^32": ({"chip.s.axis[0].segmentStart[0]": 0xFFFFFFF0}, "segmentStart"),
@@ -221,24 +235,24 @@ def test_a_header_memory_size_that_differs_from_the_body_is_refused(rich, declar
     header = declared[0][0]
     blob = bytearray(snapshot(rich) + b"\0\0\0\0")
     words = int.from_bytes(blob[72:80], "little")
-    blob[64:72] = len(blob).to_bytes(8, "little")          # totalSize
-    blob[72:80] = (words + 1).to_bytes(8, "little")         # memoryWords
-    data = Forger(bytes(blob), declared[0]).forge(0, bytes(blob[header:header + 1]))
+    blob[64:72] = len(blob).to_bytes(8, "little")  # totalSize
+    blob[72:80] = (words + 1).to_bytes(8, "little")  # memoryWords
+    data = Forger(bytes(blob), declared[0]).forge(0, bytes(blob[header : header + 1]))
     assert "memorySize" in refused(rich, data)
 
 
 def test_header_bytes_after_the_token_are_checked(rich, declared):
     blob = bytearray(snapshot(rich))
-    blob[16 + 47] = 0x41                                    # the last byte of the token field, after its NUL
+    blob[16 + 47] = 0x41  # the last byte of the token field, after its NUL
     assert "instantiation token" in refused(rich, bytes(blob))
 
 
-GRID_FORGERIES = {               # field: forged value, and what the message must name (found by review)
-    "nextCycle": (-(1 << 62), "nextCycle"),                     # a doStep would run 2^62 cycles
+GRID_FORGERIES = {  # field: forged value, and what the message must name (found by review)
+    "nextCycle": (-(1 << 62), "nextCycle"),  # a doStep would run 2^62 cycles
     "anchorCycle": (1 << 40, "anchorCycle"),
-    "anchorTime": (1e9, "anchorTime"),                          # an anchor after the time: negative steps
-    "cycleTime": (1.0, "cycleTime"),                            # no 16-bit sample time holds it
-    "chip.s.sampleTime": (0, "sampleTime"),                    # the grid's cycle time (the register's, 1..65535 us)
+    "anchorTime": (1e9, "anchorTime"),  # an anchor after the time: negative steps
+    "cycleTime": (1.0, "cycleTime"),  # no 16-bit sample time holds it
+    "chip.s.sampleTime": (0, "sampleTime"),  # the grid's cycle time (the register's, 1..65535 us)
 }
 
 
@@ -258,9 +272,10 @@ def test_an_s_curve_off_its_unit_curve_is_refused(rich, declared, field):
     leaves = {path: (offset, size) for path, offset, size, *_ in declared[1]}
     blob = snapshot(rich)
     offset, size = leaves[f"chip.s.axis[1].scurve.{field}"]
-    value = int.from_bytes(blob[declared[0][0] + offset:][:size], "little", signed=True)
-    assert "scurve" in refused(rich, Forger(blob, declared[0]).forge(offset, (value + 1).to_bytes(size, "little",
-                                                                                                signed=True)))
+    value = int.from_bytes(blob[declared[0][0] + offset :][:size], "little", signed=True)
+    assert "scurve" in refused(
+        rich, Forger(blob, declared[0]).forge(offset, (value + 1).to_bytes(size, "little", signed=True))
+    )
 
 
 def test_a_state_that_ran_a_script_restores_only_where_that_script_runs(tmp_path):

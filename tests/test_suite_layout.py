@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The test suite's own layout (tests/conftest.py): no test file imports another
 test file or conftest.py; helper modules hold no tests."""
+
 import ast
 from pathlib import Path
 
@@ -27,6 +28,9 @@ def test_helper_modules_hold_no_tests():
         if path.name.startswith("test_") or path.name == "conftest.py":
             continue
         tree = ast.parse(path.read_text(), str(path))
-        tests = [n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef)) and
-                 n.name.lower().startswith("test")]
+        tests = [
+            n.name
+            for n in tree.body
+            if isinstance(n, (ast.FunctionDef, ast.ClassDef)) and n.name.lower().startswith("test")
+        ]
         assert not tests, f"{path.name} is a helper module but defines {tests}"

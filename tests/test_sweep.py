@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Sweeps on Dask: a 2-worker local cluster gives exactly the serial
 run, row for row; failing cases are rows with their reasons."""
+
 from pathlib import Path
 
 import numpy as np
@@ -9,7 +10,7 @@ import pytest
 import pmdfmu
 from pmdfmu.cli import main
 
-pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+pytestmark = pytest.mark.slow  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -24,9 +25,11 @@ def test_a_two_worker_local_cluster_equals_the_serial_run_row_for_row(cases, ser
 
 def test_figures_and_a_failed_case(serial):
     rows = {r["name"]: r for r in serial.rows}
-    assert rows["script-fmi2"] == {**rows["script-fmi3"], "name": "script-fmi2"}      # FMI 2 = FMI 3
+    assert rows["script-fmi2"] == {**rows["script-fmi3"], "name": "script-fmi2"}  # FMI 2 = FMI 3
     assert rows["script-fmi2"]["axis1.finalPosition"] == 750 and rows["square"]["axis2.finalPosition"] == 0
-    assert rows["script-slow-clock"]["axis1.peakVelocity"] == pytest.approx(rows["script-fmi2"]["axis1.peakVelocity"] / 2)
+    assert rows["script-slow-clock"]["axis1.peakVelocity"] == pytest.approx(
+        rows["script-fmi2"]["axis1.peakVelocity"] / 2
+    )
     assert rows["square"]["cycles"] == rows["square-small-memory"]["cycles"] == 2001
     broken = rows["broken-script"]
     assert broken["status"] == "failed" and "missing.script: cannot open the script" in broken["reason"]
@@ -35,6 +38,7 @@ def test_figures_and_a_failed_case(serial):
 
 def test_any_scheduler_address(cases):
     from dask.distributed import LocalCluster
+
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         result = pmdfmu.sweep(cases[:2], scheduler=cluster.scheduler_address)
     assert [r["status"] for r in result.rows] == ["ok", "ok"]

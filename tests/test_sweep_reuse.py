@@ -3,6 +3,7 @@
 stays open, its workers keep their FMU instances from sweep to sweep; an address goes through
 this process's client of it; cases in batches and in several threads of a worker give exactly
 the serial run; a rewritten FMU file is a new instance. docs/sweeps.md: its example runs."""
+
 import importlib
 import shutil
 import zipfile
@@ -16,9 +17,9 @@ from dask.distributed import Client, LocalCluster
 import pmdfmu
 from pmdfmu.sweep import Case
 
-pytestmark = pytest.mark.slow          # tests/README.md: ./dev test -m "not slow" leaves them out
+pytestmark = pytest.mark.slow  # tests/README.md: ./dev test -m "not slow" leaves them out
 
-sweeps = importlib.import_module("pmdfmu.sweep")         # the module (pmdfmu.sweep is also the function)
+sweeps = importlib.import_module("pmdfmu.sweep")  # the module (pmdfmu.sweep is also the function)
 
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
@@ -59,9 +60,11 @@ def test_a_client_is_reused_as_it_is_and_its_workers_keep_their_instances(cluste
 
 
 def test_an_address_goes_through_the_default_client_connected_there(cluster, cases, serial, monkeypatch):
-    with Client(cluster.scheduler_address) as client:            # this process's default client
+    with Client(cluster.scheduler_address) as client:  # this process's default client
+
         def no_new_client(*args, **kwargs):
             raise AssertionError("the sweep opened a client of its own")
+
         monkeypatch.setattr(dask.distributed, "Client", no_new_client)
         same(pmdfmu.sweep(cases, scheduler=cluster.scheduler_address), serial)
         assert client.status == "running"
@@ -72,14 +75,19 @@ def test_an_address_without_a_client_of_it_gets_one_for_the_call(cluster, cases,
 
 
 def test_many_cases_in_batches_in_two_threads_equal_the_serial_run(cluster, cases):
-    many = [Case(f"{c.name}-{k}", c.script, c.table, c.parameters, c.fmi_version, c.max_cycles, c.fmu)
-            for k in range(4) for c in cases]
+    many = [
+        Case(f"{c.name}-{k}", c.script, c.table, c.parameters, c.fmi_version, c.max_cycles, c.fmu)
+        for k in range(4)
+        for c in cases
+    ]
     with Client(cluster, set_as_default=False) as client:
         same(pmdfmu.sweep(many, scheduler=client), pmdfmu.sweep(many, scheduler="serial"))
 
 
-@pytest.mark.parametrize("n,threads,sizes", [(8, 2, [1] * 8), (64, 2, [8] * 8), (10, 2, [1, 1, 1, 2, 1, 1, 1, 2]),
-                                             (3, 4, [1, 1, 1]), (1, 1, [1]), (0, 2, [0])])
+@pytest.mark.parametrize(
+    "n,threads,sizes",
+    [(8, 2, [1] * 8), (64, 2, [8] * 8), (10, 2, [1, 1, 1, 2, 1, 1, 1, 2]), (3, 4, [1, 1, 1]), (1, 1, [1]), (0, 2, [0])],
+)
 def test_batches_are_consecutive_cases_a_few_per_thread(n, threads, sizes):
     batches = sweeps._batches(list(range(n)), threads)
     assert [len(b) for b in batches] == sizes
@@ -91,7 +99,7 @@ def test_a_rewritten_fmu_file_is_a_new_instance(tmp_path):
     case = Case("copy", script=str(EXAMPLES / "two_axis.script"), fmu=str(fmu))
     before = pmdfmu.sweep([case], scheduler="serial")
     folders = {c._unzipdir for chips in sweeps._idle.values() for c in chips}
-    with zipfile.ZipFile(fmu, "a") as z:                         # the same path, another file
+    with zipfile.ZipFile(fmu, "a") as z:  # the same path, another file
         z.writestr("resources/marker.txt", "rewritten")
     after = pmdfmu.sweep([case], scheduler="serial")
     same(after, before)
@@ -108,16 +116,19 @@ def test_readme_reuse_example_prints_what_it_says(capsys, monkeypatch):
     exec(compile(code, "docs/sweeps.md", "exec"), {})
     printed = capsys.readouterr().out.split("\n")
     said = [line.split("# -> ", 1)[1].strip() for line in code.split("\n") if "# -> " in line]
-    assert printed[:len(said)] == said
+    assert printed[: len(said)] == said
 
 
 # ---- large recordings: handed back through a file on the same machine ----
 
+
 def long_move(path: Path, cycles: int) -> Path:
     """Axis 1 in a trapezoidal move for `cycles` cycles: a recording of about 42 bytes a cycle."""
-    path.write_text("@ 0\nSetProfileMode(Axis1, PMDTrapezoidalProfile);\nSetPosition(Axis1, 2000000000);\n"
-                    "SetVelocity(Axis1, 0x10000);\nSetAcceleration(Axis1, 0x100);\nUpdate(Axis1);\n"
-                    f"@ {cycles}\nSetStopMode(Axis1, PMDAbruptStop);\nUpdate(Axis1);\n")
+    path.write_text(
+        "@ 0\nSetProfileMode(Axis1, PMDTrapezoidalProfile);\nSetPosition(Axis1, 2000000000);\n"
+        "SetVelocity(Axis1, 0x10000);\nSetAcceleration(Axis1, 0x100);\nUpdate(Axis1);\n"
+        f"@ {cycles}\nSetStopMode(Axis1, PMDAbruptStop);\nUpdate(Axis1);\n"
+    )
     return path
 
 
@@ -134,21 +145,23 @@ def test_a_worker_hands_a_large_recording_back_through_the_sweeps_folder(cluster
     cases, expected = large
     (tmp_path / "token").write_text("the token")
     with Client(cluster, set_as_default=False) as client:
-        (row, handed), = client.submit(sweeps.run_cases, cases[:1], handoff=(str(tmp_path), "the token"),
-                                       pure=False).result()
+        ((row, handed),) = client.submit(
+            sweeps.run_cases, cases[:1], handoff=(str(tmp_path), "the token"), pure=False
+        ).result()
         assert isinstance(handed, sweeps._Handed) and Path(handed.path).parent == tmp_path
         assert row == expected.rows[0]
         with pytest.raises(RuntimeError, match="not a recording of the sweep's folder"):
-            sweeps._received((row, handed), str(tmp_path / "elsewhere"))     # only the sweep's own files
+            sweeps._received((row, handed), str(tmp_path / "elsewhere"))  # only the sweep's own files
         rec = sweeps._received((row, handed), str(tmp_path))[1]
         assert not Path(handed.path).exists()
         assert type(rec) is np.ndarray and rec.dtype == expected.recordings["long0"].dtype
         assert np.array_equal(rec, expected.recordings["long0"])
-        rec["axis1.position"] += 1                      # the caller's own array: writable, shared with nothing
+        rec["axis1.position"] += 1  # the caller's own array: writable, shared with nothing
         assert np.array_equal(rec["axis1.position"], expected.recordings["long0"]["axis1.position"] + 1)
         # another token (another machine's folder): the recording comes through Dask
-        (_, rec), = client.submit(sweeps.run_cases, cases[:1], handoff=(str(tmp_path), "another"),
-                                  pure=False).result()
+        ((_, rec),) = client.submit(
+            sweeps.run_cases, cases[:1], handoff=(str(tmp_path), "another"), pure=False
+        ).result()
         assert isinstance(rec, np.ndarray) and np.array_equal(rec, expected.recordings["long0"])
     assert sorted(p.name for p in tmp_path.iterdir()) == ["token"]
 
@@ -169,6 +182,7 @@ def test_large_recordings_on_a_cluster_equal_the_serial_run_and_leave_no_file(cl
     def recorded(*args, **kwargs):
         made.append(mkdtemp(*args, **kwargs))
         return made[-1]
+
     monkeypatch.setattr(sweeps.tempfile, "mkdtemp", recorded)
     with Client(cluster, set_as_default=False) as client:
         same(pmdfmu.sweep(cases, scheduler=client), expected)
@@ -185,11 +199,15 @@ def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
     import subprocess
     import sys
     import time
+
     script = long_move(tmp_path / "long.script", 2_000_000)
-    code = ("import pmdfmu\nfrom pmdfmu.sweep import Case\n"
-            f"pmdfmu.sweep([Case(f'long{{k}}', script={str(script)!r}) for k in range(4)], workers=1)\n")
-    process = subprocess.Popen([sys.executable, "-c", code], start_new_session=True,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    code = (
+        "import pmdfmu\nfrom pmdfmu.sweep import Case\n"
+        f"pmdfmu.sweep([Case(f'long{{k}}', script={str(script)!r}) for k in range(4)], workers=1)\n"
+    )
+    process = subprocess.Popen(
+        [sys.executable, "-c", code], start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
     pattern = os.path.join(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{process.pid}-*")
     try:
         deadline = time.monotonic() + 120
@@ -198,7 +216,7 @@ def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
         left = glob.glob(pattern)
         assert left, "the sweep made no handoff folder"
     finally:
-        process.kill()                  # the sweep's process alone: its workers see it gone and end
+        process.kill()  # the sweep's process alone: its workers see it gone and end
         process.wait()
         deadline = time.monotonic() + 60
         while time.monotonic() < deadline:
@@ -209,11 +227,11 @@ def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
             time.sleep(0.1)
         else:
             os.killpg(process.pid, signal.SIGKILL)
-    assert Path(left[0], "token").exists()                  # nothing removed it
+    assert Path(left[0], "token").exists()  # nothing removed it
     alive = Path(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{os.getpid()}-test")
     alive.mkdir()
     (alive / "token").write_text(f"{os.getpid()}-abc")
-    held = sweeps._hold(alive / "token")             # as a running sweep holds it
+    held = sweeps._hold(alive / "token")  # as a running sweep holds it
     try:
         with Client(cluster, set_as_default=False) as client:
             pmdfmu.sweep([Case("short", script=str(long_move(tmp_path / "short.script", 100)))], scheduler=client)
@@ -233,15 +251,23 @@ def test_a_sweep_interrupted_at_random_times_leaves_no_folder(tmp_path):
     import subprocess
     import sys
     import time
+
     script = long_move(tmp_path / "long.script", 1_000_000)
-    code = ("import signal\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"   # a background job ignores it
-            "import pmdfmu\nfrom pmdfmu.sweep import Case\ntry:\n"
-            f"    pmdfmu.sweep([Case(f'long{{k}}', script={str(script)!r}) for k in range(4)], workers=1)\n"
-            "except KeyboardInterrupt:\n    print('interrupted', flush=True)\n")
+    code = (
+        "import signal\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"  # a background job ignores it
+        "import pmdfmu\nfrom pmdfmu.sweep import Case\ntry:\n"
+        f"    pmdfmu.sweep([Case(f'long{{k}}', script={str(script)!r}) for k in range(4)], workers=1)\n"
+        "except KeyboardInterrupt:\n    print('interrupted', flush=True)\n"
+    )
     rng = random.Random(7)
     for _ in range(2):
-        process = subprocess.Popen([sys.executable, "-c", code], start_new_session=True, text=True,
-                                   stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+        process = subprocess.Popen(
+            [sys.executable, "-c", code],
+            start_new_session=True,
+            text=True,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+        )
         pattern = os.path.join(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{process.pid}-*")
         try:
             deadline = time.monotonic() + 120

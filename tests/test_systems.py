@@ -10,6 +10,7 @@ command one cycle later than in Gauss-Seidel, where the plant steps after the
 chip with the command of the same cycle (as examples/closed_loop.py does). The
 Jacobi runs are equal bit for bit whatever the master, FMI 2 or 3; the
 Gauss-Seidel run differs from them; each is pinned, and both settle the move."""
+
 import csv
 import functools
 import os
@@ -49,16 +50,20 @@ def libcosim():
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
     out = tmp_path_factory.mktemp("systems")
-    return {"ssp": systems.build_ssp(out / "servoLoop.ssp"), "container": systems.build_container(out / "servoLoop.fmu")}
+    return {
+        "ssp": systems.build_ssp(out / "servoLoop.ssp"),
+        "container": systems.build_container(out / "servoLoop.fmu"),
+    }
 
 
 @pytest.fixture(scope="module")
 def runs(built):
     """run(master, fmi_version=2) -> (result, log messages), each run once."""
+
     @functools.lru_cache(maxsize=None)
     def run(master, fmi_version=2):
         messages = []
-        log = lambda instance, status, message: messages.append((instance, status, message))   # noqa: E731
+        log = lambda instance, status, message: messages.append((instance, status, message))  # noqa: E731
         if master in ("gauss-seidel", "jacobi"):
             result = systems.run_master(master, fmi_version, log=log)
         elif master == "container":
@@ -69,22 +74,29 @@ def runs(built):
             libcosim()
             result = systems.run_libcosim(built["ssp"])
         return result, messages
+
     return run
 
 
 # ---- the system's files ----------------------------------------------------------------
 
+
 def test_the_ssp_holds_the_ssd_the_fmus_and_the_chips_parameter_values(built):
-    ssd = read_ssd(str(built["ssp"]))                   # FMPy validates the .ssd and .ssv against the SSP schemas
+    ssd = read_ssd(str(built["ssp"]))  # FMPy validates the .ssd and .ssv against the SSP schemas
     components = {c.name: c for c in ssd.system.elements}
     assert {n: c.source for n, c in components.items()} == {
-        "chip": "resources/PMDMotionProcessor.fmu", "plant": "resources/pmdplant.fmu"}
+        "chip": "resources/PMDMotionProcessor.fmu",
+        "plant": "resources/pmdplant.fmu",
+    }
     assert [(c.startElement, c.startConnector, c.endElement, c.endConnector) for c in ssd.system.connections] == [
         ("chip", "axis1.motorCommand", "plant", "motorCommand"),
-        ("plant", "encoderCount", "chip", "axis1.actualPosition")]
+        ("plant", "encoderCount", "chip", "axis1.actualPosition"),
+    ]
     (values,) = components["chip"].parameterBindings[0].parameterValues
     assert {p.name: (p.type, p.value) for p in values.parameters} == {
-        "loopback": ("Boolean", "false"), "script": ("String", systems.script_value())}
+        "loopback": ("Boolean", "false"),
+        "script": ("String", systems.script_value()),
+    }
     with zipfile.ZipFile(built["ssp"]) as z:
         for name in ("PMDMotionProcessor", "pmdplant"):
             assert z.read(f"resources/{name}.fmu") == systems.fmu_of(f"{name}.fmu", 2).read_bytes()
@@ -93,17 +105,21 @@ def test_the_ssp_holds_the_ssd_the_fmus_and_the_chips_parameter_values(built):
 def test_the_container_fmu_validates_and_needs_no_parameter_set(built):
     assert validate_fmu(str(built["container"])) == []
     from fmpy import read_model_description
+
     md = read_model_description(str(built["container"]))
     starts = {v.name: v.start for v in md.modelVariables if v.causality == "parameter"}
     assert starts == {"chip.loopback": "false", "chip.script": systems.script_value()}
-    assert {v.name for v in md.modelVariables if v.causality == "output"} == {c.path for c in systems.read_system().outputs}
+    assert {v.name for v in md.modelVariables if v.causality == "output"} == {
+        c.path for c in systems.read_system().outputs
+    }
 
 
 def test_the_profile_is_docs_servo_mds_suggested_set_up_and_move():
     calls = dict(re.findall(r"^Set(\w+)\(Axis1, ([^)]+)\);", systems.SCRIPT.read_text(), re.M))
     assert {name: int(calls[name]) for name in closed_loop.GAINS} == closed_loop.GAINS
     assert (int(calls["Position"]), float(calls["Velocity"]), float(calls["Acceleration"])) == tuple(
-        closed_loop.MOVE.values())
+        closed_loop.MOVE.values()
+    )
     assert (calls["SettleWindow"], calls["SettleTime"], calls["PositionErrorLimit"]) == ("5", "20", "1000")
 
 
@@ -122,8 +138,12 @@ def dependencies(fmu: Path, element: str):
         unknowns = root.find("ModelStructure").iter(element)
         name_of = {v.get("valueReference"): v.get("name") for v in variables}
         key = "valueReference"
-    return {name_of[u.get(key)]: inputs if u.get("dependencies") is None else
-            {name_of[d] for d in u.get("dependencies").split()} & inputs for u in unknowns}
+    return {
+        name_of[u.get(key)]: inputs
+        if u.get("dependencies") is None
+        else {name_of[d] for d in u.get("dependencies").split()} & inputs
+        for u in unknowns
+    }
 
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
@@ -144,16 +164,18 @@ def test_the_declared_dependencies_close_no_loop_through_the_connections(fmi_ver
     assert dependencies(systems.fmu_of("pmdplant.fmu", fmi_version), element)["encoderCount"] == set()
 
     def reaches(node, target, seen):
-        return any(n == target or (n not in seen and not seen.add(n) and reaches(n, target, seen))
-                   for n in edges.get(node, ()))
+        return any(
+            n == target or (n not in seen and not seen.add(n) and reaches(n, target, seen)) for n in edges.get(node, ())
+        )
+
     loops = [node for node in edges if reaches(node, node, set())]
     assert not loops, loops
 
 
 # ---- the runs -------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("master, fmi_version", [
-    ("fmpy-ssp", 2), ("libcosim", 2), ("container", 3), ("jacobi", 3)])
+
+@pytest.mark.parametrize("master, fmi_version", [("fmpy-ssp", 2), ("libcosim", 2), ("container", 3), ("jacobi", 3)])
 def test_every_jacobi_master_gives_the_same_run_bit_for_bit(runs, master, fmi_version):
     """FMPy's SSP master (FMI 2), libcosim (FMI 2), the container FMU (FMI 3 inside)
     and the plain master stepping Jacobi (FMI 2, 3): the same outputs after every step."""
@@ -194,7 +216,7 @@ def test_the_move_settles_in_the_settle_window_in_both_algorithms(runs, algorith
     assert np.abs(following).max() == PINNED[algorithm]["following"]
     assert result["chip.axis1.commandedPosition"][-1] == result["plant.encoderCount"][-1] == 10_000
     settled = PINNED[algorithm]["complete"]
-    assert np.abs(following[settled - 20:]).max() <= 5                  # the settle window, from the settle time on
+    assert np.abs(following[settled - 20 :]).max() <= 5  # the settle window, from the settle time on
     assert np.abs(result["chip.axis1.motorCommand"][-500:]).max() < 100  # at rest the friction holds: a quiet motor
     assert result["plant.speed"][-1] == 0.0
 
@@ -219,19 +241,45 @@ def test_the_loop_initializes_and_runs_without_a_warning_in_libcosim(runs, capfd
     err = capfd.readouterr().err.splitlines()
     assert not [line for line in err if "loop" in line.lower() or "[warning]" in line]
     assert {re.sub(r"^.*\[error\]\s*", "", line) for line in err if "[error]" in line} <= {
-        "[FMI Library: FMI2XML] Start attribute is required for this causality, variability and initial combination"}
+        "[FMI Library: FMI2XML] Start attribute is required for this causality, variability and initial combination"
+    }
 
 
 def test_the_example_runs_as_a_user_would(tmp_path):
-    env = dict(os.environ)             # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR)
-    out = subprocess.run([sys.executable, str(ROOT / "examples" / "systems" / "systems.py"), "run", "gauss-seidel",
-                          "--csv", str(tmp_path / "run.csv")], env=env, capture_output=True, text=True, check=True)
-    assert out.stdout == ("gauss-seidel: 3000 cycles; motion complete after cycle 1530; encoder 10000 counts "
-                          "(commanded 10000); largest following error 5 counts\n")
+    env = dict(os.environ)  # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR)
+    out = subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "examples" / "systems" / "systems.py"),
+            "run",
+            "gauss-seidel",
+            "--csv",
+            str(tmp_path / "run.csv"),
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert out.stdout == (
+        "gauss-seidel: 3000 cycles; motion complete after cycle 1530; encoder 10000 counts "
+        "(commanded 10000); largest following error 5 counts\n"
+    )
     rows = list(csv.DictReader(open(tmp_path / "run.csv", newline="")))
     assert len(rows) == 3000 and rows[-1]["plant.encoderCount"] == "10000"
-    out = subprocess.run([sys.executable, str(ROOT / "examples" / "systems" / "systems.py"), "ssp", "--out",
-                          str(tmp_path / "servoLoop.ssp")], env=env, capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "examples" / "systems" / "systems.py"),
+            "ssp",
+            "--out",
+            str(tmp_path / "servoLoop.ssp"),
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert zipfile.ZipFile(tmp_path / "servoLoop.ssp").namelist()[0] == "SystemStructure.ssd"
 
 

@@ -14,6 +14,7 @@ package downloads its binary at install time): docs/tools.md describes it from i
 published behaviour. A tool whose package is missing is skipped outside CI only; CI
 (.ci/run, pyproject.toml's test extra) installs every one of them.
 """
+
 import csv
 import functools
 import json
@@ -31,14 +32,17 @@ import pytest
 
 import pmdfmu
 
-pytestmark = [pytest.mark.slow, pytest.mark.tools]          # tests/README.md: ./dev test -m "not slow" leaves them out
+pytestmark = [pytest.mark.slow, pytest.mark.tools]  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 ROOT = Path(__file__).resolve().parent.parent
 SCRIPT = ROOT / "examples" / "two_axis.script"
-CYCLE = 1e-4                 # the FMU's default cycleTime: one chip cycle per communication step
-CYCLES = 400                 # axis 2's S-curve from cycle 0, axis 1's table from cycle 100
-INTEGERS = ["chipTime"] + [f"axis{n}.{q}" for n in (1, 2) for q in (
-    "commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus", "eventStatus")]
+CYCLE = 1e-4  # the FMU's default cycleTime: one chip cycle per communication step
+CYCLES = 400  # axis 2's S-curve from cycle 0, axis 1's table from cycle 100
+INTEGERS = ["chipTime"] + [
+    f"axis{n}.{q}"
+    for n in (1, 2)
+    for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration", "activityStatus", "eventStatus")
+]
 REALS = ["axis1.position", "axis2.velocity", "nextCycleTime"]
 # ecos reads an FMI 3 FMU's integers only as Int8..Int64 and asks all of them in one call typed by the
 # first one (src/fmilibcpp/fmi3/fmi3_slave.cpp): so through FMI 3 only the Int32 outputs, one type
@@ -54,7 +58,7 @@ def tool(module):
     """Imports a tool's Python package; outside CI a missing one skips, in CI it fails."""
     try:
         return __import__(module, fromlist=["_"])
-    except (ImportError, OSError) as e:          # OSError: ecospy's libecosc.so without Debian's libtbb12
+    except (ImportError, OSError) as e:  # OSError: ecospy's libecosc.so without Debian's libtbb12
         if os.environ.get("CI"):
             raise
         pytest.skip(f"{module} not installed ({e}): pip install '.[test]' (ecospy also needs apt-get install libtbb12)")
@@ -63,35 +67,47 @@ def tool(module):
 @functools.lru_cache(maxsize=None)
 def fmpy_run(fmi_version, names):
     """FMPy's result: row k holds the outputs at time k * CYCLE, after the cycles before it."""
-    return fmpy.simulate_fmu(str(pmdfmu.default_fmu(fmi_version)), start_values={"script": str(SCRIPT)},
-                             output=list(names), output_interval=CYCLE, stop_time=CYCLES * CYCLE)
+    return fmpy.simulate_fmu(
+        str(pmdfmu.default_fmu(fmi_version)),
+        start_values={"script": str(SCRIPT)},
+        output=list(names),
+        output_interval=CYCLE,
+        stop_time=CYCLES * CYCLE,
+    )
 
 
 def assert_equals_fmpy(fmi_version, times, values, first_row):
     """values: name -> the tool's outputs after each of its steps, rows first_row..CYCLES of FMPy's."""
     ref = fmpy_run(fmi_version, tuple(values))
     ref = ref[first_row:]
-    assert ref["axis1.commandedPosition"][-1] > 0 and ref["axis2.commandedPosition"][-1] > 0   # both axes moved
+    assert ref["axis1.commandedPosition"][-1] > 0 and ref["axis2.commandedPosition"][-1] > 0  # both axes moved
     assert len(times) == len(ref)
     assert np.abs(np.array(times) - ref["time"]).max() < 1e-12
     for name, column in values.items():
         expected = ref[name]
-        if expected.dtype.kind == "f":              # bit for bit: the same doubles, not close ones
-            assert np.array(column, dtype=np.float64).view(np.uint64).tolist() == expected.view(np.uint64).tolist(), name
+        if expected.dtype.kind == "f":  # bit for bit: the same doubles, not close ones
+            assert np.array(column, dtype=np.float64).view(np.uint64).tolist() == expected.view(np.uint64).tolist(), (
+                name
+            )
         else:
             assert [int(x) for x in column] == expected.tolist(), name
 
 
 # ---- fmu-manipulation-toolbox ----------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("fmi_version", [2, 3])
 def test_fmutool_check_passes(fmi_version):
     tool("fmu_manipulation_toolbox")
     fmu = pmdfmu.default_fmu(fmi_version)
-    out = subprocess.run([sys.executable, "-m", "fmu_manipulation_toolbox", "-input", str(fmu), "-check"],
-                         capture_output=True, text=True, timeout=120)
+    out = subprocess.run(
+        [sys.executable, "-m", "fmu_manipulation_toolbox", "-input", str(fmu), "-check"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     log = out.stdout + out.stderr
-    assert out.returncode == 0, log                 # fmutool exits with the number of errors it found
+    assert out.returncode == 0, log  # fmutool exits with the number of errors it found
     assert f"This FMU seems to be compliant with FMI-{fmi_version}.0." in log
     assert f"No semantic error against the FMI-{fmi_version} standard." in log
     assert not re.search(r"^(ERROR|WARNING)", log, re.M), log
@@ -108,6 +124,7 @@ HOW = ["parameter", "packed"]
 def packed(tmp_path_factory):
     """{FMI version: the built FMU packed with examples/two_axis.script}"""
     from pmdfmu.pack import pack
+
     out = tmp_path_factory.mktemp("packed")
     fmus = {}
     for version in (2, 3):
@@ -125,6 +142,7 @@ def profile(how, fmi_version, packed):
 
 # ---- libcosim (libcosimpy): FMI 1 and 2 only -------------------------------------------------------
 
+
 @pytest.mark.parametrize("how", HOW)
 def test_libcosim_runs_the_fmi2_fmu_with_the_script_as_fmpy_does(capfd, how, packed):
     tool("libcosimpy")
@@ -134,8 +152,8 @@ def test_libcosim_runs_the_fmi2_fmu_with_the_script_as_fmpy_does(capfd, how, pac
     from libcosimpy.CosimSlave import CosimLocalSlave
 
     fmu, parameters = profile(how, 2, packed)
-    log_output_level(CosimLogLevel.INFO)                  # the parser's errors with the line they point at
-    execution = CosimExecution.from_step_size(round(CYCLE * 1e9))          # nanoseconds
+    log_output_level(CosimLogLevel.INFO)  # the parser's errors with the line they point at
+    execution = CosimExecution.from_step_size(round(CYCLE * 1e9))  # nanoseconds
     chip = execution.add_local_slave(CosimLocalSlave(fmu_path=str(fmu), instance_name="chip"))
     vr = {v.name.decode(): v.reference for v in execution.slave_variables(chip)}
     for name, value in parameters.items():
@@ -157,10 +175,14 @@ def test_libcosim_runs_the_fmi2_fmu_with_the_script_as_fmpy_does(capfd, how, pac
     # as Real without a start attribute"): it logs an error, parses on as if it had one, and the run
     # is right. Harmless (docs/tools.md, libcosim); the FMU keeps `time` as the standard says. That
     # message, for `time`'s line, is the only error the run logs.
-    log = capfd.readouterr().out.splitlines()           # libcosim logs to standard output
+    log = capfd.readouterr().out.splitlines()  # libcosim logs to standard output
     errors = [i for i, line in enumerate(log) if "[error]" in line]
-    assert errors and all(log[i].endswith("[FMI Library: FMI2XML] Start attribute is required for this causality, "
-                                          "variability and initial combination") for i in errors)
+    assert errors and all(
+        log[i].endswith(
+            "[FMI Library: FMI2XML] Start attribute is required for this causality, variability and initial combination"
+        )
+        for i in errors
+    )
     with zipfile.ZipFile(fmu) as z:
         xml = z.read("modelDescription.xml").decode().splitlines()
     for i in errors:
@@ -181,6 +203,7 @@ def test_libcosim_refuses_the_fmi3_fmu_by_its_version():
 
 
 # ---- ecos (ecospy) ---------------------------------------------------------------------------------
+
 
 def ecos_run(fmu, parameters, integers, reals, cycles=CYCLES):
     ecospy = tool("ecospy")
@@ -227,6 +250,7 @@ def test_ecos_ignores_a_failed_initialization_and_nextCycle_tells(tmp_path):
 
 # ---- INTO-CPS Maestro 3.1.1 (Java, Maven Central) -------------------------------------------------
 
+
 def maestro_jar():
     if os.environ.get("PMDFMU_SANITIZED"):
         pytest.skip("the JVM cannot load an ASan build of the FMU (./dev sanitize; FMI4j's test is left out there too)")
@@ -235,8 +259,11 @@ def maestro_jar():
             pytest.fail("java and mvn are not installed (.ci/run installs them)")
         pytest.skip("java and mvn not installed (CI installs them)")
     if not MAESTRO_JAR.is_file():
-        subprocess.run(["mvn", "-q", "-B", "dependency:copy", f"-Dartifact={MAESTRO}",
-                        f"-DoutputDirectory={MAESTRO_DIR}"], check=True, timeout=900)
+        subprocess.run(
+            ["mvn", "-q", "-B", "dependency:copy", f"-Dartifact={MAESTRO}", f"-DoutputDirectory={MAESTRO_DIR}"],
+            check=True,
+            timeout=900,
+        )
     return MAESTRO_JAR
 
 
@@ -259,8 +286,13 @@ def maestro_run(fmi_version, names, tmp_path, packed):
             # from the multi-model (the XML's start arrives as a list it cannot cast), a Float64 only
             # from the XML (docs/tools.md): the start values, the packed FMU's script among them
             starts = {v.name: v.start for v in fmpy.read_model_description(str(fmu)).modelVariables}
-            parameters = dict({"script": starts["script"]}, **parameters, loopback=True, memorySize=16384,
-                              **{"record.capacity": 65536})
+            parameters = dict(
+                {"script": starts["script"]},
+                **parameters,
+                loopback=True,
+                memorySize=16384,
+                **{"record.capacity": 65536},
+            )
         key, name = MAESTRO_INSTANCE[how]
         instance = f"{key}.{name}"
         multi_model["fmus"][key] = fmu.resolve().as_uri()
@@ -270,10 +302,18 @@ def maestro_run(fmi_version, names, tmp_path, packed):
     (tmp_path / "mm.json").write_text(json.dumps(multi_model, indent=1))
     # Maestro steps while t + h <= endTime, t a floating-point sum that may end a hair past CYCLES * CYCLE
     # and lose the last step: end half a step later
-    (tmp_path / "sim.json").write_text(json.dumps(
-        {"startTime": 0.0, "endTime": (CYCLES + 0.5) * CYCLE, "algorithm": {"type": "fixed-step", "size": CYCLE}}))
-    out = subprocess.run(["java", "-jar", str(maestro_jar()), "import", "sg1", "mm.json", "sim.json",
-                          "-output", "out", "-i"], cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    (tmp_path / "sim.json").write_text(
+        json.dumps(
+            {"startTime": 0.0, "endTime": (CYCLES + 0.5) * CYCLE, "algorithm": {"type": "fixed-step", "size": CYCLE}}
+        )
+    )
+    out = subprocess.run(
+        ["java", "-jar", str(maestro_jar()), "import", "sg1", "mm.json", "sim.json", "-output", "out", "-i"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert out.returncode == 0 and (tmp_path / "out" / "outputs.csv").is_file(), out.stdout[-4000:] + out.stderr[-4000:]
     rows = list(csv.DictReader(open(tmp_path / "out" / "outputs.csv")))
     # Maestro writes an FMI 3 UInt16 or UInt32 as the signed number of the same bits (activity status
@@ -321,11 +361,16 @@ class Fmu2:
     def __init__(self, path, name, tmp):
         from fmpy import extract, read_model_description
         from fmpy.fmi2 import FMU2Slave
+
         md = read_model_description(str(path))
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.type = {v.name: v.type for v in md.modelVariables}
-        self.slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(path), unzipdir=str(tmp / name)),
-                               modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+        self.slave = FMU2Slave(
+            guid=md.guid,
+            unzipDirectory=extract(str(path), unzipdir=str(tmp / name)),
+            modelIdentifier=md.coSimulation.modelIdentifier,
+            instanceName=name,
+        )
         self.slave.instantiate()
         self.slave.setupExperiment(startTime=0.0)
 
@@ -380,7 +425,7 @@ def fmpy_master(order, tmp):
 def masters(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("masters")
     runs = {order: fmpy_master(order, tmp / order) for order in ("jacobi", "chip-first", "plant-first")}
-    assert runs["jacobi"]["plant.encoderCount"][-1] > 500        # the axis moved through the plant
+    assert runs["jacobi"]["plant.encoderCount"][-1] > 500  # the axis moved through the plant
     for a, b in (("jacobi", "chip-first"), ("jacobi", "plant-first"), ("chip-first", "plant-first")):
         assert runs[a]["plant.encoderCount"] != runs[b]["plant.encoderCount"], (a, b)
     return runs
@@ -389,8 +434,10 @@ def masters(tmp_path_factory):
 def assert_same_run(values, expected):
     for c in LOOP_COLUMNS:
         if isinstance(expected[c][0], float):
-            assert np.array(values[c], dtype=np.float64).view(np.uint64).tolist() == \
-                np.array(expected[c], dtype=np.float64).view(np.uint64).tolist(), c
+            assert (
+                np.array(values[c], dtype=np.float64).view(np.uint64).tolist()
+                == np.array(expected[c], dtype=np.float64).view(np.uint64).tolist()
+            ), c
         else:
             assert [int(x) for x in values[c]] == expected[c], c
 
@@ -411,10 +458,16 @@ def test_libcosim_closes_the_loop_as_a_jacobi_master(masters, capfd):
     assert execution.string_initial_value(chip, vr[chip]["script"], str(LOOP_SCRIPT))
     # libcosimpy 0.0.6's connect_integer_variables calls a wrapper by a name it never stored
     connect = execution._CosimExecution__connect_int_variables
-    assert connect(execution._CosimExecution__ptr, chip, vr[chip]["axis1.motorCommand"],
-                   plant, vr[plant]["motorCommand"]) == 0
-    assert connect(execution._CosimExecution__ptr, plant, vr[plant]["encoderCount"],
-                   chip, vr[chip]["axis1.actualPosition"]) == 0
+    assert (
+        connect(execution._CosimExecution__ptr, chip, vr[chip]["axis1.motorCommand"], plant, vr[plant]["motorCommand"])
+        == 0
+    )
+    assert (
+        connect(
+            execution._CosimExecution__ptr, plant, vr[plant]["encoderCount"], chip, vr[chip]["axis1.actualPosition"]
+        )
+        == 0
+    )
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer)
     values = {c: [] for c in LOOP_COLUMNS}
@@ -451,24 +504,42 @@ def test_ecos_closes_the_loop_as_a_jacobi_master(masters):
 
 def test_maestro_closes_the_loop_as_a_jacobi_master(masters, tmp_path):
     jar = maestro_jar()
-    multi_model = {"fmus": {"{chip}": pmdfmu.default_fmu(2).resolve().as_uri(),
-                            "{plant}": plant_fmu(2).resolve().as_uri()},
-                   "connections": {"{chip}.c.axis1.motorCommand": ["{plant}.p.motorCommand"],
-                                   "{plant}.p.encoderCount": ["{chip}.c.axis1.actualPosition"]},
-                   "parameters": {"{chip}.c.script": str(LOOP_SCRIPT), "{chip}.c.loopback": False},
-                   "logVariables": {"{chip}.c": LOOP_CHIP, "{plant}.p": LOOP_PLANT}}
+    multi_model = {
+        "fmus": {"{chip}": pmdfmu.default_fmu(2).resolve().as_uri(), "{plant}": plant_fmu(2).resolve().as_uri()},
+        "connections": {
+            "{chip}.c.axis1.motorCommand": ["{plant}.p.motorCommand"],
+            "{plant}.p.encoderCount": ["{chip}.c.axis1.actualPosition"],
+        },
+        "parameters": {"{chip}.c.script": str(LOOP_SCRIPT), "{chip}.c.loopback": False},
+        "logVariables": {"{chip}.c": LOOP_CHIP, "{plant}.p": LOOP_PLANT},
+    }
     (tmp_path / "mm.json").write_text(json.dumps(multi_model, indent=1))
-    (tmp_path / "sim.json").write_text(json.dumps(
-        {"startTime": 0.0, "endTime": (LOOP_CYCLES + 0.5) * CYCLE, "algorithm": {"type": "fixed-step", "size": CYCLE}}))
-    out = subprocess.run(["java", "-jar", str(jar), "import", "sg1", "mm.json", "sim.json", "-output", "out", "-i"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    (tmp_path / "sim.json").write_text(
+        json.dumps(
+            {
+                "startTime": 0.0,
+                "endTime": (LOOP_CYCLES + 0.5) * CYCLE,
+                "algorithm": {"type": "fixed-step", "size": CYCLE},
+            }
+        )
+    )
+    out = subprocess.run(
+        ["java", "-jar", str(jar), "import", "sg1", "mm.json", "sim.json", "-output", "out", "-i"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert out.returncode == 0, out.stdout[-4000:] + out.stderr[-4000:]
-    rows = list(csv.DictReader(open(tmp_path / "out" / "outputs.csv")))[1:]       # row 0: initialization
+    rows = list(csv.DictReader(open(tmp_path / "out" / "outputs.csv")))[1:]  # row 0: initialization
     column = {c: "{%s}.%s.%s" % (c.split(".")[0], c[0], c.split(".", 1)[1]) for c in LOOP_COLUMNS}
     values = {c: [float(r[column[c]]) if c == "plant.angle" else int(r[column[c]]) for r in rows] for c in LOOP_COLUMNS}
     assert_same_run(values, masters["jacobi"])
-    assert not re.search(r"algebraic|\bloop\b", "\n".join(line for line in (out.stdout + out.stderr).splitlines()
-                                                         if " DEBUG " not in line), re.I)
+    assert not re.search(
+        r"algebraic|\bloop\b",
+        "\n".join(line for line in (out.stdout + out.stderr).splitlines() if " DEBUG " not in line),
+        re.I,
+    )
 
 
 @pytest.mark.parametrize("sequential", [False, True], ids=["default", "sequential"])
@@ -479,20 +550,39 @@ def test_fmucontainer_closes_the_loop_as_jacobi_or_in_its_order(masters, tmp_pat
     chip, plant = pmdfmu.default_fmu(2).name, plant_fmu(2).name
     for f in (pmdfmu.default_fmu(2), plant_fmu(2)):
         shutil.copy(f, tmp_path / f.name)
-    rows = ["rule;from_fmu;from_port;to_fmu;to_port", f"FMU;{chip};;;", f"FMU;{plant};;;",
-            f"LINK;{chip};axis1.motorCommand;{plant};motorCommand",
-            f"LINK;{plant};encoderCount;{chip};axis1.actualPosition",
-            f"START;{chip};loopback;false;", f"START;{chip};script;{LOOP_SCRIPT};"]
+    rows = [
+        "rule;from_fmu;from_port;to_fmu;to_port",
+        f"FMU;{chip};;;",
+        f"FMU;{plant};;;",
+        f"LINK;{chip};axis1.motorCommand;{plant};motorCommand",
+        f"LINK;{plant};encoderCount;{chip};axis1.actualPosition",
+        f"START;{chip};loopback;false;",
+        f"START;{chip};script;{LOOP_SCRIPT};",
+    ]
     rows += [f"OUTPUT;{chip};{n};;chip.{n}" for n in LOOP_CHIP] + [f"OUTPUT;{plant};{n};;plant.{n}" for n in LOOP_PLANT]
     (tmp_path / "loop.csv").write_text("\n".join(rows) + "\n")
-    out = subprocess.run([str(Path(sys.executable).with_name("fmucontainer")), "-container", f"loop.csv:{CYCLE}",
-                          "-fmu-directory", ".", "-no-auto-input", "-no-auto-output"] + (["-sequential"] if sequential else []),
-                         cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    out = subprocess.run(
+        [
+            str(Path(sys.executable).with_name("fmucontainer")),
+            "-container",
+            f"loop.csv:{CYCLE}",
+            "-fmu-directory",
+            ".",
+            "-no-auto-input",
+            "-no-auto-output",
+        ]
+        + (["-sequential"] if sequential else []),
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     log = out.stdout + out.stderr
     assert out.returncode == 0 and (tmp_path / "loop.fmu").is_file(), log
     # the container orders its initialization by the links alone (docs/tools.md): harmless here
     assert f"WARNING  | Loop of links through the embedded FMU '{chip}'" in log
-    result = fmpy.simulate_fmu(str(tmp_path / "loop.fmu"), output=LOOP_COLUMNS, output_interval=CYCLE,
-                               stop_time=LOOP_CYCLES * CYCLE)
+    result = fmpy.simulate_fmu(
+        str(tmp_path / "loop.fmu"), output=LOOP_COLUMNS, output_interval=CYCLE, stop_time=LOOP_CYCLES * CYCLE
+    )
     values = {c: result[c][1:].tolist() for c in LOOP_COLUMNS}
     assert_same_run(values, masters["chip-first" if sequential else "jacobi"])

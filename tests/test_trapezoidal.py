@@ -1,16 +1,27 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Trapezoidal point-to-point moves (seed 001; seed 000 1.4's initial move)."""
+
 import random
 
 import numpy as np
 import pytest
 
 import pmdfmu
-from pmdfmu import (PMDActivityAtMaximumVelocityMask, PMDActivityInMotionMask, PMDError, PMDEventMotionCompleteMask,
-                    PMDTrapezoidal)
+from pmdfmu import (
+    PMDActivityAtMaximumVelocityMask,
+    PMDActivityInMotionMask,
+    PMDError,
+    PMDEventMotionCompleteMask,
+    PMDTrapezoidal,
+)
 
-NAMES = ["axis1.commandedPosition", "axis1.commandedVelocity", "axis1.commandedAcceleration",
-         "axis1.activityStatus", "axis1.position"]
+NAMES = [
+    "axis1.commandedPosition",
+    "axis1.commandedVelocity",
+    "axis1.commandedAcceleration",
+    "axis1.activityStatus",
+    "axis1.position",
+]
 
 
 def move(chip, position, velocity, acceleration, deceleration=0, max_cycles=200_000):
@@ -52,7 +63,7 @@ def test_moves_end_exactly_at_the_destination_at_rest_within_limits(chip, seed):
     rec = move(chip, dest, vmax, acc, dec)
     ax = chip.axis(0)
     assert ax.GetCommandedPosition() == dest
-    assert chip.get("axis1.position") == dest                      # no fraction left over
+    assert chip.get("axis1.position") == dest  # no fraction left over
     assert ax.GetCommandedVelocity() == 0 and ax.GetCommandedAcceleration() == 0
     assert ax.GetEventStatus() & PMDEventMotionCompleteMask
     check_limits(rec, 0, vmax, acc, dec)
@@ -79,7 +90,7 @@ def test_a_short_move_never_reaches_maximum_velocity_and_a_long_one_cruises(chip
 
 
 def test_duration_is_close_to_the_continuous_optimum(chip):
-    d, v, a = 100_000, 0x40000, 0x800         # 4 counts/cycle, 1/32 counts/cycle^2
+    d, v, a = 100_000, 0x40000, 0x800  # 4 counts/cycle, 1/32 counts/cycle^2
     rec = move(chip, d, v, a)
     vc, ac = v / 65536, a / 65536
     optimum = d / vc + vc / ac
@@ -107,7 +118,7 @@ def test_get_returns_the_buffered_register_until_update(chip):
     ax.SetAcceleration(0x100)
     assert (ax.GetPosition(), ax.GetVelocity(), ax.GetAcceleration()) == (777, 0x10000, 0x100)
     chip.run(100)
-    assert ax.GetCommandedPosition() == 0                    # nothing moves before Update
+    assert ax.GetCommandedPosition() == 0  # nothing moves before Update
     ax.Update()
     chip.run(1)
     assert ax.GetCommandedVelocity() == 0x100
@@ -126,7 +137,7 @@ def test_abrupt_and_smooth_stop_in_trapezoidal_mode(chip):
     v = rec["axis1.commandedVelocity"]
     assert v[-1] == 0 and (np.diff(v) >= -0x2000).all() and (np.diff(v) <= 0).all()
     assert ax.GetEventStatus() & PMDEventMotionCompleteMask
-    ax.Update()                                              # resumes toward the destination
+    ax.Update()  # resumes toward the destination
     chip.run(100)
     assert ax.GetCommandedVelocity() > 0
     ax.SetStopMode(pmdfmu.PMDAbruptStop)

@@ -7,6 +7,7 @@ for inputs, and for parameters until initialization ends); every other type,
 and a set of an output or of a parameter after initialization, is refused with
 Error and a message naming the function and the value reference, and changes
 nothing (the serialized FMU state is the same before and after)."""
+
 from pathlib import Path
 
 import pytest
@@ -38,14 +39,25 @@ def outputs_of_a_new_chip(fmi_version):
     script) are: the registers as a chip reset leaves them, read through the
     chip's own commands where they are status words, on a second instance."""
     with pmdfmu.Chip(fmi_version=fmi_version) as other:
-        statuses = {f"axis{n + 1}.{name}": getattr(other.axis(n), command)()
-                    for n in range(4) for name, command in (("activityStatus", "GetActivityStatus"),
-                                                            ("eventStatus", "GetEventStatus"))}
+        statuses = {
+            f"axis{n + 1}.{name}": getattr(other.axis(n), command)()
+            for n in range(4)
+            for name, command in (("activityStatus", "GetActivityStatus"), ("eventStatus", "GetEventStatus"))
+        }
     cycle_time = float(next(v.start for v in tables.read_variables(CSV) if v.name == "cycleTime"))
-    known = {"time": 0.0, "activeCycleTime": cycle_time, "nextCycleTime": 0.0, "nextCycle": 0.0,
-             "script.axes": 0, "script.lastCycle": 0.0, "host.interrupt": False, "record.data": None,
-             "record.rowSize": 4 + 12 * 4, **statuses}      # record.columns "": the chip time, 12 commanded words
-    return lambda name: known.get(name, 0)      # every other output (positions, replies, counts) is 0
+    known = {
+        "time": 0.0,
+        "activeCycleTime": cycle_time,
+        "nextCycleTime": 0.0,
+        "nextCycle": 0.0,
+        "script.axes": 0,
+        "script.lastCycle": 0.0,
+        "host.interrupt": False,
+        "record.data": None,
+        "record.rowSize": 4 + 12 * 4,
+        **statuses,
+    }  # record.columns "": the chip time, 12 commanded words
+    return lambda name: known.get(name, 0)  # every other output (positions, replies, counts) is 0
 
 
 def another_value(v, value):
@@ -54,12 +66,12 @@ def another_value(v, value):
     if kind == "Boolean":
         return not value
     if kind in ("Real", "Float64"):
-        return value * 2                                # cycleTime: 2e-4 s, whole microseconds still
+        return value * 2  # cycleTime: 2e-4 s, whole microseconds still
     if kind == "String" and v.name == "record.columns":
-        return value + "axis1.position"                 # names checked when set: a variable's
+        return value + "axis1.position"  # names checked when set: a variable's
     if kind == "String":
-        return value + "walk.pmd"                       # the script is compiled only at the end of initialization
-    return value + 1                                    # every Integer input and parameter takes start + 1
+        return value + "walk.pmd"  # the script is compiled only at the end of initialization
+    return value + 1  # every Integer input and parameter takes start + 1
 
 
 def decoded(values):
@@ -124,7 +136,7 @@ def test_every_variable_through_every_getter_and_setter_in_step_mode(fmi_version
     with pmdfmu.Chip(fmi_version=fmi_version) as chip:
         w = Walker(chip)
         for v in rows:
-            mine, n = v.type, count_of(v)          # Variable3.type is the FMI 3 type
+            mine, n = v.type, count_of(v)  # Variable3.type is the FMI 3 type
             for kind in types:
                 if kind != mine:
                     w.refused("Get", kind, v.vr, n)
@@ -133,11 +145,11 @@ def test_every_variable_through_every_getter_and_setter_in_step_mode(fmi_version
                 got = decoded(w.get(kind, v.vr, n))
                 want = start(v) if v.causality in ("parameter", "input") else expected_output(v.name)
                 assert got == [want] * n, (v.name, got)
-                if v.causality == "input":              # the value it has: works, and changes nothing
+                if v.causality == "input":  # the value it has: works, and changes nothing
                     before = snapshot(chip)
                     w.set(kind, v.vr, got)
                     assert snapshot(chip) == before, v.name
-                else:                                   # outputs, time, and parameters after initialization
+                else:  # outputs, time, and parameters after initialization
                     w.refused("Set", kind, v.vr, n, values=got if kind != "Binary" else [b""])
 
 
@@ -148,15 +160,15 @@ def test_parameters_and_inputs_are_set_in_initialization_mode_and_wrong_types_re
     try:
         w = Walker(chip)
         for v in rows:
-            mine, n = v.type, count_of(v)          # Variable3.type is the FMI 3 type
+            mine, n = v.type, count_of(v)  # Variable3.type is the FMI 3 type
             if v.causality not in ("parameter", "input"):
                 continue
             got = w.get(mine, v.vr, n)
             assert decoded(got) == [start(v)] * n, (v.name, got)
-            w.set(mine, v.vr, decoded(got))             # a parameter may be set until initialization ends
+            w.set(mine, v.vr, decoded(got))  # a parameter may be set until initialization ends
             assert decoded(w.get(mine, v.vr, n)) == decoded(got), v.name
             other = [another_value(v, x) for x in decoded(got)]
-            w.set(mine, v.vr, other)                    # and takes a new value
+            w.set(mine, v.vr, other)  # and takes a new value
             assert decoded(w.get(mine, v.vr, n)) == other, v.name
             for kind in types:
                 if kind != mine:

@@ -2,6 +2,7 @@
 """pmdfmu.verify (docs/verify.md): a run against a golden trace and assertions, in Python.
 Goldens are written by the same run (`pmdfmu run`'s profile.run_profile), then the profile or the
 limits are changed and the failure must name the right cycle, column, segment and values."""
+
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -16,7 +17,7 @@ from pmdfmu.verify import InputError, check_assertions, load_assertions, read_re
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SCRIPT = EXAMPLES / "two_axis.script"
 SQUARE = EXAMPLES / "square.csv"
-LEG = 500                   # square.csv: every segment lasts 500 cycles
+LEG = 500  # square.csv: every segment lasts 500 cycles
 
 
 @pytest.fixture(scope="module")
@@ -54,7 +55,7 @@ def test_csv_and_npz_goldens_read_back_the_recording_exactly(goldens):
             back = read_recording(folder / f"{name}.{suffix}")
             assert back.dtype.names == rec.dtype.names
             for c in rec.dtype.names:
-                assert np.array_equal(back[c], rec[c]), (suffix, c)       # Reals too: repr round-trips
+                assert np.array_equal(back[c], rec[c]), (suffix, c)  # Reals too: repr round-trips
 
 
 def test_a_changed_segment_is_caught_at_its_first_cycle_with_its_segment(goldens, tmp_path):
@@ -68,18 +69,27 @@ def test_a_changed_segment_is_caught_at_its_first_cycle_with_its_segment(goldens
     assert not result.passed and result.exit_status == 1
     [f] = result.failures
     row = 3 * LEG
-    assert (f.check, f.column, f.axis, f.row, f.cycle) == ("golden", "axis2.commandedVelocity", 2, row,
-                                                           int(square["cycle"][row]))
+    assert (f.check, f.column, f.axis, f.row, f.cycle) == (
+        "golden",
+        "axis2.commandedVelocity",
+        2,
+        row,
+        int(square["cycle"][row]),
+    )
     assert (f.expected, f.actual) == (-0x20000, -0x10000)
     assert f.segment == field_ex(int(square["axis2.activityStatus"][row]), "PMDActivityProfileSegment")
-    assert (f.buffer, f.read_index) == (7, 4)     # axis 2's buffers are 7..11 (axis 1's 2..6); row 4 read
-    assert f"first difference at cycle {f.cycle} (row {row}): axis2.commandedVelocity expected -131072, " \
-           "actual -65536" in f.message
+    assert (f.buffer, f.read_index) == (7, 4)  # axis 2's buffers are 7..11 (axis 1's 2..6); row 4 read
+    assert (
+        f"first difference at cycle {f.cycle} (row {row}): axis2.commandedVelocity expected -131072, "
+        "actual -65536" in f.message
+    )
     assert "axis 2 position buffer 7 read index 4" in f.message
     case = result.cases[0]
     assert case.plot == tmp_path / "out" / "changed.diff.png" and case.plot.stat().st_size > 10_000
-    assert np.array_equal(read_recording(case.actual)["axis2.commandedVelocity"],
-                          profile.run_profile(table).recording["axis2.commandedVelocity"])
+    assert np.array_equal(
+        read_recording(case.actual)["axis2.commandedVelocity"],
+        profile.run_profile(table).recording["axis2.commandedVelocity"],
+    )
 
 
 def test_a_changed_first_segment_shows_in_axis_1_at_the_profiles_first_cycle(goldens, tmp_path):
@@ -106,8 +116,7 @@ def test_reals_are_exact_by_default_and_take_a_tolerance_on_request(goldens, tmp
     [f] = pmdfmu.verify(SQUARE, against=tmp_path / "g.npz").failures
     assert (f.column, f.row) == ("axis1.velocity", 700)
     assert pmdfmu.verify(SQUARE, against=tmp_path / "g.npz", tolerance={"axis1.velocity": 1e-6}).passed
-    assert pmdfmu.verify(SQUARE, against=tmp_path / "g.npz",
-                         assertions={"tolerance": {"axis1.velocity": 1e-6}}).passed
+    assert pmdfmu.verify(SQUARE, against=tmp_path / "g.npz", assertions={"tolerance": {"axis1.velocity": 1e-6}}).passed
     assert not pmdfmu.verify(SQUARE, against=tmp_path / "g.npz", tolerance={"axis1.velocity": 1e-8}).passed
 
 
@@ -121,6 +130,7 @@ def test_a_golden_of_other_axes_fails_naming_the_columns(goldens, tmp_path):
 
 
 # ---- assertions --------------------------------------------------------------------------------
+
 
 def one_failure(result, check):
     failures = [f for f in result.failures if f.check == check]
@@ -137,18 +147,24 @@ def script_run():
 def test_the_demo_limits_pass(script_run):
     result = pmdfmu.verify(SCRIPT, assertions=EXAMPLES / "ci" / "two_axis.toml")
     assert result.passed, result.report()
-    assert len(result.cases[0].checks) == 16            # 7 of axis 1, 8 of axis 2, host errors
+    assert len(result.cases[0].checks) == 16  # 7 of axis 1, 8 of axis 2, host errors
 
 
 @pytest.mark.parametrize("units,column,scale", [("counts", "velocity", 1), ("raw", "commandedVelocity", 1)])
 def test_a_velocity_limit_reports_axis_cycle_value_and_limit(script_run, units, column, scale):
     values = np.abs(script_run[f"axis2.{column}"].astype(np.float64))
     limit = float(values.max()) - 1
-    f = one_failure(pmdfmu.verify(SCRIPT, assertions={"units": units, "axis2": {"max_velocity": limit}}),
-                    "max_velocity")
+    f = one_failure(
+        pmdfmu.verify(SCRIPT, assertions={"units": units, "axis2": {"max_velocity": limit}}), "max_velocity"
+    )
     first = int(np.argmax(values > limit))
-    assert (f.axis, f.row, f.cycle, f.value, f.limit) == (2, first, int(script_run["cycle"][first]),
-                                                          float(script_run[f"axis2.{column}"][first]), limit)
+    assert (f.axis, f.row, f.cycle, f.value, f.limit) == (
+        2,
+        first,
+        int(script_run["cycle"][first]),
+        float(script_run[f"axis2.{column}"][first]),
+        limit,
+    )
     assert "axis 2: |velocity| " in f.message and f"at cycle {f.cycle}" in f.message
 
 
@@ -156,10 +172,10 @@ def test_acceleration_and_jerk_limits(script_run):
     acc = script_run["axis2.acceleration"]
     f = one_failure(pmdfmu.verify(SCRIPT, assertions={"axis2": {"max_acceleration": 4e6}}), "max_acceleration")
     assert f.row == int(np.argmax(np.abs(acc) > 4e6)) and abs(f.value) > 4e6
-    jerk = np.diff(acc) / 1e-4                       # counts/s^3 from the recorded acceleration
+    jerk = np.diff(acc) / 1e-4  # counts/s^3 from the recorded acceleration
     f = one_failure(pmdfmu.verify(SCRIPT, assertions={"axis2": {"max_jerk": 5e8}}), "max_jerk")
     assert f.row == int(np.argmax(np.abs(jerk) > 5e8)) + 1 and f.value == jerk[f.row - 1]
-    raw = np.diff(script_run["axis2.commandedAcceleration"].astype(np.int64)) * 65536     # 0.32 counts/cycle^3
+    raw = np.diff(script_run["axis2.commandedAcceleration"].astype(np.int64)) * 65536  # 0.32 counts/cycle^3
     limit = int(np.abs(raw).max()) - 1
     f = one_failure(pmdfmu.verify(SCRIPT, assertions={"units": "raw", "axis2": {"max_jerk": limit}}), "max_jerk")
     assert f.row == int(np.argmax(np.abs(raw) > limit)) + 1 and f.value == raw[f.row - 1]
@@ -231,16 +247,29 @@ def test_a_limit_switch_event_is_caught_at_its_cycle():
 
 # ---- malformed inputs: InputError naming file and line ---------------------------------------------
 
-@pytest.mark.parametrize("text,message", [
-    ("", "g.csv:1: no header"),
-    ("axis1.commandedPosition\n1\n", "g.csv:1: no 'cycle' column"),
-    ("cycle,axis1.bogus\n0,1\n", "g.csv:1: column 2: 'axis1.bogus' is not an output of the FMU"),
-    ("cycle,cycle\n0,1\n", "g.csv:1: column 2: 'cycle' named twice"),
-    ("cycle,axis1.commandedPosition\n0,1\n1\n", "g.csv:3: 1 values, the header names 2 columns"),
-    ("cycle,axis1.commandedPosition\n0,1\n1,x1\n", "g.csv:3: column 2 (axis1.commandedPosition): 'x1' is not a number"),
-    ("cycle,axis1.commandedPosition\n0,1\n1,nan\n", "g.csv:3: column 2 (axis1.commandedPosition): 'nan' is not an integer"),
-    ("cycle,axis1.commandedPosition\n0,1.5\n", "g.csv:2: column 2 (axis1.commandedPosition): '1.5' is not an integer"),
-])
+
+@pytest.mark.parametrize(
+    "text,message",
+    [
+        ("", "g.csv:1: no header"),
+        ("axis1.commandedPosition\n1\n", "g.csv:1: no 'cycle' column"),
+        ("cycle,axis1.bogus\n0,1\n", "g.csv:1: column 2: 'axis1.bogus' is not an output of the FMU"),
+        ("cycle,cycle\n0,1\n", "g.csv:1: column 2: 'cycle' named twice"),
+        ("cycle,axis1.commandedPosition\n0,1\n1\n", "g.csv:3: 1 values, the header names 2 columns"),
+        (
+            "cycle,axis1.commandedPosition\n0,1\n1,x1\n",
+            "g.csv:3: column 2 (axis1.commandedPosition): 'x1' is not a number",
+        ),
+        (
+            "cycle,axis1.commandedPosition\n0,1\n1,nan\n",
+            "g.csv:3: column 2 (axis1.commandedPosition): 'nan' is not an integer",
+        ),
+        (
+            "cycle,axis1.commandedPosition\n0,1.5\n",
+            "g.csv:2: column 2 (axis1.commandedPosition): '1.5' is not an integer",
+        ),
+    ],
+)
 def test_a_malformed_golden_csv_is_an_input_error(tmp_path, text, message):
     (tmp_path / "g.csv").write_text(text)
     with pytest.raises(InputError, match=message.replace("(", r"\(").replace(")", r"\)")):
@@ -258,20 +287,23 @@ def test_a_malformed_or_missing_npz_is_an_input_error(tmp_path):
         read_recording(tmp_path / "missing.csv")
 
 
-@pytest.mark.parametrize("text,message", [
-    ("units = counts\n", r"a.toml: not TOML: .*line 1"),
-    ("[axis1]\nmax_velocity = 10\nmax_speed = 3\n", "a.toml:3: axis1.max_speed: unknown limit"),
-    ("limits = 3\n", "a.toml:1: limits: unknown key"),
-    ('units = "mm"\n', "a.toml:1: units: 'mm' is not one of counts, raw"),
-    ("[axis2]\nfinal_position = 1.5\n", "a.toml:2: axis2.final_position: 1.5 is not a whole number"),
-    ('[axis2]\nmax_jerk = "fast"\n', "a.toml:2: axis2.max_jerk: 'fast' is not a number"),
-    ('[all_axes]\nno_events = ["Bogus"]\n', "a.toml:2: all_axes.no_events: unknown event 'Bogus'"),
-    ('[tolerance]\n"axis1.speed" = 1e-9\n', "a.toml:2: axis1.speed: unknown column"),
-    ("[axis1]\nposition_min = 5\nposition_max = 4\n", "a.toml:2: axis1.position_min: is above position_max"),
-    ("[axis1]\nmax_velocity = nan\n", "a.toml:2: axis1.max_velocity: nan is not a finite number"),
-    ("[axis1]\nmax_jerk = inf\n", "a.toml:2: axis1.max_jerk: inf is not a finite number"),
-    ('[tolerance]\n"axis1.velocity" = nan\n', "a.toml:2: axis1.velocity: the tolerance nan is not a finite number"),
-])
+@pytest.mark.parametrize(
+    "text,message",
+    [
+        ("units = counts\n", r"a.toml: not TOML: .*line 1"),
+        ("[axis1]\nmax_velocity = 10\nmax_speed = 3\n", "a.toml:3: axis1.max_speed: unknown limit"),
+        ("limits = 3\n", "a.toml:1: limits: unknown key"),
+        ('units = "mm"\n', "a.toml:1: units: 'mm' is not one of counts, raw"),
+        ("[axis2]\nfinal_position = 1.5\n", "a.toml:2: axis2.final_position: 1.5 is not a whole number"),
+        ('[axis2]\nmax_jerk = "fast"\n', "a.toml:2: axis2.max_jerk: 'fast' is not a number"),
+        ('[all_axes]\nno_events = ["Bogus"]\n', "a.toml:2: all_axes.no_events: unknown event 'Bogus'"),
+        ('[tolerance]\n"axis1.speed" = 1e-9\n', "a.toml:2: axis1.speed: unknown column"),
+        ("[axis1]\nposition_min = 5\nposition_max = 4\n", "a.toml:2: axis1.position_min: is above position_max"),
+        ("[axis1]\nmax_velocity = nan\n", "a.toml:2: axis1.max_velocity: nan is not a finite number"),
+        ("[axis1]\nmax_jerk = inf\n", "a.toml:2: axis1.max_jerk: inf is not a finite number"),
+        ('[tolerance]\n"axis1.velocity" = nan\n', "a.toml:2: axis1.velocity: the tolerance nan is not a finite number"),
+    ],
+)
 def test_a_malformed_assertion_file_is_an_input_error(tmp_path, text, message):
     (tmp_path / "a.toml").write_text(text)
     with pytest.raises(InputError, match=message):
@@ -280,18 +312,25 @@ def test_a_malformed_assertion_file_is_an_input_error(tmp_path, text, message):
 
 # ---- reports --------------------------------------------------------------------------------------
 
+
 def test_junit_xml_has_one_testcase_per_check_and_the_right_counts(goldens, tmp_path):
     folder, _, _ = goldens
     table = changed_square(tmp_path, "2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500")
-    result = pmdfmu.verify(table, against=folder / "square.csv",
-                           assertions={"all_axes": {"max_velocity": 1e9, "final_position": 1}})
+    result = pmdfmu.verify(
+        table, against=folder / "square.csv", assertions={"all_axes": {"max_velocity": 1e9, "final_position": 1}}
+    )
     root = ET.fromstring(result.to_junit())
     assert root.tag == "testsuites" and (root.get("tests"), root.get("failures"), root.get("errors")) == ("5", "3", "0")
     [suite] = root
     assert suite.get("name") == "changed" and suite.get("tests") == "5" and suite.get("failures") == "3"
     cases = {tc.get("name"): tc for tc in suite}
-    assert set(cases) == {"golden trace", "axis1 max |velocity| <= 1e+09 counts/s", "axis1 final position 1",
-                          "axis2 max |velocity| <= 1e+09 counts/s", "axis2 final position 1"}
+    assert set(cases) == {
+        "golden trace",
+        "axis1 max |velocity| <= 1e+09 counts/s",
+        "axis1 final position 1",
+        "axis2 max |velocity| <= 1e+09 counts/s",
+        "axis2 final position 1",
+    }
     failure = cases["golden trace"].find("failure")
     assert failure.get("message").startswith("first difference at cycle") and failure.get("type") == "golden"
     assert cases["axis1 max |velocity| <= 1e+09 counts/s"].find("failure") is None

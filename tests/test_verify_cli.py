@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """`pmdfmu verify` from the command line (docs/verify.md): exit status 0 pass, 1 fail,
 2 malformed input; JUnit XML and Markdown files; batches of a case table on Dask; README's example."""
+
 import os
 import subprocess
 import sys
@@ -35,60 +36,115 @@ def test_recording_a_golden_is_one_command_and_it_passes(tmp_path, capsys):
 
 def test_the_examples_ci_job_passes_and_writes_its_reports(tmp_path, capsys):
     junit, summary = tmp_path / "reports" / "verify.xml", tmp_path / "summary.md"
-    assert main(["verify", str(SCRIPT), "--against", str(CI / "two_axis.golden.npz"), "--assertions",
-                 str(CI / "two_axis.toml"), "--junit", str(junit), "--summary", str(summary),
-                 "--out", str(tmp_path / "out")]) == 0
+    assert (
+        main(
+            [
+                "verify",
+                str(SCRIPT),
+                "--against",
+                str(CI / "two_axis.golden.npz"),
+                "--assertions",
+                str(CI / "two_axis.toml"),
+                "--junit",
+                str(junit),
+                "--summary",
+                str(summary),
+                "--out",
+                str(tmp_path / "out"),
+            ]
+        )
+        == 0
+    )
     root = ET.parse(junit).getroot()
     assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("17", "0", "0")
     assert summary.read_text().startswith("### pmdfmu verify: 1 of 1 case passed")
-    assert not (tmp_path / "out").exists()          # nothing failed: no plot
+    assert not (tmp_path / "out").exists()  # nothing failed: no plot
 
 
 def test_a_changed_table_fails_with_the_first_difference_and_a_plot(tmp_path, capsys):
     table = changed_square(tmp_path)
     assert main(["run", str(SQUARE), "--csv", str(tmp_path / "golden.csv")]) == 0
     capsys.readouterr()
-    assert main(["verify", str(table), "--against", str(tmp_path / "golden.csv"), "--out", str(tmp_path / "out"),
-                 "--summary", "-"]) == 1
+    assert (
+        main(
+            [
+                "verify",
+                str(table),
+                "--against",
+                str(tmp_path / "golden.csv"),
+                "--out",
+                str(tmp_path / "out"),
+                "--summary",
+                "-",
+            ]
+        )
+        == 1
+    )
     out = capsys.readouterr().out
-    assert "FAIL changed" in out and "golden trace: first difference at cycle 1756 (row 1500): " \
-           "axis2.commandedVelocity expected -131072, actual -65536" in out
+    assert (
+        "FAIL changed" in out
+        and "golden trace: first difference at cycle 1756 (row 1500): "
+        "axis2.commandedVelocity expected -131072, actual -65536"
+        in out
+    )
     assert "axis 2 position buffer 7 read index 4" in out
     assert (tmp_path / "out" / "changed.diff.png").stat().st_size > 10_000
     assert (tmp_path / "out" / "changed.actual.csv").exists()
-    assert "| changed | **FAIL** |" in out                   # the Markdown summary, printed
+    assert "| changed | **FAIL** |" in out  # the Markdown summary, printed
 
 
 def test_limit_flags(tmp_path, capsys):
-    assert main(["verify", str(SCRIPT), "--max-velocity", "2=40000", "--final-position", "2=5000",
-                 "--position-window", "all=-10:5100", "--no-events", "all", "--no-host-errors"]) == 0
+    assert (
+        main(
+            [
+                "verify",
+                str(SCRIPT),
+                "--max-velocity",
+                "2=40000",
+                "--final-position",
+                "2=5000",
+                "--position-window",
+                "all=-10:5100",
+                "--no-events",
+                "all",
+                "--no-host-errors",
+            ]
+        )
+        == 0
+    )
     capsys.readouterr()
-    assert main(["verify", str(SCRIPT), "--max-velocity", "axis2=30000", "--complete-by", "1=2000",
-                 "--units", "counts"]) == 1
+    assert (
+        main(["verify", str(SCRIPT), "--max-velocity", "axis2=30000", "--complete-by", "1=2000", "--units", "counts"])
+        == 1
+    )
     out = capsys.readouterr().out
     assert "axis2 max |velocity| <= 30000 counts/s: axis 2: |velocity| " in out
     assert "axis1 motion complete by cycle 2000: axis 1: motion complete at cycle 2100" in out
     assert main(["verify", str(SCRIPT), "--units", "raw", "--max-velocity", "2=0x40000"]) == 0
-    assert main(["verify", str(SCRIPT), "--units", "raw", "--max-velocity", "2=0x3FE00"]) == 1     # peak 0x3FE5D
+    assert main(["verify", str(SCRIPT), "--units", "raw", "--max-velocity", "2=0x3FE00"]) == 1  # peak 0x3FE5D
 
 
 def test_command_line_limits_go_over_the_file(tmp_path, capsys):
-    assert main(["verify", str(SCRIPT), "--assertions", str(CI / "two_axis.toml"),
-                 "--final-position", "axis2=4000"]) == 1
+    assert (
+        main(["verify", str(SCRIPT), "--assertions", str(CI / "two_axis.toml"), "--final-position", "axis2=4000"]) == 1
+    )
     assert "axis2 final position 4000: axis 2: final position 5000 counts" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("argv,message", [
-    (["--against", "{tmp}/missing.csv"], "missing.csv: cannot read the golden trace"),
-    (["--against", "{tmp}/bad.csv"], "bad.csv:3: column 2 (axis1.commandedPosition): 'zz' is not a number"),
-    (["--assertions", "{tmp}/bad.toml"], "bad.toml:2: axis1.max_speed: unknown limit"),
-    (["--assertions", "{tmp}/broken.toml"], "broken.toml: not TOML"),
-    (["--tolerance", "axis1.speed=1e-9", "--no-host-errors"], "axis1.speed: unknown column"),
-    (["--max-velocity", "5=1"], "'5' is not an axis"),
-    (["--max-velocity", "1=fast"], "--max-velocity: 'fast' is not a number"),
-    (["--position-window", "1=5"], "expected AXIS=MIN:MAX"),
-    ([], "nothing to verify"),
-])
+@pytest.mark.parametrize(
+    "argv,message",
+    [
+        (["--against", "{tmp}/missing.csv"], "missing.csv: cannot read the golden trace"),
+        (["--against", "{tmp}/bad.csv"], "bad.csv:3: column 2 (axis1.commandedPosition): 'zz' is not a number"),
+        (["--assertions", "{tmp}/bad.toml"], "bad.toml:2: axis1.max_speed: unknown limit"),
+        (["--assertions", "{tmp}/broken.toml"], "broken.toml: not TOML"),
+        (["--tolerance", "axis1.speed=1e-9", "--no-host-errors"], "axis1.speed: unknown column"),
+        (["--max-velocity", "5=1"], "'5' is not an axis"),
+        (["--max-velocity", "1=fast"], "--max-velocity: 'fast' is not a number"),
+        (["--position-window", "1=5"], "expected AXIS=MIN:MAX"),
+        ([], "nothing to verify"),
+    ],
+)
 def test_malformed_input_exits_2_naming_file_and_line(tmp_path, capsys, argv, message):
     (tmp_path / "bad.csv").write_text("cycle,axis1.commandedPosition\n0,1\n1,zz\n")
     (tmp_path / "bad.toml").write_text("[axis1]\nmax_speed = 3\n")
@@ -122,14 +178,31 @@ def test_batch_with_a_failing_and_a_broken_case(tmp_path, capsys):
         "name,script,table,golden,assertions\n"
         f"good,,{SQUARE},{CI / 'square.golden.csv'},\n"
         f"changed,,changed.csv,{CI / 'square.golden.csv'},\n"
-        f"broken,missing.script,,,{CI / 'two_axis.toml'}\n")
+        f"broken,missing.script,,,{CI / 'two_axis.toml'}\n"
+    )
     junit, summary = tmp_path / "j.xml", tmp_path / "s.md"
-    assert main(["verify", "--cases", str(tmp_path / "cases.csv"), "--scheduler", "serial", "--junit", str(junit),
-                 "--summary", str(summary), "--out", str(tmp_path / "out")]) == 1
+    assert (
+        main(
+            [
+                "verify",
+                "--cases",
+                str(tmp_path / "cases.csv"),
+                "--scheduler",
+                "serial",
+                "--junit",
+                str(junit),
+                "--summary",
+                str(summary),
+                "--out",
+                str(tmp_path / "out"),
+            ]
+        )
+        == 1
+    )
     out = capsys.readouterr().out
     assert "PASS good" in out and "FAIL changed" in out and "FAIL broken" in out
     assert "first difference at cycle 1756 (row 1500): axis2.commandedVelocity" in out
-    assert "axis 2 position buffer 7 read index 4" in out         # located by a run of the case alone
+    assert "axis 2 position buffer 7 read index 4" in out  # located by a run of the case alone
     root = ET.parse(junit).getroot()
     assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("3", "1", "1")
     assert (tmp_path / "out" / "changed.diff.png").exists()
@@ -151,15 +224,38 @@ def test_batch_on_a_local_dask_cluster(tmp_path, capsys):
 
 def test_from_a_shell(tmp_path):
     """The exit status a pipeline gates on, from a real process."""
-    env = dict(os.environ)             # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR)
-    ok = subprocess.run([sys.executable, "-m", "pmdfmu.cli", "verify", str(SCRIPT), "--against",
-                         str(CI / "two_axis.golden.npz")], capture_output=True, text=True, env=env, cwd=tmp_path)
+    env = dict(os.environ)  # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR)
+    ok = subprocess.run(
+        [sys.executable, "-m", "pmdfmu.cli", "verify", str(SCRIPT), "--against", str(CI / "two_axis.golden.npz")],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+    )
     assert ok.returncode == 0, ok.stderr
-    bad = subprocess.run([sys.executable, "-m", "pmdfmu.cli", "verify", str(changed_square(tmp_path)), "--against",
-                          str(CI / "square.golden.csv")], capture_output=True, text=True, env=env, cwd=tmp_path)
+    bad = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pmdfmu.cli",
+            "verify",
+            str(changed_square(tmp_path)),
+            "--against",
+            str(CI / "square.golden.csv"),
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+    )
     assert bad.returncode == 1 and (tmp_path / "verify-out" / "changed.diff.png").exists()
-    malformed = subprocess.run([sys.executable, "-m", "pmdfmu.cli", "verify", str(SCRIPT), "--against",
-                                str(tmp_path / "none.npz")], capture_output=True, text=True, env=env, cwd=tmp_path)
+    malformed = subprocess.run(
+        [sys.executable, "-m", "pmdfmu.cli", "verify", str(SCRIPT), "--against", str(tmp_path / "none.npz")],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+    )
     assert malformed.returncode == 2 and "none.npz: cannot read the golden trace" in malformed.stderr
 
 
@@ -170,9 +266,9 @@ def test_readme_example_runs(tmp_path):
     code = section.split("```sh\n", 1)[1].split("```", 1)[0]
     # the pmdfmu the suite runs (installed, or PYTHONPATH + PMDFMU_FMU_DIR), this interpreter's scripts first
     env = dict(os.environ, PATH=os.path.dirname(sys.executable) + os.pathsep + os.environ["PATH"])
-    pmdfmu = tmp_path / "bin" / "pmdfmu"          # the command as pip installs it, on this interpreter
+    pmdfmu = tmp_path / "bin" / "pmdfmu"  # the command as pip installs it, on this interpreter
     pmdfmu.parent.mkdir()
-    pmdfmu.write_text(f"#!/bin/sh\nexec {sys.executable} -m pmdfmu.cli \"$@\"\n")
+    pmdfmu.write_text(f'#!/bin/sh\nexec {sys.executable} -m pmdfmu.cli "$@"\n')
     pmdfmu.chmod(0o755)
     env["PATH"] = str(pmdfmu.parent) + os.pathsep + env["PATH"]
     work = tmp_path / "repo"

@@ -2,6 +2,7 @@
 """The project's one version, python/pmdfmu/__init__.py's __version__: the installed package's metadata
 (pyproject.toml reads it there), both FMUs' model descriptions (modelDescription/generate.py reads it),
 the C library's header (a copy, checked here) and `pmdfmu --version` say the same."""
+
 import importlib.metadata
 import re
 import zipfile
@@ -37,5 +38,6 @@ def test_the_c_library_header_says_the_same_version():
 def test_pmdfmu_version_prints_it():
     import subprocess
     import sys
+
     done = subprocess.run([sys.executable, "-m", "pmdfmu.cli", "--version"], capture_output=True, text=True)
     assert done.returncode == 0 and done.stdout == f"pmdfmu {pmdfmu.__version__}\n"

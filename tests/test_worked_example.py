@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Seed 000's worked table, chip times 11003..11013, out of the FMU cycle by cycle."""
+
 import pmdfmu
 from scenarios import WORKED_TABLE, run_worked_example
+
 
 def test_worked_table_comes_out_cycle_by_cycle(any_chip):
     rows = run_worked_example(any_chip)

@@ -19,6 +19,7 @@ that step, named `component.connector`.
     python examples/systems/systems.py container --out move-container.fmu
     python examples/systems/systems.py run {gauss-seidel,jacobi,fmpy-ssp,libcosim,container} [--fmi 2|3]
 """
+
 import argparse
 import contextlib
 import shutil
@@ -36,10 +37,12 @@ import pmdfmu
 HERE = Path(__file__).resolve().parent
 SSD = HERE / "SystemStructure.ssd"
 SCRIPT = HERE / "move.script"
-NS = {"ssd": "http://ssp-standard.org/SSP1/SystemStructureDescription",
-      "ssc": "http://ssp-standard.org/SSP1/SystemStructureCommon",
-      "ssv": "http://ssp-standard.org/SSP1/SystemStructureParameterValues",
-      "osp": "http://opensimulationplatform.com/SSP/OSPAnnotations"}
+NS = {
+    "ssd": "http://ssp-standard.org/SSP1/SystemStructureDescription",
+    "ssc": "http://ssp-standard.org/SSP1/SystemStructureCommon",
+    "ssv": "http://ssp-standard.org/SSP1/SystemStructureParameterValues",
+    "osp": "http://opensimulationplatform.com/SSP/OSPAnnotations",
+}
 MASTERS = ("gauss-seidel", "jacobi", "fmpy-ssp", "libcosim", "container")
 
 
@@ -57,10 +60,11 @@ def parameters() -> Dict[str, Dict[str, object]]:
 
 # ---- the system description -------------------------------------------------------
 
+
 class Connector(NamedTuple):
     component: str
     name: str
-    kind: str            # input or output
+    kind: str  # input or output
 
     @property
     def path(self) -> str:
@@ -68,9 +72,9 @@ class Connector(NamedTuple):
 
 
 class System(NamedTuple):
-    components: Dict[str, str]                         # name -> source inside the .ssp
+    components: Dict[str, str]  # name -> source inside the .ssp
     connectors: List[Connector]
-    connections: List[Tuple[Connector, Connector]]     # (from an output, to an input)
+    connections: List[Tuple[Connector, Connector]]  # (from an output, to an input)
     stop_time: float
     step_size: float
 
@@ -88,12 +92,18 @@ def read_system(ssd: Path = SSD) -> System:
     components, connectors = {}, []
     for c in root.iterfind("ssd:System/ssd:Elements/ssd:Component", NS):
         components[c.get("name")] = c.get("source")
-        connectors += [Connector(c.get("name"), k.get("name"), k.get("kind"))
-                       for k in c.iterfind("ssd:Connectors/ssd:Connector", NS)]
+        connectors += [
+            Connector(c.get("name"), k.get("name"), k.get("kind"))
+            for k in c.iterfind("ssd:Connectors/ssd:Connector", NS)
+        ]
     by_path = {k.path: k for k in connectors}
-    connections = [(by_path[f"{c.get('startElement')}.{c.get('startConnector')}"],
-                    by_path[f"{c.get('endElement')}.{c.get('endConnector')}"])
-                   for c in root.iterfind("ssd:System/ssd:Connections/ssd:Connection", NS)]
+    connections = [
+        (
+            by_path[f"{c.get('startElement')}.{c.get('startConnector')}"],
+            by_path[f"{c.get('endElement')}.{c.get('endConnector')}"],
+        )
+        for c in root.iterfind("ssd:System/ssd:Connections/ssd:Connection", NS)
+    ]
     experiment = root.find("ssd:DefaultExperiment", NS)
     step = experiment.find(".//osp:FixedStepAlgorithm", NS).get("baseStepSize")
     return System(components, connectors, connections, float(experiment.get("stopTime")), float(step))
@@ -120,14 +130,16 @@ def motion_complete(result: np.ndarray):
 
 def result_table(system: System, rows: List[Dict[str, object]]) -> np.ndarray:
     """The common result: step 1..N and every output connector."""
+
     def dtype(value):
         return np.float64 if isinstance(value, float) else np.int64
+
     fields = [("step", np.int64)] + [(c.path, dtype(rows[0][c.path])) for c in system.outputs]
-    return np.array([(k, *(row[c.path] for c in system.outputs)) for k, row in enumerate(rows, start=1)],
-                    dtype=fields)
+    return np.array([(k, *(row[c.path] for c in system.outputs)) for k, row in enumerate(rows, start=1)], dtype=fields)
 
 
 # ---- (a) the SSP ----------------------------------------------------------------------
+
 
 def ssv(name: str, values: Dict[str, object]) -> bytes:
     """An SSP parameter set; a string keeps its newlines (as &#10;)."""
@@ -151,8 +163,10 @@ def build_ssp(out: Path) -> Path:
     parameter values, at the paths the .ssd names."""
     system = read_system()
     root = etree.parse(str(SSD)).getroot()
-    bindings = {c.get("name"): c.find("ssd:ParameterBindings/ssd:ParameterBinding", NS)
-                for c in root.iterfind("ssd:System/ssd:Elements/ssd:Component", NS)}
+    bindings = {
+        c.get("name"): c.find("ssd:ParameterBindings/ssd:ParameterBinding", NS)
+        for c in root.iterfind("ssd:System/ssd:Elements/ssd:Component", NS)
+    }
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
@@ -198,14 +212,20 @@ def run_fmpy_ssp(ssp: Path) -> np.ndarray:
     system = read_system()
     ssd = read_ssd(str(ssp))
     merged = ParameterSet(name="bindings")
-    for component in find_components(ssd.system):      # each component's own bindings, as its path
+    for component in find_components(ssd.system):  # each component's own bindings, as its path
         for binding in component.parameterBindings:
             for parameter_set in binding.parameterValues:
-                merged.parameters += [Parameter(name=f"{component.name}.{p.name}", type=p.type, value=p.value)
-                                      for p in parameter_set.parameters]
+                merged.parameters += [
+                    Parameter(name=f"{component.name}.{p.name}", type=p.type, value=p.value)
+                    for p in parameter_set.parameters
+                ]
     with _fmpy_ssp_parameters() as simulation:
-        out = simulation.simulate_ssp(str(ssp), stop_time=system.stop_time - system.step_size / 2,
-                                      step_size=system.step_size, parameter_set=merged)
+        out = simulation.simulate_ssp(
+            str(ssp),
+            stop_time=system.stop_time - system.step_size / 2,
+            step_size=system.step_size,
+            parameter_set=merged,
+        )
     return result_table(system, [{c.path: out[c.path][k].item() for c in system.outputs} for k in range(len(out))])
 
 
@@ -241,6 +261,7 @@ def run_libcosim(ssp: Path) -> np.ndarray:
 
 # ---- (b) the container FMU ----------------------------------------------------------
 
+
 def build_container(out: Path) -> Path:
     """An FMI 3 container FMU (fmpy.container_fmu) of the .ssd's system with the
     FMI 3 FMUs: the chip's parameter values are its parameters' start values,
@@ -258,43 +279,64 @@ def build_container(out: Path) -> Path:
         md = read_model_description(filename)
         components[name] = Component(name=name, filename=filename, modelDescription=md)
         variables[name] = {v.name: v for v in md.modelVariables}
-    model_variables = [ModelVariable(type="Float64", variability="continuous", causality="independent",
-                                     name="time")]
+    model_variables = [ModelVariable(type="Float64", variability="continuous", causality="independent", name="time")]
     mappings = {}
     for name, values in parameters().items():
         for key, value in values.items():
             inner = variables[name][key]
             start = ("true" if value else "false") if isinstance(value, bool) else str(value)
-            v = ModelVariable(type=inner.type, variability="fixed", causality="parameter", initial="exact",
-                              name=f"{name}.{key}", start=start)
+            v = ModelVariable(
+                type=inner.type,
+                variability="fixed",
+                causality="parameter",
+                initial="exact",
+                name=f"{name}.{key}",
+                start=start,
+            )
             model_variables.append(v)
             mappings[v] = [(components[name], inner)]
     outputs = []
     for c in system.outputs:
         inner = variables[c.component][c.name]
-        v = ModelVariable(type=inner.type, variability=inner.variability, causality="output",
-                          initial="calculated", name=c.path)
+        v = ModelVariable(
+            type=inner.type, variability=inner.variability, causality="output", initial="calculated", name=c.path
+        )
         model_variables.append(v)
         mappings[v] = [(components[c.component], inner)]
         outputs.append(v)
     # the same system, FMUs and parameter values make the same token
-    identity = "\n".join([SSD.read_text(), repr(parameters())] +
-                         [components[n].modelDescription.instantiationToken for n in components])
-    md = ModelDescription(fmiVersion="3.0", modelName="servoLoop",
-                          instantiationToken=f"{{{uuid.uuid5(uuid.NAMESPACE_URL, identity)}}}",
-                          description="PMD motion processor (axis 1) and a DC motor with encoder, "
-                                      "examples/systems/SystemStructure.ssd",
-                          defaultExperiment=DefaultExperiment(startTime="0", stopTime=str(system.stop_time),
-                                                              stepSize=str(system.step_size)),
-                          coSimulation=CoSimulation(fixedInternalStepSize=system.step_size),
-                          modelVariables=model_variables)
+    identity = "\n".join(
+        [SSD.read_text(), repr(parameters())] + [components[n].modelDescription.instantiationToken for n in components]
+    )
+    md = ModelDescription(
+        fmiVersion="3.0",
+        modelName="servoLoop",
+        instantiationToken=f"{{{uuid.uuid5(uuid.NAMESPACE_URL, identity)}}}",
+        description="PMD motion processor (axis 1) and a DC motor with encoder, examples/systems/SystemStructure.ssd",
+        defaultExperiment=DefaultExperiment(
+            startTime="0", stopTime=str(system.stop_time), stepSize=str(system.step_size)
+        ),
+        coSimulation=CoSimulation(fixedInternalStepSize=system.step_size),
+        modelVariables=model_variables,
+    )
     md.outputs = [Unknown(variable=v, dependencies=[]) for v in outputs]
     md.initialUnknowns = [Unknown(variable=v, dependencies=[]) for v in outputs]
-    connections = [Connection(components[a.component], [variables[a.component][a.name]],
-                              components[b.component], [variables[b.component][b.name]])
-                   for a, b in system.connections]
-    configuration = Configuration(parallelDoStep=False, modelDescription=md, components=list(components.values()),
-                                  connections=connections, variableMappings=mappings)
+    connections = [
+        Connection(
+            components[a.component],
+            [variables[a.component][a.name]],
+            components[b.component],
+            [variables[b.component][b.name]],
+        )
+        for a, b in system.connections
+    ]
+    configuration = Configuration(
+        parallelDoStep=False,
+        modelDescription=md,
+        components=list(components.values()),
+        connections=connections,
+        variableMappings=mappings,
+    )
     out = Path(out).resolve()
     out.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as unzipdir:
@@ -313,8 +355,7 @@ def _string_starts_as_elements(fmu: Path) -> None:
     for v in root.iterfind("ModelVariables/String"):
         if "start" in v.attrib:
             etree.SubElement(v, "Start", value=v.attrib.pop("start"))
-    entries["modelDescription.xml"] = etree.tostring(root, xml_declaration=True, encoding="UTF-8",
-                                                     pretty_print=True)
+    entries["modelDescription.xml"] = etree.tostring(root, xml_declaration=True, encoding="UTF-8", pretty_print=True)
     with zipfile.ZipFile(fmu, "w", zipfile.ZIP_DEFLATED) as z:
         for name, data in entries.items():
             z.writestr(name, data)
@@ -328,15 +369,23 @@ def run_container(fmu: Path, log=None) -> np.ndarray:
     system = read_system()
     logger = None
     if log:
+
         def logger(env, status, category, message):
             log("container", status, message.decode(errors="replace"))
-    out = simulate_fmu(str(fmu), stop_time=system.stop_time, output_interval=system.step_size,
-                       output=[c.path for c in system.outputs], logger=logger)
+
+    out = simulate_fmu(
+        str(fmu),
+        stop_time=system.stop_time,
+        output_interval=system.step_size,
+        output=[c.path for c in system.outputs],
+        logger=logger,
+    )
     rows = [{c.path: out[c.path][k].item() for c in system.outputs} for k in range(1, len(out))]  # row 0: start
-    return result_table(system, rows[:system.steps])
+    return result_table(system, rows[: system.steps])
 
 
 # ---- (c) a plain FMPy master ----------------------------------------------------------
+
 
 class _Instance:
     """One FMU of the system through FMPy's FMU2Slave / FMU3Slave, variables by name."""
@@ -349,20 +398,27 @@ class _Instance:
         md = read_model_description(filename)
         self.variables = {v.name: v for v in md.modelVariables}
         self.unzipdir = extract(filename)
-        kwargs = dict(guid=md.guid, unzipDirectory=self.unzipdir, modelIdentifier=md.coSimulation.modelIdentifier,
-                      instanceName=name)
+        kwargs = dict(
+            guid=md.guid,
+            unzipDirectory=self.unzipdir,
+            modelIdentifier=md.coSimulation.modelIdentifier,
+            instanceName=name,
+        )
         if fmi_version == 2:
             self.fmu = FMU2Slave(**kwargs)
-            self._callbacks = fmi2CallbackFunctions()      # the FMUs pass no printf arguments, '%' as "%%"
+            self._callbacks = fmi2CallbackFunctions()  # the FMUs pass no printf arguments, '%' as "%%"
             self._callbacks.logger = fmi2CallbackLoggerTYPE(
-                lambda env, instance, status, category, message:
-                logger(name, status, message.decode(errors="replace").replace("%%", "%")))
+                lambda env, instance, status, category, message: logger(
+                    name, status, message.decode(errors="replace").replace("%%", "%")
+                )
+            )
             self.fmu.instantiate(callbacks=self._callbacks)
             self.fmu.setupExperiment(startTime=0.0)
         else:
             self.fmu = FMU3Slave(**kwargs)
-            self.fmu.instantiate(logMessage=lambda env, status, category, message:
-                                 logger(name, status, message.decode(errors="replace")))
+            self.fmu.instantiate(
+                logMessage=lambda env, status, category, message: logger(name, status, message.decode(errors="replace"))
+            )
         self.fmi_version = fmi_version
 
     def set(self, name: str, value) -> None:
@@ -408,12 +464,12 @@ def run_master(algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None, 
         for instance in instances.values():
             instance.initialize()
 
-        def transfer(into=None):       # connections into one component (or all), from the outputs as they are
+        def transfer(into=None):  # connections into one component (or all), from the outputs as they are
             for a, b in system.connections:
                 if into is None or b.component == into:
                     instances[b.component].set(b.name, instances[a.component].get(a.name))
 
-        transfer()                      # the start values, as initialization leaves them
+        transfer()  # the start values, as initialization leaves them
         for instance in instances.values():
             instance.fmu.exitInitializationMode()
         rows = []
@@ -449,7 +505,8 @@ def main(argv=None) -> None:
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("ssp", help="build the .ssp").add_argument("--out", type=Path, default=Path("servoLoop.ssp"))
     sub.add_parser("container", help="build the container FMU").add_argument(
-        "--out", type=Path, default=Path("servoLoop.fmu"))
+        "--out", type=Path, default=Path("servoLoop.fmu")
+    )
     r = sub.add_parser("run", help="run the system and print what it did")
     r.add_argument("master", choices=MASTERS)
     r.add_argument("--fmi", type=int, choices=(2, 3), default=2, help="FMI version of the plain master's FMUs")
@@ -461,13 +518,21 @@ def main(argv=None) -> None:
         print(build_container(args.out))
     else:
         result = run(args.master, args.fmi)
-        print(f"{args.master}: {len(result)} cycles; motion complete after cycle {motion_complete(result)}; "
-              f"encoder {result['plant.encoderCount'][-1]} counts (commanded "
-              f"{result['chip.axis1.commandedPosition'][-1]}); largest following error "
-              f"{np.abs(following_error(result)).max()} counts")
+        print(
+            f"{args.master}: {len(result)} cycles; motion complete after cycle {motion_complete(result)}; "
+            f"encoder {result['plant.encoderCount'][-1]} counts (commanded "
+            f"{result['chip.axis1.commandedPosition'][-1]}); largest following error "
+            f"{np.abs(following_error(result)).max()} counts"
+        )
         if args.csv:
-            np.savetxt(args.csv, result, delimiter=",", header=",".join(result.dtype.names), comments="",
-                       fmt=["%d" if result.dtype[n].kind == "i" else "%.17g" for n in result.dtype.names])
+            np.savetxt(
+                args.csv,
+                result,
+                delimiter=",",
+                header=",".join(result.dtype.names),
+                comments="",
+                fmt=["%d" if result.dtype[n].kind == "i" else "%.17g" for n in result.dtype.names],
+            )
 
 
 if __name__ == "__main__":

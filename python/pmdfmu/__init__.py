@@ -14,8 +14,22 @@ each *Mask constant also declares a register field, read with field_ex:
 
     pmdfmu.field_ex(ax.GetActivityStatus(), "PMDActivityProfileSegment")
 """
-from .chip import (COMMANDS, CONSTANTS, FIELDS, Axis, Chip, FMUError, FMURefusal, LogMessage, PMDError, default_fmu,
-                   field_dp, field_ex, tables_dir)
+
+from .chip import (
+    COMMANDS,
+    CONSTANTS,
+    FIELDS,
+    Axis,
+    Chip,
+    FMUError,
+    FMURefusal,
+    LogMessage,
+    PMDError,
+    default_fmu,
+    field_dp,
+    field_ex,
+    tables_dir,
+)
 from .hosttime import HostInterface
 from .sweep import Case, SweepResult, read_cases, sweep
 from .verify import VerifyResult, verify, verify_cases
@@ -24,7 +38,33 @@ from .fixed import fixed_0_32, fixed_16_16, fixed_32_0, from_fixed, signed, to_f
 globals().update(CONSTANTS)
 
 __version__ = "0.1.0"
-__all__ = ["Chip", "Axis", "HostInterface", "PMDError", "FMUError", "FMURefusal", "LogMessage", "Case", "SweepResult", "read_cases", "sweep",
-           "verify", "verify_cases", "VerifyResult",
-           "COMMANDS", "CONSTANTS", "FIELDS", "field_ex", "field_dp", "default_fmu", "tables_dir",
-           "to_fixed", "from_fixed", "signed", "fixed_16_16", "fixed_0_32", "fixed_32_0", *CONSTANTS]
+__all__ = [
+    "Chip",
+    "Axis",
+    "HostInterface",
+    "PMDError",
+    "FMUError",
+    "FMURefusal",
+    "LogMessage",
+    "Case",
+    "SweepResult",
+    "read_cases",
+    "sweep",
+    "verify",
+    "verify_cases",
+    "VerifyResult",
+    "COMMANDS",
+    "CONSTANTS",
+    "FIELDS",
+    "field_ex",
+    "field_dp",
+    "default_fmu",
+    "tables_dir",
+    "to_fixed",
+    "from_fixed",
+    "signed",
+    "fixed_16_16",
+    "fixed_0_32",
+    "fixed_32_0",
+    *CONSTANTS,
+]

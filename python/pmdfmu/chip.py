@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The chip, as host code sees it: the FMU loaded through FMPy, C-Motion calls
 on axis handles, and cycle-exact runs recorded into numpy arrays."""
+
 from __future__ import annotations
 
 import atexit
@@ -22,8 +23,14 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2FMUstate, fmi2True,
-                       fmi2ValueReference)
+from fmpy.fmi2 import (
+    FMU2Slave,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+    fmi2FMUstate,
+    fmi2True,
+    fmi2ValueReference,
+)
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3FMUState, fmi3True, fmi3ValueReference
 
 from . import hosttime, memory_port, recording, tables
@@ -51,8 +58,10 @@ def default_fmu(fmi_version: int = 2) -> Path:
     for path in candidates:
         if path.is_file():
             return path
-    raise FileNotFoundError(f"{name} not found in {', '.join(map(str, candidates))}: build it first "
-                            "(pip install . or cmake -S . -B build && cmake --build build)")
+    raise FileNotFoundError(
+        f"{name} not found in {', '.join(map(str, candidates))}: build it first "
+        "(pip install . or cmake -S . -B build && cmake --build build)"
+    )
 
 
 COMMANDS: Dict[str, Command] = {c.name: c for c in tables.read_commands(tables_dir() / "commands.csv")}
@@ -85,11 +94,20 @@ def instruction_word(opcode: int, axis: int) -> int:
 
 # run()'s columns have each register's own width (variables.csv's FMI 3 type), in FMI 2 as well;
 # `cycle` is the 32-bit chip time (GetTime)
-DTYPES: Dict[str, np.dtype] = {v.name: np.dtype({"Float64": np.float64, "Int32": np.int32, "UInt32": np.uint32,
-                                                  "UInt16": np.uint16, "Int16": np.int16,
-                                                  "Boolean": np.bool_}[v.fmi3Type])
-                               for v in tables.read_variables(tables_dir() / "variables.csv")
-                               if v.fmi3Type not in ("String", "Binary")}
+DTYPES: Dict[str, np.dtype] = {
+    v.name: np.dtype(
+        {
+            "Float64": np.float64,
+            "Int32": np.int32,
+            "UInt32": np.uint32,
+            "UInt16": np.uint16,
+            "Int16": np.int16,
+            "Boolean": np.bool_,
+        }[v.fmi3Type]
+    )
+    for v in tables.read_variables(tables_dir() / "variables.csv")
+    if v.fmi3Type not in ("String", "Binary")
+}
 CYCLE = ("cycle", np.uint32)
 _VARIABLES = {v.name: v for v in tables.read_variables(tables_dir() / "variables.csv")}
 # the host port's words a batch holds (host.word[1..n], the C side's PMD_BATCH_WORDS), and the cycle time
@@ -101,7 +119,7 @@ OPCODES: Dict[int, Command] = {c.opcode: c for c in COMMANDS.values()}
 # the width of each integer variable's word (FMI 3 type), by FMI 2 name and by FMI 3 array name: set()
 # takes -2^(w-1) .. 2^w-1 for it, in both FMI versions
 WIDTHS: Dict[str, int] = {}
-SIGNED = set()          # of those, the signed ones (Int32, Int16): set() sends their bits as a signed value
+SIGNED = set()  # of those, the signed ones (Int32, Int16): set() sends their bits as a signed value
 for _v in tables.read_variables(tables_dir() / "variables.csv"):
     if _v.fmi3Type in ("Int32", "UInt32", "UInt16", "Int16"):
         WIDTHS[_v.name] = WIDTHS[_v.name.split("[")[0]] = 16 if _v.fmi3Type.endswith("Int16") else 32
@@ -131,6 +149,7 @@ def _array_elements(variables, name: str) -> List[str]:
     while f"{name}[{len(out) + 1}]" in variables:
         out.append(f"{name}[{len(out) + 1}]")
     return out
+
 
 class PMDError(Exception):
     """A command the chip refused, with its host I/O error code (pmd-reference 2.4)."""
@@ -167,6 +186,7 @@ class UnknownVariable(KeyError):
 def _refusals(method):
     """Chip's public calls: an FMI call the FMU refuses inside raises FMURefusal, carrying the FMU's
     messages logged during the call (FMPy's FMICallException names only the function and status)."""
+
     @functools.wraps(method)
     def call(self, *args, **kwargs):
         logged = len(self.messages)
@@ -175,8 +195,10 @@ def _refusals(method):
         except FMICallException as e:
             if isinstance(e, FMURefusal):
                 raise
-            raise FMURefusal(e.function, e.status, [m.message for m in self.messages[logged:]
-                                                    if m.status not in ("OK", "Pending")]) from None
+            raise FMURefusal(
+                e.function, e.status, [m.message for m in self.messages[logged:] if m.status not in ("OK", "Pending")]
+            ) from None
+
     return call
 
 
@@ -205,8 +227,10 @@ def encode(command: Command, values: Sequence[int]) -> List[int]:
     for f, v in zip(command.args, values):
         what = f"{command.name}: {f.name}"
         if f.fixed and not isinstance(v, (int, np.integer)):
-            raise ValueError(f"{what} = {v!r} is not an integer: the argument is the {f.fixed} word, "
-                             f"e.g. pmdfmu.fixed_{f.fixed.replace('.', '_')}({v!r})")
+            raise ValueError(
+                f"{what} = {v!r} is not an integer: the argument is the {f.fixed} word, "
+                f"e.g. pmdfmu.fixed_{f.fixed.replace('.', '_')}({v!r})"
+            )
         if f.kind == "bits":
             v = integer(v, what)
             if not 0 <= v < (1 << f.width):
@@ -263,8 +287,10 @@ class Axis:
 
 
 def _bits_doc(f: Field, word: str) -> str:
-    return (f"packed field {f.register_field}: bits {f.shift}..{f.shift + f.width - 1} of {word} {f.word + 1}, "
-            f"0 .. {(1 << f.width) - 1}")
+    return (
+        f"packed field {f.register_field}: bits {f.shift}..{f.shift + f.width - 1} of {word} {f.word + 1}, "
+        f"0 .. {(1 << f.width) - 1}"
+    )
 
 
 def _field_doc(f: Field) -> str:
@@ -275,9 +301,11 @@ def _field_doc(f: Field) -> str:
     words = "two words, high word first" if f.width == 32 else "one word"
     if f.fixed:
         scale = 16 if f.fixed == "16.16" else 32
-        return (f"{f.fixed} fixed point ({'signed' if f.signed else 'unsigned'} 32-bit word = value * 2^{scale}, "
-                f"{words}): pass the word, e.g. pmdfmu.fixed_{f.fixed.replace('.', '_')}(x); "
-                f"-2^31 .. 2^32-1")
+        return (
+            f"{f.fixed} fixed point ({'signed' if f.signed else 'unsigned'} 32-bit word = value * 2^{scale}, "
+            f"{words}): pass the word, e.g. pmdfmu.fixed_{f.fixed.replace('.', '_')}(x); "
+            f"-2^31 .. 2^32-1"
+        )
     reading = "signed" if f.signed else "unsigned"
     lo, hi = -(1 << (f.width - 1)), (1 << f.width) - 1
     return f"{f.width}-bit {reading} integer ({words}); {lo} .. {hi}, either reading of the same bits"
@@ -293,7 +321,7 @@ def _reply_doc(command: Command, f: Field) -> str:
     setter = COMMANDS.get("Set" + command.name[3:]) if command.name.startswith("Get") else None
     fixed = next((a.fixed for a in setter.args if a.name == f.name and a.fixed), "") if setter else ""
     if fixed:
-        text += f": the {fixed} word {setter.name} takes (pmdfmu.from_fixed(word, \"{fixed}\"))"
+        text += f': the {fixed} word {setter.name} takes (pmdfmu.from_fixed(word, "{fixed}"))'
     return text
 
 
@@ -302,10 +330,16 @@ def _item(name: str, text: str) -> str:
 
 
 def _method_doc(command: Command) -> str:
-    lines = [command.summary + ".", "",
-             f"C-Motion PMD{command.name}, opcode 0x{command.opcode:02X}; "
-             + ("chip-wide: sent with axis field 0, whatever the handle's axis." if command.scope == "chip"
-                else "acts on this handle's axis.")]
+    lines = [
+        command.summary + ".",
+        "",
+        f"C-Motion PMD{command.name}, opcode 0x{command.opcode:02X}; "
+        + (
+            "chip-wide: sent with axis field 0, whatever the handle's axis."
+            if command.scope == "chip"
+            else "acts on this handle's axis."
+        ),
+    ]
     if command.args:
         lines += ["", "Arguments (integers; nothing is rounded or masked):"]
         lines += [_item(f.name, _field_doc(f)) for f in command.args]
@@ -317,8 +351,11 @@ def _method_doc(command: Command) -> str:
     else:
         lines += [f"Returns the tuple ({', '.join(f.name for f in command.reply)}):"]
         lines += [_item(f.name, _reply_doc(command, f)) for f in command.reply]
-    lines += ["", "Raises PMDError (.code: the host I/O error) if the chip refuses the call; TypeError for a",
-              "wrong number of arguments; ValueError for a value that is not an integer or does not fit."]
+    lines += [
+        "",
+        "Raises PMDError (.code: the host I/O error) if the chip refuses the call; TypeError for a",
+        "wrong number of arguments; ValueError for a value that is not an integer or does not fit.",
+    ]
     return "\n".join(lines)
 
 
@@ -354,6 +391,7 @@ del _command
 
 # ---- an FMU file, unpacked once per process: every Chip of the file shares it ----
 
+
 class _SharedPrototypes:
     """FMPy's slave classes with the FMI functions' ctypes prototypes taken from the FMU file's
     _Unpacked.prototypes: FMPy declares them in every constructor by introspecting each of its
@@ -384,6 +422,7 @@ class _Unpacked:
     process, with the FMI functions' prototypes declared on it (an instance's own dlopen and
     dlclose keep their count, so these function pointers stay valid; the FMU's library holds
     no mutable static data: every instance's state is its own allocation)."""
+
     unzipdir: str
     model_description: object
     variables: Dict[str, object]
@@ -395,11 +434,11 @@ class _Unpacked:
     extensions: Dict[str, object] = field(default_factory=dict)
 
 
-_UNPACKED: Dict[tuple, _Unpacked] = {}       # by the FMU file's identity (_identity)
+_UNPACKED: Dict[tuple, _Unpacked] = {}  # by the FMU file's identity (_identity)
 # sweeps may make Chips in several threads: the lock guards the cache, and FMPy's slave constructor,
 # which changes the process's working directory while it loads the library
 _UNPACKED_LOCK = threading.Lock()
-_unpack_root: List[str] = []                 # this process's folder of extracted FMU files, once made
+_unpack_root: List[str] = []  # this process's folder of extracted FMU files, once made
 
 
 def _identity(path: Path) -> tuple:
@@ -411,7 +450,7 @@ def _identity(path: Path) -> tuple:
 
 
 def _remove_unpack_root(pid: int) -> None:
-    if os.getpid() == pid and _unpack_root:          # not from a forked child: the folder is its parent's
+    if os.getpid() == pid and _unpack_root:  # not from a forked child: the folder is its parent's
         shutil.rmtree(_unpack_root[0], ignore_errors=True)
 
 
@@ -438,17 +477,21 @@ def _unpack(path: Path, fmi_version: int) -> Tuple[_Unpacked, dict]:
                 _unpack_root.append(tempfile.mkdtemp(prefix="pmdfmu-fmus-"))
                 atexit.register(_remove_unpack_root, os.getpid())
             for old in [k for k in _UNPACKED if k[0] == key[0]]:
-                del _UNPACKED[old]          # the file was rewritten; its folder stays until exit (instances use it)
+                del _UNPACKED[old]  # the file was rewritten; its folder stays until exit (instances use it)
             description = read_model_description(key[0])
             unzipdir = extract(key[0], tempfile.mkdtemp(prefix=Path(key[0]).stem + "-", dir=_unpack_root[0]))
             variables = {v.name: v for v in description.modelVariables}
-            unpacked = _UNPACKED[key] = _Unpacked(str(unzipdir), description, variables,
-                                                  {name: v.valueReference for name, v in variables.items()}, {})
+            unpacked = _UNPACKED[key] = _Unpacked(
+                str(unzipdir), description, variables, {name: v.valueReference for name, v in variables.items()}, {}
+            )
         prototype = unpacked.prototypes.get(fmi_version)
         if prototype is None:
             prototype = unpacked.prototypes[fmi_version] = (FMU2Slave if fmi_version == 2 else FMU3Slave)(
-                guid=unpacked.model_description.guid, unzipDirectory=unpacked.unzipdir,
-                modelIdentifier=unpacked.model_description.coSimulation.modelIdentifier, instanceName="pmd")
+                guid=unpacked.model_description.guid,
+                unzipDirectory=unpacked.unzipdir,
+                modelIdentifier=unpacked.model_description.coSimulation.modelIdentifier,
+                instanceName="pmd",
+            )
     return unpacked, prototype._functions
 
 
@@ -469,14 +512,20 @@ class Chip:
     # returns the rows (a test sets another on an instance: its oracle)
     recorder = recording.Recorder
 
-    def __init__(self, fmi_version: int = 2, fmu: Union[str, Path, None] = None, *,
-                 log_categories: Union[bool, Iterable[str]] = False,
-                 host_interface: Union[None, str, HostInterface] = None, **parameters):
+    def __init__(
+        self,
+        fmi_version: int = 2,
+        fmu: Union[str, Path, None] = None,
+        *,
+        log_categories: Union[bool, Iterable[str]] = False,
+        host_interface: Union[None, str, HostInterface] = None,
+        **parameters,
+    ):
         if fmi_version not in (2, 3):
             raise ValueError(f"fmi_version is 2 or 3, not {fmi_version}")
         self.host_interface = hosttime.host_interface(host_interface)
-        self._recording = False     # a recording run has turned record.enabled on (recording.close)
-        self._host_ns = 0           # the host clock, whole ns since the chip's time 0
+        self._recording = False  # a recording run has turned record.enabled on (recording.close)
+        self._host_ns = 0  # the host clock, whole ns since the chip's time 0
         self.fmi_version = fmi_version
         self.path = Path(fmu) if fmu else default_fmu(fmi_version)
         # shared by every Chip of this FMU file in the process: read-only
@@ -486,11 +535,16 @@ class Chip:
         self._vr = unpacked.vr
         self._recorded = unpacked.recorded
         self._extensions = unpacked.extensions
-        self._library = unpacked.prototypes[fmi_version].dll    # loaded for the process (_Unpacked)
+        self._library = unpacked.prototypes[fmi_version].dll  # loaded for the process (_Unpacked)
         self.messages: List[LogMessage] = []
         self._unzipdir = unpacked.unzipdir
-        kwargs = dict(functions=functions, guid=self.model_description.guid, unzipDirectory=self._unzipdir,
-                      modelIdentifier=self.model_description.coSimulation.modelIdentifier, instanceName="pmd")
+        kwargs = dict(
+            functions=functions,
+            guid=self.model_description.guid,
+            unzipDirectory=self._unzipdir,
+            modelIdentifier=self.model_description.coSimulation.modelIdentifier,
+            instanceName="pmd",
+        )
         if fmi_version == 2:
             with _UNPACKED_LOCK:
                 self.fmu = _Slave2(**kwargs)
@@ -499,26 +553,34 @@ class Chip:
             # logger, which would dangle once this Chip is gone. The FMU passes no
             # printf arguments; it escapes '%' as "%%" (see _log).
             self._callbacks.logger = fmi2CallbackLoggerTYPE(
-                lambda env, name, status, category, message:
-                self._record(status, category, message.decode(errors="replace").replace("%%", "%")))
+                lambda env, name, status, category, message: self._record(
+                    status, category, message.decode(errors="replace").replace("%%", "%")
+                )
+            )
             self.fmu.instantiate(callbacks=self._callbacks, loggingOn=bool(log_categories))
             self.fmu.setupExperiment(startTime=0.0)
         else:
             with _UNPACKED_LOCK:
                 self.fmu = _Slave3(**kwargs)
-            self.fmu.instantiate(loggingOn=bool(log_categories),
-                                 logMessage=lambda env, status, category, message:
-                                 self._record(status, category, message.decode(errors="replace")))
+            self.fmu.instantiate(
+                loggingOn=bool(log_categories),
+                logMessage=lambda env, status, category, message: self._record(
+                    status, category, message.decode(errors="replace")
+                ),
+            )
         if log_categories and log_categories is not True:
             self.fmu.setDebugLogging(True, list(log_categories))
-        types = (("Real", "Integer", "Boolean", "String") if fmi_version == 2 else
-                 ("Float64", "Int32", "UInt32", "UInt16", "Int16", "Boolean", "String"))
+        types = (
+            ("Real", "Integer", "Boolean", "String")
+            if fmi_version == 2
+            else ("Float64", "Int32", "UInt32", "UInt16", "Int16", "Boolean", "String")
+        )
         self._getters = {t: getattr(self.fmu, "get" + t) for t in types}
         self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
-        self._getters.pop("String")           # run() records numbers; get() reads the script path below
+        self._getters.pop("String")  # run() records numbers; get() reads the script path below
         try:
             self._initialize(parameters)
-        except BaseException:                 # a refused, unknown or bad parameter: no instance is left behind
+        except BaseException:  # a refused, unknown or bad parameter: no instance is left behind
             self.fmu.freeInstance()
             self.fmu = None
             raise
@@ -526,8 +588,8 @@ class Chip:
         # communication point, the next cycle's time and the cycle time, into arrays made once
         self._grid_vrs = (c_uint32 * 3)(*[self._vr[n] for n in ("time", "nextCycleTime", "activeCycleTime")])
         self._grid = (c_double * 3)()
-        self._memory_vrs: Dict[int, Array] = {}     # write_memory (FMI 2): value references per word count
-        self._host_port: Dict[int, tuple] = {}      # _send: value references and buffers per word count
+        self._memory_vrs: Dict[int, Array] = {}  # write_memory (FMI 2): value references per word count
+        self._host_port: Dict[int, tuple] = {}  # _send: value references and buffers per word count
         # fmi3DoStep's outputs (_step): event handling needed, terminate, early return, last successful time
         self._step_out = (byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Float64()))
 
@@ -542,8 +604,10 @@ class Chip:
         if isinstance(value, os.PathLike):
             text = os.fspath(value)
             if "\n" in text:
-                raise ValueError(f"script: the path {text!r} holds a line feed, and the FMU reads a script value "
-                                 "holding one as the script's text (docs/scripts.md): rename the file or its folder")
+                raise ValueError(
+                    f"script: the path {text!r} holds a line feed, and the FMU reads a script value "
+                    "holding one as the script's text (docs/scripts.md): rename the file or its folder"
+                )
         text = str(value) if value else ""
         if not text or "\n" in text:
             return text
@@ -572,7 +636,7 @@ class Chip:
         """The same instance as new: fmiReset, then these parameters and a new
         initialization (a sweep reuses one instance per worker this way)."""
         self.fmu.reset()
-        self._recording = False                     # the reset turned record.enabled off
+        self._recording = False  # the reset turned record.enabled off
         self.messages.clear()
         self._host_ns = 0
         if self.fmi_version == 2:
@@ -592,8 +656,9 @@ class Chip:
         self.close()
 
     def _record(self, status: int, category: bytes, message: str) -> None:
-        self.messages.append(LogMessage(STATUS_NAMES[status] if 0 <= status < 5 else str(status),
-                                        category.decode(), message))
+        self.messages.append(
+            LogMessage(STATUS_NAMES[status] if 0 <= status < 5 else str(status), category.decode(), message)
+        )
 
     # ---- variables ----
 
@@ -612,7 +677,7 @@ class Chip:
     def _nearest(self, name: str) -> str:
         """The end of a message for a name that is no variable: the nearest names set() and get() take."""
         names = set(self.variables)
-        for n in self.variables:                # arrays as a whole (FMI 2) and their elements (FMI 3)
+        for n in self.variables:  # arrays as a whole (FMI 2) and their elements (FMI 3)
             m = _ELEMENT.fullmatch(n)
             if m:
                 names.add(m.group(1))
@@ -639,7 +704,7 @@ class Chip:
             base, i = element
             values = self.get(base)
             values[i] = value
-            self.set(base, values)              # a bad value raises naming base[i + 1], i.e. `name`
+            self.set(base, values)  # a bad value raises naming base[i + 1], i.e. `name`
             return
         elements = _array_elements(self.variables, name) if self.fmi_version == 2 else []
         v = self._variable(elements[0] if elements else name, "set")
@@ -649,9 +714,11 @@ class Chip:
             raise ValueError(f"set: {name} has {count} elements, {len(values)} values given; nothing was set")
         if name in WIDTHS:
             bits = WIDTHS[name]
-            values = [to_word(x, bits, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else ""))
-                      for i, x in enumerate(values)]
-            if (self.fmi_version == 2 and bits == 32) or name in SIGNED:       # the same bits, signed
+            values = [
+                to_word(x, bits, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else ""))
+                for i, x in enumerate(values)
+            ]
+            if (self.fmi_version == 2 and bits == 32) or name in SIGNED:  # the same bits, signed
                 values = [x - (1 << bits) if x >> (bits - 1) else x for x in values]
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)
@@ -665,8 +732,9 @@ class Chip:
             return self.get(element[0])[element[1]]
         elements = _array_elements(self.variables, name) if self.fmi_version == 2 else []
         if elements:
-            return list(self._getters[self.variables[elements[0]].type](
-                [self.variables[e].valueReference for e in elements]))
+            return list(
+                self._getters[self.variables[elements[0]].type]([self.variables[e].valueReference for e in elements])
+            )
         v = self._variable(name, "get")
         if v.type == "String":
             value = self.fmu.getString([v.valueReference])[0]
@@ -716,7 +784,7 @@ class Chip:
     def _do_step(self, cycles: int) -> int:
         """_step's doStep itself."""
         now, step = self._step_span(cycles)
-        if self.fmi_version == 2:                    # FMPy's doStep returns no status: the FMI call does
+        if self.fmi_version == 2:  # FMPy's doStep returns no status: the FMI call does
             return self.fmu.fmi2DoStep(self.fmu.component, now, step, fmi2True)
         return self.fmu.fmi3DoStep(self.fmu.component, now, step, fmi3True, *self._step_out)
 
@@ -729,8 +797,9 @@ class Chip:
         return fmi2FMUstate() if self.fmi_version == 2 else fmi3FMUState()
 
     def _save_fmu_state(self, state) -> None:
-        (self.fmu.fmi2GetFMUstate if self.fmi_version == 2 else self.fmu.fmi3GetFMUState)(self.fmu.component,
-                                                                                           byref(state))
+        (self.fmu.fmi2GetFMUstate if self.fmi_version == 2 else self.fmu.fmi3GetFMUState)(
+            self.fmu.component, byref(state)
+        )
 
     def _free_fmu_state(self, state) -> None:
         if state.value:
@@ -741,7 +810,7 @@ class Chip:
         """The whole chip as bytes: the FMU's serialized FMU state, as it is (the
         time grid is in it). Restorable with set_state in any Chip of the same FMU
         build, in this process or another."""
-        if self._recording:                     # a recording an interrupt left open: not part of the chip
+        if self._recording:  # a recording an interrupt left open: not part of the chip
             recording.close(self)
         state = self._fmu_state()
         try:
@@ -757,7 +826,7 @@ class Chip:
         try:
             self.fmu.deserializeFMUState(data, state)
             self.fmu.setFMUState(state)
-            self._recording = False             # the restored chip's record.enabled is its own
+            self._recording = False  # the restored chip's record.enabled is its own
         finally:
             self._free_fmu_state(state)
         # the host clock is the harness's, not in the bytes: it goes to the restored chip's last cycle
@@ -800,25 +869,25 @@ class Chip:
         strobe_vr, strobe, set_vrs, values, get_vrs, out = port
         if self.fmi_version == 2:
             fmu.fmi2GetInteger(c, strobe_vr, 1, strobe)
-            new = (strobe[0] + 1) & 0x7FFFFFFF          # a new strobe value, whoever set the last one
+            new = (strobe[0] + 1) & 0x7FFFFFFF  # a new strobe value, whoever set the last one
             values[n:] = [n, new]
             values[:n] = words
             fmu.fmi2SetInteger(c, set_vrs, n + 2, values)
             fmu.fmi2GetInteger(c, get_vrs, 3 + BATCH_WORDS, out)
             ack, error, count = out[0], out[1], out[2]
-            reply = out[3:3 + count]
+            reply = out[3 : 3 + count]
         else:
             words16, counts, reply16 = values
             fmu.fmi3GetInt32(c, strobe_vr, 1, strobe, 1)
             new = (strobe[0] + 1) & 0x7FFFFFFF
             words16[:n] = words
             counts[:] = [n, new]
-            fmu.fmi3SetUInt16(c, set_vrs[0], 1, words16, BATCH_WORDS)     # the array is set whole
+            fmu.fmi3SetUInt16(c, set_vrs[0], 1, words16, BATCH_WORDS)  # the array is set whole
             fmu.fmi3SetInt32(c, set_vrs[1], 2, counts, 2)
             fmu.fmi3GetInt32(c, get_vrs[0], 2, out, 2)
             fmu.fmi3GetUInt16(c, get_vrs[1], 2, reply16, 1 + BATCH_WORDS)  # host.error, then host.reply
             ack, count, error = out[0], out[1], reply16[0]
-            reply = reply16[1:1 + count]
+            reply = reply16[1 : 1 + count]
         if ack != new:
             raise FMUError(f"host.ack is {ack}, not the strobe {new}: the FMU did not execute the batch")
         return error, reply
@@ -827,20 +896,35 @@ class Chip:
         """_send's value references and buffers for a batch of n words."""
         vr = self._vr
         if self.fmi_version == 2:
-            return ((fmi2ValueReference * 1)(vr["host.strobe"]), (c_int32 * 1)(),
-                    (fmi2ValueReference * (n + 2))(*[vr[f"host.word[{i + 1}]"] for i in range(n)],
-                                                   vr["host.wordCount"], vr["host.strobe"]),
-                    (c_int32 * (n + 2))(),
-                    (fmi2ValueReference * (3 + BATCH_WORDS))(vr["host.ack"], vr["host.error"], vr["host.replyCount"],
-                                                             *[vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]),
-                    (c_int32 * (3 + BATCH_WORDS))())
-        return ((fmi3ValueReference * 1)(vr["host.strobe"]), (c_int32 * 1)(),
-                ((fmi3ValueReference * 1)(vr["host.word"]),
-                 (fmi3ValueReference * 2)(vr["host.wordCount"], vr["host.strobe"])),
-                ((c_uint16 * BATCH_WORDS)(), (c_int32 * 2)(), (c_uint16 * (1 + BATCH_WORDS))()),
-                ((fmi3ValueReference * 2)(vr["host.ack"], vr["host.replyCount"]),
-                 (fmi3ValueReference * 2)(vr["host.error"], vr["host.reply"])),
-                (c_int32 * 2)())
+            return (
+                (fmi2ValueReference * 1)(vr["host.strobe"]),
+                (c_int32 * 1)(),
+                (fmi2ValueReference * (n + 2))(
+                    *[vr[f"host.word[{i + 1}]"] for i in range(n)], vr["host.wordCount"], vr["host.strobe"]
+                ),
+                (c_int32 * (n + 2))(),
+                (fmi2ValueReference * (3 + BATCH_WORDS))(
+                    vr["host.ack"],
+                    vr["host.error"],
+                    vr["host.replyCount"],
+                    *[vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)],
+                ),
+                (c_int32 * (3 + BATCH_WORDS))(),
+            )
+        return (
+            (fmi3ValueReference * 1)(vr["host.strobe"]),
+            (c_int32 * 1)(),
+            (
+                (fmi3ValueReference * 1)(vr["host.word"]),
+                (fmi3ValueReference * 2)(vr["host.wordCount"], vr["host.strobe"]),
+            ),
+            ((c_uint16 * BATCH_WORDS)(), (c_int32 * 2)(), (c_uint16 * (1 + BATCH_WORDS))()),
+            (
+                (fmi3ValueReference * 2)(vr["host.ack"], vr["host.replyCount"]),
+                (fmi3ValueReference * 2)(vr["host.error"], vr["host.reply"]),
+            ),
+            (c_int32 * 2)(),
+        )
 
     @_refusals
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
@@ -882,8 +966,10 @@ class Chip:
     def _memory_fits(address: int, n: int, size: int) -> None:
         """write_memory's check that n words at address fit the memory of size words."""
         if address < 0 or address + n > size:
-            raise ValueError(f"write_memory: {n} words at address {address} leave the {size}-word memory "
-                             f"(memorySize; addresses 0 .. {size - 1}); nothing was written")
+            raise ValueError(
+                f"write_memory: {n} words at address {address} leave the {size}-word memory "
+                f"(memorySize; addresses 0 .. {size - 1}); nothing was written"
+            )
 
     @staticmethod
     def _memory_words(words: Sequence[int]) -> np.ndarray:
@@ -891,20 +977,21 @@ class Chip:
         array = np.asarray(words)
         if array.ndim != 1:
             raise ValueError(f"write_memory: words must be a sequence of integers, not {words!r}")
-        if array.dtype == np.uint32:                # every value a word: nothing to check
+        if array.dtype == np.uint32:  # every value a word: nothing to check
             return array
         if array.dtype == np.int32:
             return array.view(np.uint32)
         try:
-            if array.dtype.kind in "iub":          # numpy integers: the whole array checked at once
+            if array.dtype.kind in "iub":  # numpy integers: the whole array checked at once
                 wide = array.astype(np.int64) if array.dtype.kind != "u" else array
                 bad = np.flatnonzero((wide > 0xFFFFFFFF) | ((wide < -(1 << 31)) if wide.dtype.kind == "i" else False))
                 if len(bad):
-                    to_word(int(array[bad[0]]), 32, f"write_memory: words[{bad[0]}]")     # raises, naming it
-            else:                                   # Python ints beyond int64, floats, anything else: one by one,
-                items = words.tolist() if isinstance(words, np.ndarray) else list(words)     # as the caller wrote them
-                array = np.array([to_word(w, 32, f"write_memory: words[{i}]") for i, w in enumerate(items)],
-                                 dtype=np.int64)
+                    to_word(int(array[bad[0]]), 32, f"write_memory: words[{bad[0]}]")  # raises, naming it
+            else:  # Python ints beyond int64, floats, anything else: one by one,
+                items = words.tolist() if isinstance(words, np.ndarray) else list(words)  # as the caller wrote them
+                array = np.array(
+                    [to_word(w, 32, f"write_memory: words[{i}]") for i, w in enumerate(items)], dtype=np.int64
+                )
         except ValueError as e:
             raise ValueError(f"{e}; nothing was written") from None
         return (array.astype(np.int64) & 0xFFFFFFFF).astype(np.uint32)
@@ -913,15 +1000,19 @@ class Chip:
         """Sets memory.data, .address, .count and .strobe for one write, each value
         array passed to the FMI function as it lies in memory."""
         n, vr = len(chunk), self._vr
-        if self.fmi_version == 2:                    # all Integer: one call, the data words first
+        if self.fmi_version == 2:  # all Integer: one call, the data words first
             if n not in self._memory_vrs:
                 self._memory_vrs[n] = (fmi2ValueReference * (n + 3))(
-                    *[vr[f"memory.data[{i + 1}]"] for i in range(n)], vr["memory.address"], vr["memory.count"],
-                    vr["memory.strobe"])
+                    *[vr[f"memory.data[{i + 1}]"] for i in range(n)],
+                    vr["memory.address"],
+                    vr["memory.count"],
+                    vr["memory.strobe"],
+                )
             values = np.concatenate([chunk.view(np.int32), np.array([address, n, strobe], dtype=np.int32)])
-            self.fmu.fmi2SetInteger(self.fmu.component, self._memory_vrs[n], n + 3,
-                                    values.ctypes.data_as(POINTER(c_int32)))
-        else:                                        # memory.data[64] and memory.address are UInt32
+            self.fmu.fmi2SetInteger(
+                self.fmu.component, self._memory_vrs[n], n + 3, values.ctypes.data_as(POINTER(c_int32))
+            )
+        else:  # memory.data[64] and memory.address are UInt32
             words = np.zeros(BATCH_WORDS + 1, dtype=np.uint32)
             words[:n], words[BATCH_WORDS] = chunk, address
             vrs = (fmi3ValueReference * 2)(vr["memory.data"], vr["memory.address"])
@@ -968,9 +1059,11 @@ class Chip:
             i = end
         room = sum(c.reply_words for _w, c in parts if c)
         if room > BATCH_WORDS:
-            raise ValueError(f"a timed batch's replies may pass host.reply[{BATCH_WORDS}] ({room} words): each "
-                             "command is its own transfer, so the FMU cannot refuse the one that passes; split the "
-                             "batch; nothing was sent")
+            raise ValueError(
+                f"a timed batch's replies may pass host.reply[{BATCH_WORDS}] ({room} words): each "
+                "command is its own transfer, so the FMU cannot refuse the one that passes; split the "
+                "batch; nothing was sent"
+            )
         first, replies = 0, []
         for part, _c in parts:
             self._host_ns += self.host_interface.request_ns(len(part))
@@ -1056,7 +1149,7 @@ class Chip:
         try:
             return self._run(cycles, record)
         finally:
-            if cycles:                  # the host clock moves up to the last cycle run
+            if cycles:  # the host clock moves up to the last cycle run
                 self._host_ns = max(self._host_ns, self._last_cycle_ns())
 
     def _run(self, cycles: int, record: Sequence[str]) -> np.ndarray:
@@ -1073,7 +1166,7 @@ class Chip:
         rows' type (a name given twice is numpy's ValueError). Kept per set of names for every Chip of
         the FMU file: making the row type again costs as long as 150 recorded cycles."""
         key = (self.fmi_version,) + tuple(names)
-        known = self._recorded.get(key)             # one read: another thread may clear the dict
+        known = self._recorded.get(key)  # one read: another thread may clear the dict
         if known is not None:
             return known
         where = {}

@@ -1,16 +1,17 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The pmdfmu command: a thin layer over the library.
 
-  pmdfmu build      configure and build the FMU with CMake (into build/)
-  pmdfmu demo       run the bundled 2-axis external profile; write CSV and PNG
-  pmdfmu run FILE   run a script or a segment table; write CSV and PNG
-  pmdfmu sweep CASES  run a table of cases on Dask; write a summary table and plot
-  pmdfmu verify FILE  run a script or table and check it against a golden trace and assertions
-                      (exit 0 pass, 1 fail, 2 malformed input; JUnit XML, Markdown, diff plots)
-  pmdfmu pack SCRIPT  write a copy of the FMU that runs the script with no parameter set
-  pmdfmu validate   check the FMU with fmpy.validation
-  pmdfmu info       the FMU's variables and the chip's commands
+pmdfmu build      configure and build the FMU with CMake (into build/)
+pmdfmu demo       run the bundled 2-axis external profile; write CSV and PNG
+pmdfmu run FILE   run a script or a segment table; write CSV and PNG
+pmdfmu sweep CASES  run a table of cases on Dask; write a summary table and plot
+pmdfmu verify FILE  run a script or table and check it against a golden trace and assertions
+                    (exit 0 pass, 1 fail, 2 malformed input; JUnit XML, Markdown, diff plots)
+pmdfmu pack SCRIPT  write a copy of the FMU that runs the script with no parameter set
+pmdfmu validate   check the FMU with fmpy.validation
+pmdfmu info       the FMU's variables and the chip's commands
 """
+
 from __future__ import annotations
 
 import argparse
@@ -41,9 +42,17 @@ class CommandLineError(ValueError):
 # FMU refuses, a table, golden, assertion file or case table that is malformed, a command the chip refuses):
 # main answers each with one line, `pmdfmu CMD: file:line: reason`, and exit status 2. Anything else is a
 # bug of pmdfmu and keeps its traceback.
-INPUT_ERRORS = (CommandLineError, InputError, profile.TableError, PackError, FMUError, PMDError, OSError,
-                zipfile.BadZipFile)
-EXIT_INTERRUPTED = 130          # 128 + SIGINT: what a shell reports for a command ended by Ctrl-C
+INPUT_ERRORS = (
+    CommandLineError,
+    InputError,
+    profile.TableError,
+    PackError,
+    FMUError,
+    PMDError,
+    OSError,
+    zipfile.BadZipFile,
+)
+EXIT_INTERRUPTED = 130  # 128 + SIGINT: what a shell reports for a command ended by Ctrl-C
 # what the FMU's initialization error says after the FMI function's name (fmu_src/fmi/instance.c); its
 # file:line: reason follows
 _SCRIPT_REFUSED = ": script refused: "
@@ -75,9 +84,11 @@ def _script_file(path: Path) -> Path:
     holding a line feed is the script's text to the FMU (README, "Scripts"), so such a path cannot be
     given to it."""
     if "\n" in str(path):
-        raise CommandLineError(f"{files.shown_path(path)}: the script's path holds a line feed; the FMU reads "
-                               "a `script` value holding one as the script's text, so it cannot be given this "
-                               "file: rename it (pmdfmu pack packs it under another name)")
+        raise CommandLineError(
+            f"{files.shown_path(path)}: the script's path holds a line feed; the FMU reads "
+            "a `script` value holding one as the script's text, so it cannot be given this "
+            "file: rename it (pmdfmu pack packs it under another name)"
+        )
     return path
 
 
@@ -86,10 +97,11 @@ def _fmu_file(path: Optional[Path]) -> Optional[Path]:
     if path is None:
         return None
     from fmpy import read_model_description
+
     files.check_regular(path)
     try:
         read_model_description(str(path))
-    except Exception as e:                  # whatever FMPy finds wrong with the user's file
+    except Exception as e:  # whatever FMPy finds wrong with the user's file
         raise CommandLineError(f"{path}: not an FMU: {one_line(e)}") from None
     return path
 
@@ -100,8 +112,9 @@ def _refuse_overwriting(outputs: Iterable[Tuple[str, Optional[Path]]], inputs: I
     outputs = [(flag, out) for flag, out in outputs if out is not None]
     for i, (flag, out) in enumerate(outputs):
         for other_flag, other in outputs[:i]:
-            if os.path.abspath(out) == os.path.abspath(other) or (out.exists() and other.exists() and
-                                                                   os.path.samefile(out, other)):
+            if os.path.abspath(out) == os.path.abspath(other) or (
+                out.exists() and other.exists() and os.path.samefile(out, other)
+            ):
                 raise CommandLineError(f"{flag} {out}: names the file {other_flag} writes too")
     for flag, out in outputs:
         if out is None or not out.exists():
@@ -115,6 +128,7 @@ def _write_run(run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Opt
     """`pmdfmu run`'s outputs: the recording (CSV, or compressed numpy for a .npz name: either is a golden
     trace for `pmdfmu verify --against`) and the plot."""
     from .verify import write_recording
+
     rec = run.recording
     if csv_path:
         write_recording(csv_path, rec)
@@ -124,24 +138,34 @@ def _write_run(run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Opt
         print(f"wrote {plot_path}")
 
 
-def _run_table(source, fmu: Optional[Path], cycle_time: float, upload: str, max_cycles: int,
-               csv_path: Optional[Path], plot_path: Optional[Path], title: str, fmi_version: int = 2) -> None:
+def _run_table(
+    source,
+    fmu: Optional[Path],
+    cycle_time: float,
+    upload: str,
+    max_cycles: int,
+    csv_path: Optional[Path],
+    plot_path: Optional[Path],
+    title: str,
+    fmi_version: int = 2,
+) -> None:
     """source: a segment table's file, or its tables read already (profile.run_profile)."""
     run = profile.run_profile(source, fmu, fmi_version, cycle_time, upload, max_cycles)
     _write_run(run, csv_path, plot_path, title)
     rec = run.recording
     for axis in run.axes:
         n = axis + 1
-        print(f"axis {n}: ended at position {int(rec[f'axis{n}.commandedPosition'][-1])} "
-              f"after {len(rec)} cycles")
+        print(f"axis {n}: ended at position {int(rec[f'axis{n}.commandedPosition'][-1])} after {len(rec)} cycles")
 
 
 def cmd_build(args) -> int:
     source, build = args.source, args.build_dir
-    for command in (["cmake", "-S", str(source), "-B", str(build), f"-DPython3_EXECUTABLE={sys.executable}"],
-                    ["cmake", "--build", str(build)]):
+    for command in (
+        ["cmake", "-S", str(source), "-B", str(build), f"-DPython3_EXECUTABLE={sys.executable}"],
+        ["cmake", "--build", str(build)],
+    ):
         status = subprocess.run(command).returncode
-        if status:                          # cmake has said why
+        if status:  # cmake has said why
             print(f"pmdfmu build: {' '.join(command[:2])} ... failed with exit status {status}", file=sys.stderr)
             return 1
     print(f"built {build / 'PMDMotionProcessor-fmi2.fmu'}")
@@ -150,13 +174,22 @@ def cmd_build(args) -> int:
 
 def cmd_demo(args) -> int:
     from .demo import circle_table
+
     out = args.out
     out.mkdir(parents=True, exist_ok=True)
     tables = circle_table()
     profile.write_segment_table(out / "demo_table.csv", tables)
     print(f"wrote {out / 'demo_table.csv'}")
-    _run_table(tables, _fmu_file(args.fmu), args.cycle_time, "memory", 1_000_000, out / "demo.csv", out / "demo.png",
-               "pmdfmu demo: 2-axis external profile (circle)")
+    _run_table(
+        tables,
+        _fmu_file(args.fmu),
+        args.cycle_time,
+        "memory",
+        1_000_000,
+        out / "demo.csv",
+        out / "demo.png",
+        "pmdfmu demo: 2-axis external profile (circle)",
+    )
     return 0
 
 
@@ -168,11 +201,11 @@ def cmd_run(args) -> int:
     _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path)], [path, fmu])
     title = f"pmdfmu run {path}"
     if profile.is_segment_table(path):
-        _run_table(path, fmu, args.cycle_time, args.upload, args.max_cycles,
-                   csv_path, plot_path, title, args.fmi_version)
+        _run_table(
+            path, fmu, args.cycle_time, args.upload, args.max_cycles, csv_path, plot_path, title, args.fmi_version
+        )
         return 0
-    run = profile.run_profile(_script_file(path), fmu, args.fmi_version, args.cycle_time, args.upload,
-                              args.max_cycles)
+    run = profile.run_profile(_script_file(path), fmu, args.fmi_version, args.cycle_time, args.upload, args.max_cycles)
     for m in run.messages:
         print(f"{m.status}: {m.message}", file=sys.stderr)
     _write_run(run, csv_path, plot_path, title)
@@ -182,24 +215,33 @@ def cmd_run(args) -> int:
 def cmd_sweep(args) -> int:
     from .sweep import sweep
     from .verify import read_case_table
+
     result = sweep(read_case_table(args.cases)[0], scheduler=args.scheduler, workers=args.workers)
     result.write(args.out)
     failed = [r for r in result.rows if r["status"] != "ok"]
-    print(f"{len(result.rows) - len(failed)} of {len(result.rows)} cases ran; wrote {args.out}/summary.csv, "
-          f"{args.out}/summary.png")
+    print(
+        f"{len(result.rows) - len(failed)} of {len(result.rows)} cases ran; wrote {args.out}/summary.csv, "
+        f"{args.out}/summary.png"
+    )
     for r in failed:
         print(f"failed: {r['name']}: {r['reason']}")
     return 0
 
 
 # --limit flags of pmdfmu verify: flag -> (assertion key(s), how AXIS=VALUE's value reads)
-LIMIT_FLAGS = {"max_velocity": ("max_velocity",), "max_acceleration": ("max_acceleration",),
-               "max_jerk": ("max_jerk",), "position_window": ("position_min", "position_max"),
-               "final_position": ("final_position",), "complete_by": ("complete_by",)}
+LIMIT_FLAGS = {
+    "max_velocity": ("max_velocity",),
+    "max_acceleration": ("max_acceleration",),
+    "max_jerk": ("max_jerk",),
+    "position_window": ("position_min", "position_max"),
+    "final_position": ("final_position",),
+    "complete_by": ("complete_by",),
+}
 
 
 def _limit_flags(args) -> dict:
     """The command line's limits in the assertion file's shape (verify.parse_assertions checks them)."""
+
     def table(axis: str) -> str:
         axis = axis.strip().lower()
         if axis in ("all", "all_axes"):
@@ -211,8 +253,7 @@ def _limit_flags(args) -> dict:
 
     def number(text: str, flag: str):
         try:
-            return float(text) if any(c in text for c in ".eE") and not text.lower().startswith("0x") \
-                else int(text, 0)
+            return float(text) if any(c in text for c in ".eE") and not text.lower().startswith("0x") else int(text, 0)
         except ValueError:
             raise InputError(f"command line: --{flag.replace('_', '-')}: {text!r} is not a number") from None
 
@@ -244,25 +285,44 @@ def cmd_verify(args) -> int:
     """Exit status 0: every case passed; 1: a case failed (or did not run); 2: malformed input of verify's
     own (golden, assertion file, case table, flags) -- docs/verify.md."""
     from . import verify as _  # noqa: F401  (pmdfmu.verify is the function; the module is in sys.modules)
+
     v = sys.modules[__package__ + ".verify"]
     extra = _limit_flags(args)
     if bool(args.file) == bool(args.cases):
         raise InputError("command line: give a script or segment table, or --cases CASES.csv")
-    _refuse_overwriting([("--junit", args.junit), ("--summary", args.summary if args.summary != Path("-") else None)],
-                        [args.file, args.cases, args.against, args.assertions, _fmu_file(args.fmu)])
+    _refuse_overwriting(
+        [("--junit", args.junit), ("--summary", args.summary if args.summary != Path("-") else None)],
+        [args.file, args.cases, args.against, args.assertions, _fmu_file(args.fmu)],
+    )
     if args.cases:
         if args.against:
             raise InputError("command line: --against names one golden; a case table has a golden column")
-        result = v.verify_cases(args.cases, scheduler=args.scheduler, workers=args.workers,
-                                assertions=args.assertions, extra=extra, out=args.out)
+        result = v.verify_cases(
+            args.cases,
+            scheduler=args.scheduler,
+            workers=args.workers,
+            assertions=args.assertions,
+            extra=extra,
+            out=args.out,
+        )
     else:
         if not (args.against or args.assertions or extra.keys() - {"units", "tolerance"}):
-            raise InputError("command line: nothing to verify: give --against GOLDEN, --assertions FILE "
-                             "or a limit (--max-velocity, ...)")
+            raise InputError(
+                "command line: nothing to verify: give --against GOLDEN, --assertions FILE "
+                "or a limit (--max-velocity, ...)"
+            )
         source = args.file if profile.is_segment_table(args.file) else _script_file(args.file)
-        result = v.verify(source, args.against, v.load_assertions(args.assertions, extra), fmu=args.fmu,
-                          fmi_version=args.fmi_version, cycle_time=args.cycle_time, upload=args.upload,
-                          max_cycles=args.max_cycles, out=args.out)
+        result = v.verify(
+            source,
+            args.against,
+            v.load_assertions(args.assertions, extra),
+            fmu=args.fmu,
+            fmi_version=args.fmi_version,
+            cycle_time=args.cycle_time,
+            upload=args.upload,
+            max_cycles=args.max_cycles,
+            out=args.out,
+        )
     print(result.report(), end="")
     if args.junit:
         args.junit.parent.mkdir(parents=True, exist_ok=True)
@@ -272,7 +332,7 @@ def cmd_verify(args) -> int:
     if args.summary == Path("-"):
         print(result.to_markdown(), end="")
     elif args.summary:
-        with open(args.summary, "a") as f:        # GITHUB_STEP_SUMMARY is appended to, in one write
+        with open(args.summary, "a") as f:  # GITHUB_STEP_SUMMARY is appended to, in one write
             f.write(result.to_markdown())
         print(f"wrote {args.summary}")
     return result.exit_status
@@ -281,6 +341,7 @@ def cmd_verify(args) -> int:
 def cmd_pack(args) -> int:
     """The script and its tables inside a copy of the FMU, `script` starting at it (pack.py)."""
     from .pack import pack
+
     packed = pack(args.script, args.out, args.fmi_version, _fmu_file(args.fmu))
     print(f"wrote {packed.fmu} (FMI {args.fmi_version}): script starts at {packed.start!r}")
     for name in packed.files:
@@ -291,6 +352,7 @@ def cmd_pack(args) -> int:
 def cmd_validate(args) -> int:
     """fmpy.validation on the given FMU, or on both built ones."""
     from fmpy.validation import validate_fmu
+
     failed = 0
     for path in [args.fmu] if args.fmu else [default_fmu(2), default_fmu(3)]:
         files.check_regular(path)
@@ -304,6 +366,7 @@ def cmd_validate(args) -> int:
 
 def cmd_info(args) -> int:
     from fmpy import read_model_description
+
     path = _fmu_file(args.fmu) or default_fmu()
     md = read_model_description(str(path))
     print(f"{path}\n  FMI {md.fmiVersion}, modelIdentifier {md.coSimulation.modelIdentifier}, guid {md.guid}\n")
@@ -333,7 +396,7 @@ def _cycle_time(text: str) -> float:
     return value
 
 
-_positive_int.__name__ = "whole number >= 1"      # argparse's message: "invalid whole number >= 1 value"
+_positive_int.__name__ = "whole number >= 1"  # argparse's message: "invalid whole number >= 1 value"
 _cycle_time.__name__ = "cycle time (s, > 0)"
 
 
@@ -384,8 +447,7 @@ def console() -> None:
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="pmdfmu", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = _Parser(prog="pmdfmu", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"pmdfmu {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
@@ -394,23 +456,41 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--build-dir", type=Path, default=REPO / "build")
     p.set_defaults(func=cmd_build)
 
-    for name, func, help_ in (("demo", cmd_demo, "run the bundled 2-axis demo"),
-                              ("run", cmd_run, "run a segment table")):
+    for name, func, help_ in (
+        ("demo", cmd_demo, "run the bundled 2-axis demo"),
+        ("run", cmd_run, "run a segment table"),
+    ):
         p = sub.add_parser(name, help=help_)
         p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
-        p.add_argument("--cycle-time", type=_cycle_time, default=DEFAULT_CYCLE_TIME, help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})")
+        p.add_argument(
+            "--cycle-time",
+            type=_cycle_time,
+            default=DEFAULT_CYCLE_TIME,
+            help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
+        )
         p.set_defaults(func=func)
         if name == "demo":
             p.add_argument("--out", type=Path, default=Path("demo-out"), help="output folder (default demo-out)")
         else:
-            p.add_argument("file", type=Path, help="a script, or a CSV segment table (axis,position,velocity,acceleration,"
-                                        "jerk,time in raw units)")
+            p.add_argument(
+                "file",
+                type=Path,
+                help="a script, or a CSV segment table (axis,position,velocity,acceleration,jerk,time in raw units)",
+            )
             p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
-            p.add_argument("--csv", type=Path, help="write the recorded outputs here (a golden trace for pmdfmu verify; "
-                                         "a .npz name writes compressed numpy)")
+            p.add_argument(
+                "--csv",
+                type=Path,
+                help="write the recorded outputs here (a golden trace for pmdfmu verify; "
+                "a .npz name writes compressed numpy)",
+            )
             p.add_argument("--plot", type=_plot_path, help="write the plot here (PNG, or PDF, SVG ... by its suffix)")
-            p.add_argument("--upload", choices=("memory", "command"), default="memory",
-                           help="fill the buffers through the dual-port memory or with WriteBuffer")
+            p.add_argument(
+                "--upload",
+                choices=("memory", "command"),
+                default="memory",
+                help="fill the buffers through the dual-port memory or with WriteBuffer",
+            )
             p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
 
     p = sub.add_parser("sweep", help="run a table of cases on Dask")
@@ -420,34 +500,63 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=_positive_int, default=2, help="local cluster processes (default 2)")
     p.set_defaults(func=cmd_sweep)
 
-    p = sub.add_parser("verify", help="check a run against a golden trace and assertions (CI)",
-                       description="Runs a script or segment table as `pmdfmu run` does (or a case table on Dask) "
-                                   "and checks it; exit status 0 pass, 1 fail, 2 malformed input. docs/verify.md.")
+    p = sub.add_parser(
+        "verify",
+        help="check a run against a golden trace and assertions (CI)",
+        description="Runs a script or segment table as `pmdfmu run` does (or a case table on Dask) "
+        "and checks it; exit status 0 pass, 1 fail, 2 malformed input. docs/verify.md.",
+    )
     p.add_argument("file", nargs="?", type=Path, help="a script, or a CSV segment table (as pmdfmu run)")
-    p.add_argument("--against", type=Path, metavar="GOLDEN", help="golden trace: `pmdfmu run --csv` output, .csv or .npz")
+    p.add_argument(
+        "--against", type=Path, metavar="GOLDEN", help="golden trace: `pmdfmu run --csv` output, .csv or .npz"
+    )
     p.add_argument("--assertions", type=Path, metavar="FILE", help="limits on the trajectory, TOML (docs/verify.md)")
-    p.add_argument("--tolerance", action="append", metavar="COLUMN=TOL",
-                   help="absolute tolerance of a column (default: exact), e.g. axis1.velocity=1e-9")
+    p.add_argument(
+        "--tolerance",
+        action="append",
+        metavar="COLUMN=TOL",
+        help="absolute tolerance of a column (default: exact), e.g. axis1.velocity=1e-9",
+    )
     for flag, keys in LIMIT_FLAGS.items():
-        p.add_argument("--" + flag.replace("_", "-"), action="append",
-                       metavar="AXIS=MIN:MAX" if len(keys) == 2 else "AXIS=VALUE",
-                       help=f"AXIS is 1..4 or all; the assertion file's {' and '.join(keys)}")
-    p.add_argument("--no-events", action="append", metavar="AXIS",
-                   help="no motion error or limit event on AXIS (1..4 or all)")
+        p.add_argument(
+            "--" + flag.replace("_", "-"),
+            action="append",
+            metavar="AXIS=MIN:MAX" if len(keys) == 2 else "AXIS=VALUE",
+            help=f"AXIS is 1..4 or all; the assertion file's {' and '.join(keys)}",
+        )
+    p.add_argument(
+        "--no-events", action="append", metavar="AXIS", help="no motion error or limit event on AXIS (1..4 or all)"
+    )
     p.add_argument("--no-host-errors", action="store_true", help="no command refused with a host I/O error")
-    p.add_argument("--units", choices=("counts", "raw"), help="units of velocity/acceleration/jerk limits "
-                                                               "(default counts: counts/s, counts/s^2, counts/s^3)")
+    p.add_argument(
+        "--units",
+        choices=("counts", "raw"),
+        help="units of velocity/acceleration/jerk limits (default counts: counts/s, counts/s^2, counts/s^3)",
+    )
     p.add_argument("--cases", type=Path, help="a case table (pmdfmu sweep's, with golden and assertions columns)")
     p.add_argument("--scheduler", help="with --cases: a Dask scheduler address, or 'serial'")
     p.add_argument("--workers", type=_positive_int, default=2, help="with --cases: local cluster processes (default 2)")
     p.add_argument("--junit", type=Path, metavar="FILE", help="write JUnit XML here")
-    p.add_argument("--summary", type=Path, metavar="FILE", help="append a Markdown summary here ('-': print it), e.g. "
-                                                     "$GITHUB_STEP_SUMMARY")
-    p.add_argument("--out", type=Path, default=Path("verify-out"), help="where a failure's diff plot and recording go "
-                                                       "(default verify-out)")
+    p.add_argument(
+        "--summary",
+        type=Path,
+        metavar="FILE",
+        help="append a Markdown summary here ('-': print it), e.g. $GITHUB_STEP_SUMMARY",
+    )
+    p.add_argument(
+        "--out",
+        type=Path,
+        default=Path("verify-out"),
+        help="where a failure's diff plot and recording go (default verify-out)",
+    )
     p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
     p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
-    p.add_argument("--cycle-time", type=_cycle_time, default=DEFAULT_CYCLE_TIME, help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})")
+    p.add_argument(
+        "--cycle-time",
+        type=_cycle_time,
+        default=DEFAULT_CYCLE_TIME,
+        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
+    )
     p.add_argument("--upload", choices=("memory", "command"), default="memory")
     p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
     p.set_defaults(func=cmd_verify)
@@ -455,13 +564,22 @@ def _parser() -> argparse.ArgumentParser:
     p = sub.add_parser("pack", help="write an FMU that runs a script profile with no parameter set")
     p.add_argument("script", type=Path, help="the script; the segment tables it loads go with it")
     p.add_argument("--out", type=Path, required=True, help="the FMU to write, e.g. my-profile.fmu")
-    p.add_argument("--fmi", "--fmi-version", dest="fmi_version", type=int, choices=(2, 3), default=2,
-                   help="FMI version (default 2)")
+    p.add_argument(
+        "--fmi",
+        "--fmi-version",
+        dest="fmi_version",
+        type=int,
+        choices=(2, 3),
+        default=2,
+        help="FMI version (default 2)",
+    )
     p.add_argument("--fmu", type=Path, help="the FMU to copy (default: the built one of that FMI version)")
     p.set_defaults(func=cmd_pack)
 
-    for name, func, help_ in (("validate", cmd_validate, "validate the FMU"),
-                              ("info", cmd_info, "list variables and commands")):
+    for name, func, help_ in (
+        ("validate", cmd_validate, "validate the FMU"),
+        ("info", cmd_info, "list variables and commands"),
+    ):
         p = sub.add_parser(name, help=help_)
         p.add_argument("fmu", nargs="?", type=Path)
         p.set_defaults(func=func)

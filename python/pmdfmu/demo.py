@@ -7,6 +7,7 @@ velocities are multiples of 512 raw (1/128 count/cycle) and each acceleration
 is (next velocity - velocity)/256, so every segment ends exactly on the next
 row's position and velocity: the chip's integration and the table agree to the
 count (seed 000's equations with J = 0: P += V + A/2, V += A)."""
+
 from __future__ import annotations
 
 import math
@@ -21,7 +22,8 @@ QUANTUM = 512
 def circle_table(radius: int = 20_000, segments: int = 64) -> Dict[int, List[Row]]:
     """Axis 1 traces x = R cos(theta), axis 2 y = R sin(theta), theta going once
     around with zero speed at both ends, then a time-0 row stops each axis."""
-    def theta_rate(s: float) -> float:            # d theta / d s for theta(s) = 2 pi (s - sin(2 pi s) / (2 pi))
+
+    def theta_rate(s: float) -> float:  # d theta / d s for theta(s) = 2 pi (s - sin(2 pi s) / (2 pi))
         return 2 * math.pi * (1 - math.cos(2 * math.pi * s))
 
     total = segments * SEGMENT_CYCLES
@@ -39,7 +41,7 @@ def circle_table(radius: int = 20_000, segments: int = 64) -> Dict[int, List[Row
         for v, v_next in zip(velocities, velocities[1:]):
             a = (v_next - v) // SEGMENT_CYCLES
             rows.append((position, v, a, 0, SEGMENT_CYCLES))
-            position += (v + v_next) * SEGMENT_CYCLES // 2 // 65536      # exact: both are multiples of 512
+            position += (v + v_next) * SEGMENT_CYCLES // 2 // 65536  # exact: both are multiples of 512
         rows.append((position, 0, 0, 0, 0))
         tables[axis] = rows
     return tables

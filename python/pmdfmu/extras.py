@@ -2,6 +2,7 @@
 """The optional parts of pmdfmu's dependencies, imported when a call needs them: matplotlib for plots
 (`pip install 'pmdfmu[plot]'`), Dask for sweeps on a cluster (`pip install 'pmdfmu[sweep]'`). A call
 that needs a missing one raises ImportError saying which extra installs it."""
+
 from __future__ import annotations
 
 import importlib
@@ -13,8 +14,10 @@ def require(module: str, extra: str, what: str) -> ModuleType:
     try:
         return importlib.import_module(module)
     except ImportError as e:
-        raise ImportError(f"{what} needs {module.split('.')[0]}, which comes with pmdfmu's {extra!r} extra: "
-                          f"pip install 'pmdfmu[{extra}]'") from e
+        raise ImportError(
+            f"{what} needs {module.split('.')[0]}, which comes with pmdfmu's {extra!r} extra: "
+            f"pip install 'pmdfmu[{extra}]'"
+        ) from e
 
 
 def pyplot(what: str) -> ModuleType:

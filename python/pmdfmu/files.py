@@ -11,6 +11,7 @@ an interrupted or failed write leaves the old file as it was and no partial one.
 The new file is created with O_CREAT|O_EXCL under a random name: a name someone
 planted (a symlink to another file) is never written through.
 """
+
 from __future__ import annotations
 
 import errno
@@ -22,7 +23,7 @@ from pathlib import Path
 from typing import IO, Iterator, Union
 
 PathLike = Union[str, Path]
-PARTIAL = ".partial"                # the suffix of a file being written (.NAME.RANDOM.partial beside NAME)
+PARTIAL = ".partial"  # the suffix of a file being written (.NAME.RANDOM.partial beside NAME)
 
 
 class NotRegularFile(OSError):
@@ -48,9 +49,10 @@ def _kind(mode: int) -> str:
 def read_bytes(path: PathLike) -> bytes:
     """The contents of the regular file path. A FIFO is opened without blocking (O_NONBLOCK) and
     refused, like a device or a folder (NotRegularFile); other OSErrors as open raises them."""
-    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) |
-                 getattr(os, "O_BINARY", 0))
-    try:                                    # the descriptor is this frame's alone: closed once, on every way out
+    fd = os.open(
+        path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_BINARY", 0)
+    )
+    try:  # the descriptor is this frame's alone: closed once, on every way out
         mode = os.fstat(fd).st_mode
         if not stat.S_ISREG(mode):
             raise NotRegularFile(path, mode)
@@ -104,13 +106,13 @@ def replaced(path: PathLike, text: bool = False) -> Iterator[IO]:
     through, as asked: there is nothing to rename over."""
     path = Path(path)
     try:
-        old = os.stat(path)                 # through a link: the file it names
+        old = os.stat(path)  # through a link: the file it names
     except (FileNotFoundError, NotADirectoryError):
         old = None
     if old is not None and stat.S_ISDIR(old.st_mode):
         raise IsADirectoryError(errno.EISDIR, "a folder, not a file to write", str(path))
     if old is not None and not stat.S_ISREG(old.st_mode):
-        with (open(path, "w", newline="", encoding="utf-8") if text else open(path, "wb")) as f:
+        with open(path, "w", newline="", encoding="utf-8") if text else open(path, "wb") as f:
             yield f
         return
     target = Path(os.path.realpath(path)) if path.is_symlink() else path
@@ -122,9 +124,9 @@ def replaced(path: PathLike, text: bool = False) -> Iterator[IO]:
             try:
                 f = open(temp, "x", newline="", encoding="utf-8") if text else open(temp, "xb")
                 break
-            except FileExistsError:         # another file's name: never written through
+            except FileExistsError:  # another file's name: never written through
                 temp = None
-            except OSError as e:            # a missing or unwritable folder, named as the user named it
+            except OSError as e:  # a missing or unwritable folder, named as the user named it
                 temp = None
                 raise OSError(e.errno, e.strerror, str(path)) from None
         with f:

@@ -15,6 +15,7 @@ signed or its unsigned reading, the same 32 bits); anything else raises
 ValueError (`to_word` checks this for any width, and the harness uses it for every
 value it sends).
 """
+
 from __future__ import annotations
 
 import math
@@ -50,8 +51,10 @@ def to_word(value, bits: int = 32, what: str = "word") -> int:
     v = integer(value, what)
     lo, hi = -(1 << (bits - 1)), (1 << bits) - 1
     if not lo <= v <= hi:
-        raise ValueError(f"{what} = {v} ({_hex(v)}) does not fit {bits} bits: a {bits}-bit word is {lo} .. {hi} "
-                         f"(0 .. {_hex(hi)}, or its two's complement {_hex(lo)} .. -1)")
+        raise ValueError(
+            f"{what} = {v} ({_hex(v)}) does not fit {bits} bits: a {bits}-bit word is {lo} .. {hi} "
+            f"(0 .. {_hex(hi)}, or its two's complement {_hex(lo)} .. -1)"
+        )
     return v & hi
 
 
@@ -62,10 +65,10 @@ def _format(fmt: str) -> int:
 
 
 def _exact(value: Number) -> Fraction:
-    if isinstance(value, numbers.Real) and not isinstance(value, numbers.Rational):   # float, numpy floats
+    if isinstance(value, numbers.Real) and not isinstance(value, numbers.Rational):  # float, numpy floats
         if not math.isfinite(value):
             raise ValueError(f"{value} is not a finite number")
-        return Fraction(str(value))       # the decimal it prints as (str: numpy's repr adds its type)
+        return Fraction(str(value))  # the decimal it prints as (str: numpy's repr adds its type)
     if isinstance(value, Decimal) and not value.is_finite():
         raise ValueError(f"{value} is not a finite number")
     return Fraction(value)
@@ -79,8 +82,10 @@ def to_fixed(value: Number, fmt: str) -> int:
     scaled = _exact(value) * (1 << scale)
     n = int(abs(scaled) + Fraction(1, 2)) * (1 if scaled >= 0 else -1)
     if not -(1 << 31) <= n < (1 << 31):
-        raise ValueError(f"{value} does not fit the {fmt} format ({-(1 << 31) / (1 << scale):.12g} .. "
-                         f"{((1 << 31) - 1) / (1 << scale):.10g})")
+        raise ValueError(
+            f"{value} does not fit the {fmt} format ({-(1 << 31) / (1 << scale):.12g} .. "
+            f"{((1 << 31) - 1) / (1 << scale):.10g})"
+        )
     return n & 0xFFFFFFFF
 
 

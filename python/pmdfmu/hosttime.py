@@ -6,6 +6,7 @@ docs/decisions.md "Host time").
 The interface kinds, their parameters and defaults are modelDescription/
 host_interfaces.csv; host/c/PMDhosttime.c is the same formula in C (its constants
 generated from the same table), and tests/test_host_time.py compares the two."""
+
 from __future__ import annotations
 
 import csv
@@ -51,8 +52,10 @@ class HostInterface:
             raise ValueError(f"host interface {kind!r}: one of {', '.join(KINDS)}")
         unknown = set(parameters) - set(KINDS[kind])
         if unknown:
-            raise ValueError(f"host interface {kind}: no parameter {', '.join(sorted(unknown))} "
-                             f"(it has {', '.join(KINDS[kind]) or 'none'})")
+            raise ValueError(
+                f"host interface {kind}: no parameter {', '.join(sorted(unknown))} "
+                f"(it has {', '.join(KINDS[kind]) or 'none'})"
+            )
         self.kind = kind
         self.parameters: Dict[str, int] = dict(KINDS[kind])
         for name, value in parameters.items():
@@ -87,7 +90,7 @@ class HostInterface:
         w = max(words, 0)
         if self.kind in ("parallel16", "parallel8"):
             return w * self._per_word_cycles() * self.bus_cycle_ns
-        if self.kind == "serial":             # address, checksum, 2 bytes a word (reference 3.1)
+        if self.kind == "serial":  # address, checksum, 2 bytes a word (reference 3.1)
             return _bits_ns((2 + 2 * w) * self._serial_bits(), self.baud)
         if self.kind == "spi":
             return _bits_ns((self.request_header_words + w) * 16, self.clock_hz)
@@ -99,10 +102,13 @@ class HostInterface:
         """The reply's transfer time, the chip's processing time included: `words`
         result words; a failed command returns none (serial: 2 bytes)."""
         w = 0 if failed else max(words, 0)
-        if self.kind in ("parallel16", "parallel8"):      # ready, the I/O-error test, the words (reference 3.4)
-            return (self.processing_ns + self.bus_cycle_ns +
-                    (0 if failed else (w + self.checksum) * self._per_word_cycles() * self.bus_cycle_ns))
-        if self.kind == "serial":             # status, checksum, 2 bytes a word (reference 3.2)
+        if self.kind in ("parallel16", "parallel8"):  # ready, the I/O-error test, the words (reference 3.4)
+            return (
+                self.processing_ns
+                + self.bus_cycle_ns
+                + (0 if failed else (w + self.checksum) * self._per_word_cycles() * self.bus_cycle_ns)
+            )
+        if self.kind == "serial":  # status, checksum, 2 bytes a word (reference 3.2)
             return self.processing_ns + _bits_ns((2 + 2 * w) * self._serial_bits(), self.baud)
         if self.kind == "spi":
             return self.processing_ns + _bits_ns((self.reply_header_words + w) * 16, self.clock_hz)

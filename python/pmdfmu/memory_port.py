@@ -4,6 +4,7 @@ per block of 64 words one set of memory.data, .address, .count and a new
 .strobe, then a get of host.ack that executes the write, through the FMU's own
 FMI functions with the arguments the harness's Python loop passed
 (tests/stepwise.py, kept as the reference)."""
+
 from __future__ import annotations
 
 from ctypes import POINTER, Array, addressof, c_char, c_int, c_int32, c_size_t, c_uint32, c_void_p
@@ -19,8 +20,10 @@ from . import native
 BLOCK_WORDS = native.BLOCK_WORDS
 
 # the FMI functions each version's loop calls, in memory_port.h's order (native.MEMORY_SET, _SET_INT32, _GET)
-FUNCTIONS = {2: ("fmi2SetInteger", "fmi2SetInteger", "fmi2GetInteger"),
-             3: ("fmi3SetUInt32", "fmi3SetInt32", "fmi3GetInt32")}
+FUNCTIONS = {
+    2: ("fmi2SetInteger", "fmi2SetInteger", "fmi2GetInteger"),
+    3: ("fmi3SetUInt32", "fmi3SetInt32", "fmi3GetInt32"),
+}
 # the ones each version's native loop takes, in its argument order
 NAMES = {2: (FUNCTIONS[2][0], FUNCTIONS[2][2]), 3: FUNCTIONS[3]}
 
@@ -49,11 +52,22 @@ def _port(chip) -> Tuple[dict, native.Port, Array]:
     vr = chip._vr
     kept = _ports.get(id(vr))
     if kept is None or kept[0] is not vr:
-        data = ([vr[f"memory.data[{i + 1}]"] for i in range(BLOCK_WORDS)] if chip.fmi_version == 2
-                else [vr["memory.data"]] + [0] * (BLOCK_WORDS - 1))
-        kept = _ports[id(vr)] = (vr, native.Port((c_uint32 * BLOCK_WORDS)(*data), vr["memory.address"],
-                                          vr["memory.count"], vr["memory.strobe"], vr["host.ack"]),
-                                 (c_uint32 * 2)(vr["memorySize"], vr["memory.strobe"]))
+        data = (
+            [vr[f"memory.data[{i + 1}]"] for i in range(BLOCK_WORDS)]
+            if chip.fmi_version == 2
+            else [vr["memory.data"]] + [0] * (BLOCK_WORDS - 1)
+        )
+        kept = _ports[id(vr)] = (
+            vr,
+            native.Port(
+                (c_uint32 * BLOCK_WORDS)(*data),
+                vr["memory.address"],
+                vr["memory.count"],
+                vr["memory.strobe"],
+                vr["host.ack"],
+            ),
+            (c_uint32 * 2)(vr["memorySize"], vr["memory.strobe"]),
+        )
     return kept
 
 
@@ -91,6 +105,7 @@ def write(chip, address: int, words: np.ndarray) -> None:
     size, strobe = got
     chip._memory_fits(address, len(words), size)
     stop = native.Stop()
-    if _writers()[chip.fmi_version](*_calls(chip), fmu.component, port, address, _pointer(words), len(words),
-                                    strobe, stop):
+    if _writers()[chip.fmi_version](
+        *_calls(chip), fmu.component, port, address, _pointer(words), len(words), strobe, stop
+    ):
         raise FMICallException(function=FUNCTIONS[chip.fmi_version][stop.call], status=stop.status)

@@ -5,6 +5,7 @@ or per word. Found like the FMUs (chip.default_fmu): $PMDFMU_FMU_DIR/native,
 the installed package's native/, the source tree's build/native. The structs
 and enums it shares with the harness are mirrored here with ctypes, and the
 library's own layout of them (pmd_native_layout) is checked at load."""
+
 from __future__ import annotations
 
 import ctypes
@@ -16,9 +17,9 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 REPO = PACKAGE.parent.parent
-ABI = 4                  # native/native.h PMD_NATIVE_ABI
+ABI = 4  # native/native.h PMD_NATIVE_ABI
 NAME = {"win32": "pmdnative.dll", "darwin": "libpmdnative.dylib"}.get(sys.platform, "libpmdnative.so")
-BLOCK_WORDS = 64         # memory.data[64]: the words one strobe writes
+BLOCK_WORDS = 64  # memory.data[64]: the words one strobe writes
 
 # record_loop.h's PmdLoopType: the C type of a getter's values
 DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
@@ -29,24 +30,39 @@ STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN = range(4)
 
 class Stop(Structure):
     """native.h's PmdStop: where a loop stopped (after `done` rows or blocks, call `call` returned `status`)."""
+
     _fields_ = [("done", c_size_t), ("call", c_int), ("status", c_int)]
 
 
 class Group(Structure):
     """record_loop.h's PmdLoopGroup: one get a cycle."""
-    _fields_ = [("get", c_void_p), ("vrs", POINTER(c_uint32)), ("n_vrs", c_size_t), ("n_values", c_size_t),
-                ("type", c_int), ("values", c_void_p)]
+
+    _fields_ = [
+        ("get", c_void_p),
+        ("vrs", POINTER(c_uint32)),
+        ("n_vrs", c_size_t),
+        ("n_values", c_size_t),
+        ("type", c_int),
+        ("values", c_void_p),
+    ]
 
 
 class Column(Structure):
     """record_loop.h's PmdLoopColumn: one field of a row."""
+
     _fields_ = [("source", c_void_p), ("offset", c_size_t), ("size", c_size_t), ("truth", c_int)]
 
 
 class Port(Structure):
     """memory_port.h's PmdMemoryPort: the value references a strobe uses."""
-    _fields_ = [("data", c_uint32 * BLOCK_WORDS), ("address", c_uint32), ("count", c_uint32),
-                ("strobe", c_uint32), ("ack", c_uint32)]
+
+    _fields_ = [
+        ("data", c_uint32 * BLOCK_WORDS),
+        ("address", c_uint32),
+        ("count", c_uint32),
+        ("strobe", c_uint32),
+        ("ack", c_uint32),
+    ]
 
 
 def layout() -> list:
@@ -54,8 +70,12 @@ def layout() -> list:
     out = []
     for struct in (Stop, Group, Column, Port):
         out += [ctypes.sizeof(struct)] + [getattr(struct, name).offset for name, _type in struct._fields_]
-    return out + [DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL] + [MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET] + [
-        STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN]
+    return (
+        out
+        + [DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL]
+        + [MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET]
+        + [STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN]
+    )
 
 
 @lru_cache(maxsize=None)
@@ -67,19 +87,25 @@ def library() -> ctypes.CDLL:
         if path.is_file():
             lib = ctypes.CDLL(str(path))
             if lib.pmd_native_abi() != ABI:
-                raise ImportError(f"{path} is of ABI {lib.pmd_native_abi()}, the harness wants {ABI}: rebuild it "
-                                  "(pip install . or cmake --build build)")
+                raise ImportError(
+                    f"{path} is of ABI {lib.pmd_native_abi()}, the harness wants {ABI}: rebuild it "
+                    "(pip install . or cmake --build build)"
+                )
             lib.pmd_native_layout.restype = c_size_t
             lib.pmd_native_layout.argtypes = [POINTER(c_size_t), c_size_t]
             want = layout()
             got = (c_size_t * len(want))()
             count = lib.pmd_native_layout(got, len(want))
             if count != len(want) or list(got) != want:
-                raise ImportError(f"{path} lays out its structs and enums otherwise than the harness's ctypes "
-                                  f"(native.py; {list(got)[:count]} against {want}): rebuild it or fix native.py")
+                raise ImportError(
+                    f"{path} lays out its structs and enums otherwise than the harness's ctypes "
+                    f"(native.py; {list(got)[:count]} against {want}): rebuild it or fix native.py"
+                )
             return lib
-    raise FileNotFoundError(f"{NAME} not found in {', '.join(map(str, candidates))}: build it first "
-                            "(pip install . or cmake -S . -B build && cmake --build build)")
+    raise FileNotFoundError(
+        f"{NAME} not found in {', '.join(map(str, candidates))}: build it first "
+        "(pip install . or cmake -S . -B build && cmake --build build)"
+    )
 
 
 def address(function) -> int:

@@ -13,6 +13,7 @@ are unchanged.
 Which tables a script loads is the FMU's answer, not a second parser's: pack
 compiles the script in the FMU and reads the files it names in its log.
 """
+
 from __future__ import annotations
 
 import os
@@ -29,8 +30,8 @@ from typing import Iterator, List, Optional, Tuple, Union
 from .files import replaced, shown_path
 from .chip import Chip, FMUError, default_fmu
 
-PROFILE = "profile"                  # resources/profile/: the script and its tables
-START_FILE = "script.start"          # resources/script.start: PMD_SCRIPT_START in fmu_src/script/script.h
+PROFILE = "profile"  # resources/profile/: the script and its tables
+START_FILE = "script.start"  # resources/script.start: PMD_SCRIPT_START in fmu_src/script/script.h
 MODEL_DESCRIPTION = "modelDescription.xml"
 
 # what the FMU logs (category "buffers") at the end of initialization about the files it read (instance.c)
@@ -45,6 +46,7 @@ class PackError(ValueError):
 @dataclass
 class Packed:
     """What pack wrote: the FMU, the `script` start value and the files under resources/."""
+
     fmu: Path
     start: str
     files: List[str]
@@ -53,8 +55,8 @@ class Packed:
 @dataclass
 class _Read:
     script: Path
-    tables: List[Tuple[int, str, Path]]      # (line, name as the script gives it, file read)
-    state: bytes                             # the FMU state right after initialization
+    tables: List[Tuple[int, str, Path]]  # (line, name as the script gives it, file read)
+    state: bytes  # the FMU state right after initialization
     axes: int
     last_cycle: float
 
@@ -66,9 +68,9 @@ def _compile(fmi_version: int, fmu: Path, script: Optional[Path]) -> Tuple[_Read
     with Chip(fmi_version, fmu, log_categories=["buffers"], **parameters) as chip:
         read_from, tables = None, []
         for m in chip.messages:
-            if (found := _SCRIPT_READ.search(m.message)):
+            if found := _SCRIPT_READ.search(m.message):
                 read_from = Path(found.group(1))
-            elif (found := _TABLE_READ.search(m.message)):
+            elif found := _TABLE_READ.search(m.message):
                 tables.append((int(found.group(1)), found.group(2), Path(found.group(3))))
         if read_from is None:
             raise PackError(f"{fmu}: the FMU compiled no script file (script = {chip.get('script')!r})")
@@ -81,8 +83,15 @@ def _escape_attribute(value: str) -> str:
     which attribute-value normalization keeps."""
     if any(ord(c) < 0x20 and c not in "\t\n\r" for c in value):
         raise PackError(f"{value!r}: a control character XML 1.0 cannot carry")
-    for plain, escaped in (("&", "&amp;"), ("<", "&lt;"), (">", "&gt;"), ('"', "&quot;"),
-                           ("\n", "&#10;"), ("\r", "&#13;"), ("\t", "&#9;")):
+    for plain, escaped in (
+        ("&", "&amp;"),
+        ("<", "&lt;"),
+        (">", "&gt;"),
+        ('"', "&quot;"),
+        ("\n", "&#10;"),
+        ("\r", "&#13;"),
+        ("\t", "&#9;"),
+    ):
         value = value.replace(plain, escaped)
     return value
 
@@ -128,11 +137,13 @@ def set_script_start(xml_bytes: bytes, value: str) -> bytes:
     existing = [m for m in re.finditer(_ATTRIBUTE, attributes) if m.group(1) == name]
     if existing:
         m = existing[0]
-        attributes = attributes[:m.start()] + m.group(0)[:m.start(1) - m.start()] + new_attribute + attributes[m.end():]
+        attributes = (
+            attributes[: m.start()] + m.group(0)[: m.start(1) - m.start()] + new_attribute + attributes[m.end() :]
+        )
     else:
         attributes += " " + new_attribute
     start = element.start(1)
-    result = (text[:start] + attributes + text[element.end(1):]).encode("utf-8")
+    result = (text[:start] + attributes + text[element.end(1) :]).encode("utf-8")
     _check_only_the_start_changed(xml_bytes, result, tag, name, value)
     return result
 
@@ -144,8 +155,9 @@ def _check_only_the_start_changed(before: bytes, after: bytes, tag: str, name: s
     changed = 0
     for a, b in zip(old, new):
         others = [{k: v for k, v in e.attrib.items() if k != name} for e in (a, b)]
-        if (a.tag, a.text, a.tail) != (b.tag, b.text, b.tail) or \
-                (a.attrib != b.attrib and (b.tag != tag or b.attrib.get(name) != value or others[0] != others[1])):
+        if (a.tag, a.text, a.tail) != (b.tag, b.text, b.tail) or (
+            a.attrib != b.attrib and (b.tag != tag or b.attrib.get(name) != value or others[0] != others[1])
+        ):
             raise PackError(f"{MODEL_DESCRIPTION}: the edit changed <{a.tag}> {a.attrib}")
         changed += a.attrib != b.attrib
     if changed > 1:
@@ -159,11 +171,13 @@ def _layout(read: _Read, unzipdir: Path) -> Tuple[Path, List[Tuple[Path, str]]]:
     inside = unzipdir / "resources"
     for line, name, path in read.tables:
         if os.path.isabs(name):
-            raise PackError(f"{read.script}:{line}: the table {name} is named by an absolute path: a packed FMU "
-                            "must find it inside itself; name it relative to the script's folder")
+            raise PackError(
+                f"{read.script}:{line}: the table {name} is named by an absolute path: a packed FMU "
+                "must find it inside itself; name it relative to the script's folder"
+            )
         if Path(os.path.normpath(path)).is_relative_to(inside):
-            continue                         # in the base FMU's resources folder: packed already
-        if (file := Path(os.path.normpath(path))) not in files:     # a table loaded twice is packed once
+            continue  # in the base FMU's resources folder: packed already
+        if (file := Path(os.path.normpath(path))) not in files:  # a table loaded twice is packed once
             files.append(file)
     root = Path(os.path.commonpath([folder] + [f.parent for f in files]))
     return root, [(f, PurePosixPath(*f.relative_to(root).parts).as_posix()) for f in files]
@@ -178,7 +192,7 @@ def _refuse_overwriting(out: Path, inputs: List[Tuple[Path, str]]) -> None:
     for path, what in inputs:
         try:
             same = os.path.samefile(out, path)
-        except OSError:                 # a dangling link: replacing it overwrites nothing
+        except OSError:  # a dangling link: replacing it overwrites nothing
             continue
         if same:
             raise PackError(f"{out}: the packed FMU must not overwrite {what}, {shown_path(path)}")
@@ -213,12 +227,15 @@ def _refuse_outside(script: Path, tables) -> None:
     for line, name, path in tables:
         resolved = Path(path).resolve()
         if resolved != folder and folder not in resolved.parents:
-            raise PackError(f"{shown_path(script)}:{line}: the table {name} lies outside the script's folder, which "
-                            "pack cannot reach for a script whose name holds a line feed: rename the script")
+            raise PackError(
+                f"{shown_path(script)}:{line}: the table {name} lies outside the script's folder, which "
+                "pack cannot reach for a script whose name holds a line feed: rename the script"
+            )
 
 
-def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
-         fmu: Union[str, Path, None] = None) -> Packed:
+def pack(
+    script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2, fmu: Union[str, Path, None] = None
+) -> Packed:
     """Writes out: a copy of fmu (default: the built FMU of fmi_version) with script and every
     table it loads under resources/profile/ and `script` starting at it; then initializes the
     copy without parameters and checks that it compiled the same script from inside itself.
@@ -234,12 +251,14 @@ def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
         try:
             read, unzipdir = _compile(fmi_version, base, given)
         except FMUError as e:
-            raise PackError(f"{shown_path(script)}: the FMU refuses the script: "
-                            f"{str(e).replace(str(given), shown_path(script))}") from None
+            raise PackError(
+                f"{shown_path(script)}: the FMU refuses the script: {str(e).replace(str(given), shown_path(script))}"
+            ) from None
         if given != script:
             _refuse_outside(script, read.tables)
-        _refuse_overwriting(out, [(path, f"the table {name} the script loads (line {line})")
-                                  for line, name, path in read.tables])
+        _refuse_overwriting(
+            out, [(path, f"the table {name} the script loads (line {line})") for line, name, path in read.tables]
+        )
         root, files = _layout(read, unzipdir)
         start = f"{PROFILE}/{files[0][1]}"
 
@@ -256,8 +275,11 @@ def pack(script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2,
                     name = f"resources/{PROFILE}/{relative}"
                     zout.write(path, name, compress_type=zipfile.ZIP_DEFLATED)
                     added.append(name)
-                zout.writestr(zipfile.ZipInfo(f"resources/{START_FILE}", date_time=(1980, 1, 1, 0, 0, 0)),
-                              start.encode("utf-8"), compress_type=zipfile.ZIP_DEFLATED)
+                zout.writestr(
+                    zipfile.ZipInfo(f"resources/{START_FILE}", date_time=(1980, 1, 1, 0, 0, 0)),
+                    start.encode("utf-8"),
+                    compress_type=zipfile.ZIP_DEFLATED,
+                )
                 added.append(f"resources/{START_FILE}")
             partial.flush()
             _verify(Path(partial.name), fmi_version, start, read)
@@ -278,8 +300,13 @@ def _verify(packed: Path, fmi_version: int, start: str, original: _Read) -> None
     if (read.state, read.axes, read.last_cycle) != (original.state, original.axes, original.last_cycle):
         raise PackError("the packed FMU compiles another script than the script by path")
     md = ET.fromstring(zipfile.ZipFile(packed).read(MODEL_DESCRIPTION))
-    starts = [e.get("start", e.get("value")) for v in md.iter() if v.get("name") == "script"
-              for e in v if e.tag in ("String", "Start")]
+    starts = [
+        e.get("start", e.get("value"))
+        for v in md.iter()
+        if v.get("name") == "script"
+        for e in v
+        if e.tag in ("String", "Start")
+    ]
     if starts != [start]:
         raise PackError(f"{MODEL_DESCRIPTION} gives the script the start value {starts}, not {start!r}")
 

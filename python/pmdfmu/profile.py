@@ -2,6 +2,7 @@
 """External profiles from segment tables, following seed 000: buffer set-up
 (1.1), loading (1.3), the initial move and the synchronized start (1.4), and
 the run until every axis's profile segment number drops to 0 (1.6)."""
+
 from __future__ import annotations
 
 import csv
@@ -22,7 +23,7 @@ class TableError(ValueError):
     """A segment table that cannot be read or run as written: `file:line: reason`."""
 
 
-WORD = (-2**31, 2**32 - 1)      # a buffer word: a signed or an unsigned 32-bit value (encode's rule)
+WORD = (-(2**31), 2**32 - 1)  # a buffer word: a signed or an unsigned 32-bit value (encode's rule)
 
 
 def read_segment_table(path: Path) -> Dict[int, List[Row]]:
@@ -36,8 +37,7 @@ def read_segment_table(path: Path) -> Dict[int, List[Row]]:
         raise TableError(f"{path}: cannot read the segment table: {e}") from None
     # the table's lines with their numbers in the file, comments and blank lines left out
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
-    kept = [(n, line) for n, line in enumerate(lines, start=1)
-            if line.strip() and not line.lstrip().startswith("#")]
+    kept = [(n, line) for n, line in enumerate(lines, start=1) if line.strip() and not line.lstrip().startswith("#")]
     reader = csv.reader([line for _, line in kept])
     columns = ("axis",) + FUNCTIONS
     tables: Dict[int, List[Row]] = {}
@@ -49,14 +49,17 @@ def read_segment_table(path: Path) -> Dict[int, List[Row]]:
                 header = [h.strip() for h in row]
                 for i, name in enumerate(header):
                     if name not in columns:
-                        raise TableError(f"{path}:{line}: column {i + 1}: {files.shown(name)} is not one of "
-                                         f"{', '.join(columns)}")
+                        raise TableError(
+                            f"{path}:{line}: column {i + 1}: {files.shown(name)} is not one of {', '.join(columns)}"
+                        )
                     if name in header[:i]:
                         raise TableError(f"{path}:{line}: column {files.shown(name)} named twice")
                 missing = [c for c in columns if c not in header]
                 if missing:
-                    raise TableError(f"{path}:{line}: no column {', '.join(map(repr, missing))} (the header "
-                                     f"names {', '.join(header)}; a table has {', '.join(columns)})")
+                    raise TableError(
+                        f"{path}:{line}: no column {', '.join(map(repr, missing))} (the header "
+                        f"names {', '.join(header)}; a table has {', '.join(columns)})"
+                    )
                 continue
             if len(row) != len(header):
                 raise TableError(f"{path}:{line}: expected {len(header)} values (one per column), found {len(row)}")
@@ -67,8 +70,7 @@ def read_segment_table(path: Path) -> Dict[int, List[Row]]:
     except csv.Error as e:
         raise TableError(f"{path}:{kept[reader.line_num - 1][0]}: {e}") from None
     if not header:
-        raise TableError(f"{path}:1: no header: a segment table's first line names its columns "
-                         f"({', '.join(columns)})")
+        raise TableError(f"{path}:1: no header: a segment table's first line names its columns ({', '.join(columns)})")
     if not tables:
         raise TableError(f"{path}: no segment: a row per segment follows the header")
     return tables
@@ -79,11 +81,15 @@ def _word(path: Path, line: int, column: str, cell: str) -> int:
     try:
         value = int(cell.strip(), 0)
     except ValueError:
-        raise TableError(f"{path}:{line}: column {column}: {files.shown(cell)} is not an integer: a table "
-                         "holds raw chip words (32.0, 16.16, 16.16, 0.32, cycles), decimal or 0x hex") from None
+        raise TableError(
+            f"{path}:{line}: column {column}: {files.shown(cell)} is not an integer: a table "
+            "holds raw chip words (32.0, 16.16, 16.16, 0.32, cycles), decimal or 0x hex"
+        ) from None
     if not WORD[0] <= value <= WORD[1]:
-        raise TableError(f"{path}:{line}: column {column}: {files.shown(cell)} does not fit a 32-bit buffer word "
-                         f"({WORD[0]}..{WORD[1]})")
+        raise TableError(
+            f"{path}:{line}: column {column}: {files.shown(cell)} does not fit a 32-bit buffer word "
+            f"({WORD[0]}..{WORD[1]})"
+        )
     return value
 
 
@@ -96,8 +102,9 @@ def write_segment_table(path: Path, tables: Dict[int, Sequence[Row]]) -> None:
                 w.writerow((axis + 1,) + tuple(r))
 
 
-def load_external_profile(chip: Chip, tables: Dict[int, Sequence[Row]], memory_start: int = 0x200,
-                          upload: str = "memory") -> Dict[int, List[int]]:
+def load_external_profile(
+    chip: Chip, tables: Dict[int, Sequence[Row]], memory_start: int = 0x200, upload: str = "memory"
+) -> Dict[int, List[int]]:
     """Gives each axis five buffers (IDs from 2 up, consecutive, not overlapping)
     of the table's length, assigns them to position..time and fills them:
     upload="memory" through the dual-port memory port, "command" with WriteBuffer.
@@ -124,8 +131,14 @@ def load_external_profile(chip: Chip, tables: Dict[int, Sequence[Row]], memory_s
     return ids
 
 
-def move_to(chip: Chip, positions: Dict[int, int], velocity: int, acceleration: int,
-            max_cycles: int = 10_000_000, step: int = 256) -> int:
+def move_to(
+    chip: Chip,
+    positions: Dict[int, int],
+    velocity: int,
+    acceleration: int,
+    max_cycles: int = 10_000_000,
+    step: int = 256,
+) -> int:
     """Trapezoidal moves of the given axes to their positions (seed 000, 1.4);
     runs until all are at rest. Returns the cycles it took; TimeoutError after
     max_cycles."""
@@ -159,8 +172,15 @@ def record_outputs(axes: Iterable[int]) -> List[str]:
     names = []
     for axis in axes:
         n = axis + 1
-        names += [f"axis{n}.commandedPosition", f"axis{n}.commandedVelocity", f"axis{n}.commandedAcceleration",
-                  f"axis{n}.position", f"axis{n}.velocity", f"axis{n}.acceleration", f"axis{n}.activityStatus"]
+        names += [
+            f"axis{n}.commandedPosition",
+            f"axis{n}.commandedVelocity",
+            f"axis{n}.commandedAcceleration",
+            f"axis{n}.position",
+            f"axis{n}.velocity",
+            f"axis{n}.acceleration",
+            f"axis{n}.activityStatus",
+        ]
     return names
 
 
@@ -169,8 +189,9 @@ def _names(axes: Iterable[int], record: Sequence[str]) -> List[str]:
     return names + [n for n in dict.fromkeys(record) if n not in names]
 
 
-def run_until_halted(chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_000,
-                     chunk: int = 1000, record: Sequence[str] = ()) -> np.ndarray:
+def run_until_halted(
+    chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_000, chunk: int = 1000, record: Sequence[str] = ()
+) -> np.ndarray:
     """Runs and records every cycle until every axis's profile segment number
     is 0 (seed 000, 1.6), or max_cycles. record: outputs recorded besides
     record_outputs(axes) (pmdfmu verify's event status)."""
@@ -199,8 +220,13 @@ def script_axes(chip: Chip) -> List[int]:
     return [axis for axis, bit in enumerate(AXIS_MASKS) if mask & bit] or [0]
 
 
-def run_script(chip: Chip, axes: Optional[Sequence[int]] = None, max_cycles: int = 1_000_000,
-               chunk: int = 1000, record: Sequence[str] = ()) -> np.ndarray:
+def run_script(
+    chip: Chip,
+    axes: Optional[Sequence[int]] = None,
+    max_cycles: int = 1_000_000,
+    chunk: int = 1000,
+    record: Sequence[str] = (),
+) -> np.ndarray:
     """Records a script's run (the chip was made with script=...): until the time
     of its last @ line has passed (script.lastCycle) and every axis is at rest, or
     max_cycles. axes: those to record, by default script_axes(chip); record:
@@ -213,16 +239,21 @@ def run_script(chip: Chip, axes: Optional[Sequence[int]] = None, max_cycles: int
         part = chip.run(min(chunk, max_cycles - total), record=names)
         parts.append(part)
         total += len(part)
-        at_rest = all(not part[-1][f"axis{a + 1}.activityStatus"] & CONSTANTS["PMDActivityInMotionMask"]
-                      for a in axes)
+        at_rest = all(not part[-1][f"axis{a + 1}.activityStatus"] & CONSTANTS["PMDActivityInMotionMask"] for a in axes)
         if part["cycle"][-1] >= last and at_rest:
             break
     return np.concatenate(parts)
 
 
-def run_segment_table(chip: Chip, tables: Dict[int, Sequence[Row]], velocity: int = 0x40000,
-                      acceleration: int = 0x1000, upload: str = "memory",
-                      max_cycles: int = 1_000_000, record: Sequence[str] = ()) -> np.ndarray:
+def run_segment_table(
+    chip: Chip,
+    tables: Dict[int, Sequence[Row]],
+    velocity: int = 0x40000,
+    acceleration: int = 0x1000,
+    upload: str = "memory",
+    max_cycles: int = 1_000_000,
+    record: Sequence[str] = (),
+) -> np.ndarray:
     """The whole of seed 000 for a table: load, move each axis to its first
     position, start all axes together, run to completion. Returns the recorded
     cycles of the external profile (record: outputs besides record_outputs)."""
@@ -250,8 +281,9 @@ def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "Exte
     axes = sorted({int(n[4]) for n in recorded.dtype.names if n.startswith("axis")})
     t = recorded["cycle"] * cycle_time
     fig, grid = plt.subplots(2, 2, figsize=(12, 8))
-    for panel, quantity, unit in zip(grid.flat, ("position", "velocity", "acceleration"),
-                                     ("counts", "counts/s", "counts/s^2")):
+    for panel, quantity, unit in zip(
+        grid.flat, ("position", "velocity", "acceleration"), ("counts", "counts/s", "counts/s^2")
+    ):
         for n in axes:
             panel.plot(t, recorded[f"axis{n}.{quantity}"], label=f"axis {n}")
         panel.set_ylabel(f"{quantity} [{unit}]")
@@ -274,10 +306,12 @@ def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "Exte
 
 # ---- what `pmdfmu run FILE` runs (pmdfmu verify runs the same) ----------------------
 
+
 @dataclass
 class ProfileRun:
     """A run of run_profile: the recording, the axes recorded (0..3), the chip's
     cycle time (s) and the FMU's log messages (warnings: refused script commands)."""
+
     recording: np.ndarray
     axes: List[int]
     cycle_time: float
@@ -289,10 +323,17 @@ def is_segment_table(path: Union[str, Path]) -> bool:
     return Path(path).suffix.lower() == ".csv"
 
 
-def run_profile(source: Union[str, Path, Dict[int, Sequence[Row]]], fmu: Optional[str] = None,
-                fmi_version: int = 2, cycle_time: float = DEFAULT_CYCLE_TIME, upload: str = "memory",
-                max_cycles: int = 1_000_000, record: Sequence[str] = (),
-                parameters: Optional[dict] = None, inspect: Optional[Callable[[Chip], None]] = None) -> ProfileRun:
+def run_profile(
+    source: Union[str, Path, Dict[int, Sequence[Row]]],
+    fmu: Optional[str] = None,
+    fmi_version: int = 2,
+    cycle_time: float = DEFAULT_CYCLE_TIME,
+    upload: str = "memory",
+    max_cycles: int = 1_000_000,
+    record: Sequence[str] = (),
+    parameters: Optional[dict] = None,
+    inspect: Optional[Callable[[Chip], None]] = None,
+) -> ProfileRun:
     """Runs a script file, a segment table file (is_segment_table) or tables
     read already, as `pmdfmu run` does: a table on a chip with no script
     (run_segment_table), a script with script=... (run_script); the FMU's
@@ -304,17 +345,18 @@ def run_profile(source: Union[str, Path, Dict[int, Sequence[Row]]], fmu: Optiona
     path = Path(source) if isinstance(source, (str, Path)) else None
     table = path is None or is_segment_table(path)
     tables = (source if path is None else read_segment_table(path)) if table else None
-    params["script"] = "" if table else path         # a file, never a script's text (README, "Scripts")
+    params["script"] = "" if table else path  # a file, never a script's text (README, "Scripts")
     with Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip:
         if table:
             axes = sorted(tables)
             try:
                 rec = run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles, record=record)
-            except (PMDError, FMUError) as e:       # the chip refused the table's set-up (it does not fit, ...)
+            except (PMDError, FMUError) as e:  # the chip refused the table's set-up (it does not fit, ...)
                 raise TableError(f"{path or 'segment tables'}: {e}") from None
-            except TimeoutError as e:               # a first row's position too far away
-                raise TableError(f"{path or 'segment tables'}: {e}: an axis starts at its first row's position") \
-                    from None
+            except TimeoutError as e:  # a first row's position too far away
+                raise TableError(
+                    f"{path or 'segment tables'}: {e}: an axis starts at its first row's position"
+                ) from None
         else:
             axes = script_axes(chip)
             rec = run_script(chip, axes, max_cycles=max_cycles, record=record)

@@ -14,6 +14,7 @@ without bulk recording of the columns (an older build) or a run that records
 `time`: per cycle one doStep to the next cycle of the FMU's grid and one get per
 FMI type, through the FMU's own FMI functions, with the arguments a Python loop
 over FMPy passes (tests/stepwise.py, the reference)."""
+
 from __future__ import annotations
 
 from ctypes import POINTER, byref, c_char, c_double, c_int, c_size_t, c_uint32, c_void_p
@@ -25,16 +26,32 @@ from fmpy.fmi1 import FMICallException
 from . import native
 
 # record.data's default row after the chip time: the commanded outputs (Chip.run records them fastest)
-RECORDED = [f"axis{n}.{q}" for n in range(1, 5)
-            for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")]
+RECORDED = [
+    f"axis{n}.{q}" for n in range(1, 5) for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")
+]
 
 # the C type of a getter's values (native.py's PmdLoopType), by the FMU's type (FMI 2 and FMI 3 names), and
 # a row's numpy type of each
-SOURCE = {2: {"Real": native.DOUBLE, "Integer": native.INT32, "Boolean": native.INT},
-          3: {"Float64": native.DOUBLE, "Int32": native.INT32, "UInt32": native.UINT32, "UInt16": native.UINT16,
-              "Int16": native.INT16, "Boolean": native.BOOL}}
-CTYPE = {native.DOUBLE: np.float64, native.INT32: np.int32, native.UINT32: np.uint32, native.UINT16: np.uint16,
-         native.INT16: np.int16, native.INT: np.intc, native.BOOL: np.bool_}
+SOURCE = {
+    2: {"Real": native.DOUBLE, "Integer": native.INT32, "Boolean": native.INT},
+    3: {
+        "Float64": native.DOUBLE,
+        "Int32": native.INT32,
+        "UInt32": native.UINT32,
+        "UInt16": native.UINT16,
+        "Int16": native.INT16,
+        "Boolean": native.BOOL,
+    },
+}
+CTYPE = {
+    native.DOUBLE: np.float64,
+    native.INT32: np.int32,
+    native.UINT32: np.uint32,
+    native.UINT16: np.uint16,
+    native.INT16: np.int16,
+    native.INT: np.intc,
+    native.BOOL: np.bool_,
+}
 GRID = ("time", "nextCycleTime", "activeCycleTime")
 
 
@@ -78,10 +95,21 @@ class Plan:
                 # or of an fmi2Boolean (an int: the field is value != 0)
                 field_type, offset = dtype.fields[f][:2]
                 source = values.ctypes.data + values.itemsize * (int(offsets[read.index(var)]) + element)
-                columns.append(native.Column(source, offset, field_type.itemsize,
-                                      int(values.dtype != field_type and field_type.kind == "b")))
-            groups.append(native.Group(native.address(_function(chip.fmu, name)), vrs, len(read), int(offsets[-1]),
-                                SOURCE[version][t], values.ctypes.data))
+                columns.append(
+                    native.Column(
+                        source, offset, field_type.itemsize, int(values.dtype != field_type and field_type.kind == "b")
+                    )
+                )
+            groups.append(
+                native.Group(
+                    native.address(_function(chip.fmu, name)),
+                    vrs,
+                    len(read),
+                    int(offsets[-1]),
+                    SOURCE[version][t],
+                    values.ctypes.data,
+                )
+            )
             self.names.append(name)
         self.groups = (native.Group * len(groups))(*groups)
         self.columns = (native.Column * len(columns))(*columns)
@@ -95,11 +123,35 @@ def record(chip, plan: Plan, out: np.ndarray) -> None:
     lib = native.library()
     fn = lib.pmd_record_fmi2 if plan.version == 2 else lib.pmd_record_fmi3
     fn.restype = c_int
-    fn.argtypes = [c_void_p, c_void_p, POINTER(native.Group), c_size_t, c_size_t, c_size_t, POINTER(native.Column),
-                   c_size_t, c_void_p, c_size_t, c_size_t, POINTER(native.Stop)]
+    fn.argtypes = [
+        c_void_p,
+        c_void_p,
+        POINTER(native.Group),
+        c_size_t,
+        c_size_t,
+        c_size_t,
+        POINTER(native.Column),
+        c_size_t,
+        c_void_p,
+        c_size_t,
+        c_size_t,
+        POINTER(native.Stop),
+    ]
     stop = native.Stop()
-    if fn(native.address(_function(chip.fmu, plan.do_step)), chip.fmu.component, plan.groups, len(plan.groups),
-          plan.grid_group, 0, plan.columns, len(plan.columns), out.ctypes.data, out.dtype.itemsize, len(out), stop):
+    if fn(
+        native.address(_function(chip.fmu, plan.do_step)),
+        chip.fmu.component,
+        plan.groups,
+        len(plan.groups),
+        plan.grid_group,
+        0,
+        plan.columns,
+        len(plan.columns),
+        out.ctypes.data,
+        out.dtype.itemsize,
+        len(out),
+        stop,
+    ):
         raise FMICallException(function=plan.do_step if stop.call < 0 else plan.names[stop.call], status=stop.status)
 
 
@@ -121,11 +173,13 @@ def record_data(chip) -> Optional[Callable[[], Tuple[int, int]]]:
     build)."""
     if chip.fmi_version == 3:
         from fmpy.fmi3 import fmi3Binary, fmi3ValueReference
+
         vrs, size, value = (fmi3ValueReference * 1)(chip._vr["record.data"]), (c_size_t * 1)(), (fmi3Binary * 1)()
 
         def read3() -> Tuple[int, int]:
             chip.fmu.fmi3GetBinary(chip.fmu.component, vrs, 1, size, value, 1)
             return c_void_p.from_buffer(value).value or 0, size[0]
+
         return read3
     get = extension(chip, "pmdfmu_fmi2GetRecordData", [c_void_p, POINTER(c_void_p), POINTER(c_size_t)])
     if get is None:
@@ -134,9 +188,10 @@ def record_data(chip) -> Optional[Callable[[], Tuple[int, int]]]:
 
     def read2() -> Tuple[int, int]:
         status = get(chip.fmu.component, byref(data), byref(nbytes))
-        if status > 1:                                  # as FMPy raises for an FMI function
+        if status > 1:  # as FMPy raises for an FMI function
             raise FMICallException(function="pmdfmu_fmi2GetRecordData", status=status)
         return data.value or 0, nbytes.value
+
     return read2
 
 
@@ -156,24 +211,40 @@ def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int,
         return None
     fn = native.library().pmd_record_step_lent
     fn.restype = c_int
-    fn.argtypes = [c_void_p, c_void_p, c_void_p, c_void_p, c_double, c_double, c_void_p, c_size_t,
-                   POINTER(c_size_t), POINTER(c_int)]
+    fn.argtypes = [
+        c_void_p,
+        c_void_p,
+        c_void_p,
+        c_void_p,
+        c_double,
+        c_double,
+        c_void_p,
+        c_size_t,
+        POINTER(c_size_t),
+        POINTER(c_int),
+    ]
     functions = native.address(lend), native.address(get), native.address(_function(chip.fmu, "fmi2DoStep"))
     recorded, call = c_size_t(), c_int()
-    names = {native.STEP_LEND: "pmdfmu_fmi2SetRecordBuffer", native.STEP_DO_STEP: "fmi2DoStep",
-             native.STEP_GET_DATA: "pmdfmu_fmi2GetRecordData", native.STEP_END_LOAN: "pmdfmu_fmi2SetRecordBuffer"}
+    names = {
+        native.STEP_LEND: "pmdfmu_fmi2SetRecordBuffer",
+        native.STEP_DO_STEP: "fmi2DoStep",
+        native.STEP_GET_DATA: "pmdfmu_fmi2GetRecordData",
+        native.STEP_END_LOAN: "pmdfmu_fmi2SetRecordBuffer",
+    }
 
     def step_into(address: int, size: int, now: float, step: float) -> Tuple[int, int]:
         status = fn(*functions, chip.fmu.component, now, step, address, size, byref(recorded), byref(call))
-        if status > 1:                                  # as FMPy raises for an FMI function
+        if status > 1:  # as FMPy raises for an FMI function
             raise FMICallException(function=names[call.value], status=status)
         return status, recorded.value
+
     return step_into
 
 
 class _Commanded:
     """The result of a run recording commanded outputs only: record.data's default rows of 32-bit words
     (the chip time, then RECORDED) go into a table of 32-bit words whose rows are the result's records."""
+
     lendable = False
 
     def __init__(self, names: Sequence[str], dtype: np.dtype, cycles: int):
@@ -191,11 +262,11 @@ class _Commanded:
 
     def put(self, done: int, rows: np.ndarray) -> None:
         for at, column, width in self.runs:
-            self.table[done:done + len(rows), at:at + width] = rows[:, column:column + width]
+            self.table[done : done + len(rows), at : at + width] = rows[:, column : column + width]
 
     def put_records(self, done: int, part: np.ndarray) -> None:
         """Records of the result's type (the native loop's): the same 32-bit fields as the table's row."""
-        self.table[done:done + len(part)] = part.view(np.int32).reshape(len(part), self.table.shape[1])
+        self.table[done : done + len(part)] = part.view(np.int32).reshape(len(part), self.table.shape[1])
 
     def result(self) -> np.ndarray:
         return self.table.view(self.dtype).reshape(self.cycles)
@@ -205,20 +276,21 @@ class _Columns:
     """The result of a run recording record.columns: the FMU's packed little-endian row is the result's
     record (the chip time, then each column in its FMI 3 type's width), whole rows copied as one block,
     or written in place by the FMU (FMI 2, lendable)."""
+
     lendable = True
 
     def __init__(self, dtype: np.dtype, cycles: int):
-        self.out = np.empty(cycles, dtype=dtype)         # every byte of every row is written
+        self.out = np.empty(cycles, dtype=dtype)  # every byte of every row is written
         self.row = np.dtype((np.uint8, dtype.itemsize))
 
     def address(self, done: int) -> int:
         return self.out.ctypes.data + done * self.row.itemsize
 
     def put(self, done: int, rows: np.ndarray) -> None:
-        self.out.view(self.row)[done:done + len(rows)] = rows
+        self.out.view(self.row)[done : done + len(rows)] = rows
 
     def put_records(self, done: int, part: np.ndarray) -> None:
-        self.out[done:done + len(part)] = part
+        self.out[done : done + len(part)] = part
 
     def result(self) -> np.ndarray:
         return self.out
@@ -234,8 +306,9 @@ class Recorder:
         self.chip, self.names, self.where, self.dtype = chip, list(names), where, dtype
         self.commanded = set(self.names) <= set(RECORDED)
         self.record_data = record_data(chip)
-        self.bulk = bool(self.record_data) and (self.commanded or ("record.columns" in chip.variables
-                                                            and "time" not in self.names))
+        self.bulk = bool(self.record_data) and (
+            self.commanded or ("record.columns" in chip.variables and "time" not in self.names)
+        )
 
     def run(self, cycles: int) -> np.ndarray:
         if not self.bulk:
@@ -254,14 +327,16 @@ class Recorder:
         redone cycle by cycle if it did, so that its rows are those of a master stepping cycle by cycle."""
         chip = self.chip
         capacity = chip.get("record.capacity")
-        if capacity == 0:                           # the FMU records nothing: cycle by cycle, as a master would
+        if capacity == 0:  # the FMU records nothing: cycle by cycle, as a master would
             return self.stepwise(cycles)
         if "record.columns" in chip.variables:
             chip.set("record.columns", "" if self.commanded else ",".join(self.names))
         rows = _Commanded(self.names, self.dtype, cycles) if self.commanded else _Columns(self.dtype, cycles)
         if not self.commanded and rows.row.itemsize != chip.get("record.rowSize"):
-            raise RuntimeError(f"record.rowSize is {chip.get('record.rowSize')}, not the {rows.row.itemsize} "
-                               f"bytes of a row of {len(self.names)} columns: the FMU's record.columns is another")
+            raise RuntimeError(
+                f"record.rowSize is {chip.get('record.rowSize')}, not the {rows.row.itemsize} "
+                f"bytes of a row of {len(self.names)} columns: the FMU's record.columns is another"
+            )
         # the script's steps run up to its last @ line: past it no step can change the grid; a chip without a
         # script's call (script.axes 0) has no step at all, and its chunks need no saved FMU state
         script_end = float("inf")
@@ -285,13 +360,15 @@ class Recorder:
                     if step_into:
                         status, lent = step_into(rows.address(done), n * rows.row.itemsize, *chip._step_span(n))
                     else:
-                        status = chip._do_step(n)           # Warning if the step's cycles changed
+                        status = chip._do_step(n)  # Warning if the step's cycles changed
                     redo = bool(state.value) and chip.cycles - before != n
                     if status and not redo:
                         # a grid change with no saved state to redo the chunk from (or a Warning the harness
                         # does not know): the rows would not be a stepping master's
-                        raise RuntimeError(f"the recording step of {n} cycles ran other cycles than its rows "
-                                           f"(doStep's Warning: {chip.messages[-1].message if chip.messages else ''})")
+                        raise RuntimeError(
+                            f"the recording step of {n} cycles ran other cycles than its rows "
+                            f"(doStep's Warning: {chip.messages[-1].message if chip.messages else ''})"
+                        )
                     if redo:
                         # the grid changed in the chunk: back to its start, and the chunk runs as a master
                         # stepping cycle by cycle runs it
@@ -300,24 +377,28 @@ class Recorder:
                         chip.set("record.enabled", False)
                         rows.put_records(done, self.stepwise(n))
                         chip.set("record.enabled", True)
-                finally:                            # a failed redo, or an interrupt, keeps no FMU state alive
+                finally:  # a failed redo, or an interrupt, keeps no FMU state alive
                     chip._free_fmu_state(state)
                 if not redo and step_into:
                     if lent != n * rows.row.itemsize:
-                        raise RuntimeError(f"the lent memory holds {lent // rows.row.itemsize} cycles, not {n}: "
-                                           f"{lent} bytes, rows of {rows.row.itemsize} bytes")
+                        raise RuntimeError(
+                            f"the lent memory holds {lent // rows.row.itemsize} cycles, not {n}: "
+                            f"{lent} bytes, rows of {rows.row.itemsize} bytes"
+                        )
                 elif not redo:
                     # record.data is the FMU's own buffer, valid until the next call: read in place, once, as
                     # many whole rows as it holds, never more
                     address, size = self.record_data()
                     if size != n * rows.row.itemsize:
                         # the step ran its cycles, but record.data does not hold their rows: never read past it
-                        raise RuntimeError(f"record.data holds {size // rows.row.itemsize} cycles, not {n}: "
-                                           f"{size} bytes, rows of {rows.row.itemsize} bytes")
+                        raise RuntimeError(
+                            f"record.data holds {size // rows.row.itemsize} cycles, not {n}: "
+                            f"{size} bytes, rows of {rows.row.itemsize} bytes"
+                        )
                     rows.put(done, np.frombuffer((c_char * size).from_address(address), dtype=rows.row))
                 done += n
         except BaseException:
-            close(chip, quiet=True)                 # the error that stopped the run is the one to see
+            close(chip, quiet=True)  # the error that stopped the run is the one to see
             raise
         close(chip)
         return rows.result()

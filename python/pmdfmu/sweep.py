@@ -26,6 +26,7 @@ there is one): through Dask it would cross a socket, copied on both sides, in CP
 time the workers need on a small machine (docs/performance.md, "Instances and
 sweeps").
 """
+
 from __future__ import annotations
 
 import csv
@@ -46,14 +47,15 @@ from . import extras, files, profile
 from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
-BATCHES_PER_THREAD = 4      # tasks per worker thread: enough to even out cases of unequal length
-HANDOFF_BYTES = 1 << 20     # a recording this large, or larger, is handed back through a file (when it can be)
-HANDOFF_PREFIX = "pmdfmu-sweep-"    # the handoff folders: pmdfmu-sweep-<pid of the sweep>-<random>
+BATCHES_PER_THREAD = 4  # tasks per worker thread: enough to even out cases of unequal length
+HANDOFF_BYTES = 1 << 20  # a recording this large, or larger, is handed back through a file (when it can be)
+HANDOFF_PREFIX = "pmdfmu-sweep-"  # the handoff folders: pmdfmu-sweep-<pid of the sweep>-<random>
 
 
 @dataclass(frozen=True)
 class Case:
     """One run: a script or a segment table (CSV), parameters, an FMI version."""
+
     name: str
     script: Optional[str] = None
     table: Optional[str] = None
@@ -90,8 +92,10 @@ def read_cases(path: Union[str, Path]) -> List[Case]:
         if case.max_cycles < 1:
             raise ValueError(f"{what}: max_cycles {case.max_cycles}: a run records at least 1 cycle")
         if case.script and "\n" in case.script:
-            raise ValueError(f"{what}: the script's path holds a line feed; the FMU reads such a `script` value "
-                             "as the script's text, so it cannot be given this file: rename it")
+            raise ValueError(
+                f"{what}: the script's path holds a line feed; the FMU reads such a `script` value "
+                "as the script's text, so it cannot be given this file: rename it"
+            )
     return cases
 
 
@@ -99,9 +103,11 @@ def _cases(path: Path, text: str) -> List[Case]:
     """read_cases' rows, each made a Case; ValueError naming the row for a value that is no number."""
     cases = []
     for n, row in enumerate(csv.DictReader(io.StringIO(text, newline="")), start=2):
+
         def resolve(key, row=row):
             value = (row.get(key) or "").strip()
             return str((path.parent / value).resolve()) if value else None
+
         if not (row.get("name") or "").strip():
             raise ValueError(f"{path}:{n}: a case needs a name")
         try:
@@ -109,10 +115,26 @@ def _cases(path: Path, text: str) -> List[Case]:
             for name in PARAMETERS:
                 value = (row.get(name) or "").strip()
                 if value:
-                    params.append((name, value.lower() in ("1", "true", "yes") if name == "loopback"
-                                   else float(value) if name == "cycleTime" else int(value, 0)))
-            cases.append(Case(row["name"].strip(), resolve("script"), resolve("table"), tuple(params),
-                              int(row.get("fmi_version") or 2), int(row.get("max_cycles") or 1_000_000)))
+                    params.append(
+                        (
+                            name,
+                            value.lower() in ("1", "true", "yes")
+                            if name == "loopback"
+                            else float(value)
+                            if name == "cycleTime"
+                            else int(value, 0),
+                        )
+                    )
+            cases.append(
+                Case(
+                    row["name"].strip(),
+                    resolve("script"),
+                    resolve("table"),
+                    tuple(params),
+                    int(row.get("fmi_version") or 2),
+                    int(row.get("max_cycles") or 1_000_000),
+                )
+            )
         except ValueError as e:
             raise ValueError(f"{path}:{n}: {e}") from None
     return cases
@@ -149,8 +171,13 @@ def _give_back(key: Tuple[tuple, int], chip: Chip) -> None:
 
 
 def _summary(case: Case, rec: np.ndarray, axes: Sequence[int], messages) -> dict:
-    row = {"name": case.name, "status": "ok", "reason": "", "cycles": len(rec),
-           "warnings": sum(m.status == "Warning" for m in messages)}
+    row = {
+        "name": case.name,
+        "status": "ok",
+        "reason": "",
+        "cycles": len(rec),
+        "warnings": sum(m.status == "Warning" for m in messages),
+    }
     for a in range(4):
         n = a + 1
         if a in axes and len(rec):
@@ -168,7 +195,7 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
     try:
         if bool(case.script) == bool(case.table):
             raise ValueError("a case names a script or a table")
-        parameters["script"] = Path(case.script) if case.script else ""      # a file, never text
+        parameters["script"] = Path(case.script) if case.script else ""  # a file, never text
         key, chip = _instance(case, parameters)
         try:
             if case.script:
@@ -181,15 +208,17 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
             return _summary(case, rec, axes, chip.messages), rec
         finally:
             _give_back(key, chip)
-    except Exception as e:                      # the sweep goes on: the row says why
+    except Exception as e:  # the sweep goes on: the row says why
         reason = " ".join(str(e).split()) or type(e).__name__
         row = {"name": case.name, "status": "failed", "reason": reason, "cycles": 0, "warnings": 0}
-        row.update({f"axis{n}.{q}": "" for n in range(1, 5)
-                    for q in ("finalPosition", "peakVelocity", "peakAcceleration")})
+        row.update(
+            {f"axis{n}.{q}": "" for n in range(1, 5) for q in ("finalPosition", "peakVelocity", "peakAcceleration")}
+        )
         return row, None
 
 
 # ---- the sweep --------------------------------------------------------------------
+
 
 @dataclass
 class SweepResult:
@@ -214,8 +243,8 @@ class SweepResult:
         fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 8))
         for r in ok:
             rec = self.recordings[r["name"]]
-            first = next(n for n in rec.dtype.names if n.endswith(".position"))    # the case's first axis
-            top.plot(rec["cycle"] - rec["cycle"][0], rec[first], label=f'{r["name"]} ({first.split(".")[0]})')
+            first = next(n for n in rec.dtype.names if n.endswith(".position"))  # the case's first axis
+            top.plot(rec["cycle"] - rec["cycle"][0], rec[first], label=f"{r['name']} ({first.split('.')[0]})")
         top.set_xlabel("cycles")
         top.set_ylabel("position [counts]")
         top.legend(fontsize="small")
@@ -237,6 +266,7 @@ class SweepResult:
 @dataclass(frozen=True)
 class _Handed:
     """A recording a worker wrote to the sweep's handoff folder, its raw bytes, instead of returning it."""
+
     path: str
     dtype: np.dtype
     rows: int
@@ -261,7 +291,7 @@ def _hand(folder: Optional[str], rec: Optional[np.ndarray]):
     path = os.path.join(folder, uuid.uuid4().hex + ".rec")
     try:
         np.ascontiguousarray(rec).tofile(path)
-    except OSError:                         # e.g. the folder is full: through Dask then
+    except OSError:  # e.g. the folder is full: through Dask then
         try:
             os.unlink(path)
         except OSError:
@@ -299,7 +329,7 @@ def _batches(cases: Sequence[Case], threads: int) -> List[List[Case]]:
     """The cases in consecutive batches, at most BATCHES_PER_THREAD per thread, of sizes differing by
     one at most (8 cases on 2 threads: 8 batches of one; 64: 8 of 8)."""
     count = max(1, min(len(cases), BATCHES_PER_THREAD * threads))
-    return [list(cases[i * len(cases) // count:(i + 1) * len(cases) // count]) for i in range(count)]
+    return [list(cases[i * len(cases) // count : (i + 1) * len(cases) // count]) for i in range(count)]
 
 
 def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]]:
@@ -322,7 +352,7 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
             batches[where[future.key]] = [_received(result, folder) for result in batch]
         return [result for batch in batches for result in batch]
     except BaseException:
-        client.cancel(futures)              # no worker goes on writing into the folder removed below
+        client.cancel(futures)  # no worker goes on writing into the folder removed below
         raise
     finally:
         shutil.rmtree(folder, ignore_errors=True)
@@ -335,6 +365,7 @@ def _hold(token: Path) -> Optional[int]:
     if os.name != "posix":
         return None
     import fcntl
+
     fd = os.open(token, os.O_RDONLY)
     fcntl.flock(fd, fcntl.LOCK_EX)
     return fd
@@ -357,6 +388,7 @@ def _remove_orphans(root: str) -> None:
     if os.name != "posix":
         return
     import fcntl
+
     try:
         entries = list(os.scandir(root))
     except OSError:
@@ -372,7 +404,7 @@ def _remove_orphans(root: str) -> None:
             continue
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:                     # held: its sweep runs
+        except OSError:  # held: its sweep runs
             continue
         finally:
             os.close(fd)
@@ -384,12 +416,12 @@ def _current_client(address: str):
     (e.g. one the user made with Client(address)), else None."""
     Client = extras.require("distributed", "sweep", "a sweep on a scheduler's address").Client
     from distributed.comm import resolve_address
+
     try:
         current = Client.current()
-    except ValueError:                      # no client in this process
+    except ValueError:  # no client in this process
         return None
-    return current if current.status == "running" and current.scheduler.address == resolve_address(address) \
-        else None
+    return current if current.status == "running" and current.scheduler.address == resolve_address(address) else None
 
 
 def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResult:
@@ -412,8 +444,10 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
     elif scheduler is None:
         distributed = extras.require("distributed", "sweep", "a sweep on a local cluster (scheduler=None)")
         Client, LocalCluster = distributed.Client, distributed.LocalCluster
-        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                          dashboard_address=None) as cluster, Client(cluster) as client:
+        with (
+            LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+            Client(cluster) as client,
+        ):
             results = _on(client, cases)
     elif isinstance(scheduler, str):
         current = _current_client(scheduler)
@@ -425,5 +459,4 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
                 results = _on(client, cases)
     else:
         results = _on(scheduler, cases)
-    return SweepResult([row for row, _ in results],
-                       {row["name"]: rec for row, rec in results if rec is not None})
+    return SweepResult([row for row, _ in results], {row["name"]: rec for row, rec in results if rec is not None})

@@ -5,6 +5,7 @@ This module has no third-party imports: the build's code generator
 (modelDescription/generate.py) loads it by path, and the harness uses it to
 build its C-Motion calls, so both read the tables the same way.
 """
+
 from __future__ import annotations
 
 import csv
@@ -19,15 +20,16 @@ AXES = 4
 @dataclass(frozen=True)
 class Variable:
     """One FMU variable, expanded from a row of variables.csv."""
-    name: str           # e.g. "axis2.commandedPosition", "host.word[3]"
-    family: str         # the row's name pattern as a C identifier, e.g. "axis_commandedPosition"
-    index: int          # axis number 0..3, array element 0..n-1, else 0
+
+    name: str  # e.g. "axis2.commandedPosition", "host.word[3]"
+    family: str  # the row's name pattern as a C identifier, e.g. "axis_commandedPosition"
+    index: int  # axis number 0..3, array element 0..n-1, else 0
     vr: int
-    type: str           # FMI 2: Real, Integer, Boolean
-    fmi3Type: str       # FMI 3: Float64, Int32, UInt32, UInt16, Boolean
-    causality: str      # parameter, input, output
+    type: str  # FMI 2: Real, Integer, Boolean
+    fmi3Type: str  # FMI 3: Float64, Int32, UInt32, UInt16, Boolean
+    causality: str  # parameter, input, output
     variability: str
-    start: str          # "" for outputs
+    start: str  # "" for outputs
     description: str
 
 
@@ -43,13 +45,22 @@ def read_variables(path: Path) -> List[Variable]:
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             pattern, vr = row["name"], int(row["vr"])
-            rest = (row["type"], row["fmi3Type"], row["causality"], row["variability"], row["start"],
-                    row["description"])
+            rest = (
+                row["type"],
+                row["fmi3Type"],
+                row["causality"],
+                row["variability"],
+                row["start"],
+                row["description"],
+            )
             m = re.fullmatch(r"(.*)\[(\d+)\]", pattern)
             if "{axis}" in pattern:
                 for axis in range(AXES):
-                    out.append(Variable(pattern.replace("{axis}", str(axis + 1)), _family(pattern), axis,
-                                        vr + 100 * axis, *rest))
+                    out.append(
+                        Variable(
+                            pattern.replace("{axis}", str(axis + 1)), _family(pattern), axis, vr + 100 * axis, *rest
+                        )
+                    )
             elif m:
                 for i in range(int(m.group(2))):
                     out.append(Variable(f"{m.group(1)}[{i + 1}]", _family(pattern), i, vr + i, *rest))
@@ -65,12 +76,13 @@ def read_variables(path: Path) -> List[Variable]:
 class Variable3:
     """One FMI 3 variable: a row of variables.csv with arrays kept whole
     (`host.word`, 64 elements, whose value reference is that of host.word[1])."""
+
     name: str
     family: str
-    index: int          # axis number 0..3, else 0
+    index: int  # axis number 0..3, else 0
     vr: int
-    count: int          # array elements, 1 for a scalar
-    type: str           # Float64, Int32, UInt32, UInt16, Boolean
+    count: int  # array elements, 1 for a scalar
+    type: str  # Float64, Int32, UInt32, UInt16, Boolean
     causality: str
     variability: str
     start: str
@@ -84,8 +96,20 @@ def read_variables3(path: Path) -> List[Variable3]:
         if m and m.group(2) != "1":
             out[-1] = Variable3(**{**out[-1].__dict__, "count": int(m.group(2))})
             continue
-        out.append(Variable3(m.group(1) if m else v.name, v.family, 0 if m else v.index, v.vr, 1, v.fmi3Type,
-                             v.causality, v.variability, v.start, v.description))
+        out.append(
+            Variable3(
+                m.group(1) if m else v.name,
+                v.family,
+                0 if m else v.index,
+                v.vr,
+                1,
+                v.fmi3Type,
+                v.causality,
+                v.variability,
+                v.start,
+                v.description,
+            )
+        )
     return out
 
 
@@ -95,6 +119,7 @@ class BitField(NamedTuple):
     shift 3, length 3), as QEMU's include/hw/registerfields.h declares FIELD()s.
     The C side has the same as NAME_SHIFT, NAME_LENGTH, NAMEMask and
     PMD_FIELD_EX / PMD_FIELD_DP (pmd_constants.h, generated)."""
+
     shift: int
     length: int
     mask: int
@@ -122,8 +147,11 @@ def bit_field(name: str, mask: int) -> BitField:
 def read_fields(path: Path) -> Dict[str, BitField]:
     """Every *Mask constant of constants.csv as a field, by its name without
     `Mask` (PMDActivityProfileSegment -> BitField(13, 3, 0xE000))."""
-    return {name[:-len("Mask")]: bit_field(name, value)
-            for _group, name, value in read_constants(path) if name.endswith("Mask")}
+    return {
+        name[: -len("Mask")]: bit_field(name, value)
+        for _group, name, value in read_constants(path)
+        if name.endswith("Mask")
+    }
 
 
 @dataclass(frozen=True)
@@ -134,13 +162,14 @@ class Field:
     (width bits at shift inside one word: the register field named by
     register_field, a mask of constants.csv); fixed is the fixed-point format of
     a 32-bit value ("16.16" or "0.32"), which scripts may write as a decimal."""
+
     name: str
     kind: str
     word: int
     shift: int = 0
     width: int = 16
     fixed: str = ""
-    register_field: str = ""    # bits: the field's name in constants.csv, without "Mask"
+    register_field: str = ""  # bits: the field's name in constants.csv, without "Mask"
 
     @property
     def signed(self) -> bool:
@@ -171,8 +200,11 @@ def parse_fields(spec: str, fields: Optional[Dict[str, BitField]] = None) -> Tup
             word += 1
         else:
             name, kind, *fixed = token.split(":")
-            if kind not in ("u16", "i16", "u32", "i32") or fixed not in ([], ["16.16"], ["0.32"]) or \
-                    (fixed and not kind.endswith("32")):
+            if (
+                kind not in ("u16", "i16", "u32", "i32")
+                or fixed not in ([], ["16.16"], ["0.32"])
+                or (fixed and not kind.endswith("32"))
+            ):
                 raise ValueError(f"bad field type {token!r}")
             out.append(Field(name, kind, word, 0, 32 if kind.endswith("32") else 16, "".join(fixed)))
             word += 2 if kind.endswith("32") else 1
@@ -183,7 +215,7 @@ def parse_fields(spec: str, fields: Optional[Dict[str, BitField]] = None) -> Tup
 class Command:
     opcode: int
     name: str
-    scope: str          # "axis": acts on the axis in the instruction word; "chip": chip-wide
+    scope: str  # "axis": acts on the axis in the instruction word; "chip": chip-wide
     args: Tuple[Field, ...]
     arg_words: int
     reply: Tuple[Field, ...]
@@ -202,8 +234,9 @@ def read_commands(path: Path, constants: Optional[Path] = None) -> List[Command]
             reply, nreply = parse_fields(row["reply"], fields)
             if row["scope"] not in ("axis", "chip"):
                 raise ValueError(f"{row['name']}: scope must be axis or chip")
-            out.append(Command(int(row["opcode"], 16), row["name"], row["scope"], args, nargs,
-                               reply, nreply, row["summary"]))
+            out.append(
+                Command(int(row["opcode"], 16), row["name"], row["scope"], args, nargs, reply, nreply, row["summary"])
+            )
     if len({c.opcode for c in out}) != len(out) or len({c.name for c in out}) != len(out):
         raise ValueError(f"{path}: duplicate opcode or name")
     return out
@@ -215,21 +248,22 @@ class Register:
     commands (commands.csv, Set<name> and Get<name>) have no handler of their
     own: Set checks the guard and the range and stores, Get reads back, Reset
     writes the reset value (QEMU's RegisterAccessInfo with .reset and .ro)."""
+
     name: str
-    storage: str        # the member: of PmdProfileRegisters (buffered "profile"), PmdFilterRegisters
-                        # (buffered "filter"), PmdChipState (a chip-wide command) or PmdAxis
-    access: str         # "rw": Set<name> stores it; "ro": only Get<name> is the table's
-    reset: Optional[int]    # None: pmd_chip_reset derives it (e.g. the actual position from the input)
-    reset_text: str     # as written: a number or a constant's name
+    storage: str  # the member: of PmdProfileRegisters (buffered "profile"), PmdFilterRegisters
+    # (buffered "filter"), PmdChipState (a chip-wide command) or PmdAxis
+    access: str  # "rw": Set<name> stores it; "ro": only Get<name> is the table's
+    reset: Optional[int]  # None: pmd_chip_reset derives it (e.g. the actual position from the input)
+    reset_text: str  # as written: a number or a constant's name
     low: Optional[int]  # valid values low..high; None: every value the argument holds
     high: Optional[int]
-    valid: str          # the valid values in words: "1..65535", "0 (PMDTraceOneTime) or 1 (PMDTraceRollingBuffer)"
-    error: str          # the host I/O error a value outside low..high answers, e.g. PMD_ERR_InvalidParameter
+    valid: str  # the valid values in words: "1..65535", "0 (PMDTraceOneTime) or 1 (PMDTraceRollingBuffer)"
+    error: str  # the host I/O error a value outside low..high answers, e.g. PMD_ERR_InvalidParameter
     error_code: int
-    buffered: str       # "profile", "filter": double-buffered, Update copies the group to its active set;
-                        # "" not buffered
-    guard: str          # a C function (chip, command) that may refuse a Set first, e.g. pmd_trace_busy
-    note: str           # where the facts come from, what else to know
+    buffered: str  # "profile", "filter": double-buffered, Update copies the group to its active set;
+    # "" not buffered
+    guard: str  # a C function (chip, command) that may refuse a Set first, e.g. pmd_trace_busy
+    note: str  # where the facts come from, what else to know
 
 
 def read_registers(path: Path, constants: Optional[Path] = None) -> List[Register]:
@@ -261,7 +295,7 @@ def read_registers(path: Path, constants: Optional[Path] = None) -> List[Registe
                 group = {}
                 for g, n, v in rows:
                     if g == text:
-                        group.setdefault(v, n)          # the first name of a value (PMDTrapezoidalProfile)
+                        group.setdefault(v, n)  # the first name of a value (PMDTrapezoidalProfile)
                 if not group or sorted(group) != list(range(min(group), max(group) + 1)):
                     raise ValueError(f"{path}: {what}: {text!r} is no group of contiguous values in constants.csv")
                 low, high = min(group), max(group)
@@ -273,10 +307,23 @@ def read_registers(path: Path, constants: Optional[Path] = None) -> List[Registe
                 raise ValueError(f"{path}: {name}: a range needs the error code that refuses it, and only a range")
             if row["error"] and row["error"] not in value_of:
                 raise ValueError(f"{path}: {name}: error {row['error']!r} is not a constant")
-            out.append(Register(name, row["storage"], row["access"],
-                                value(row["reset"], f"{name}: reset") if row["reset"] else None, row["reset"],
-                                low, high, valid, row["error"], value_of.get(row["error"], 0), row["buffered"],
-                                row["guard"], row["note"]))
+            out.append(
+                Register(
+                    name,
+                    row["storage"],
+                    row["access"],
+                    value(row["reset"], f"{name}: reset") if row["reset"] else None,
+                    row["reset"],
+                    low,
+                    high,
+                    valid,
+                    row["error"],
+                    value_of.get(row["error"], 0),
+                    row["buffered"],
+                    row["guard"],
+                    row["note"],
+                )
+            )
     if len({r.name for r in out}) != len(out):
         raise ValueError(f"{path}: duplicate register")
     return out

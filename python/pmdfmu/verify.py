@@ -11,6 +11,7 @@ formats, units and exit statuses.
 
     result = pmdfmu.verify_cases("cases.csv")   # a sweep's case table + golden, assertions columns, on Dask
 """
+
 from __future__ import annotations
 
 import csv
@@ -30,7 +31,7 @@ from .files import shown
 from .chip import CONSTANTS, DEFAULT_CYCLE_TIME, DTYPES, field_ex
 
 EXIT_PASS, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
-NPZ_KEY = "recording"           # the one array of a .npz golden: the structured array `pmdfmu run` records
+NPZ_KEY = "recording"  # the one array of a .npz golden: the structured array `pmdfmu run` records
 PathLike = Union[str, Path]
 
 
@@ -40,6 +41,7 @@ class InputError(ValueError):
 
 
 # ---- recordings: CSV (profile.write_csv) and compressed numpy ------------------------------------
+
 
 def write_recording(path: PathLike, recording: np.ndarray) -> None:
     """A recording as a golden trace: a .npz name writes np.savez_compressed (the structured array, its
@@ -77,7 +79,7 @@ def read_recording(path: PathLike) -> np.ndarray:
     reader = csv.reader(io.StringIO(_read_input(path, "golden trace"), newline=""))
     try:
         rows = list(reader)
-    except csv.Error as e:                  # a field over csv's limit of 131072 characters, a NUL byte
+    except csv.Error as e:  # a field over csv's limit of 131072 characters, a NUL byte
         raise InputError(f"{path}:{reader.line_num}: {e}") from None
     if not rows or not rows[0]:
         raise InputError(f"{path}:1: no header: a golden trace is `pmdfmu run ... --csv` output")
@@ -100,7 +102,7 @@ def read_recording(path: PathLike) -> np.ndarray:
                 continue
             try:
                 value = int(text)
-            except ValueError:              # also more digits than int() reads (sys.get_int_max_str_digits)
+            except ValueError:  # also more digits than int() reads (sys.get_int_max_str_digits)
                 try:
                     float(text)
                 except ValueError:
@@ -118,15 +120,17 @@ def read_recording(path: PathLike) -> np.ndarray:
 
 def _read_npz(path: Path) -> np.ndarray:
     try:
-        files.check_regular(path)           # np.load would wait on a FIFO
+        files.check_regular(path)  # np.load would wait on a FIFO
         with np.load(path, allow_pickle=False) as data:
             if NPZ_KEY not in data.files:
-                raise InputError(f"{path}: no array {NPZ_KEY!r} (it holds {shown(', '.join(data.files) or 'none')}): "
-                                 "write goldens with `pmdfmu run ... --csv NAME.npz`")
+                raise InputError(
+                    f"{path}: no array {NPZ_KEY!r} (it holds {shown(', '.join(data.files) or 'none')}): "
+                    "write goldens with `pmdfmu run ... --csv NAME.npz`"
+                )
             rec = data[NPZ_KEY]
     except InputError:
         raise
-    except Exception as e:                  # a missing file, not a zip, a damaged member, a pickled array
+    except Exception as e:  # a missing file, not a zip, a damaged member, a pickled array
         raise InputError(f"{path}: cannot read the golden trace: {e}") from None
     if rec.dtype.names is None or rec.ndim != 1:
         raise InputError(f"{path}: {NPZ_KEY!r} is not a recording (a 1-d structured array)")
@@ -143,14 +147,17 @@ def _check_npz_type(path: Path, i: int, name: str, dtype: np.dtype, values: np.n
     where = f"{path}: column {i} ({name})"
     integer = name == "cycle" or np.dtype(DTYPES[name]).kind in "iub"
     if dtype.shape or not (dtype.kind in "iub" if integer else dtype.kind == "f" and dtype.itemsize == 8):
-        raise InputError(f"{where}: {dtype.str if not dtype.shape else dtype} is not a recording's type "
-                         f"({'integers' if integer else 'float64'})")
+        raise InputError(
+            f"{where}: {dtype.str if not dtype.shape else dtype} is not a recording's type "
+            f"({'integers' if integer else 'float64'})"
+        )
     if integer and len(values):
         low, high = _range_of(name)
         lowest, highest = int(values.min()), int(values.max())
         if lowest < low or highest > high:
-            raise InputError(f"{where}: {lowest if lowest < low else highest} is outside {low}..{high}, "
-                             "the values the column holds")
+            raise InputError(
+                f"{where}: {lowest if lowest < low else highest} is outside {low}..{high}, the values the column holds"
+            )
 
 
 def _check_columns(path: Path, header: Sequence[str]) -> None:
@@ -162,22 +169,33 @@ def _check_columns(path: Path, header: Sequence[str]) -> None:
             raise InputError(f"{path}:1: column {i}: {shown(name)} named twice")
         seen.add(name)
         if name != "cycle" and name not in DTYPES:
-            raise InputError(f"{path}:1: column {i}: {shown(name)} is not an output of the FMU (pmdfmu info lists them)")
+            raise InputError(
+                f"{path}:1: column {i}: {shown(name)} is not an output of the FMU (pmdfmu info lists them)"
+            )
 
 
 # ---- assertions ---------------------------------------------------------------------------------
 
-EVENTS = {name[len("PMDEvent"):-len("Mask")]: value for name, value in CONSTANTS.items()
-          if name.startswith("PMDEvent") and name.endswith("Mask")}
+EVENTS = {
+    name[len("PMDEvent") : -len("Mask")]: value
+    for name, value in CONSTANTS.items()
+    if name.startswith("PMDEvent") and name.endswith("Mask")
+}
 DEFAULT_EVENTS = ("MotionError", "InPositiveLimit", "InNegativeLimit")
 IN_MOTION = CONSTANTS["PMDActivityInMotionMask"]
 INSTRUCTION_ERROR = CONSTANTS["PMDEventInstructionErrorMask"]
 UNITS = ("counts", "raw")
 # per axis: key -> (type, words for messages); the order is the order of the checks
-AXIS_KEYS = {"max_velocity": (float, "max |velocity|"), "max_acceleration": (float, "max |acceleration|"),
-             "max_jerk": (float, "max |jerk|"), "position_min": (int, "position >="),
-             "position_max": (int, "position <="), "final_position": (int, "final position"),
-             "complete_by": (int, "motion complete by cycle"), "no_events": (object, "no events")}
+AXIS_KEYS = {
+    "max_velocity": (float, "max |velocity|"),
+    "max_acceleration": (float, "max |acceleration|"),
+    "max_jerk": (float, "max |jerk|"),
+    "position_min": (int, "position >="),
+    "position_max": (int, "position <="),
+    "final_position": (int, "final position"),
+    "complete_by": (int, "motion complete by cycle"),
+    "no_events": (object, "no events"),
+}
 TOP_KEYS = ("units", "no_host_errors", "tolerance", "all_axes", "axis1", "axis2", "axis3", "axis4")
 # the quantity each limit reads, in each unit: (column, scale of its per-cycle difference, unit text)
 QUANTITIES = {
@@ -195,6 +213,7 @@ class Assertions:
     """Limits on a trajectory (docs/verify.md): units "counts" or "raw"; axes maps 0..3, or None for every
     recorded axis (the file's [all_axes]), to {key of AXIS_KEYS: value}; tolerance: column -> absolute
     tolerance of the golden comparison."""
+
     units: str = "counts"
     no_host_errors: bool = False
     tolerance: Dict[str, float] = field(default_factory=dict)
@@ -223,8 +242,8 @@ class Assertions:
 
 def _toml():
     try:
-        import tomllib                      # Python >= 3.11
-    except ImportError:                     # pragma: no cover - Python 3.9/3.10: pyproject's tomli
+        import tomllib  # Python >= 3.11
+    except ImportError:  # pragma: no cover - Python 3.9/3.10: pyproject's tomli
         try:
             import tomli as tomllib
         except ImportError:
@@ -238,9 +257,9 @@ def _read_assertion_file(path: Path) -> Tuple[dict, str]:
     tomllib = _toml()
     try:
         return tomllib.loads(text), text
-    except tomllib.TOMLDecodeError as e:    # its message ends "(at line L, column C)"
+    except tomllib.TOMLDecodeError as e:  # its message ends "(at line L, column C)"
         raise InputError(f"{path}: not TOML: {e}") from None
-    except RecursionError:                  # tomllib nests a Python call per [ or { of the file
+    except RecursionError:  # tomllib nests a Python call per [ or { of the file
         raise InputError(f"{path}: not TOML this parser reads: arrays or tables nested too deeply") from None
 
 
@@ -261,7 +280,7 @@ def _line_of(text: Optional[str], key: str) -> str:
     return ""
 
 
-LIMIT_RANGE = 2**63 - 1      # a limit is compared with int64 columns: beyond it, no column's value
+LIMIT_RANGE = 2**63 - 1  # a limit is compared with int64 columns: beyond it, no column's value
 
 
 def _limit_number(value) -> bool:
@@ -274,7 +293,8 @@ def _limit_number(value) -> bool:
 
 def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[str] = None) -> Assertions:
     """Assertions from the TOML file's shape (a dict); where/text name the source in messages."""
-    def bad(key, message, named=None):        # named: the key as the file writes it, to find its line
+
+    def bad(key, message, named=None):  # named: the key as the file writes it, to find its line
         shown = key if len(key) <= 60 else f"{key[:60]}... ({len(key)} characters)"
         return InputError(f"{where}{_line_of(text, named or key.split('.')[-1])}: {shown}: {message}")
 
@@ -316,15 +336,20 @@ def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[st
                 elif value is False:
                     continue
                 if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-                    raise bad(f"{name}.{key}", "is true or a list of event names such as [\"MotionError\"]")
+                    raise bad(f"{name}.{key}", 'is true or a list of event names such as ["MotionError"]')
                 unknown = [v for v in value if v not in EVENTS]
                 if unknown:
                     raise bad(f"{name}.{key}", f"unknown event {shown(unknown[0])} (known: {', '.join(EVENTS)})")
             elif not _limit_number(value) or (kind is int and not float(value).is_integer()):
                 # nan would pass every comparison, inf is no limit: both refused
                 number = not isinstance(value, bool) and isinstance(value, (int, float))
-                want = ("a number" if not number else f"a finite number in {-LIMIT_RANGE}..{LIMIT_RANGE}"
-                        if not _limit_number(value) else "a whole number")
+                want = (
+                    "a number"
+                    if not number
+                    else f"a finite number in {-LIMIT_RANGE}..{LIMIT_RANGE}"
+                    if not _limit_number(value)
+                    else "a whole number"
+                )
                 raise bad(f"{name}.{key}", f"{shown(value)} is not {want}")
             else:
                 value = kind(value)
@@ -352,13 +377,13 @@ def _merge(base: Mapping, over: Mapping) -> dict:
     """over's keys over base's; tables merge key by key."""
     out = dict(base)
     for key, value in over.items():
-        out[key] = {**out[key], **value} if isinstance(value, Mapping) and isinstance(out.get(key), Mapping) \
-            else value
+        out[key] = {**out[key], **value} if isinstance(value, Mapping) and isinstance(out.get(key), Mapping) else value
     return out
 
 
-def load_assertions(assertions: Union[None, PathLike, Mapping, Assertions],
-                    extra: Optional[Mapping] = None) -> Assertions:
+def load_assertions(
+    assertions: Union[None, PathLike, Mapping, Assertions], extra: Optional[Mapping] = None
+) -> Assertions:
     """A file, a dict of the file's shape or Assertions, with `extra` (the command line's limits, the
     file's shape) over it."""
     if isinstance(assertions, Assertions):
@@ -373,11 +398,13 @@ def load_assertions(assertions: Union[None, PathLike, Mapping, Assertions],
 
 # ---- results -------------------------------------------------------------------------------------
 
+
 @dataclass
 class Failure:
     """One violation: what check, where (axis 1..4, column, chip cycle, row of the recording), the values
     (expected/actual for a golden, value/limit for a limit), and where the profile was (segment number,
     position buffer and its read index) when the check is a golden's."""
+
     check: str
     message: str
     axis: Optional[int] = None
@@ -396,6 +423,7 @@ class Failure:
 @dataclass
 class Check:
     """One JUnit test case: the golden comparison, or one assertion of one axis."""
+
     name: str
     failures: List[Failure] = field(default_factory=list)
     skipped: Optional[str] = None
@@ -408,6 +436,7 @@ class Check:
 @dataclass
 class CaseResult:
     """One script, table or case: its checks; error is why the profile did not run (a failure too)."""
+
     name: str
     source: str
     cycles: int = 0
@@ -430,6 +459,7 @@ class CaseResult:
 @dataclass
 class VerifyResult:
     """What verify() and verify_cases() return: passed, failures, and the reports (verify_report.py)."""
+
     cases: List[CaseResult]
 
     @property
@@ -446,14 +476,17 @@ class VerifyResult:
 
     def report(self) -> str:
         from .verify_report import text_report
+
         return text_report(self)
 
     def to_junit(self) -> str:
         from .verify_report import junit_xml
+
         return junit_xml(self)
 
     def to_markdown(self) -> str:
         from .verify_report import markdown
+
         return markdown(self)
 
     def __bool__(self) -> bool:
@@ -461,6 +494,7 @@ class VerifyResult:
 
 
 # ---- the golden comparison ------------------------------------------------------------------------
+
 
 def _axis_of(column: str) -> Optional[int]:
     m = re.match(r"axis([1-4])\.", column)
@@ -478,8 +512,12 @@ def _segment(rec: np.ndarray, axis: int, row: int) -> Optional[int]:
     return int(field_ex(int(rec[column][row]), "PMDActivityProfileSegment"))
 
 
-def compare(expected: np.ndarray, actual: np.ndarray, required: Sequence[str] = (),
-            tolerance: Optional[Mapping[str, float]] = None) -> List[Failure]:
+def compare(
+    expected: np.ndarray,
+    actual: np.ndarray,
+    required: Sequence[str] = (),
+    tolerance: Optional[Mapping[str, float]] = None,
+) -> List[Failure]:
     """The golden comparison, cycle by cycle: every column of the golden (integer columns bit-exact; Reals
     exact unless tolerance names them: |actual - expected| <= tolerance); required: the columns the run
     records that the golden must hold; different lengths fail. At most one failure each for columns,
@@ -489,14 +527,26 @@ def compare(expected: np.ndarray, actual: np.ndarray, required: Sequence[str] = 
     e_names, a_names = expected.dtype.names, actual.dtype.names
     lacking = [c for c in required if c not in e_names]
     if lacking:
-        failures.append(Failure("golden", f"the run records {', '.join(lacking)}, which the golden trace does "
-                                          "not hold (does the profile address other axes now?)",
-                                column=lacking[0], axis=_axis_of(lacking[0])))
+        failures.append(
+            Failure(
+                "golden",
+                f"the run records {', '.join(lacking)}, which the golden trace does "
+                "not hold (does the profile address other axes now?)",
+                column=lacking[0],
+                axis=_axis_of(lacking[0]),
+            )
+        )
     unrecorded = [c for c in e_names if c not in a_names]
     if unrecorded:
-        failures.append(Failure("golden", f"the golden trace holds {', '.join(unrecorded)}, which the run did not "
-                                          "record (does the profile address other axes now?)",
-                                column=unrecorded[0], axis=_axis_of(unrecorded[0])))
+        failures.append(
+            Failure(
+                "golden",
+                f"the golden trace holds {', '.join(unrecorded)}, which the run did not "
+                "record (does the profile address other axes now?)",
+                column=unrecorded[0],
+                axis=_axis_of(unrecorded[0]),
+            )
+        )
     n = min(len(expected), len(actual))
     first: Dict[str, Tuple[int, int]] = {}
     for c in e_names:
@@ -518,8 +568,10 @@ def compare(expected: np.ndarray, actual: np.ndarray, required: Sequence[str] = 
         column = at[0]
         e, a = _number(expected[column][row]), _number(actual[column][row])
         axis = _axis_of(column)
-        text = (f"first difference at cycle {int(actual['cycle'][row])} (row {row}): {column} expected {e!r}, "
-                f"actual {a!r} (difference {a - e:+g})")
+        text = (
+            f"first difference at cycle {int(actual['cycle'][row])} (row {row}): {column} expected {e!r}, "
+            f"actual {a!r} (difference {a - e:+g})"
+        )
         if len(at) > 1:
             text += f"; at that cycle also {', '.join(at[1:])}"
         axes = [axis] if axis else sorted({x for x in map(_axis_of, a_names) if x})
@@ -527,24 +579,47 @@ def compare(expected: np.ndarray, actual: np.ndarray, required: Sequence[str] = 
         for x in axes:
             seg, golden_seg = _segment(actual, x, row), _segment(expected, x, row)
             if seg is not None:
-                where.append(f"axis {x} in profile segment {seg}" +
-                             (f" (golden: {golden_seg})" if golden_seg is not None and golden_seg != seg else ""))
+                where.append(
+                    f"axis {x} in profile segment {seg}"
+                    + (f" (golden: {golden_seg})" if golden_seg is not None and golden_seg != seg else "")
+                )
         if where:
             text += "; " + ", ".join(where)
         text += f". {column} differs in {first[column][1]} of {n} rows"
-        failures.append(Failure("golden", text, axis=axis, column=column, cycle=int(actual["cycle"][row]), row=row,
-                                expected=e, actual=a, segment=_segment(actual, axis, row) if axis else None))
+        failures.append(
+            Failure(
+                "golden",
+                text,
+                axis=axis,
+                column=column,
+                cycle=int(actual["cycle"][row]),
+                row=row,
+                expected=e,
+                actual=a,
+                segment=_segment(actual, axis, row) if axis else None,
+            )
+        )
     if len(expected) != len(actual):
+
         def end(rec):
             return f"cycle {int(rec['cycle'][-1])}" if len(rec) else "no cycle"
-        failures.append(Failure("length", f"the run recorded {len(actual)} cycles (to {end(actual)}), the golden "
-                                          f"trace {len(expected)} (to {end(expected)})",
-                                cycle=int(actual["cycle"][n - 1]) if n else None, row=n,
-                                expected=len(expected), actual=len(actual)))
+
+        failures.append(
+            Failure(
+                "length",
+                f"the run recorded {len(actual)} cycles (to {end(actual)}), the golden "
+                f"trace {len(expected)} (to {end(expected)})",
+                cycle=int(actual["cycle"][n - 1]) if n else None,
+                row=n,
+                expected=len(expected),
+                actual=len(actual),
+            )
+        )
     return failures
 
 
 # ---- the assertions -------------------------------------------------------------------------------
+
 
 def _limit_check(key: str, axis: int, limit, rec: np.ndarray, units: str, cycle_time: float) -> List[Failure]:
     n = axis + 1
@@ -553,18 +628,27 @@ def _limit_check(key: str, axis: int, limit, rec: np.ndarray, units: str, cycle_
         column, scale, unit = QUANTITIES[(quantity, units)]
         values = rec[f"axis{n}.{column}"].astype(np.float64 if scale != 65536 else np.int64)
         offset = 0
-        if scale is not None:               # jerk: the recorded acceleration's difference from cycle to cycle
+        if scale is not None:  # jerk: the recorded acceleration's difference from cycle to cycle
             values = np.diff(values) * (65536 if scale == 65536 else 1 / cycle_time)
             offset = 1
         bad = np.abs(values) > limit
         if not bad.any():
             return []
         i, peak = int(np.argmax(bad)), int(np.argmax(np.abs(values)))
-        return [Failure(key, f"axis {n}: |{quantity}| {abs(_number(values[i])):g} {unit} > {limit:g} at cycle "
-                             f"{int(rec['cycle'][i + offset])} (peak {abs(_number(values[peak])):g} at cycle "
-                             f"{int(rec['cycle'][peak + offset])})",
-                        axis=n, column=f"axis{n}.{column}", cycle=int(rec["cycle"][i + offset]), row=i + offset,
-                        value=_number(values[i]), limit=limit)]
+        return [
+            Failure(
+                key,
+                f"axis {n}: |{quantity}| {abs(_number(values[i])):g} {unit} > {limit:g} at cycle "
+                f"{int(rec['cycle'][i + offset])} (peak {abs(_number(values[peak])):g} at cycle "
+                f"{int(rec['cycle'][peak + offset])})",
+                axis=n,
+                column=f"axis{n}.{column}",
+                cycle=int(rec["cycle"][i + offset]),
+                row=i + offset,
+                value=_number(values[i]),
+                limit=limit,
+            )
+        ]
     position = rec[f"axis{n}.commandedPosition"].astype(np.int64)
     column = f"axis{n}.commandedPosition"
     if key in ("position_min", "position_max"):
@@ -573,36 +657,72 @@ def _limit_check(key: str, axis: int, limit, rec: np.ndarray, units: str, cycle_
             return []
         i = int(np.argmax(bad))
         side = "below" if key == "position_min" else "above"
-        return [Failure(key, f"axis {n}: position {int(position[i])} counts {side} the window's "
-                             f"{'minimum' if side == 'below' else 'maximum'} {limit} at cycle {int(rec['cycle'][i])}",
-                        axis=n, column=column, cycle=int(rec["cycle"][i]), row=i, value=int(position[i]), limit=limit)]
+        return [
+            Failure(
+                key,
+                f"axis {n}: position {int(position[i])} counts {side} the window's "
+                f"{'minimum' if side == 'below' else 'maximum'} {limit} at cycle {int(rec['cycle'][i])}",
+                axis=n,
+                column=column,
+                cycle=int(rec["cycle"][i]),
+                row=i,
+                value=int(position[i]),
+                limit=limit,
+            )
+        ]
     if key == "final_position":
         if not len(rec) or position[-1] == limit:
             return []
-        return [Failure(key, f"axis {n}: final position {int(position[-1])} counts at cycle "
-                             f"{int(rec['cycle'][-1])}, expected {limit}",
-                        axis=n, column=column, cycle=int(rec["cycle"][-1]), row=len(rec) - 1,
-                        value=int(position[-1]), limit=limit)]
+        return [
+            Failure(
+                key,
+                f"axis {n}: final position {int(position[-1])} counts at cycle "
+                f"{int(rec['cycle'][-1])}, expected {limit}",
+                axis=n,
+                column=column,
+                cycle=int(rec["cycle"][-1]),
+                row=len(rec) - 1,
+                value=int(position[-1]),
+                limit=limit,
+            )
+        ]
     if key == "complete_by":
         if not len(rec):
             return []
         status = rec[f"axis{n}.activityStatus"].astype(np.int64)
         rest = (rec[f"axis{n}.commandedVelocity"] == 0) & ((status & IN_MOTION) == 0) & (position == position[-1])
         if not rest[-1]:
-            return [Failure(key, f"axis {n}: still in motion at the end of the run (cycle {int(rec['cycle'][-1])}); "
-                                 f"it must be complete by cycle {limit}",
-                            axis=n, cycle=int(rec["cycle"][-1]), row=len(rec) - 1, limit=limit)]
+            return [
+                Failure(
+                    key,
+                    f"axis {n}: still in motion at the end of the run (cycle {int(rec['cycle'][-1])}); "
+                    f"it must be complete by cycle {limit}",
+                    axis=n,
+                    cycle=int(rec["cycle"][-1]),
+                    row=len(rec) - 1,
+                    limit=limit,
+                )
+            ]
         moving = np.nonzero(~rest)[0]
         i = int(moving[-1]) + 1 if len(moving) else 0
         if int(rec["cycle"][i]) <= limit:
             return []
-        return [Failure(key, f"axis {n}: motion complete at cycle {int(rec['cycle'][i])} (at rest at {int(position[i])} "
-                             f"counts from then on), after cycle {limit}",
-                        axis=n, cycle=int(rec["cycle"][i]), row=i, value=int(rec["cycle"][i]), limit=limit)]
+        return [
+            Failure(
+                key,
+                f"axis {n}: motion complete at cycle {int(rec['cycle'][i])} (at rest at {int(position[i])} "
+                f"counts from then on), after cycle {limit}",
+                axis=n,
+                cycle=int(rec["cycle"][i]),
+                row=i,
+                value=int(rec["cycle"][i]),
+                limit=limit,
+            )
+        ]
     if key == "no_events":
         column = f"axis{n}.eventStatus"
         if column not in rec.dtype.names:
-            return []                       # check_assertions skips the check
+            return []  # check_assertions skips the check
         mask = 0
         for name in limit:
             mask |= EVENTS[name]
@@ -612,10 +732,19 @@ def _limit_check(key: str, axis: int, limit, rec: np.ndarray, units: str, cycle_
             return []
         i = int(np.argmax(bad))
         names = [name for name in limit if status[i] & EVENTS[name]]
-        return [Failure(key, f"axis {n}: event {', '.join(names)} at cycle {int(rec['cycle'][i])} "
-                             f"(event status 0x{int(status[i]):04X})",
-                        axis=n, column=column, cycle=int(rec["cycle"][i]), row=i, value=int(status[i]),
-                        limit=", ".join(limit))]
+        return [
+            Failure(
+                key,
+                f"axis {n}: event {', '.join(names)} at cycle {int(rec['cycle'][i])} "
+                f"(event status 0x{int(status[i]):04X})",
+                axis=n,
+                column=column,
+                cycle=int(rec["cycle"][i]),
+                row=i,
+                value=int(status[i]),
+                limit=", ".join(limit),
+            )
+        ]
     raise KeyError(key)
 
 
@@ -628,8 +757,14 @@ def _check_name(axis: int, key: str, limit, units: str) -> str:
     return f"axis{axis + 1} {words} {limit}"
 
 
-def check_assertions(spec: Assertions, rec: Optional[np.ndarray], axes: Sequence[int], cycle_time: float,
-                     messages: Sequence = (), warnings: Optional[int] = None) -> List[Check]:
+def check_assertions(
+    spec: Assertions,
+    rec: Optional[np.ndarray],
+    axes: Sequence[int],
+    cycle_time: float,
+    messages: Sequence = (),
+    warnings: Optional[int] = None,
+) -> List[Check]:
     """One Check per assertion and axis. messages: the FMU's log (a refused script command is a host I/O
     error); warnings: a count of warnings instead (a batch's row)."""
     checks = []
@@ -639,8 +774,14 @@ def check_assertions(spec: Assertions, rec: Optional[np.ndarray], axes: Sequence
                 continue
             check = Check(_check_name(axis, key, limits[key], spec.units))
             if axis not in axes:
-                check.failures.append(Failure(key, f"axis {axis + 1} was not recorded: the profile addresses "
-                                                   f"axes {', '.join(str(a + 1) for a in axes)}", axis=axis + 1))
+                check.failures.append(
+                    Failure(
+                        key,
+                        f"axis {axis + 1} was not recorded: the profile addresses "
+                        f"axes {', '.join(str(a + 1) for a in axes)}",
+                        axis=axis + 1,
+                    )
+                )
             elif key == "no_events" and f"axis{axis + 1}.eventStatus" not in rec.dtype.names:
                 check.skipped = f"axis{axis + 1}.eventStatus was not recorded (a sweep's case records no event status)"
             else:
@@ -657,22 +798,38 @@ def check_assertions(spec: Assertions, rec: Optional[np.ndarray], axes: Sequence
                 if bad.any() and (first is None or int(np.argmax(bad)) < first[1]):
                     first = (a + 1, int(np.argmax(bad)))
         if refused or first:
-            where = (f"first at cycle {int(rec['cycle'][first[1]])} (axis {first[0]}'s event status "
-                     "InstructionError)") if first else "during the run"
+            where = (
+                (f"first at cycle {int(rec['cycle'][first[1]])} (axis {first[0]}'s event status InstructionError)")
+                if first
+                else "during the run"
+            )
             text = f"{len(refused) or 'a'} command(s) refused with a host I/O error, {where}"
             if refused:
                 text += ": " + "; ".join(refused[:5]) + ("; ..." if len(refused) > 5 else "")
-            check.failures.append(Failure("no_host_errors", text, axis=first[0] if first else None,
-                                          cycle=int(rec["cycle"][first[1]]) if first else None,
-                                          row=first[1] if first else None, value=len(refused)))
+            check.failures.append(
+                Failure(
+                    "no_host_errors",
+                    text,
+                    axis=first[0] if first else None,
+                    cycle=int(rec["cycle"][first[1]]) if first else None,
+                    row=first[1] if first else None,
+                    value=len(refused),
+                )
+            )
         elif warnings:
-            check.failures.append(Failure("no_host_errors", f"{warnings} warning(s) logged during the run "
-                                                            "(a refused script command logs one)", value=warnings))
+            check.failures.append(
+                Failure(
+                    "no_host_errors",
+                    f"{warnings} warning(s) logged during the run (a refused script command logs one)",
+                    value=warnings,
+                )
+            )
         checks.append(check)
     return checks
 
 
 # ---- one profile ----------------------------------------------------------------------------------
+
 
 def _locate(failure: Failure, run_profile_args: dict, axes: Sequence[int]) -> None:
     """Where the profile was at the failure's row: runs the profile again up to that row (a run of n cycles
@@ -689,7 +846,7 @@ def _locate(failure: Failure, run_profile_args: dict, axes: Sequence[int]) -> No
 
     try:
         profile.run_profile(**{**run_profile_args, "max_cycles": failure.row + 1, "inspect": inspect})
-    except Exception:                       # the report says what it can without
+    except Exception:  # the report says what it can without
         return
     wanted = [failure.axis] if failure.axis else sorted(found)
     parts = [f"axis {x} position buffer {found[x][0]} read index {found[x][1]}" for x in wanted if x in found]
@@ -716,18 +873,28 @@ def _refuse_writing_over_inputs(name: str, out: Optional[PathLike], inputs: Sequ
     for written in _failure_files(name, out, inputs[0]):
         for path in inputs:
             if path is not None and written.exists() and Path(path).exists() and written.samefile(path):
-                raise InputError(f"{written}: a failure of case {name} would write its "
-                                 f"{'recording' if '.actual' in written.name else 'plot'} over the input {path}: "
-                                 "give another --out")
+                raise InputError(
+                    f"{written}: a failure of case {name} would write its "
+                    f"{'recording' if '.actual' in written.name else 'plot'} over the input {path}: "
+                    "give another --out"
+                )
 
 
-def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], golden_path: Optional[Path],
-            required: Sequence[str], out: Optional[PathLike], cycle_time: float) -> None:
+def _finish(
+    result: CaseResult,
+    rec: np.ndarray,
+    golden: Optional[np.ndarray],
+    golden_path: Optional[Path],
+    required: Sequence[str],
+    out: Optional[PathLike],
+    cycle_time: float,
+) -> None:
     """On a golden's failure: the diff plot and the run's own recording, in the golden's format, to `out`."""
     failing = [f for c in result.checks if c.name == "golden trace" for f in c.failures]
     if out is None or golden is None or not failing:
         return
     from .verify_report import plot_diff
+
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     columns = list(dict.fromkeys([*required, *golden.dtype.names]))
@@ -736,12 +903,22 @@ def _finish(result: CaseResult, rec: np.ndarray, golden: Optional[np.ndarray], g
     plot_diff(result.plot, golden, rec, failing, cycle_time, title=f"pmdfmu verify {result.name}: {result.source}")
 
 
-def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathLike] = None,
-           assertions: Union[None, PathLike, Mapping, Assertions] = None,
-           tolerance: Optional[Mapping[str, float]] = None, *, fmu: Optional[str] = None, fmi_version: int = 2,
-           cycle_time: float = DEFAULT_CYCLE_TIME, upload: str = "memory", max_cycles: int = 1_000_000,
-           parameters: Optional[dict] = None, out: Optional[PathLike] = None, name: Optional[str] = None,
-           locate: bool = True) -> VerifyResult:
+def verify(
+    source: Union[PathLike, Dict[int, Sequence]],
+    against: Optional[PathLike] = None,
+    assertions: Union[None, PathLike, Mapping, Assertions] = None,
+    tolerance: Optional[Mapping[str, float]] = None,
+    *,
+    fmu: Optional[str] = None,
+    fmi_version: int = 2,
+    cycle_time: float = DEFAULT_CYCLE_TIME,
+    upload: str = "memory",
+    max_cycles: int = 1_000_000,
+    parameters: Optional[dict] = None,
+    out: Optional[PathLike] = None,
+    name: Optional[str] = None,
+    locate: bool = True,
+) -> VerifyResult:
     """Runs a script or segment table (a path, or tables) exactly as `pmdfmu run` does and checks it against
     the golden trace `against` (a .csv or .npz recording) and `assertions` (a TOML file, a dict of its shape
     or Assertions); tolerance: column -> absolute tolerance (over the file's). On a golden's failure it
@@ -752,10 +929,18 @@ def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathL
     if isinstance(max_cycles, bool) or not isinstance(max_cycles, int) or max_cycles < 1:
         raise InputError(f"max_cycles {max_cycles!r}: a run records at least 1 cycle")
     name = name or _name_of(source)
-    _refuse_writing_over_inputs(name, out, [against, assertions if isinstance(assertions, (str, Path)) else None,
-                                            source if isinstance(source, (str, Path)) else None])
-    args = dict(source=source, fmu=fmu, fmi_version=fmi_version, cycle_time=cycle_time, upload=upload,
-                parameters=parameters)
+    _refuse_writing_over_inputs(
+        name,
+        out,
+        [
+            against,
+            assertions if isinstance(assertions, (str, Path)) else None,
+            source if isinstance(source, (str, Path)) else None,
+        ],
+    )
+    args = dict(
+        source=source, fmu=fmu, fmi_version=fmi_version, cycle_time=cycle_time, upload=upload, parameters=parameters
+    )
     extra = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()), *spec.columns()]))
     result = CaseResult(name, str(source) if isinstance(source, (str, Path)) else "segment tables")
     start = time.perf_counter()
@@ -766,14 +951,34 @@ def verify(source: Union[PathLike, Dict[int, Sequence]], against: Optional[PathL
         result.seconds = time.perf_counter() - start
         return VerifyResult([result])
     result.seconds = time.perf_counter() - start
-    _evaluate(result, run.recording, run.axes, run.cycle_time, golden, against, spec, messages=run.messages,
-              locate_args={**args, "record": extra} if locate else None, out=out)
+    _evaluate(
+        result,
+        run.recording,
+        run.axes,
+        run.cycle_time,
+        golden,
+        against,
+        spec,
+        messages=run.messages,
+        locate_args={**args, "record": extra} if locate else None,
+        out=out,
+    )
     return VerifyResult([result])
 
 
-def _evaluate(result: CaseResult, rec: np.ndarray, axes: Sequence[int], cycle_time: float,
-              golden: Optional[np.ndarray], golden_path: Optional[PathLike], spec: Assertions, messages=(),
-              warnings: Optional[int] = None, locate_args: Optional[dict] = None, out=None) -> None:
+def _evaluate(
+    result: CaseResult,
+    rec: np.ndarray,
+    axes: Sequence[int],
+    cycle_time: float,
+    golden: Optional[np.ndarray],
+    golden_path: Optional[PathLike],
+    spec: Assertions,
+    messages=(),
+    warnings: Optional[int] = None,
+    locate_args: Optional[dict] = None,
+    out=None,
+) -> None:
     result.cycles = len(rec)
     required = ["cycle", *profile.record_outputs(axes)]
     if golden is not None:
@@ -788,9 +993,11 @@ def _evaluate(result: CaseResult, rec: np.ndarray, axes: Sequence[int], cycle_ti
 
 # ---- batches: a sweep's case table ----------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class VerifyCase:
     """A sweep case (pmdfmu.Case) with its golden trace and assertion file (either may be None)."""
+
     case: object
     golden: Optional[str] = None
     assertions: Optional[str] = None
@@ -800,6 +1007,7 @@ def read_case_table(path: PathLike) -> Tuple[list, List[dict]]:
     """A case table as sweep.read_cases reads and checks it, and its rows; InputError for a table it cannot
     read or a case that cannot run as written (read_cases' checks)."""
     from .sweep import read_cases
+
     path = Path(path)
     try:
         text = files.read_text(path)
@@ -807,7 +1015,7 @@ def read_case_table(path: PathLike) -> Tuple[list, List[dict]]:
         rows = list(csv.DictReader(io.StringIO(text, newline="")))
     except (OSError, UnicodeDecodeError, KeyError, csv.Error) as e:
         raise InputError(f"{path}: cannot read the case table: {_one_line(e)}") from None
-    except ValueError as e:                 # read_cases' own file:line: reason
+    except ValueError as e:  # read_cases' own file:line: reason
         raise InputError(_one_line(e)) from None
     return cases, rows
 
@@ -827,29 +1035,36 @@ def read_verify_cases(path: PathLike) -> List[VerifyCase]:
     def resolve(row, key):
         value = (row.get(key) or "").strip()
         return str((path.parent / value).resolve()) if value else None
+
     return [VerifyCase(case, resolve(row, "golden"), resolve(row, "assertions")) for case, row in zip(cases, rows)]
 
 
-def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, workers: int = 2,
-                 assertions: Union[None, PathLike, Mapping] = None, extra: Optional[Mapping] = None,
-                 out: Optional[PathLike] = None, locate: bool = True) -> VerifyResult:
+def verify_cases(
+    cases: Union[PathLike, Sequence[VerifyCase]],
+    scheduler=None,
+    workers: int = 2,
+    assertions: Union[None, PathLike, Mapping] = None,
+    extra: Optional[Mapping] = None,
+    out: Optional[PathLike] = None,
+    locate: bool = True,
+) -> VerifyResult:
     """Runs a case table (read_verify_cases) with pmdfmu.sweep (scheduler: as sweep's) and checks each case
     against its golden and assertions (the case's file, over `assertions` and `extra`, the command line's).
     One CaseResult per case; every golden and assertion file is read before anything runs."""
     from .sweep import sweep
+
     vcases = read_verify_cases(cases) if isinstance(cases, (str, Path)) else list(cases)
     base = _merge(_assertion_data(assertions)[0], extra or {})
     parse_assertions(base, "command line")
     specs, goldens = [], []
     for vc in vcases:
         data, where, text = _assertion_data(vc.assertions)
-        specs.append(parse_assertions(_merge(base, data), where, text))     # the case's file over the common
+        specs.append(parse_assertions(_merge(base, data), where, text))  # the case's file over the common
         goldens.append(read_recording(vc.golden) if vc.golden else None)
         _refuse_writing_over_inputs(vc.case.name, out, [vc.golden, vc.assertions, vc.case.script or vc.case.table])
     run_cases = []
     for vc, spec, golden in zip(vcases, specs, goldens):
-        extra_columns = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()),
-                                            *spec.columns()]))
+        extra_columns = list(dict.fromkeys([*(golden.dtype.names[1:] if golden is not None else ()), *spec.columns()]))
         run_cases.append(dataclasses.replace(vc.case, record=tuple(extra_columns)))
     start = time.perf_counter()
     swept = sweep(run_cases, scheduler=scheduler, workers=workers)
@@ -864,10 +1079,30 @@ def verify_cases(cases: Union[PathLike, Sequence[VerifyCase]], scheduler=None, w
             continue
         rec = swept.recordings[case.name]
         params = dict(case.parameters)
-        axes = [a for a in range(4) if row.get(f"axis{a + 1}.finalPosition", "") != ""]    # the profile's own
-        locate_args = dict(source=source, fmu=case.fmu, fmi_version=case.fmi_version,
-                           cycle_time=float(params.pop("cycleTime", DEFAULT_CYCLE_TIME)), upload="memory",
-                           parameters=params, record=case.record) if locate else None
-        _evaluate(result, rec, axes, float(dict(case.parameters).get("cycleTime", DEFAULT_CYCLE_TIME)), golden, vc.golden, spec,
-                  warnings=row.get("warnings"), locate_args=locate_args, out=out)
+        axes = [a for a in range(4) if row.get(f"axis{a + 1}.finalPosition", "") != ""]  # the profile's own
+        locate_args = (
+            dict(
+                source=source,
+                fmu=case.fmu,
+                fmi_version=case.fmi_version,
+                cycle_time=float(params.pop("cycleTime", DEFAULT_CYCLE_TIME)),
+                upload="memory",
+                parameters=params,
+                record=case.record,
+            )
+            if locate
+            else None
+        )
+        _evaluate(
+            result,
+            rec,
+            axes,
+            float(dict(case.parameters).get("cycleTime", DEFAULT_CYCLE_TIME)),
+            golden,
+            vc.golden,
+            spec,
+            warnings=row.get("warnings"),
+            locate_args=locate_args,
+            out=out,
+        )
     return VerifyResult(results)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """pmdfmu verify's reports: the text a person reads, JUnit XML (GitHub Actions, GitLab, Jenkins), the
 Markdown summary (GITHUB_STEP_SUMMARY) and the diff plot of a golden trace (docs/verify.md)."""
+
 from __future__ import annotations
 
 import re
@@ -29,9 +30,14 @@ def text_report(result: VerifyResult) -> str:
         if case.passed:
             lines.append(f"PASS {case.name} ({case.source}): {case.cycles} cycles, {checks} checks")
             continue
-        lines.append(f"FAIL {case.name} ({case.source}): "
-                     + (f"did not run: {case.error}" if case.error is not None else
-                        f"{case.cycles} cycles, {sum(not c.passed for c in case.checks)} of {checks} checks failed"))
+        lines.append(
+            f"FAIL {case.name} ({case.source}): "
+            + (
+                f"did not run: {case.error}"
+                if case.error is not None
+                else f"{case.cycles} cycles, {sum(not c.passed for c in case.checks)} of {checks} checks failed"
+            )
+        )
         for check in case.checks:
             for f in check.failures:
                 lines.append(f"  {check.name}: {f.message}")
@@ -54,13 +60,15 @@ def junit_xml(result: VerifyResult) -> str:
         classname = f"pmdfmu.verify.{case.name}"
         if case.error is not None:
             tc = ET.SubElement(suite, "testcase", classname=classname, name="run", time=f"{case.seconds:.3f}")
-            ET.SubElement(tc, "error", message=case.error.split("\n")[0][:500], type="run").text = \
-                f"{case.source} did not run: {case.error}"
+            ET.SubElement(
+                tc, "error", message=case.error.split("\n")[0][:500], type="run"
+            ).text = f"{case.source} did not run: {case.error}"
             counts["tests"] += 1
             counts["errors"] += 1
         for i, check in enumerate(case.checks):
-            tc = ET.SubElement(suite, "testcase", classname=classname, name=check.name,
-                               time=f"{case.seconds if i == 0 else 0:.3f}")
+            tc = ET.SubElement(
+                suite, "testcase", classname=classname, name=check.name, time=f"{case.seconds if i == 0 else 0:.3f}"
+            )
             counts["tests"] += 1
             if check.skipped:
                 ET.SubElement(tc, "skipped", message=check.skipped)
@@ -93,14 +101,20 @@ def _cell(text: str) -> str:
 
 def markdown(result: VerifyResult) -> str:
     """A short summary: a table of the cases, then each failed case's failures."""
-    lines = [f"### {_headline(result)}", "", "| case | result | cycles | checks passed | first failure |",
-             "|---|---|---|---|---|"]
+    lines = [
+        f"### {_headline(result)}",
+        "",
+        "| case | result | cycles | checks passed | first failure |",
+        "|---|---|---|---|---|",
+    ]
     for case in result.cases:
         failures = case.failures
         verdict = "pass" if case.passed else ("**error**" if case.error is not None else "**FAIL**")
         passed = sum(c.passed and not c.skipped for c in case.checks)
-        lines.append(f"| {_cell(case.name)} | {verdict} | {case.cycles} | {passed} of {len(case.checks)} | "
-                     f"{_cell(failures[0].message) if failures else ''} |")
+        lines.append(
+            f"| {_cell(case.name)} | {verdict} | {case.cycles} | {passed} of {len(case.checks)} | "
+            f"{_cell(failures[0].message) if failures else ''} |"
+        )
     for case in result.cases:
         if case.passed:
             continue
@@ -113,13 +127,20 @@ def markdown(result: VerifyResult) -> str:
         if case.plot:
             lines.append(f"- diff plot: `{case.plot}`")
         if case.actual:
-            lines.append(f"- this run's recording: `{case.actual}` (copy it over the golden trace to accept the "
-                         "change)")
+            lines.append(
+                f"- this run's recording: `{case.actual}` (copy it over the golden trace to accept the change)"
+            )
     return "\n".join(lines) + "\n"
 
 
-def plot_diff(path: Path, expected: np.ndarray, actual: np.ndarray, failures: Sequence[Failure],
-              cycle_time: float, title: str = "pmdfmu verify") -> None:
+def plot_diff(
+    path: Path,
+    expected: np.ndarray,
+    actual: np.ndarray,
+    failures: Sequence[Failure],
+    cycle_time: float,
+    title: str = "pmdfmu verify",
+) -> None:
     """Per differing column (at most 4, the first diverging first): expected and actual over the row,
     and actual - expected; a line at the first diverging row."""
     plt = extras.pyplot("the verify report plot")
@@ -128,10 +149,16 @@ def plot_diff(path: Path, expected: np.ndarray, actual: np.ndarray, failures: Se
     n = min(len(expected), len(actual))
     columns: List[str] = [first.column] if first else []
     for c in expected.dtype.names:
-        if c in actual.dtype.names and c not in columns and c != "cycle" and len(columns) < 4 and n and \
-                np.any(expected[c][:n].astype(np.float64) != actual[c][:n].astype(np.float64)):
+        if (
+            c in actual.dtype.names
+            and c not in columns
+            and c != "cycle"
+            and len(columns) < 4
+            and n
+            and np.any(expected[c][:n].astype(np.float64) != actual[c][:n].astype(np.float64))
+        ):
             columns.append(c)
-    if not columns:                     # only the length or the columns differ: show the positions
+    if not columns:  # only the length or the columns differ: show the positions
         columns = [c for c in expected.dtype.names if c.endswith(".commandedPosition") and c in actual.dtype.names][:2]
     fig, grid = plt.subplots(max(1, len(columns)), 2, figsize=(13, 3.2 * max(1, len(columns))), squeeze=False)
     for (left, right), c in zip(grid, columns):
