@@ -62,7 +62,7 @@ PMD_NATIVE_EXPORT int pmd_record_fmi3(PmdFmiFunction do_step, void *instance, co
                                       size_t n_columns, void *rows, size_t row_bytes, size_t cycles,
                                       PmdStop *stop);
 
-/* The FMU's extension functions beside the FMI 2 ones (fmu_src/fmi/fmi2.c) */
+/* The FMU's extension functions beside the FMI 2 ones (fmu_src/fmi/record_fmi2.c) */
 typedef int PmdSetRecordBuffer(void *instance, void *rows, size_t size);
 typedef int PmdGetRecordData(void *instance, const void **data, size_t *size);
 
