@@ -8,8 +8,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "log_categories.h"     /* generated from modelDescription/log_categories.csv */
-
 #define PMD_AXES 4
 #define PMD_BUFFERS 32       /* buffer IDs 0..31; 0 and 1 belong to the trace (seed 000, 1.1) */
 #define PMD_FIRST_PROFILE_BUFFER 2
@@ -386,8 +384,10 @@ typedef struct {
     uint16_t ioOutput[PMD_IO_PORTS];             /* WriteIO(address, data) */
 } PmdChipState;
 
-/* Where the chip logs: each message under its category (log_categories.csv). */
-typedef void (*PmdLogger)(void *context, PmdLogCategory category, const char *message);
+/* Where the chip logs: each message under its category, a PmdLogCategory
+ * (log_categories.h, generated from log_categories.csv: this header stays
+ * plain C that compiles without the generated ones). */
+typedef void (*PmdLogger)(void *context, unsigned category, const char *message);
 
 /* The chip: its state, its external memory and where it logs. */
 typedef struct PmdChip {

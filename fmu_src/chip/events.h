@@ -6,6 +6,7 @@
 #define PMD_EVENTS_H
 
 #include "chip_types.h"
+#include "log_categories.h"     /* generated from modelDescription/log_categories.csv */
 #include "pmd_constants.h"
 
 /* Logging: pmd_log formats only when the category is enabled. */

@@ -19,7 +19,7 @@ const char pmd_model_token[] = PMD_INSTANTIATION_TOKEN;
 /* The chip formats a message only when its category is enabled (chip.logMask).
  * A refused command is the chip's answer, not an FMU failure: it goes out
  * under "errors" with status Warning. */
-static void chip_logger(void *context, PmdLogCategory category, const char *message)
+static void chip_logger(void *context, unsigned category, const char *message)
 {
     const PmdInstance *inst = (const PmdInstance *)context;
     PmdStatus status = category == PMD_LOG_ERRORS || category == PMD_LOG_WARNINGS ? PMD_WARNING : PMD_OK;
