@@ -982,6 +982,21 @@ def regressions():
             .step(10)
             .record_data()
         )
+    # 13. (found by this fuzzer in CI) The same set-up, then an FMU state taken in initialization mode and
+    #    restored: the restore was refused ("record.capacity is 0"), the buffer sized as if it were step mode.
+    for fmi3 in (False, True):
+        out[f"restore-in-initialization-with-capacity-0{'-fmi3' if fmi3 else ''}"] = (
+            Seq(fmi3=fmi3)
+            .enter_initialization()
+            .record(True)
+            .parameter("record.capacity", 0)
+            .replay(1)
+            .replay(1, via_bytes=True)
+            .parameter("record.capacity", 10)
+            .exit_initialization()
+            .step(10)
+            .record_data()
+        )
     return out
 
 

@@ -266,8 +266,10 @@ PmdStatus pmd_state_read(PmdInstance *inst, const char *fn, const unsigned char 
 
     memcpy(&h, in, sizeof h);
     memcpy(&s, in + sizeof h + offsetof(Image, instance), sizeof s);
-    /* a state that records needs the record.data buffer (of this instance's record.capacity) */
-    if (s.recordEnabled && pmd_record_allocate(inst, fn))
+    /* a state in step mode that records needs the record.data buffer (of this instance's record.capacity);
+     * before step mode nothing records until the end of initialization sizes it (record.capacity may
+     * still be 0 then, as it may be when record.enabled is set in initialization mode) */
+    if (s.recordEnabled && s.state == PMD_STEP_MODE && pmd_record_allocate(inst, fn))
         return PMD_ERROR;
     if ((int64_t)h.memoryWords != inst->s.memorySize) {
         memory = (uint32_t *)realloc(inst->chip.memory, (size_t)h.memoryWords * sizeof(uint32_t));
