@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-2-Clause
-"""The performance suite (issues 5 and 16): every figure the best and the
+"""The performance suite: every figure the best and the
 median of at least 5 runs, next to a baseline measured in the same run, as a
 table; ratios are of medians. Benchmarks, not tests: nothing here asserts a
 time. Each topic is a module of this folder with benchmarks(tmp).

@@ -39,7 +39,8 @@
  *     word, as a master setting it value by value would leave it.
  *
  * fuzz/sequence_inputs.py encodes the hand-built seeds and regression inputs
- * in this format; keep the two in step. FUZZ_SEQUENCE_TRACE=1 prints every
+ * in this format (it reads OPS[] from this file; tests/test_determinism.py checks
+ * that every operation has its encoder and a saved input). FUZZ_SEQUENCE_TRACE=1 prints every
  * call as it runs (to turn a crash file into a reproduction). To look past a
  * known finding while it is being fixed: FUZZ_SEQUENCE_SKIP lists operation
  * names to leave out (comma-separated), FUZZ_SEQUENCE_KNOWN text that a

@@ -2,6 +2,8 @@
 #ifndef PMD_NATIVE_H
 #define PMD_NATIVE_H
 
+/* What the harness's native loops share (record_loop.h, memory_port.h, abi.h). */
+
 /* Raised whenever a function's signature changes: python/pmdfmu/native.py
  * refuses a library of another ABI (a stale build). */
 #define PMD_NATIVE_ABI 4
@@ -27,12 +29,5 @@ typedef struct {
     int call;
     int status;
 } PmdStop;
-
-PMD_NATIVE_EXPORT int pmd_native_abi(void);
-
-/* The layout of every struct and enum the harness mirrors with ctypes (python/pmdfmu/native.py): their
- * sizes, their members' offsets and the enums' values, in the order native.c lists them; writes at most
- * n and returns how many there are. The harness refuses a library whose layout is not its own. */
-PMD_NATIVE_EXPORT size_t pmd_native_layout(size_t *out, size_t n);
 
 #endif

@@ -54,11 +54,11 @@ static void store(unsigned char *row, const PmdLoopColumn *c)
         *field = v != 0;
         return;
     }
-    switch (c->size) {
+    switch (c->size) {          /* sizes_known() let no other size in */
     case 8: memcpy(field, c->source, 8); break;
     case 4: memcpy(field, c->source, 4); break;
     case 2: memcpy(field, c->source, 2); break;
-    default: memcpy(field, c->source, 1); break;
+    case 1: memcpy(field, c->source, 1); break;
     }
 }
 
@@ -82,6 +82,16 @@ static int stopped(PmdStop *stop, size_t cycles, int call, int status)
     return 1;
 }
 
+/* Whether every field is of a size store() copies (a row's fields are numpy's: 1, 2, 4 or 8 bytes). */
+static int sizes_known(const PmdLoopColumn *columns, size_t n_columns)
+{
+    size_t c;
+    for (c = 0; c < n_columns; c++)
+        if (columns[c].size != 1 && columns[c].size != 2 && columns[c].size != 4 && columns[c].size != 8)
+            return 0;
+    return 1;
+}
+
 static inline int record(int fmi3, PmdFmiFunction do_step_fn, void *instance, const PmdLoopGroup *groups, size_t n_groups,
                          size_t grid_group, size_t grid_place, const PmdLoopColumn *columns, size_t n_columns,
                          void *rows, size_t row_bytes, size_t cycles, PmdStop *stop)
@@ -90,6 +100,8 @@ static inline int record(int fmi3, PmdFmiFunction do_step_fn, void *instance, co
     unsigned char *row = rows;
     size_t i, g, c;
     int status;
+    if (!sizes_known(columns, n_columns))
+        return stopped(stop, 0, PMD_LOOP_FIELD_SIZE, 3);    /* nothing ran */
     if (cycles == 0)
         return 0;
     status = fmi3 ? get_fmi3(&groups[grid_group], instance) : get_fmi2(&groups[grid_group], instance);

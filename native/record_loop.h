@@ -52,7 +52,8 @@ typedef struct {
  * columns after each doStep, each doStep going from time to the next cycle's
  * end, (nextCycleTime - time) + activeCycleTime. Returns 0, or 1 and *stop
  * filled if a call failed: after `done` whole rows, the call `call` (-1 the
- * doStep, else the group's index) returned `status` > Warning. */
+ * doStep, else the group's index) returned `status` > Warning; or, before any
+ * call, `call` PMD_LOOP_FIELD_SIZE, a column of another size. */
 PMD_NATIVE_EXPORT int pmd_record_fmi2(PmdFmiFunction do_step, void *instance, const PmdLoopGroup *groups, size_t n_groups,
                                       size_t grid_group, size_t grid_place, const PmdLoopColumn *columns,
                                       size_t n_columns, void *rows, size_t row_bytes, size_t cycles,
@@ -61,6 +62,9 @@ PMD_NATIVE_EXPORT int pmd_record_fmi3(PmdFmiFunction do_step, void *instance, co
                                       size_t grid_group, size_t grid_place, const PmdLoopColumn *columns,
                                       size_t n_columns, void *rows, size_t row_bytes, size_t cycles,
                                       PmdStop *stop);
+
+/* The call pmd_record_fmi2/3 name when a column's size is none of 1, 2, 4, 8: no call ran */
+enum { PMD_LOOP_FIELD_SIZE = -2 };
 
 /* The FMU's extension functions beside the FMI 2 ones (fmu_src/fmi/record_fmi2.c) */
 typedef int PmdSetRecordBuffer(void *instance, void *rows, size_t size);

@@ -50,16 +50,20 @@ class Stepwise(pmdfmu.recording.Recorder):
     """A Chip.recorder that runs every recording as run_stepwise does (everything else Chip.run does, the
     checks and the host clock, stays)."""
 
-    def run(self, cycles: int) -> np.ndarray:
-        return run_stepwise(self.chip, cycles, self.names)
+    def run(self, cycles: int, out=None) -> np.ndarray:
+        rows = run_stepwise(self.chip, cycles, self.names)
+        if out is None:
+            return rows
+        out[:] = rows
+        return out
 
 
 class NativeLoop(pmdfmu.recording.Recorder):
     """A Chip.recorder that runs every recording cycle by cycle in the native loop, as for an FMU without
     bulk recording of its columns."""
 
-    def run(self, cycles: int) -> np.ndarray:
-        return self.stepwise(cycles)
+    def run(self, cycles: int, out=None) -> np.ndarray:
+        return self.stepwise(cycles, out)
 
 
 @_refusals

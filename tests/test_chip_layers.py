@@ -94,11 +94,12 @@ def test_no_circle_between_chip_files(needs):
         assert not found, " -> ".join(f"{s}.c" for s in found)
 
 
-def includes_of_fmu_src():
-    """stem -> {stems it includes}: every C file and header of fmu_src, a C file and its header as one."""
+def includes_of(folder: str):
+    """stem -> {stems it includes}: every C file and header of a folder of the product, a C file and its
+    header as one."""
     import re
 
-    files = [p for p in (ROOT / "fmu_src").rglob("*") if p.suffix in (".c", ".h")]
+    files = [p for p in (ROOT / folder).rglob("*") if p.suffix in (".c", ".h")]
     stems = {p.stem for p in files}
     graph = {}
     for p in files:
@@ -109,11 +110,29 @@ def includes_of_fmu_src():
     return graph
 
 
-def test_no_include_circle_in_fmu_src():
-    """A header that includes the file that includes it (registers.c including the chip.h that includes
-    registers.h, instance.h and record.c) names a layer above it: no such circle anywhere in fmu_src."""
-    graph = includes_of_fmu_src()
-    assert "registers" in graph.get("chip", set()) and "instance_types" in graph.get("record", set())
+def imports_of_the_harness():
+    """module -> {modules of the package it imports}: python/pmdfmu, at any depth of a module (a function's
+    own import counts: it is a dependency all the same)."""
+    import ast
+
+    package = ROOT / "python" / "pmdfmu"
+    modules = {p.stem for p in package.glob("*.py")}
+    graph = {}
+    for p in package.glob("*.py"):
+        for node in ast.walk(ast.parse(p.read_text())):
+            named = []
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                named = [node.module.split(".")[0]] if node.module else [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("pmdfmu."):
+                named = [node.module.split(".")[1]]
+            elif isinstance(node, ast.Import):
+                named = [a.name.split(".")[1] for a in node.names if a.name.startswith("pmdfmu.")]
+            graph.setdefault(p.stem, set()).update(m for m in named if m in modules and m != p.stem)
+    return graph
+
+
+def a_circle(graph):
+    """A path that comes back to where it started, or None."""
 
     def circle(stem, path):
         if stem in path:
@@ -126,4 +145,31 @@ def test_no_include_circle_in_fmu_src():
 
     for stem in sorted(graph):
         found = circle(stem, [])
-        assert not found, " -> ".join(found)
+        if found:
+            return found
+    return None
+
+
+def test_no_include_circle_in_fmu_src():
+    """A header that includes the file that includes it (registers.c including the chip.h that includes
+    registers.h, instance.h and record.c) names a layer above it: no such circle anywhere in fmu_src."""
+    graph = includes_of("fmu_src")
+    assert "registers" in graph.get("chip", set()) and "instance_types" in graph.get("record", set())
+    found = a_circle(graph)
+    assert not found, " -> ".join(found)
+
+
+@pytest.mark.parametrize("folder", ["native", "host/c"])
+def test_no_include_circle_in_the_native_library_or_the_c_library(folder):
+    graph = includes_of(folder)
+    assert graph, f"{folder}: no includes found"
+    found = a_circle(graph)
+    assert not found, " -> ".join(found)
+
+
+def test_no_import_circle_in_the_harness():
+    """verify.py and verify_report.py imported each other: the results live with their reports now."""
+    graph = imports_of_the_harness()
+    assert "verify_report" in graph["verify"] and "chip" in graph["verify"]
+    found = a_circle(graph)
+    assert not found, " -> ".join(found)

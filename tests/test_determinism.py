@@ -90,7 +90,7 @@ def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
 @pytest.mark.sanitize
 @pytest.mark.skipif(not (shutil.which("cc") and shutil.which("valgrind")), reason="no C compiler or valgrind")
 def test_regression_inputs_run_clean_under_valgrind(tmp_path):
-    """Every regression input (the findings of issues 6 and 11) once more under
+    """Every regression input (the legal-call findings of the attacks and the fuzzers) once more under
     valgrind, with a build without sanitizers: no invalid access, no uninitialized
     value used, no leak."""
     import sys

@@ -110,6 +110,18 @@ def test_the_commanded_outputs_through_fmi3_native_and_bulk_are_the_same_rows():
     assert runs[0] == runs[1]
 
 
+@pytest.mark.parametrize("size", (0, 3, 16))
+def test_the_native_loop_refuses_a_field_of_a_size_it_does_not_copy_before_any_cycle_runs(size):
+    """record_loop.c copies fields of 1, 2, 4 or 8 bytes; another size is refused, never stored as one byte."""
+    with pmdfmu.Chip() as chip:
+        where, dtype = chip._columns(["axis1.commandedPosition"])
+        plan = recording.Plan(chip, where, dtype)
+        plan.columns[1].size = size
+        with pytest.raises(ValueError, match="not 1, 2, 4 or 8 bytes wide"):
+            recording.record(chip, plan, np.zeros(10, dtype=dtype))
+        assert chip.cycles == 0
+
+
 @pytest.mark.parametrize("version", (2, 3))
 def test_a_script_changing_the_sample_time_mid_run(version, tmp_path, request):
     """Each cycle's step goes to the next cycle of the grid as it stands before it (the step in which the grid

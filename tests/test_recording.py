@@ -71,3 +71,55 @@ def test_a_script_changing_the_sample_time_during_a_bulk_recording_is_recorded_a
         expected = run_stepwise(stepping, 100, RECORDED)
         assert rows.tobytes() == expected.tobytes() and len(rows) == 100
         assert bulk.cycles == stepping.cycles == 100
+
+
+# every way a run records: the commanded table, record.columns (FMI 2 lent, FMI 3 copied), the native loop
+OUT_KINDS = {
+    "commanded": (list(RECORDED[:5]), {}),
+    "columns": (["axis1.commandedPosition", "axis2.activityStatus", "axis1.motorCommand", "loopback"], {}),
+    "native loop": (["time", "axis1.commandedPosition"], {}),
+    "capacity 0": (["axis1.commandedPosition"], {"record.capacity": 0}),
+}
+
+
+@pytest.mark.parametrize("kind", OUT_KINDS)
+@pytest.mark.parametrize("version", (2, 3))
+def test_a_run_into_a_reused_array_records_what_a_fresh_array_gets(version, kind):
+    """run(out=): the rows of a fresh run, byte for byte, whatever the array held before (it is
+    filled with 0xFF bytes), in the array passed, which is returned; twice in a row, over capacity chunks."""
+    names, parameters = OUT_KINDS[kind]
+    with (
+        pmdfmu.Chip(fmi_version=version, **parameters) as fresh,
+        pmdfmu.Chip(fmi_version=version, **parameters) as reused,
+    ):
+        busy_chip(fresh)
+        busy_chip(reused)
+        out = None
+        for cycles in (1500, 1500):
+            want = fresh.run(cycles, record=names)
+            if out is None:
+                out = np.empty_like(want)
+            out.view(np.uint8)[:] = 0xFF
+            got = reused.run(cycles, record=names, out=out)
+            assert got is out
+            assert got.tobytes() == want.tobytes()
+
+
+@pytest.mark.parametrize(
+    "out, why",
+    [
+        (lambda rows: list(rows), "is a list, not a numpy array"),
+        (lambda rows: np.empty(len(rows), dtype=[("cycle", "<u4")]), "has dtype"),
+        (lambda rows: np.empty(len(rows) + 1, dtype=rows.dtype), r"has shape \(11,\), not \(10,\)"),
+        (lambda rows: np.empty(2 * len(rows), dtype=rows.dtype)[::2], "is not a writeable, aligned, contiguous"),
+        (lambda rows: np.frombuffer(rows.tobytes(), dtype=rows.dtype), "is not a writeable"),
+    ],
+)
+def test_a_run_into_an_array_that_cannot_hold_its_rows_is_refused_before_any_cycle_runs(out, why):
+    with pmdfmu.Chip() as chip:
+        rows = chip.run(10, record=["axis1.commandedPosition"])
+        with pytest.raises(ValueError, match="run: out= " + why):
+            chip.run(10, record=["axis1.commandedPosition"], out=out(rows))
+        assert chip.cycles == 10
+        with pytest.raises(ValueError, match="out= needs record="):
+            chip.run(10, out=rows)

@@ -495,6 +495,21 @@ def _unpack(path: Path, fmi_version: int) -> Tuple[_Unpacked, dict]:
     return unpacked, prototype._functions
 
 
+def _check_out(out, cycles: int, dtype: np.dtype) -> None:
+    """run(out=)'s checks: the recorder writes every byte of `cycles` rows of `dtype` straight into it."""
+    why = None
+    if not isinstance(out, np.ndarray):
+        why = f"is a {type(out).__name__}, not a numpy array"
+    elif out.dtype != dtype:
+        why = f"has dtype {out.dtype}, not the rows' {dtype}"
+    elif out.shape != (cycles,):
+        why = f"has shape {out.shape}, not ({cycles},)"
+    elif not (out.flags.c_contiguous and out.flags.writeable and out.flags.aligned):
+        why = "is not a writeable, aligned, contiguous array"
+    if why:
+        raise ValueError(f"run: out= {why}")
+
+
 class Chip:
     """A motion processor in an FMU instance: Chip(fmi_version=2, fmu=None, **parameters).
 
@@ -1124,7 +1139,7 @@ class Chip:
     # ---- time ----
 
     @_refusals
-    def run(self, cycles: int, record: Sequence[str] = ()) -> np.ndarray:
+    def run(self, cycles: int, record: Sequence[str] = (), out: Optional[np.ndarray] = None) -> np.ndarray:
         """Advances the chip by `cycles` cycles. With record, returns a structured
         array: row i holds the outputs as the i-th cycle left them, in a `cycle`
         column (chip time) and one field per requested FMU variable, of its width
@@ -1143,22 +1158,33 @@ class Chip:
         A failed FMI call raises FMURefusal (FMPy's FMICallException, with the FMU's
         messages); a name given twice or not an FMU variable raises ValueError
         before any cycle runs. Interrupted (Ctrl-C), the chip stays exact: its next
-        run records what a fresh chip at the same cycle records."""
+        run records what a fresh chip at the same cycle records.
+
+        out: the array to record into, returned (a result of a former run with the
+        same `record`, or np.empty(cycles, dtype=its dtype)): a long recording that
+        reuses its array spares the page faults of a fresh one (docs/performance.md,
+        "Recording"). Its rows are overwritten whole; one of another type or length,
+        or read-only, raises ValueError before any cycle runs."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
+        if out is not None and not record:
+            raise ValueError("run: out= needs record=: the array receives the recorded rows")
         try:
-            return self._run(cycles, record)
+            return self._run(cycles, record, out)
         finally:
             if cycles:  # the host clock moves up to the last cycle run
                 self._host_ns = max(self._host_ns, self._last_cycle_ns())
 
-    def _run(self, cycles: int, record: Sequence[str]) -> np.ndarray:
+    def _run(self, cycles: int, record: Sequence[str], out: Optional[np.ndarray]) -> np.ndarray:
         if not record:
             if cycles:
                 self._step(cycles)
             return np.zeros(0, dtype=[CYCLE])
         names = list(record)
-        return self.recorder(self, names, *self._columns(names)).run(cycles)
+        where, dtype = self._columns(names)
+        if out is not None:
+            _check_out(out, cycles, dtype)
+        return self.recorder(self, names, where, dtype).run(cycles, out)
 
     def _columns(self, names: List[str]) -> Tuple[Dict[str, Tuple[str, int]], np.dtype]:
         """run(record=names)'s checks, before any cycle runs: where each column is read (variable,

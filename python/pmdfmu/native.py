@@ -26,6 +26,7 @@ DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
 # memory_port.h's calls, record_loop.h's calls of pmd_record_step_lent, in their order
 MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET = range(3)
 STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN = range(4)
+LOOP_FIELD_SIZE = -2  # the call record_loop.h's loops name for a column of another size than 1, 2, 4, 8
 
 
 class Stop(Structure):
@@ -66,7 +67,7 @@ class Port(Structure):
 
 
 def layout() -> list:
-    """What pmd_native_layout returns for a library built with this harness: native.c's order."""
+    """What pmd_native_layout returns for a library built with this harness: abi.c's order."""
     out = []
     for struct in (Stop, Group, Column, Port):
         out += [ctypes.sizeof(struct)] + [getattr(struct, name).offset for name, _type in struct._fields_]
@@ -75,6 +76,7 @@ def layout() -> list:
         + [DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL]
         + [MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET]
         + [STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN]
+        + [-LOOP_FIELD_SIZE]
     )
 
 

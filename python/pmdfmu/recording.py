@@ -152,6 +152,8 @@ def record(chip, plan: Plan, out: np.ndarray) -> None:
         len(out),
         stop,
     ):
+        if stop.call == native.LOOP_FIELD_SIZE:
+            raise ValueError(f"run: a row field of {out.dtype} is not 1, 2, 4 or 8 bytes wide")
         raise FMICallException(function=plan.do_step if stop.call < 0 else plan.names[stop.call], status=stop.status)
 
 
@@ -247,9 +249,13 @@ class _Commanded:
 
     lendable = False
 
-    def __init__(self, names: Sequence[str], dtype: np.dtype, cycles: int):
-        self.dtype, self.cycles = dtype, cycles
-        self.table = np.empty((cycles, 1 + len(names)), dtype=np.int32)
+    def __init__(self, names: Sequence[str], dtype: np.dtype, cycles: int, out: Optional[np.ndarray]):
+        self.dtype, self.cycles, self.out = dtype, cycles, out
+        # every field is 32 bits wide: the result's rows are the table's, in the caller's array if given
+        if out is None:
+            self.table = np.empty((cycles, 1 + len(names)), dtype=np.int32)
+        else:
+            self.table = out.view(np.int32).reshape(cycles, 1 + len(names))
         self.row = np.dtype((np.int32, 1 + len(RECORDED)))
         # the wanted columns as runs of adjacent ones (table column, record column, width): whole runs copy
         # as blocks, and all of record.data as one
@@ -269,7 +275,7 @@ class _Commanded:
         self.table[done : done + len(part)] = part.view(np.int32).reshape(len(part), self.table.shape[1])
 
     def result(self) -> np.ndarray:
-        return self.table.view(self.dtype).reshape(self.cycles)
+        return self.out if self.out is not None else self.table.view(self.dtype).reshape(self.cycles)
 
 
 class _Columns:
@@ -279,8 +285,8 @@ class _Columns:
 
     lendable = True
 
-    def __init__(self, dtype: np.dtype, cycles: int):
-        self.out = np.empty(cycles, dtype=dtype)  # every byte of every row is written
+    def __init__(self, dtype: np.dtype, cycles: int, out: Optional[np.ndarray]):
+        self.out = np.empty(cycles, dtype=dtype) if out is None else out  # every byte of every row is written
         self.row = np.dtype((np.uint8, dtype.itemsize))
 
     def address(self, done: int) -> int:
@@ -310,28 +316,30 @@ class Recorder:
             self.commanded or ("record.columns" in chip.variables and "time" not in self.names)
         )
 
-    def run(self, cycles: int) -> np.ndarray:
+    def run(self, cycles: int, out: Optional[np.ndarray] = None) -> np.ndarray:
+        """The rows of the next `cycles` cycles, in `out` if given (Chip.run checked it: the rows' type and
+        length, writeable, contiguous), else in a new array."""
         if not self.bulk:
-            return self.stepwise(cycles)
-        return self._bulk(cycles)
+            return self.stepwise(cycles, out)
+        return self._bulk(cycles, out)
 
-    def stepwise(self, cycles: int) -> np.ndarray:
+    def stepwise(self, cycles: int, out: Optional[np.ndarray] = None) -> np.ndarray:
         """`cycles` rows as a master stepping cycle by cycle reads them (the native loop)."""
-        out = np.zeros(cycles, dtype=self.dtype)
+        out = np.empty(cycles, dtype=self.dtype) if out is None else out  # every field of every row is written
         record(self.chip, Plan(self.chip, self.where, self.dtype), out)
         return out
 
-    def _bulk(self, cycles: int) -> np.ndarray:
+    def _bulk(self, cycles: int, out: Optional[np.ndarray]) -> np.ndarray:
         """One doStep and one read per chunk of record.capacity cycles instead of FMI calls every cycle. A
         chunk in which a script step may change the grid (SetSampleTime) starts from a saved FMU state and is
         redone cycle by cycle if it did, so that its rows are those of a master stepping cycle by cycle."""
         chip = self.chip
         capacity = chip.get("record.capacity")
         if capacity == 0:  # the FMU records nothing: cycle by cycle, as a master would
-            return self.stepwise(cycles)
+            return self.stepwise(cycles, out)
         if "record.columns" in chip.variables:
             chip.set("record.columns", "" if self.commanded else ",".join(self.names))
-        rows = _Commanded(self.names, self.dtype, cycles) if self.commanded else _Columns(self.dtype, cycles)
+        rows = _Commanded(self.names, self.dtype, cycles, out) if self.commanded else _Columns(self.dtype, cycles, out)
         if not self.commanded and rows.row.itemsize != chip.get("record.rowSize"):
             raise RuntimeError(
                 f"record.rowSize is {chip.get('record.rowSize')}, not the {rows.row.itemsize} "

@@ -146,7 +146,7 @@ def bit_field(name: str, mask: int) -> BitField:
 
 def read_fields(path: Path) -> Dict[str, BitField]:
     """Every *Mask constant of constants.csv as a field, by its name without
-    `Mask` (PMDActivityProfileSegment -> BitField(13, 3, 0xE000))."""
+    `Mask` (PMDActivityProfileSegment -> its shift, length and mask)."""
     return {
         name[: -len("Mask")]: bit_field(name, value)
         for _group, name, value in read_constants(path)

@@ -30,7 +30,9 @@ from . import files, profile
 from .files import shown
 from .chip import CONSTANTS, DEFAULT_CYCLE_TIME, DTYPES, field_ex
 
-EXIT_PASS, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
+# what a verification found, and its reports
+from .verify_report import EXIT_FAIL, EXIT_INPUT, EXIT_PASS, CaseResult, Check, Failure, VerifyResult  # noqa: F401
+
 NPZ_KEY = "recording"  # the one array of a .npz golden: the structured array `pmdfmu run` records
 PathLike = Union[str, Path]
 
@@ -394,103 +396,6 @@ def load_assertions(
     if not extra:
         return parse_assertions(data, where, text)
     return parse_assertions(_merge(data, extra), f"{where} with the command line's limits", text)
-
-
-# ---- results -------------------------------------------------------------------------------------
-
-
-@dataclass
-class Failure:
-    """One violation: what check, where (axis 1..4, column, chip cycle, row of the recording), the values
-    (expected/actual for a golden, value/limit for a limit), and where the profile was (segment number,
-    position buffer and its read index) when the check is a golden's."""
-
-    check: str
-    message: str
-    axis: Optional[int] = None
-    column: Optional[str] = None
-    cycle: Optional[int] = None
-    row: Optional[int] = None
-    expected: object = None
-    actual: object = None
-    value: object = None
-    limit: object = None
-    segment: Optional[int] = None
-    buffer: Optional[int] = None
-    read_index: Optional[int] = None
-
-
-@dataclass
-class Check:
-    """One JUnit test case: the golden comparison, or one assertion of one axis."""
-
-    name: str
-    failures: List[Failure] = field(default_factory=list)
-    skipped: Optional[str] = None
-
-    @property
-    def passed(self) -> bool:
-        return not self.failures
-
-
-@dataclass
-class CaseResult:
-    """One script, table or case: its checks; error is why the profile did not run (a failure too)."""
-
-    name: str
-    source: str
-    cycles: int = 0
-    checks: List[Check] = field(default_factory=list)
-    error: Optional[str] = None
-    plot: Optional[Path] = None
-    actual: Optional[Path] = None
-    seconds: float = 0.0
-
-    @property
-    def passed(self) -> bool:
-        return self.error is None and all(c.passed for c in self.checks)
-
-    @property
-    def failures(self) -> List[Failure]:
-        run = [Failure("run", self.error)] if self.error is not None else []
-        return run + [f for c in self.checks for f in c.failures]
-
-
-@dataclass
-class VerifyResult:
-    """What verify() and verify_cases() return: passed, failures, and the reports (verify_report.py)."""
-
-    cases: List[CaseResult]
-
-    @property
-    def passed(self) -> bool:
-        return all(c.passed for c in self.cases)
-
-    @property
-    def failures(self) -> List[Failure]:
-        return [f for c in self.cases for f in c.failures]
-
-    @property
-    def exit_status(self) -> int:
-        return EXIT_PASS if self.passed else EXIT_FAIL
-
-    def report(self) -> str:
-        from .verify_report import text_report
-
-        return text_report(self)
-
-    def to_junit(self) -> str:
-        from .verify_report import junit_xml
-
-        return junit_xml(self)
-
-    def to_markdown(self) -> str:
-        from .verify_report import markdown
-
-        return markdown(self)
-
-    def __bool__(self) -> bool:
-        return self.passed
 
 
 # ---- the golden comparison ------------------------------------------------------------------------

@@ -1,18 +1,112 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""pmdfmu verify's reports: the text a person reads, JUnit XML (GitHub Actions, GitLab, Jenkins), the
-Markdown summary (GITHUB_STEP_SUMMARY) and the diff plot of a golden trace (docs/verify.md)."""
+"""What pmdfmu verify found (its results: cases, checks, failures, the exit status) and its reports: the
+text a person reads, JUnit XML (GitHub Actions, GitLab, Jenkins), the Markdown summary
+(GITHUB_STEP_SUMMARY) and the diff plot of a golden trace (docs/verify.md). verify.py runs the checks."""
 
 from __future__ import annotations
 
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from typing import List, Sequence
+from dataclasses import dataclass, field
+from typing import List, Optional, Sequence
 
 import numpy as np
 
 from . import extras, files
-from .verify import Failure, VerifyResult
+
+EXIT_PASS, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
+
+# ---- results -------------------------------------------------------------------------------------
+
+
+@dataclass
+class Failure:
+    """One violation: what check, where (axis 1..4, column, chip cycle, row of the recording), the values
+    (expected/actual for a golden, value/limit for a limit), and where the profile was (segment number,
+    position buffer and its read index) when the check is a golden's."""
+
+    check: str
+    message: str
+    axis: Optional[int] = None
+    column: Optional[str] = None
+    cycle: Optional[int] = None
+    row: Optional[int] = None
+    expected: object = None
+    actual: object = None
+    value: object = None
+    limit: object = None
+    segment: Optional[int] = None
+    buffer: Optional[int] = None
+    read_index: Optional[int] = None
+
+
+@dataclass
+class Check:
+    """One JUnit test case: the golden comparison, or one assertion of one axis."""
+
+    name: str
+    failures: List[Failure] = field(default_factory=list)
+    skipped: Optional[str] = None
+
+    @property
+    def passed(self) -> bool:
+        return not self.failures
+
+
+@dataclass
+class CaseResult:
+    """One script, table or case: its checks; error is why the profile did not run (a failure too)."""
+
+    name: str
+    source: str
+    cycles: int = 0
+    checks: List[Check] = field(default_factory=list)
+    error: Optional[str] = None
+    plot: Optional[Path] = None
+    actual: Optional[Path] = None
+    seconds: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        return self.error is None and all(c.passed for c in self.checks)
+
+    @property
+    def failures(self) -> List[Failure]:
+        run = [Failure("run", self.error)] if self.error is not None else []
+        return run + [f for c in self.checks for f in c.failures]
+
+
+@dataclass
+class VerifyResult:
+    """What verify() and verify_cases() return: passed, failures, and the reports (below)."""
+
+    cases: List[CaseResult]
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.cases)
+
+    @property
+    def failures(self) -> List[Failure]:
+        return [f for c in self.cases for f in c.failures]
+
+    @property
+    def exit_status(self) -> int:
+        return EXIT_PASS if self.passed else EXIT_FAIL
+
+    def report(self) -> str:
+        return text_report(self)
+
+    def to_junit(self) -> str:
+        return junit_xml(self)
+
+    def to_markdown(self) -> str:
+        return markdown(self)
+
+    def __bool__(self) -> bool:
+        return self.passed
+
 
 XML_FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 

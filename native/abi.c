@@ -5,8 +5,8 @@
  * through the function pointers and instance the harness hands it. */
 #include <stddef.h>
 
+#include "abi.h"
 #include "memory_port.h"
-#include "native.h"
 #include "record_loop.h"
 
 /* The harness checks it loaded a library of its own version. */
@@ -32,6 +32,7 @@ size_t pmd_native_layout(size_t *out, size_t n)
         PMD_LOOP_DOUBLE, PMD_LOOP_INT32, PMD_LOOP_UINT32, PMD_LOOP_UINT16, PMD_LOOP_INT16, PMD_LOOP_INT, PMD_LOOP_BOOL,
         PMD_MEMORY_SET, PMD_MEMORY_SET_INT32, PMD_MEMORY_GET,
         PMD_STEP_LEND, PMD_STEP_DO_STEP, PMD_STEP_GET_DATA, PMD_STEP_END_LOAN,
+        (size_t)-PMD_LOOP_FIELD_SIZE,
     };
     size_t i, count = sizeof layout / sizeof layout[0];
     for (i = 0; i < count && i < n; i++)
