@@ -136,7 +136,9 @@ def reused(table) -> None:
                 for times, into in ((fresh, None), (reuse, out)):
                     with prepared(version, table) as chip:
                         times.append(
-                            common.timed(lambda chip=chip, into=into: chip.run(cycles, record=names, out=into))
+                            common.timed(
+                                lambda chip=chip, into=into, names=names: chip.run(cycles, record=names, out=into)
+                            )
                         )
             fresh_f, reuse_f = common.Figure.of(fresh), common.Figure.of(reuse)
             common.report(
