@@ -34,3 +34,13 @@ def test_helper_modules_hold_no_tests():
             if isinstance(n, (ast.FunctionDef, ast.ClassDef)) and n.name.lower().startswith("test")
         ]
         assert not tests, f"{path.name} is a helper module but defines {tests}"
+
+
+def test_every_test_file_is_in_the_readme_map_and_every_file_it_names_exists():
+    """tests/README.md's table is how a newcomer finds a topic's tests: it names every file, and only files."""
+    import re
+
+    named = set(re.findall(r"`(\w+\.py)`", (TESTS / "README.md").read_text()))
+    files = {p.name for p in TESTS.glob("*.py")} - {"conftest.py"}
+    assert not files - named, f"tests/README.md does not name {sorted(files - named)}"
+    assert not named - files - {"conftest.py"}, f"tests/README.md names missing files {sorted(named - files)}"
