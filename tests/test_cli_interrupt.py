@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from pmdfmu.sweep import HANDOFF_PREFIX, handoff_root
+
 pytestmark = pytest.mark.slow  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 REPO = Path(__file__).resolve().parent.parent
@@ -47,12 +49,13 @@ def run_whole(argv, cwd):
     return child.returncode, seconds, err
 
 
-def interrupted(argv, cwd, delay):
+def interrupted(argv, cwd, delay, pid=False):
+    """Exit status and standard error of a run sent SIGINT after delay s (and its pid, if asked)."""
     child, _ = start(argv, cwd)
     time.sleep(delay)
     child.send_signal(signal.SIGINT)
     out, err = child.communicate(timeout=300)
-    return child.returncode, err
+    return (child.returncode, err, child.pid) if pid else (child.returncode, err)
 
 
 def assert_interrupted_or_done(status, err, command, done):
@@ -67,7 +70,10 @@ def partial_files(*folders):
     return [p for folder in folders if folder.exists() for p in folder.rglob("*") if p.name.endswith(".partial")]
 
 
-def test_an_interrupted_verify_of_a_case_table_leaves_no_partial_report(tmp_path):
+@pytest.mark.parametrize("scheduler", ["serial", "a local Dask cluster"])
+def test_an_interrupted_verify_of_a_case_table_leaves_no_partial_report(tmp_path, scheduler):
+    """Also on Dask (the default scheduler: a cluster started for the command): no sweep folder of the
+    command's is left in the handoff root (/dev/shm) either."""
     changed = tmp_path / "changed.csv"  # axis 2's return leg at half the speed: the golden fails
     changed.write_text(SQUARE.read_text().replace("2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500"))
     (tmp_path / "cases.csv").write_text(
@@ -75,17 +81,8 @@ def test_an_interrupted_verify_of_a_case_table_leaves_no_partial_report(tmp_path
     )
 
     def argv(out):
-        return [
-            "verify",
-            "--cases",
-            tmp_path / "cases.csv",
-            "--scheduler",
-            "serial",
-            "--out",
-            out,
-            "--junit",
-            out / "junit.xml",
-        ]
+        where = ["--scheduler", "serial"] if scheduler == "serial" else []
+        return ["verify", "--cases", tmp_path / "cases.csv", *where, "--out", out, "--junit", out / "junit.xml"]
 
     done, seconds, err = run_whole(argv(tmp_path / "whole"), tmp_path)
     assert done == 1 and "Traceback" not in err, err
@@ -95,10 +92,11 @@ def test_an_interrupted_verify_of_a_case_table_leaves_no_partial_report(tmp_path
     statuses = []
     for trial in range(TRIALS):
         out = tmp_path / f"trial{trial}"
-        status, err = interrupted(argv(out), tmp_path, rng.uniform(0, seconds))
+        status, err, pid = interrupted(argv(out), tmp_path, rng.uniform(0, seconds), pid=True)
         assert_interrupted_or_done(status, err, "verify", done)
         statuses.append(status)
         assert not partial_files(out, tmp_path)
+        assert not list(Path(handoff_root()).glob(f"{HANDOFF_PREFIX}{pid}-*"))
         for path in out.iterdir() if out.exists() else ():
             if path.name == "junit.xml":
                 assert status != 130 and ET.parse(path).getroot().get("tests")

@@ -435,32 +435,109 @@ def test_verify_of_a_malformed_assertion_file_exits_2(tmp_path_factory, capsys, 
     assert status == 2 and err.count("\n") == 1 and err.startswith("pmdfmu verify: "), err
 
 
-CASE_ROWS = st.sampled_from(
+CASE_NAMES = st.text(
+    st.characters(blacklist_categories=("Cs", "Cc"), blacklist_characters='/\\,"'), min_size=1, max_size=6
+)
+# one defect, each a malformed case table whatever the rest of it is
+DEFECTS = st.sampled_from(
     [
-        "name,table\n",
-        "name,table,fmi_version\nx,{square},7\n",
-        "name,table,max_cycles\nx,{square},0\n",
-        'name,script\nx,"a\nb.script"\n',
-        "name,table,cycleTime\nx,{square},fast\n",
-        "name,table,memorySize\nx,{square}," + "9" * 5000 + "\n",
-        "table\n{square}\n",
-        'name,table\nx,"' + "y" * 140_000 + '"\n',
+        "misspelt column",
+        "unknown column",
+        "name twice",
+        "name with a slash",
+        "name ..",
+        "no name",
+        "fmi_version 7",
+        "max_cycles 0",
+        "cycleTime fast",
+        "memorySize huge",
+        "script and table",
+        "neither script nor table",
+        "script with a line feed",
+        "no case",
+        "garbage",
     ]
 )
+
+
+@st.composite
+def malformed_case_table(draw):
+    """A table of 1-3 cases that would run, then exactly one defect from DEFECTS: bytes."""
+    names = draw(
+        st.lists(
+            CASE_NAMES.map(str.strip).filter(lambda n: n not in ("", ".", "..")), min_size=1, max_size=3, unique=True
+        )
+    )
+    header = ["name", "table", "fmi_version", "max_cycles", "cycleTime", "memorySize"]
+    rows = [[n, str(SQUARE), str(draw(st.sampled_from([2, 3]))), "3000", "", ""] for n in names]
+    defect = draw(DEFECTS)
+    row = draw(st.integers(0, len(rows) - 1))
+    if defect == "misspelt column":
+        header[draw(st.integers(2, 5))] = draw(st.sampled_from(["fmi", "max_cycle", "cycletime", "memory_size"]))
+    elif defect == "unknown column":
+        header.append(draw(st.sampled_from(["speed", "Name", " name", "axis1"])))
+        for r in rows:
+            r.append("1")
+    elif defect == "name twice":
+        rows.append(list(rows[row]))
+    elif defect == "name with a slash":
+        rows[row][0] = draw(st.sampled_from(["../x", "a/b", "..\\x", "/abs"]))
+    elif defect in ("name ..", "no name"):
+        rows[row][0] = ".." if defect == "name .." else " "
+    elif defect == "fmi_version 7":
+        rows[row][2] = "7"
+    elif defect == "max_cycles 0":
+        rows[row][3] = "0"
+    elif defect == "cycleTime fast":
+        rows[row][4] = draw(st.sampled_from(["fast", "1e-4s", "0x"]))
+    elif defect == "memorySize huge":
+        rows[row][5] = "9" * draw(st.integers(20, 5000))
+    elif defect in ("script and table", "neither script nor table"):
+        header.append("script")
+        for i, r in enumerate(rows):
+            r.append(str(SCRIPT) if defect == "script and table" and i == row else "")
+        if defect == "neither script nor table":
+            rows[row][1] = ""
+    elif defect == "script with a line feed":
+        header.append("script")
+        rows[row][1] = ""
+        for i, r in enumerate(rows):
+            r.append('"a\nb.script"' if i == row else "")
+    elif defect == "no case":
+        rows = []
+    else:
+        return draw(GARBAGE)
+    return ("\n".join(",".join(r) for r in [header, *rows]) + "\n").encode()
 
 
 @GENERATED
 @given(
     content=st.one_of(
-        CASE_ROWS.map(lambda t: t.replace("{square}", str(SQUARE)).encode()),
-        GARBAGE,
+        malformed_case_table(),
         st.sampled_from(["folder", "fifo"]),
+        st.just(('name,table\nx,"' + "y" * 140_000 + '"\n').encode()),
     )
 )
-def test_verify_of_a_malformed_case_table_exits_2(tmp_path_factory, capsys, content):
-    path = _written(tmp_path_factory.mktemp("cases") / "cases.csv", content)
-    status, _out, err = cli(capsys, "verify", "--cases", path, "--scheduler", "serial")
-    assert status == 2 and err.count("\n") == 1 and err.startswith("pmdfmu verify: "), err
+def test_verify_and_sweep_of_a_malformed_case_table_exit_2(tmp_path_factory, capsys, content):
+    folder = tmp_path_factory.mktemp("cases")
+    path = _written(folder / "cases.csv", content)
+    for command in (["verify", "--cases"], ["sweep"]):
+        status, _out, err = cli(capsys, *command, path, "--scheduler", "serial", "--out", folder / "out")
+        assert status == 2 and err.count("\n") == 1 and err.startswith(f"pmdfmu {command[0]}: "), err
+    assert not (folder / "out").exists()
+
+
+@pytest.mark.parametrize("how", ["the table's folder, a case named summary", "a case named after its table"])
+def test_sweep_refuses_an_output_that_is_one_of_its_inputs(tmp_path, capsys, how):
+    """`--out .` beside the case table: summary.csv or NAME.csv must not replace an input."""
+    shutil.copy(SQUARE, tmp_path / "square.csv")
+    name = "summary" if how.startswith("the table") else "square"
+    cases = tmp_path / ("summary.csv" if name == "summary" else "cases.csv")
+    cases.write_text(f"name,table\n{name},square.csv\n")
+    before = {p: p.read_bytes() for p in tmp_path.iterdir()}
+    result = cli(capsys, "sweep", cases, "--scheduler", "serial", "--out", tmp_path)
+    assert_one_line(result, "sweep", "would write over its input", "give another --out")
+    assert {p: p.read_bytes() for p in tmp_path.iterdir()} == before
 
 
 def test_an_output_through_a_link_or_onto_a_device_is_written_as_asked(tmp_path):

@@ -220,6 +220,20 @@ def test_a_refused_parameter_raises_with_the_fmus_reason(version):
 
 
 @pytest.mark.parametrize("version", [2, 3])
+def test_an_unknown_log_category_raises_with_the_fmus_reason_and_leaves_no_instance(version, monkeypatch):
+    """Chip(log_categories=["bogus"]): FMUError naming the category and the FMU's categories; the instance
+    made for it is freed, as for a refused parameter."""
+    freed = []
+    slave = pmdfmu.chip._Slave2 if version == 2 else pmdfmu.chip._Slave3
+    real_free = slave.freeInstance
+    monkeypatch.setattr(slave, "freeInstance", lambda self: freed.append(self) or real_free(self))
+    with pytest.raises(pmdfmu.FMUError) as info:
+        pmdfmu.Chip(fmi_version=version, log_categories=["bogus"])
+    assert 'unknown log category "bogus" (the FMU\'s: errors, warnings' in str(info.value)
+    assert len(freed) == 1
+
+
+@pytest.mark.parametrize("version", [2, 3])
 def test_a_refused_set_of_an_output_raises_with_the_fmus_reason(version):
     with pmdfmu.Chip(fmi_version=version) as chip:
         with pytest.raises(pmdfmu.FMUError, match=r"axis1.commandedPosition\) is an output and cannot be set"):

@@ -137,8 +137,13 @@ PmdStatus pmd_model_set_debug_logging(PmdInstance *inst, const char *fn, int log
         for (c = 0; c < PMD_LOG_CATEGORY_COUNT; c++)
             known |= categories[i] && strcmp(categories[i], pmd_log_category_names[c]) == 0;
         if (!known) {
-            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: unknown log category \"%s\"", fn,
-                             categories[i] ? categories[i] : "(NULL)");
+            char names[512] = "";
+            for (c = 0; c < PMD_LOG_CATEGORY_COUNT; c++) {
+                strncat(names, c ? ", " : "", sizeof names - strlen(names) - 1);
+                strncat(names, pmd_log_category_names[c], sizeof names - strlen(names) - 1);
+            }
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: unknown log category \"%s\" (the FMU's: %s)", fn,
+                             categories[i] ? categories[i] : "(NULL)", names);
             return PMD_ERROR;
         }
     }

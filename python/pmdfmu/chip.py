@@ -583,8 +583,6 @@ class Chip:
                     status, category, message.decode(errors="replace")
                 ),
             )
-        if log_categories and log_categories is not True:
-            self.fmu.setDebugLogging(True, list(log_categories))
         types = (
             ("Real", "Integer", "Boolean", "String")
             if fmi_version == 2
@@ -594,8 +592,10 @@ class Chip:
         self._setters = {t: getattr(self.fmu, "set" + t) for t in types}
         self._getters.pop("String")  # run() records numbers; get() reads the script path below
         try:
+            if log_categories and log_categories is not True:
+                self._set_debug_logging(list(log_categories))
             self._initialize(parameters)
-        except BaseException:  # a refused, unknown or bad parameter: no instance is left behind
+        except BaseException:  # a refused category, an unknown or bad parameter: no instance is left behind
             self.fmu.freeInstance()
             self.fmu = None
             raise
@@ -609,6 +609,11 @@ class Chip:
         self._step_out = (byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Float64()))
 
     # ---- life cycle ----
+
+    @_refusals
+    def _set_debug_logging(self, categories: List[str]) -> None:
+        """The FMU's categories to log (its own message names an unknown one and lists the rest)."""
+        self.fmu.setDebugLogging(True, categories)
 
     def _script_value(self, value) -> str:
         """What the `script` parameter gets: a script's text (a value holding a line feed) as it is; a

@@ -213,10 +213,15 @@ def cmd_run(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .sweep import sweep
+    from .sweep import refuse_writing_over_inputs, sweep
     from .verify import read_case_table
 
-    result = sweep(read_case_table(args.cases)[0], scheduler=args.scheduler, workers=args.workers)
+    cases = read_case_table(args.cases)[0]
+    try:
+        refuse_writing_over_inputs(cases, args.out, [args.cases])
+    except ValueError as e:
+        raise InputError(str(e)) from None
+    result = sweep(cases, scheduler=args.scheduler, workers=args.workers)
     result.write(args.out)
     failed = [r for r in result.rows if r["status"] != "ok"]
     print(

@@ -29,11 +29,15 @@ sweeps").
 
 from __future__ import annotations
 
+import contextlib
 import csv
+import difflib
 import io
+import logging
 import os
 import secrets
 import shutil
+import signal
 import tempfile
 import threading
 import uuid
@@ -47,6 +51,8 @@ from . import extras, files, profile
 from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
+# a case table's columns: the case's own, the FMU parameters, and pmdfmu verify's (which a sweep leaves to it)
+COLUMNS = ("name", "script", "table", "fmi_version", "max_cycles", *PARAMETERS, "golden", "assertions")
 BATCHES_PER_THREAD = 4  # tasks per worker thread: enough to even out cases of unequal length
 HANDOFF_BYTES = 1 << 20  # a recording this large, or larger, is handed back through a file (when it can be)
 HANDOFF_PREFIX = "pmdfmu-sweep-"  # the handoff folders: pmdfmu-sweep-<pid of the sweep>-<random>
@@ -68,14 +74,25 @@ class Case:
     record: Tuple[str, ...] = ()
 
 
+NOT_A_FILE_NAME = "not a file name (the case's files are named after it in the output folder)"
+
+
+def is_file_name(name: str) -> bool:
+    """Whether a case's name can name its files (NAME.csv, verify's NAME.actual.npz) inside a folder."""
+    return name not in ("", ".", "..") and not any(c in name for c in "/\\\0")
+
+
 def read_cases(path: Union[str, Path]) -> List[Case]:
     """A case table: columns name, script or table (paths relative to the
     table's folder), optional fmi_version, max_cycles, and any of the FMU
-    parameters cycleTime, memorySize, loopback, record.capacity (blank: default).
-    ValueError with `file:line: reason` for a table that cannot be read or a case
-    that cannot run as written: no case, a case with no script or table or both,
-    an FMI version other than 2 or 3, max_cycles below 1, a script path holding a
-    line feed (the FMU reads a `script` value holding one as the script's text)."""
+    parameters cycleTime, memorySize, loopback, record.capacity (blank: default),
+    and pmdfmu verify's golden and assertions. ValueError with `file:line: reason`
+    for a table that cannot be read or a case that cannot run as written: no case,
+    a column of no such name (a misspelt one would be left out silently), a case
+    with no script or table or both, a name given twice or one that is no file
+    name (its recording is NAME.csv in the output folder), an FMI version other
+    than 2 or 3, max_cycles below 1, a script path holding a line feed (the FMU
+    reads a `script` value holding one as the script's text)."""
     path = Path(path)
     try:
         cases = _cases(path, files.read_text(path))
@@ -83,8 +100,14 @@ def read_cases(path: Union[str, Path]) -> List[Case]:
         raise ValueError(f"{path}: not a CSV table: {e}") from None
     if not cases:
         raise ValueError(f"{path}: no case (a header and one row per case)")
+    first_line = {}
     for line, case in enumerate(cases, start=2):
         what = f"{path}:{line}: case {files.shown(case.name)}"
+        if case.name in first_line:
+            raise ValueError(f"{what}: the name of line {first_line[case.name]} again (names are unique)")
+        first_line[case.name] = line
+        if not is_file_name(case.name):
+            raise ValueError(f"{what}: {NOT_A_FILE_NAME}")
         if bool(case.script) == bool(case.table):
             raise ValueError(f"{what}: a case names a script or a table")
         if case.fmi_version not in (2, 3):
@@ -102,7 +125,15 @@ def read_cases(path: Union[str, Path]) -> List[Case]:
 def _cases(path: Path, text: str) -> List[Case]:
     """read_cases' rows, each made a Case; ValueError naming the row for a value that is no number."""
     cases = []
-    for n, row in enumerate(csv.DictReader(io.StringIO(text, newline="")), start=2):
+    reader = csv.DictReader(io.StringIO(text, newline=""))
+    for column in reader.fieldnames or ():
+        if column not in COLUMNS:
+            near = difflib.get_close_matches(column, COLUMNS, n=1, cutoff=0.6)
+            raise ValueError(
+                f"{path}:1: column {files.shown(column)} is not a case column"
+                + (f" (did you mean {near[0]}?)" if near else f" ({', '.join(COLUMNS)})")
+            )
+    for n, row in enumerate(reader, start=2):
 
         def resolve(key, row=row):
             value = (row.get(key) or "").strip()
@@ -218,6 +249,22 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
 
 
 # ---- the sweep --------------------------------------------------------------------
+
+
+def written_files(cases: Sequence[Case], out: Union[str, Path]) -> List[Path]:
+    """What SweepResult.write(out) writes: summary.csv, summary.png, NAME.csv per case that runs."""
+    out = Path(out)
+    return [out / "summary.csv", out / "summary.png"] + [out / f"{c.name}.csv" for c in cases]
+
+
+def refuse_writing_over_inputs(cases: Sequence[Case], out: Union[str, Path], inputs: Sequence[Path] = ()) -> None:
+    """ValueError before anything runs if a file the sweep writes to `out` is one of its inputs (the case
+    table, a case's script or table): `--out` the table's folder and a case named after a table, say."""
+    sources = [Path(p) for p in [*inputs, *(c.script or c.table for c in cases)] if p]
+    for written in written_files(cases, out):
+        for source in sources:
+            if written.exists() and source.exists() and written.samefile(source):
+                raise ValueError(f"{written}: the sweep would write over its input {source}: give another --out")
 
 
 @dataclass
@@ -424,6 +471,25 @@ def _current_client(address: str):
     return current if current.status == "running" and current.scheduler.address == resolve_address(address) else None
 
 
+@contextlib.contextmanager
+def _interrupt_deferred():
+    """A Ctrl-C while a local cluster starts is delivered once it has started, so that the `with` that closes it
+    holds it: interrupted half-way, its workers would be left to Dask's exit handler, which fails on them
+    with a traceback (distributed's close_clusters: "AssertionError: Status.init"). Main thread only (where
+    Python's signal handlers run); elsewhere nothing is deferred."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught = []
+    previous = signal.signal(signal.SIGINT, lambda number, frame: caught.append(number))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if caught:  # delivered again, to the handler there was (Python's: KeyboardInterrupt)
+        signal.raise_signal(signal.SIGINT)
+
+
 def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResult:
     """Runs the cases; scheduler says where:
 
@@ -438,16 +504,25 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
     instance: pass its Client (or its address) for repeated sweeps."""
     names = [c.name for c in cases]
     if len(set(names)) != len(names):
-        raise ValueError("case names must be unique")
+        raise ValueError("case names must be unique")  # read_cases names the line of a table's
+    for name in names:
+        if not is_file_name(name):
+            raise ValueError(f"case {files.shown(name)}: {NOT_A_FILE_NAME}")
     if isinstance(scheduler, str) and scheduler == "serial":
         results = run_cases(cases)
     elif scheduler is None:
         distributed = extras.require("distributed", "sweep", "a sweep on a local cluster (scheduler=None)")
         Client, LocalCluster = distributed.Client, distributed.LocalCluster
-        with (
-            LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
-            Client(cluster) as client,
-        ):
+        with _interrupt_deferred():
+            # the cluster's own warnings (a task cancelled by Ctrl-C, say) are not the user's: errors only
+            cluster = LocalCluster(
+                n_workers=workers,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+            )
+        with cluster, Client(cluster) as client:
             results = _on(client, cases)
     elif isinstance(scheduler, str):
         current = _current_client(scheduler)
