@@ -64,6 +64,7 @@ def needs(tmp_path_factory):
     return graph
 
 
+@pytest.mark.slow
 def test_every_chip_file_calls_only_its_layer_and_those_below(needs):
     upward = [
         f"{stem}.c calls {', '.join(names)} of {other}.c"

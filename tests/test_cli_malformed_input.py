@@ -16,6 +16,8 @@ from hypothesis import strategies as st
 
 from pmdfmu.cli import main
 
+pytestmark = pytest.mark.slow  # tests/README.md: compiles programs or runs the CLI; -m "not slow" leaves it out
+
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
 SCRIPT, TABLE, SQUARE = EXAMPLES / "two_axis.script", EXAMPLES / "two_axis_table.csv", EXAMPLES / "square.csv"

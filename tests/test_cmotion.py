@@ -30,6 +30,8 @@ from pmdfmu.chip import COMMANDS, encode, instruction_word
 from cmotion_build import compile_program, generate
 from reference import ExternalProfile
 
+pytestmark = pytest.mark.slow  # tests/README.md: compiles programs or runs the CLI; -m "not slow" leaves it out
+
 ROOT = Path(__file__).resolve().parent.parent
 PROGRAMS = ["seed_1_1", "seed_1_2", "seed_1_3", "seed_1_4", "seed_1_5", "seed_1_6", "cmotion_example"]
 SEGMENT_CYCLES, ENTRIES, VARIABLES = 64, 5, 5

@@ -22,7 +22,7 @@ SANITIZERS = {"thread": "thread", "address": "address,undefined"}
 FLAVOURS = ["plain"] + [s for s in os.environ.get("PMDFMU_C_SANITIZERS", "").split(",") if s]
 PMD_ERR_Driver, PMD_ERR_OpeningPort = 0x1208, 0x1205  # host/c/PMDtypes.h
 
-pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
+pytestmark = [pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler"), pytest.mark.slow]  # compiles programs
 
 
 @pytest.fixture(

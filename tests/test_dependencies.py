@@ -37,6 +37,8 @@ import pmdfmu
 from pmdfmu import PMDAbruptStopMode, PMDBufferFunctionPosition, PMDExternalProfile, PMDMotorOff
 from states import command
 
+pytestmark = pytest.mark.slow  # tests/README.md: compiles programs or runs the CLI; -m "not slow" leaves it out
+
 ROOT = Path(__file__).resolve().parent.parent
 FMI_VERSIONS = (2, 3)
 START_TIME = 2.5e-4  # Initialization Mode: between two cycles for 1e-4 and 2e-4 s

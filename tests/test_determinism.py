@@ -17,6 +17,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SCRIPT = ROOT / "examples" / "two_axis.script"
 
 
+@pytest.mark.slow
 def test_ten_runs_through_fmi2_and_fmi3_write_identical_csvs(tmp_path):
     digests = set()
     for k in range(10):

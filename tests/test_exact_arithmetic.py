@@ -203,6 +203,7 @@ def test_the_reals_past_an_int64_in_u_are_the_documented_doubles_bit_for_bit(fmi
     assert all(abs(segments[axis].exact(start)[2]) >= 1 << 63 for axis in (0, 1))
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 def test_every_form_of_the_reals_is_the_scalar_expressions(tmp_path):
     """pmd_commanded_reals' forms - pairs of vectors (SSE2, NEON) and plain C (PMD_PORTABLE_LANES, as a
@@ -342,6 +343,7 @@ def extreme_word(rng):
     return rng.choice([MIN32, MAX32, MIN32 + 1, MAX32 - 1, 0, rng.randrange(1 << 32)])
 
 
+@pytest.mark.slow
 @FMI
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_extreme_tables_in_coarse_steps_equal_cycle_by_cycle_and_the_exact_model(fmi, seed):

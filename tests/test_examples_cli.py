@@ -11,6 +11,8 @@ import pytest
 from pmdfmu import field_ex
 from pmdfmu.cli import main
 
+pytestmark = pytest.mark.slow  # tests/README.md: compiles programs or runs the CLI; -m "not slow" leaves it out
+
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 

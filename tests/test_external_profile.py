@@ -186,6 +186,7 @@ def test_read_index_overtaking_the_write_index_warns_and_carries_on():
         assert warnings[0].status == "Warning"
 
 
+@pytest.mark.slow
 def test_streaming_refill_following_the_read_index_for_100000_cycles(chip):
     """Seed 000, 1.3: the host reads the read index and refills the free entries
     while the profile runs. (The seed's free-entry formula uses the memory size

@@ -19,6 +19,7 @@ from scenarios import BUSY_OUTPUTS, busy_chip
 FMU3 = pmdfmu.default_fmu(3)
 
 
+@pytest.mark.slow
 def test_fmpy_validation_reports_nothing():
     assert validate_fmu(str(FMU3)) == []
 

@@ -17,6 +17,7 @@ FMU = pmdfmu.default_fmu()
 TABLES = pmdfmu.tables_dir()
 
 
+@pytest.mark.slow
 def test_fmpy_validation_reports_nothing():
     assert validate_fmu(str(FMU)) == []
 

@@ -215,6 +215,7 @@ print(json.dumps({
         (2, "lent", "axis1.commandedPosition,axis2.activityStatus"),
     ],
 )
+@pytest.mark.slow
 def test_cycles_past_a_recording_steps_room_run_as_an_unrecorded_step_does(tmp_path, fmi_version, how, columns):
     """The rows past record.capacity (or the memory lent by pmdfmu_fmi2SetRecordBuffer) are not kept: they
     run as a step that records nothing runs them, fast-forwarded (60 000 coarse cycles: 4 * 10^9 fine ones,

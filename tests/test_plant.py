@@ -175,6 +175,7 @@ def test_both_model_descriptions_validate_and_declare_the_table(fmi_version):
     assert {r["unit"] for r in ROWS if r["unit"]} <= units
 
 
+@pytest.mark.slow
 def test_fmu_manipulation_toolboxs_checker_passes(fmi_version):
     """fmutool -check (fmu-manipulation-toolbox, pyproject's test extra): outside CI a missing
     package skips, in CI it fails."""

@@ -9,6 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 import pmdfmu
 from cmotion_build import compile_program, generate
 
@@ -34,6 +36,7 @@ def test_every_python_block_prints_what_it_says(tmp_path):
             assert done.stdout.splitlines() == expected
 
 
+@pytest.mark.slow
 def test_the_c_program_runs_to_its_printed_position(tmp_path):
     (code,) = blocks("c")
     source = tmp_path / "first.c"

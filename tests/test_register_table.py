@@ -71,6 +71,7 @@ def refused_outside_the_range(chip, r):
         assert "axis 2: " in text or COMMANDS["Set" + name].scope == "chip"
 
 
+@pytest.mark.slow
 def test_registers_have_no_handler_of_their_own():
     fmu = zipfile.ZipFile(default_fmu())
     sources = " ".join(fmu.read(n).decode() for n in fmu.namelist() if n.startswith("sources/") and n[-2:] in ".c.h")

@@ -504,6 +504,7 @@ def test_a_start_value_file_that_cannot_be_read_refuses_instantiation(tmp_path, 
 # ---- pmdfmu pack ----
 
 
+@pytest.mark.slow
 @VERSIONS
 def test_a_packed_fmu_runs_its_profile_with_no_parameter_set_from_any_directory(
     tmp_path, monkeypatch, built, version, by_path

@@ -187,6 +187,7 @@ def test_the_snapshot_resigned_unchanged_is_accepted(rich, declared):
     assert snapshot(rich) == blob
 
 
+@pytest.mark.slow
 def test_every_field_just_outside_its_range_is_refused_naming_it(rich, declared):
     forger = Forger(snapshot(rich), declared[0])
     tried = 0

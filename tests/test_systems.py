@@ -31,6 +31,8 @@ sys.path[:0] = [str(ROOT / "examples" / "systems"), str(ROOT / "examples")]
 import closed_loop  # noqa: E402  examples/closed_loop.py: docs/servo.md's suggested gains
 import systems  # noqa: E402  examples/systems/systems.py
 
+pytestmark = pytest.mark.slow  # tests/README.md: compiles programs or runs the CLI; -m "not slow" leaves it out
+
 JACOBI = ("jacobi", "fmpy-ssp", "libcosim", "container")
 # What each algorithm makes of the move: motion complete after this step, the largest
 # following error in counts (commanded position minus the encoder count the cycle sampled)

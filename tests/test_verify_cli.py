@@ -12,6 +12,8 @@ import pytest
 
 from pmdfmu.cli import main
 
+pytestmark = pytest.mark.slow  # tests/README.md: compiles programs or runs the CLI; -m "not slow" leaves it out
+
 REPO = Path(__file__).resolve().parent.parent
 EXAMPLES = REPO / "examples"
 CI = EXAMPLES / "ci"
