@@ -382,3 +382,30 @@ def test_seed_1_5_under_host_time_runs_as_the_python_harness_with_the_same_inter
     assert all(by_cycle[c[0]] == c for c in t.cycles)
     assert results == t.results
     assert cycles[-1][0] == last
+
+
+SANITIZERS = {"thread": "thread", "address": "address,undefined"}
+SANITIZED = [s for s in os.environ.get("PMDFMU_C_SANITIZERS", "").split(",") if s]  # ./dev sanitize
+
+
+@pytest.mark.sanitize
+@pytest.mark.skipif(not SANITIZED, reason="PMDFMU_C_SANITIZERS names no sanitizer (./dev sanitize does)")
+@pytest.mark.parametrize("flavour", SANITIZED)
+@pytest.mark.parametrize(
+    "name, args", [(p, ()) for p in PROGRAMS] + [("seed_1_3", ("dpram",)), ("seed_1_6", ("poll",))]
+)
+def test_the_programs_under_a_sanitizer_print_what_they_print_plain(programs, tmp_path, flavour, name, args):
+    """The seed's programs and the example built with ThreadSanitizer or ASan + UBSan: no report, and the
+    same output, line for line, as the plain build's."""
+    if flavour not in SANITIZERS:
+        pytest.fail(f"PMDFMU_C_SANITIZERS: unknown sanitizer {flavour!r} (thread, address)")
+    exe = compile_program(source_of(name), tmp_path / name, generate(tmp_path / "generated"), SANITIZERS[flavour])
+    env = dict(os.environ, PMDFMU_FMU=str(pmdfmu.default_fmu(2)), PMDFMU_HOST_INTERFACE="none")
+    env.pop("LD_PRELOAD", None)  # ./dev sanitize's runtimes for Python, not for these
+    outputs = [
+        subprocess.run([str(e), *args], capture_output=True, text=True, env=env, timeout=600)
+        for e in (programs[name], exe)
+    ]
+    for out in outputs:
+        assert out.returncode == 0 and "Sanitizer" not in out.stderr, out.stderr[-3000:]
+    assert outputs[1].stdout == outputs[0].stdout
