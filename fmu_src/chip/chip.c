@@ -450,7 +450,7 @@ static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopba
                 if (row)
                     record_axis(chip, n, row);
             }
-            if (((watch >> n) & (unsigned)pmd_wrapped(before, ax->trajectory.position)) != 0) {
+            if ((watch & (1u << n)) && pmd_wrapped(before, ax->trajectory.position)) {
                 pmd_set_event(chip, n, PMDEventWrapAroundMask);
                 watch &= ~(1u << n);
             }

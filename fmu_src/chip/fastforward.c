@@ -149,10 +149,20 @@ static i128 counts_after(const PmdTrajectory *t, int64_t k, i128 *rest)
  * polynomial: its extremes over 1..n are at n or next to the velocity's zeros. */
 static int leaves_int32(const PmdTrajectory *t, int64_t n)
 {
-    double roots[2];
-    int r, nroots = velocity_zeros(t, roots);
+    double roots[2], dn = (double)n;
+    /* most skips stay far from the ends: a bound on the distance covered,
+     * n|V| + n^2|A|/2 + n^3|J|/6 counts (V, A in 2^-33 count, J in 2^-32),
+     * with a margin for the doubles' rounding and the floor, says so cheaply */
+    double reach = (dn * fabs((double)in33(t->velocity)) + dn * dn * fabs((double)in33(t->acceleration)) / 2) /
+                   (double)TWO33 + dn * dn * dn * fabs((double)t->jerk) / 6 / 4294967296.0;
+    int r, nroots;
     int64_t k;
-    i128 rest, p = counts_after(t, n, &rest);
+    i128 rest, p;
+    reach = reach * (1 + 1e-9) + 2;
+    if ((double)t->position + reach < (double)INT32_MAX && (double)t->position - reach > (double)INT32_MIN)
+        return 0;
+    nroots = velocity_zeros(t, roots);
+    p = counts_after(t, n, &rest);
     if (p < INT32_MIN || p > INT32_MAX)
         return 1;
     for (r = 0; r < nroots; r++) {
