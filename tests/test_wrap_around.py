@@ -188,6 +188,7 @@ def test_one_long_doStep_across_each_wrap_sets_wrap_around():
             start_external_profile(chip, [0])
             ran = 0
             for w, end in zip(wraps, (30_000, 40_000)):
+                assert ran + 1 < w < end - 1  # inside the doStep, neither its first nor its last cycle
                 chip.axis(0).ResetEventStatus(0xFFFF & ~WRAP)
                 chip.run(end - ran)  # from well before the wrap to well after it
                 assert chip.axis(0).GetEventStatus() & WRAP

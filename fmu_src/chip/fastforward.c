@@ -13,8 +13,9 @@
  * position error stays 0) costs a few multiplications per axis instead of one
  * step per cycle. The servo filter then sees a constant position error (0, or
  * an idle axis's), which it also runs in closed form (servo.c). Anything
- * else - a segment read, a velocity coming to rest (an event), a state beyond
- * the bounds below - is left to the ordinary cycle.
+ * else - a segment read, a velocity coming to rest (an event), a position
+ * wrapping between the int32 ends while its wrap-around bit is clear (an
+ * event), a state beyond the bounds below - is left to the ordinary cycle.
  *
  * It needs 128-bit integers; without them it skips nothing, which is the
  * portable fallback: the same results, cycle by cycle. */

@@ -16,8 +16,8 @@ int pmd_host_interrupt(const PmdChip *chip);
 int32_t pmd_actual_velocity(const PmdAxis *ax);
 
 /* Whether a position's change from previous to current wrapped between the
- * maximum and the minimum (the wrap-around event, reference 2.2; its meaning
- * from the Magellan manual): the change, taken as the signed 32-bit step the
+ * maximum and the minimum (the wrap-around event, reference 2.2, in the words
+ * of the C-Motion Magellan Programming Reference): the change, taken as the signed 32-bit step the
  * encoder counter made, crossed INT32_MAX -> INT32_MIN going up or the other
  * way going down. That is: the sign changed, and the step has the sign the
  * previous position had (a step across 0 has the other). Branch-free: the
