@@ -222,3 +222,18 @@ def test_a_profile_that_turns_back_before_the_maximum_sets_no_wrap_around_and_st
             chip.run(2_000_000)
             assert not chip.axis(0).GetEventStatus() & WRAP
             assert chip.get(POSITION) == positions[1_999_999]
+
+
+def test_set_and_adjust_actual_position_across_the_ends_set_no_wrap_around():
+    """They move the origin, not the axis: both samples move together (docs/decisions.md)."""
+    for loopback in (True, False):
+        with pmdfmu.Chip(loopback=loopback) as chip:
+            ax = chip.axis(0)
+            ax.SetActualPosition(MAX)
+            chip.run(2)
+            ax.SetActualPosition(MIN)
+            chip.run(2)
+            ax.AdjustActualPosition(-1)  # MIN - 1: the maximum again
+            chip.run(2)
+            assert ax.GetActualPosition() == MAX
+            assert not ax.GetEventStatus() & WRAP
