@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Exact reference models written independently of the C core: seed 000's
 external profile (Python Fractions in counts, the seed's pseudo code line by
-line) and the servo filter (docs/decisions.md's formula in Python integers)."""
+line), the servo filter (docs/decisions.md's formula in Python integers) and
+the wrap-around event (in unbounded Python integers)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,20 @@ POSITION, VELOCITY, ACCELERATION, JERK, TIME = range(5)
 def wrap32(x: int) -> int:
     x &= 0xFFFFFFFF
     return x - (1 << 32) if x >= (1 << 31) else x
+
+
+def wrap_arounds(previous: int, positions: Sequence[int]) -> List[int]:
+    """The indexes of the cycles whose actual position wrapped between the
+    maximum and the minimum (event status bit 1, reference 2.2), given the
+    actual position before the first: each cycle's change is the encoder's
+    signed 32-bit step, and the position it reaches without wrapping lies
+    outside the int32 range."""
+    cycles = []
+    for k, p in enumerate(positions):
+        if not -(1 << 31) <= previous + wrap32(p - previous) < (1 << 31):
+            cycles.append(k)
+        previous = p
+    return cycles
 
 
 def registers(p: Fraction, v: Fraction, a: Fraction) -> Tuple[int, int, int]:

@@ -4,7 +4,10 @@ after it (docs/decisions.md, "Breakpoint actions and profile decisions"):
 (a) where an external profile starts reading, (b) an Update while an external
 profile runs and a restart after it stopped, (c) when Update takes effect,
 (d) an S-curve parameter change in motion, (e) the velocity-contouring
-direction, (f) buffers of different lengths."""
+direction, (f) buffers of different lengths, (g) the decisions a real program
+meets (low buffers, a zero velocity, the int32 wrap, reversing through zero, the
+16.16 range, the rolling trace's read index, the settle window, the motion
+error after a reset, a trace's stop cycle)."""
 
 import numpy as np
 import pytest
@@ -12,6 +15,7 @@ import pytest
 import pmdfmu
 from pmdfmu import (
     PMDAbruptStop,
+    PMDActivityAxisSettledMask,
     PMDActivityInMotionMask,
     PMDBufferFunctionPosition,
     PMDBufferFunctionTime,
@@ -19,6 +23,7 @@ from pmdfmu import (
     PMDError,
     PMDEventInstructionErrorMask,
     PMDEventMotionCompleteMask,
+    PMDEventMotionErrorMask,
     PMDExternalProfile,
     PMDSCurveProfile,
     PMDTrapezoidalProfile,
@@ -261,3 +266,198 @@ def test_buffer_lengths_changed_while_running_halt_the_profile():
         assert positions(chip, 4) == [102, 102, 102, 102]  # the segment ends; the next read halts
         assert segment(chip) == 0
         assert any("lengths differ" in m.message for m in chip.messages if m.category == "warnings")
+
+
+# ---- (g) the decisions a real program meets (docs/decisions.md, "Decisions a real program meets") ----
+
+MAX32, MIN32 = 2**31 - 1, -(2**31)
+
+
+def test_a_buffer_starting_below_0x200_is_accepted_and_runs(chip):
+    """Seed 000 reserves the first 1K x 16 words (512 32-bit words) for the motion processor, as a
+    rule for the host's memory plan; no command refuses a buffer there, and nothing of the chip's
+    lives there in the FMU: a profile in buffers at 0x0, 0x10 and 0x20 runs as anywhere else."""
+    ax = chip.axis(0)
+    for k, function in enumerate(FUNCTIONS):
+        ax.SetBufferStart(2 + k, 0x10 * k)
+        ax.SetBufferLength(2 + k, 2)
+        ax.SetBufferFunction(function, 2 + k)
+    chip.write_memory(0x00, [100, 0])
+    chip.write_memory(0x10, [0x10000, 0])
+    chip.write_memory(0x20, [5, 0])
+    start_external(chip)
+    assert positions(chip, 7) == [100, 101, 102, 103, 104, 0, 0]
+    assert chip.axis(0).GetEventStatus() & PMDEventMotionCompleteMask
+
+
+def test_a_trapezoidal_move_with_maximum_velocity_0_never_moves_and_stays_in_motion(chip):
+    """Accepted (0 is a legal velocity); the generator may never exceed it, so the axis holds its
+    position, shows "in motion" (the move has not ended) and never sets motion complete, until the
+    host changes the velocity or stops it."""
+    ax = chip.axis(0)
+    ax.SetProfileMode(PMDTrapezoidalProfile)
+    ax.SetPosition(1000)
+    ax.SetVelocity(0)
+    ax.SetAcceleration(0x1000)
+    ax.Update()
+    rec = chip.run(10_000, record=TRAJECTORY)
+    assert set(int(p) for p in rec["axis1.commandedPosition"]) == {0}
+    assert ax.GetActivityStatus() & PMDActivityInMotionMask
+    assert not ax.GetEventStatus() & PMDEventMotionCompleteMask
+    ax.SetVelocity(0x10000)
+    ax.Update()
+    chip.run(2_000)
+    assert ax.GetCommandedPosition() == 1000 and ax.GetEventStatus() & PMDEventMotionCompleteMask
+
+
+def test_a_trapezoidal_move_across_the_int32_wrap_goes_the_long_way(chip):
+    """Positions are signed 32-bit numbers and a destination is one of them: from 2^31 - 101 to
+    -2^31 + 100 the move runs down through 0 (4 294 967 095 counts), never across the wrap, and
+    never sets the wrap-around event."""
+    ax = chip.axis(0)
+    ax.SetActualPosition(MAX32 - 100)
+    ax.SetProfileMode(PMDTrapezoidalProfile)
+    ax.SetPosition(MIN32 + 100)
+    ax.SetVelocity(0x7FFF0000)
+    ax.SetAcceleration(0x10000000)
+    ax.Update()
+    rec = chip.run(200_000, record=["axis1.commandedPosition", "axis1.eventStatus"])
+    p = [int(x) for x in rec["axis1.commandedPosition"]]
+    assert all(b <= a for a, b in zip(p, p[1:]))  # monotone: down all the way
+    assert p[-1] == MIN32 + 100
+    assert not any(int(e) & pmdfmu.PMDEventWrapAroundMask for e in rec["axis1.eventStatus"])
+    assert ax.GetEventStatus() & PMDEventMotionCompleteMask
+
+
+def test_velocity_contouring_reversing_through_zero_lands_exactly_on_0_with_a_partial_step(chip):
+    """Slowing down toward the other direction stops at 0 first: from 1.5 counts/cycle with a
+    deceleration of 1.0 the velocity goes 0.5, then exactly 0 (a step of 0.5, not 1.0), then
+    speeds up the other way at the acceleration: -1.0, -1.5."""
+    ax = chip.axis(0)
+    ax.SetProfileMode(PMDVelocityContouringProfile)
+    ax.SetVelocity(0x18000)
+    ax.SetAcceleration(0x10000)
+    ax.Update()
+    chip.run(3)
+    ax.SetVelocity(-0x18000)
+    ax.SetDeceleration(0x10000)
+    ax.Update()
+    rec = chip.run(5, record=TRAJECTORY)
+    assert [int(v) for v in rec["axis1.commandedVelocity"]] == [0x8000, 0, -0x10000, -0x18000, -0x18000]
+    assert ax.GetActivityStatus() & PMDActivityInMotionMask  # passing through 0 is not a rest
+
+
+def test_the_16_16_velocity_range_is_the_full_32_bit_word(chip):
+    """Seed 000, 1.7 gives 16.16 as -32768 .. 32767.99998 (the whole word); its 1.2 comment and the
+    MC1231A give +-16384. The register holds the word and nothing refuses or clamps it: a
+    velocity of 0x7FFFFFFF is reached in velocity contouring and read from an external profile."""
+    ax = chip.axis(0)
+    ax.SetProfileMode(PMDVelocityContouringProfile)
+    ax.SetVelocity(0x7FFFFFFF)
+    ax.SetAcceleration(0x40000000)
+    ax.Update()
+    chip.run(3)
+    assert ax.GetVelocity() == 0x7FFFFFFF and ax.GetCommandedVelocity() == 0x7FFFFFFF
+    with pmdfmu.Chip() as other:
+        external_rows(other, [(0, 0x7FFFFFFF, 3), (0, 0, 0)])
+        start_external(other)
+        rec = other.run(3, record=TRAJECTORY)
+        assert [int(v) for v in rec["axis1.commandedVelocity"]] == [0x7FFFFFFF] * 3
+        assert [int(p) for p in rec["axis1.commandedPosition"]] == [0, 32767, 65535]
+
+
+def rolling_time_trace(ax, length):
+    ax.SetBufferStart(0, 0x100)
+    ax.SetBufferLength(0, length)
+    ax.SetTraceMode(pmdfmu.PMDTraceRollingBuffer)
+    ax.SetTracePeriod(1)
+    ax.SetTraceVariable(0, 0, pmdfmu.PMDTraceTime)
+    ax.SetTraceVariable(1, 0, 0)  # one slot: the chip time
+
+
+def test_a_rolling_trace_that_wrapped_moves_buffer_0s_read_index_to_its_oldest_sample_when_it_stops(chip):
+    """Reference 4.3 [M]: the rolling trace moves buffer 0's read index when it completes. It
+    stops with the write index on the oldest sample; the read index goes there, so ReadBuffer
+    reads the samples oldest first. A rolling trace that did not wrap leaves it alone."""
+    ax = chip.axis(0)
+    rolling_time_trace(ax, 7)
+    ax.SetTraceStart(0, pmdfmu.PMDTraceConditionImmediate, 0, 0)
+    chip.run(20)
+    assert ax.GetBufferReadIndex(0) == 0  # still running
+    ax.SetTraceStop(0, pmdfmu.PMDTraceConditionImmediate, 0, 0)
+    last = ax.GetTime()
+    assert ax.GetBufferReadIndex(0) == ax.GetBufferWriteIndex(0) == 20 % 7
+    assert [ax.ReadBuffer(0) for _ in range(7)] == list(range(last - 6, last + 1))
+    with pmdfmu.Chip() as other:
+        bx = other.axis(0)
+        rolling_time_trace(bx, 30)
+        bx.SetTraceStart(0, pmdfmu.PMDTraceConditionImmediate, 0, 0)
+        other.run(10)
+        bx.SetTraceStop(0, pmdfmu.PMDTraceConditionImmediate, 0, 0)
+        assert bx.GetBufferReadIndex(0) == 0 and bx.GetBufferWriteIndex(0) == 10
+
+
+def test_a_trace_stopped_by_a_trigger_keeps_the_stop_cycles_sample(chip):
+    """The sample of a cycle is taken before the stop condition is checked at its end: the
+    cycle that meets the condition is the last one in the buffer."""
+    ax = chip.axis(0)
+    ax.SetBufferStart(0, 0x100)
+    ax.SetBufferLength(0, 100)
+    ax.SetTraceMode(pmdfmu.PMDTraceOneTime)
+    ax.SetTracePeriod(1)
+    ax.SetTraceVariable(0, 0, pmdfmu.PMDTraceTime)
+    ax.SetTraceVariable(1, 0, pmdfmu.PMDTraceCommandedPosition)
+    ax.SetTraceVariable(2, 0, 0)
+    ax.SetTraceStop(0, pmdfmu.PMDTraceConditionEventStatus, PMDEventMotionCompleteMask.bit_length() - 1, 1)
+    ax.SetTraceStart(0, pmdfmu.PMDTraceConditionImmediate, 0, 0)
+    ax.SetProfileMode(PMDTrapezoidalProfile)
+    ax.SetPosition(10)
+    ax.SetVelocity(0x10000)
+    ax.SetAcceleration(0x10000)
+    ax.Update()
+    rec = chip.run(40, record=["axis1.commandedPosition", "axis1.eventStatus"])
+    done = next(k for k, e in enumerate(rec["axis1.eventStatus"]) if int(e) & PMDEventMotionCompleteMask)
+    count = ax.GetTraceCount()
+    samples = [pmdfmu.signed(ax.ReadBuffer(0)) for _ in range(count)]
+    assert samples[-2:] == [int(rec["cycle"][done]), int(rec["axis1.commandedPosition"][done])]
+    assert count == 2 * (done + 1)
+    assert ax.GetTraceStatus() & pmdfmu.PMDTraceStatusActivity == 0
+
+
+def test_the_settle_window_is_inclusive():
+    """Settled means |position error| <= the settle window for more than the settle time: an
+    error equal to the window settles, one count more does not."""
+    with pmdfmu.Chip(loopback=False) as chip:
+        ax = chip.axis(0)
+        ax.SetSettleWindow(5)
+        ax.SetSettleTime(3)
+        chip.set("axis1.actualPosition", 5)
+        rec = chip.run(6, record=["axis1.activityStatus"])
+        settled = [bool(int(s) & PMDActivityAxisSettledMask) for s in rec["axis1.activityStatus"]]
+        assert ax.GetPositionError() == 5
+        assert settled == [False, False, False, True, True, True]  # more than 3 cycles inside
+        chip.set("axis1.actualPosition", -6)
+        chip.run(10)
+        assert not ax.GetActivityStatus() & PMDActivityAxisSettledMask
+
+
+def test_after_reset_event_status_the_motion_error_bit_is_set_again_while_the_error_stays_beyond_the_limit():
+    """The motion error is a condition checked every cycle, and the bit its latch: cleared while
+    the error is still beyond the limit, it is set again at the next cycle (and each cycle after
+    another reset); once the error is back inside, a reset keeps it clear."""
+    with pmdfmu.Chip(loopback=False) as chip:
+        ax = chip.axis(0)
+        ax.SetPositionErrorLimit(10)
+        chip.set("axis1.actualPosition", 50)
+        chip.run(2)
+        assert ax.GetEventStatus() & PMDEventMotionErrorMask
+        for _ in range(3):
+            ax.ResetEventStatus(0xFFFF & ~PMDEventMotionErrorMask)
+            assert not ax.GetEventStatus() & PMDEventMotionErrorMask
+            chip.run(1)
+            assert ax.GetEventStatus() & PMDEventMotionErrorMask
+        chip.set("axis1.actualPosition", 10)  # back at the limit: not beyond it
+        chip.run(1)
+        ax.ResetEventStatus(0xFFFF & ~PMDEventMotionErrorMask)
+        chip.run(5)
+        assert not ax.GetEventStatus() & PMDEventMotionErrorMask

@@ -118,19 +118,23 @@ static void check_breakpoints(PmdChip *chip, int n)
 /* Actual position: the commanded position (loopback, motor on: the ideal
  * servo), held (loopback, motor off), or the encoder input plus the
  * SetActualPosition offset. Returns whether the servo is ideal. The loopback
- * parameter is fixed for a whole run: pmd_chip_run_every_cycle reads it once and passes it. */
+ * parameter is fixed for a whole run: pmd_chip_run_every_cycle reads it once and passes it.
+ * A sample that wrapped between the maximum and the minimum sets the
+ * wrap-around event (reference 2.2; pmd_wrapped). */
 static inline int sample_actual(PmdChip *chip, int n, int loopback)
 {
     PmdAxis *ax = &chip->s.axis[n];
+    int ideal = 0;
     ax->previousActualPosition = ax->actualPosition;
     if (!loopback) {
         ax->actualPosition = pmd_int32((uint32_t)ax->actualPositionInput + (uint32_t)ax->actualOffset);
-        return 0;
+    } else if (ax->motorOn) {
+        ax->actualPosition = ax->trajectory.position;
+        ideal = 1;
     }
-    if (!ax->motorOn)
-        return 0;
-    ax->actualPosition = ax->trajectory.position;
-    return 1;
+    if (pmd_wrapped(ax->previousActualPosition, ax->actualPosition))
+        pmd_set_event(chip, n, PMDEventWrapAroundMask);
+    return ideal;
 }
 
 /* Entering a limit sets its event bit and stops the axis; the activity bit
@@ -365,10 +369,13 @@ void pmd_chip_run_one_cycle(PmdChip *chip)
  * cycle's commanded velocity and acceleration. */
 
 /* An ideal servo's axis at rest in a quiet run's middle cycles: check_servo
- * with its error 0 (sampled first), as quiet_axis_cycle. */
-static NOINLINE void settle(PmdChip *chip, int n, int loopback)
+ * with its error 0 (sampled first: the ideal servo's sample, without the
+ * wrap-around check, which quiet_cycles made on the commanded position as it
+ * moved; the actual position it leaves is the run's last cycle's business). */
+static NOINLINE void settle(PmdChip *chip, int n)
 {
-    sample_actual(chip, n, loopback);
+    PmdAxis *ax = &chip->s.axis[n];
+    ax->previousActualPosition = ax->actualPosition = ax->trajectory.position;
     check_position_error(chip, n);
 }
 
@@ -382,7 +389,7 @@ static NOINLINE void quiet_axis_cycle(PmdChip *chip, int n, int loopback, unsign
         /* check_servo with an ideal servo's error 0: a moving axis, pending or not, only resets
          * its settle count, which the run's first cycle did (pmd_chip_run_every_cycle); at rest it settles */
         if (chip->s.axis[n].motion == PMD_MOTION_IDLE)
-            settle(chip, n, loopback);
+            settle(chip, n);
     } else {
         check_servo(chip, n, sample_actual(chip, n, loopback));
         pmd_servo_cycle(chip, n);
@@ -396,17 +403,24 @@ static NOINLINE void quiet_axis_cycle(PmdChip *chip, int n, int loopback, unsign
  * its servo side has nothing to do. Its columns of the row are stored before
  * a motion-complete event is raised (which changes no register shown): the
  * values are still in registers then. The chip time is kept in a local (the
- * row's stores could alias the state's for all the compiler knows). */
+ * row's stores could alias the state's for all the compiler knows). An
+ * ideal servo's actual position is its commanded position, so the
+ * wrap-around event of such an axis (closedForm) is watched on the commanded
+ * position, cycle by cycle, until its bit is set (sample_actual watches the
+ * others). */
 static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopback, unsigned closedForm,
                                        int32_t *row)
 {
     uint32_t time = chip->s.nextTime;
-    unsigned plain = 0;
+    unsigned plain = 0, watch = 0;
     int64_t k;
     int n;
-    for (n = 0; n < PMD_AXES; n++)
+    for (n = 0; n < PMD_AXES; n++) {
         if (pmd_external_plain(chip, n))
             plain |= 1u << n;
+        if ((closedForm & (1u << n)) && !(chip->s.axis[n].eventStatus & PMDEventWrapAroundMask))
+            watch |= 1u << n;
+    }
     for (k = 0; k < cycles; k++, time++) {
         chip->s.time = time;
         chip->s.nextTime = time + 1;
@@ -415,6 +429,7 @@ static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopba
         UNROLL_AXES
         for (n = 0; n < PMD_AXES; n++) {
             PmdAxis *ax = &chip->s.axis[n];
+            int32_t before = ax->trajectory.position;
             if ((closedForm & (1u << n)) && ax->motion == PMD_MOTION_EXTERNAL &&
                 (ax->segmentTime != 0 || (plain & (1u << n)))) {
                 int rest;
@@ -424,7 +439,7 @@ static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopba
                 } else {
                     rest = pmd_external_read_plain(chip, n);
                     if (ax->motion == PMD_MOTION_IDLE)
-                        settle(chip, n, loopback);      /* a segment time 0 halted it */
+                        settle(chip, n);      /* a segment time 0 halted it */
                 }
                 if (row)
                     record_axis(chip, n, row);
@@ -434,6 +449,10 @@ static ALWAYS_INLINE void quiet_cycles(PmdChip *chip, int64_t cycles, int loopba
                 quiet_axis_cycle(chip, n, loopback, closedForm);
                 if (row)
                     record_axis(chip, n, row);
+            }
+            if ((watch & (1u << n)) && pmd_wrapped(before, ax->trajectory.position)) {
+                pmd_set_event(chip, n, PMDEventWrapAroundMask);
+                watch &= ~(1u << n);
             }
         }
         if (row)

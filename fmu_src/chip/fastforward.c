@@ -13,8 +13,9 @@
  * position error stays 0) costs a few multiplications per axis instead of one
  * step per cycle. The servo filter then sees a constant position error (0, or
  * an idle axis's), which it also runs in closed form (servo.c). Anything
- * else - a segment read, a velocity coming to rest (an event), a state beyond
- * the bounds below - is left to the ordinary cycle.
+ * else - a segment read, a velocity coming to rest (an event), a position
+ * wrapping between the int32 ends while its wrap-around bit is clear (an
+ * event), a state beyond the bounds below - is left to the ordinary cycle.
  *
  * It needs 128-bit integers; without them it skips nothing, which is the
  * portable fallback: the same results, cycle by cycle. */
@@ -51,15 +52,12 @@ static int fits_state(i128 v)
     return v >= (i128)INT64_MIN * TWO33 && v < ((i128)INT64_MAX + 1) * TWO33;
 }
 
-/* The first step k in 1..n at which the velocity becomes exactly 0 from a
- * non-zero value (an external profile's motion-complete event), or n + 1. */
-static int64_t first_rest(const PmdTrajectory *t, int64_t n)
+/* The real zeros of the velocity after k steps, V' + k A' + j k^2 as a
+ * polynomial in k, as doubles (within a step of the exact ones); returns how many. */
+static int velocity_zeros(const PmdTrajectory *t, double roots[2])
 {
-    double a = (double)t->jerk, b = (double)in33(t->acceleration), c = (double)in33(t->velocity), roots[2];
-    int r, nroots = 0;
-    int64_t best = n + 1, k;
-    if (pmd_fixed_is_zero(t->velocity) && pmd_fixed_is_zero(t->acceleration) && t->jerk == 0)
-        return n + 1;
+    double a = (double)t->jerk, b = (double)in33(t->acceleration), c = (double)in33(t->velocity);
+    int nroots = 0;
     if (a == 0) {
         if (b != 0)
             roots[nroots++] = -c / b;
@@ -70,6 +68,19 @@ static int64_t first_rest(const PmdTrajectory *t, int64_t n)
             roots[nroots++] = (-b + sqrt(disc)) / (2 * a);
         }
     }
+    return nroots;
+}
+
+/* The first step k in 1..n at which the velocity becomes exactly 0 from a
+ * non-zero value (an external profile's motion-complete event), or n + 1. */
+static int64_t first_rest(const PmdTrajectory *t, int64_t n)
+{
+    double roots[2];
+    int r, nroots;
+    int64_t best = n + 1, k;
+    if (pmd_fixed_is_zero(t->velocity) && pmd_fixed_is_zero(t->acceleration) && t->jerk == 0)
+        return n + 1;
+    nroots = velocity_zeros(t, roots);
     /* the double estimates are within a step of the integer roots: check their neighbours exactly */
     for (r = 0; r < nroots; r++) {
         if (!(roots[r] > -2.0 && roots[r] < (double)n + 2.0))
@@ -116,22 +127,66 @@ static i128 floor_u(i128 x, i128 *rest)
     return q;
 }
 
-/* The state after k integration steps (k < 2^32, in_bounds). The position's
- * whole counts matter mod 2^32 only, its fraction exactly: each term is split
+/* The position's whole counts after k integration steps (k < 2^32,
+ * in_bounds), not wrapped, and its fraction in U (*rest). Each term is split
  * into whole counts and U, so that no product passes 2^106. */
-static void advance(PmdTrajectory *t, int64_t k)
+static i128 counts_after(const PmdTrajectory *t, int64_t k, i128 *rest)
 {
     const i128 kk = (i128)k * k;
     const u128 k3 = (u128)kk * (u128)k;                                    /* < 2^96 */
     PmdFixed half = pmd_fixed_half(t->acceleration);                         /* A'/2 */
-    i128 rest, q3 = (i128)(k3 / (u128)PMD_U_PER_COUNT);                    /* k^3 = q3 U + r3 */
+    i128 q3 = (i128)(k3 / (u128)PMD_U_PER_COUNT);                          /* k^3 = q3 U + r3 */
     i128 r3 = (i128)(k3 % (u128)PMD_U_PER_COUNT);
     i128 counts = (i128)t->position + (i128)k * t->velocity.counts + kk * half.counts + q3 * t->jerk;
     i128 fraction = (i128)t->fraction + (i128)3 * k * t->velocity.fraction + (i128)3 * kk * half.fraction +
                     r3 * t->jerk;
+    return counts + floor_u(fraction, rest);
+}
+
+/* Whether the position leaves the int32 range within steps 1..n (in_bounds):
+ * with an ideal servo the actual position would then wrap between the
+ * maximum and the minimum, an event (reference 2.2). The position is a cubic
+ * in the step count whose derivative is proportional to the velocity's
+ * polynomial: its extremes over 1..n are at n or next to the velocity's zeros. */
+static int leaves_int32(const PmdTrajectory *t, int64_t n)
+{
+    double roots[2], dn = (double)n;
+    /* most skips stay far from the ends: a bound on the distance covered,
+     * n|V| + n^2|A|/2 + n^3|J|/6 counts (V, A in 2^-33 count, J in 2^-32),
+     * with a margin for the doubles' rounding and the floor, says so cheaply */
+    double reach = (dn * fabs((double)in33(t->velocity)) + dn * dn * fabs((double)in33(t->acceleration)) / 2) /
+                   (double)TWO33 + dn * dn * dn * fabs((double)t->jerk) / 6 / 4294967296.0;
+    int r, nroots;
+    int64_t k;
+    i128 rest, p;
+    reach = reach * (1 + 1e-9) + 2;
+    if ((double)t->position + reach < (double)INT32_MAX && (double)t->position - reach > (double)INT32_MIN)
+        return 0;
+    nroots = velocity_zeros(t, roots);
+    p = counts_after(t, n, &rest);
+    if (p < INT32_MIN || p > INT32_MAX)
+        return 1;
+    for (r = 0; r < nroots; r++) {
+        if (!(roots[r] > -2.0 && roots[r] < (double)n + 2.0))
+            continue;
+        for (k = (int64_t)floor(roots[r]) - 1; k <= (int64_t)floor(roots[r]) + 2; k++) {
+            if (k < 1 || k > n)
+                continue;
+            p = counts_after(t, k, &rest);
+            if (p < INT32_MIN || p > INT32_MAX)
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* The state after k integration steps (k < 2^32, in_bounds). The position's
+ * whole counts matter mod 2^32 only, its fraction exactly. */
+static void advance(PmdTrajectory *t, int64_t k)
+{
+    i128 rest, counts = counts_after(t, k, &rest);
     u128 v = (u128)velocity_after(t, k), a = (u128)(in33(t->acceleration) + (i128)2 * t->jerk * k);
 
-    counts += floor_u(fraction, &rest);
     t->position = pmd_int32((uint32_t)(u128)counts);
     t->fraction = (int64_t)rest;
     /* two's complement: the shifts floor, the casts keep whole counts mod 2^64 */
@@ -142,7 +197,9 @@ static void advance(PmdTrajectory *t, int64_t k)
 }
 
 /* The cycles (at most max) that can be skipped now: PmdRunFacts.skippable, and
- * the exact bounds of every moving axis's segment. */
+ * the exact bounds of every moving axis's segment. A skip never passes a
+ * wrap-around of a moving axis whose event bit is clear: it is halved until
+ * none is left inside, and the ordinary cycles take the wrap (sample_actual). */
 static int64_t skippable(const PmdChip *chip, int64_t max)
 {
     int n;
@@ -159,6 +216,9 @@ static int64_t skippable(const PmdChip *chip, int64_t max)
             if (!in_bounds(&ax->trajectory, k))      /* before first_rest: its products must fit */
                 return 0;
             k = first_rest(&ax->trajectory, k) - 1;
+            if (!(ax->eventStatus & PMDEventWrapAroundMask))
+                while (k > 0 && leaves_int32(&ax->trajectory, k))
+                    k /= 2;
         }
     }
     return k;

@@ -15,6 +15,19 @@ uint16_t pmd_signal_status(const PmdChip *chip, int axis);
 int pmd_host_interrupt(const PmdChip *chip);
 int32_t pmd_actual_velocity(const PmdAxis *ax);
 
+/* Whether a position's change from previous to current wrapped between the
+ * maximum and the minimum (the wrap-around event, reference 2.2, in the words
+ * of the C-Motion Magellan Programming Reference): the change, taken as the signed 32-bit step the
+ * encoder counter made, crossed INT32_MAX -> INT32_MIN going up or the other
+ * way going down. That is: the sign changed, and the step has the sign the
+ * previous position had (a step across 0 has the other). Branch-free: the
+ * quiet loop asks it every cycle of an ideal servo's axis (chip.c). */
+static inline int pmd_wrapped(int32_t previous, int32_t current)
+{
+    uint32_t p = (uint32_t)previous, c = (uint32_t)current;
+    return (int)(((p ^ c) & ~(p ^ (c - p))) >> 31);
+}
+
 static inline int32_t pmd_position_error(const PmdAxis *ax)
 {
     return pmd_int32((uint32_t)ax->actualPosition - (uint32_t)ax->trajectory.position);

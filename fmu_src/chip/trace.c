@@ -86,9 +86,15 @@ void pmd_trace_start(PmdChip *chip)
     pmd_log(chip, PMD_LOG_EVENTS, "trace started (chip time %u)", (unsigned)chip->s.time);
 }
 
+/* A rolling trace that wrapped leaves buffer 0's read index on its oldest
+ * sample (the write index) when it stops, so that ReadBuffer reads the samples
+ * oldest first (reference 4.3: the rolling trace moves the read index when it
+ * completes; docs/decisions.md, Trace). */
 void pmd_trace_stop(PmdChip *chip, const char *why)
 {
     TRACE->active = 0;
+    if (TRACE->mode == PMDTraceRollingBuffer && TRACE->wrapped)
+        chip->s.buffer[0].readIndex = chip->s.buffer[0].writeIndex;
     pmd_log(chip, PMD_LOG_EVENTS, "trace stopped: %s (%u values)", why, (unsigned)TRACE->count);
 }
 
