@@ -37,7 +37,7 @@ def sources(target: str, gen: Path):
     fmi = [
         str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "messages.c", "record.c", "state.c", "state_fields.c")
     ]
-    script = [str(ROOT / "fmu_src" / "script" / "script.c")]
+    script = [str(ROOT / "fmu_src" / "script" / "script.c"), str(ROOT / "fmu_src" / "machine" / "machine_toml.c")]
     generated = [
         str(gen / n)
         for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")
@@ -62,7 +62,7 @@ def sources(target: str, gen: Path):
 
 def include_flags(gen: Path):
     headers = Path(__import__("fmpy").__file__).parent / "c-code"
-    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "fmi", "fmi_common")] + [f"-I{gen}", f"-I{headers}"]
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "fmi", "fmi_common")] + [f"-I{gen}", f"-I{headers}"]
 
 
 def generated(gen: Path = ROOT / "build" / "fuzz" / "generated") -> Path:
