@@ -314,7 +314,8 @@ typedef struct {
     /* actual position, errors and windows (reference 4.5) */
     int32_t actualPosition;
     int32_t previousActualPosition;
-    int32_t actualOffset;         /* without loopback: actual = input + offset (SetActualPosition) */
+    int32_t actualOffset;         /* SetActualPosition's shifts: without loopback actual = input + offset;
+                                   * with it, the stage's count a machine's switches are at is actual - offset */
     uint32_t positionErrorLimit;
     uint16_t settleTime, settleWindow, trackingWindow, settleCount;
     uint8_t autoStopMode, motionCompleteMode, motionCompletePending;

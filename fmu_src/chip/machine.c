@@ -45,7 +45,9 @@ void pmd_machine_inputs(PmdChip *chip, int n)
 {
     const PmdMachineAxis *m = &chip->machine->axis[n];
     PmdAxis *ax = &chip->s.axis[n];
-    int32_t at = ax->actualPosition;
+    /* the stage's count: SetActualPosition and AdjustActualPosition move the register, not the stage */
+    int32_t at = pmd_int32((uint32_t)ax->actualPosition - (uint32_t)ax->actualOffset);
+    int32_t before = pmd_int32((uint32_t)ax->previousActualPosition - (uint32_t)ax->actualOffset);
     if (m->signals & PMD_MACHINE_HOME)
         ax->homeInput = level(m, PMDSignalEncoderHomeMask, at >= m->homeLow && at <= m->homeHigh);
     if (m->signals & PMD_MACHINE_POSITIVE_LIMIT)
@@ -54,5 +56,5 @@ void pmd_machine_inputs(PmdChip *chip, int n)
         ax->negativeLimitInput = level(m, PMDSignalNegativeLimitMask, at <= m->negativeLimit);
     if (m->signals & PMD_MACHINE_INDEX)
         ax->indexInput = level(m, PMDSignalEncoderIndexMask,
-                               pmd_machine_index_active(m, ax->previousActualPosition, at));
+                               pmd_machine_index_active(m, before, at));
 }
