@@ -44,6 +44,7 @@ PLANT_INPUTS = (
     "axis{axis}.actualPosition",
     "axis{axis}.positiveLimit",
     "axis{axis}.negativeLimit",
+    "axis{axis}.index",
     "axis{axis}.home",
     "analog",
     "io.input",
@@ -191,6 +192,8 @@ class Probe:
             return [16]
         if name == "script":
             return ["no-such.script"]
+        if name == "machine":
+            return ["[axis1]\nhome = [1, 2]\n"]
         if name == "record.columns":
             return ["axis1.activityStatus,axis2.position"]
         if name == "axis{axis}.actualPosition":  # 0: where a Reset puts the commanded position too
@@ -534,6 +537,7 @@ def test_fmi3_parameters_are_types_every_tool_knows():
         "memorySize": "Int32",
         "loopback": "Boolean",
         "script": "String",
+        "machine": "String",
         "record.capacity": "Int32",
     }
 
