@@ -65,7 +65,10 @@ def sources(target: str, gen: Path):
 
 def include_flags(gen: Path):
     headers = Path(__import__("fmpy").__file__).parent / "c-code"
-    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "fmi", "fmi_common")] + [f"-I{gen}", f"-I{headers}"]
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "fmi", "fmi_common")] + [
+        f"-I{gen}",
+        f"-I{headers}",
+    ]
 
 
 def generated(gen: Path = ROOT / "build" / "fuzz" / "generated") -> Path:

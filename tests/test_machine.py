@@ -7,7 +7,6 @@ machine written here in Python from the file's meaning."""
 import os
 import shutil
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -224,8 +223,8 @@ BAD = [
     ("[axis1]\npositive_limit = 3_000_000_000\n", 2, "is not a position"),
     ("[axis1]\npositive_limit = 1__0\n", 2, "an underscore must stand between two digits"),
     ("[axis1]\nnegative_limit = 010\n", 2, "leading zero"),
-    ("[axis1]\nservo = \"stepper\"\n", 2, 'the servo is "ideal"'),
-    ("[axis1]\nservo = \"plant\"\n", 2, "not available yet"),
+    ('[axis1]\nservo = "stepper"\n', 2, 'the servo is "ideal"'),
+    ('[axis1]\nservo = "plant"\n', 2, "not available yet"),
     ("[axis1]\nspeed = 3\n", 2, "unknown key 'speed'"),
     ("[axis1]\nhome = [1, 2\n", 2, "an array must close on its line"),
     ("[axis1]\nhome = {lo = 1}\n", 2, "an inline table"),
