@@ -5,13 +5,16 @@ for a while. A crash leaves its input in fuzz/findings/; copy it into
 fuzz/regressions/TARGET/ and the test suite replays it from then on.
 
     python fuzz/run.py [--seconds 60] [--out DIR] [target ...]
-                       targets: host fmi script sequence script_text resource_uri
+                       targets: host fmi script sequence script_text resource_uri machine_text
 
 sequence (fuzz_sequence.c) decodes its input as a sequence of legal
 operations through FMI 2 or 3 and checks properties after every call (see the
 head of that file: the input format, the properties, FUZZ_SEQUENCE_TRACE=1 to
 print a crash file's calls); fuzz/sequence_inputs.py writes its hand-built
 seeds and regression inputs.
+
+machine_text (fuzz_machine_text.c) parses machine files given as text and checks
+what they mean against the inputs the chip then gets.
 
 script_text (fuzz_script_text.c) compiles a script given as text
 (the script parameter's value holding a line feed) with a resources folder,
@@ -29,7 +32,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-TARGETS = ("host", "fmi", "script", "sequence", "script_text", "resource_uri")
+TARGETS = ("host", "fmi", "script", "sequence", "script_text", "resource_uri", "machine_text")
 
 
 def sources(target: str, gen: Path):
@@ -37,7 +40,7 @@ def sources(target: str, gen: Path):
     fmi = [
         str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "messages.c", "record.c", "state.c", "state_fields.c")
     ]
-    script = [str(ROOT / "fmu_src" / "script" / "script.c")]
+    script = [str(ROOT / "fmu_src" / "script" / "script.c"), str(ROOT / "fmu_src" / "machine" / "machine_toml.c")]
     generated = [
         str(gen / n)
         for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")
@@ -62,7 +65,10 @@ def sources(target: str, gen: Path):
 
 def include_flags(gen: Path):
     headers = Path(__import__("fmpy").__file__).parent / "c-code"
-    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "fmi", "fmi_common")] + [f"-I{gen}", f"-I{headers}"]
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "fmi", "fmi_common")] + [
+        f"-I{gen}",
+        f"-I{headers}",
+    ]
 
 
 def generated(gen: Path = ROOT / "build" / "fuzz" / "generated") -> Path:

@@ -170,8 +170,9 @@ def source(commands) -> str:
     return "\n".join(out)
 
 
-def ports(variables):
-    """The value references the transport uses, and every FMI 2 variable by name."""
+def ports(variables, commands):
+    """The value references the transport uses, every FMI 2 variable by name, and every command's
+    name by opcode (PMDFMU_MAX_CYCLES names the command a program was polling)."""
     by_name = {v.name: v for v in variables}
     wanted = {
         "TIME": "time",
@@ -179,6 +180,7 @@ def ports(variables):
         "MEMORY_SIZE": "memorySize",
         "LOOPBACK": "loopback",
         "SCRIPT": "script",
+        "MACHINE": "machine",
         "CHIP_TIME": "chipTime",
         "ACTIVE_CYCLE_TIME": "activeCycleTime",
         "NEXT_CYCLE_TIME": "nextCycleTime",
@@ -217,11 +219,16 @@ def ports(variables):
         "extern const PMDFMUVariable PMDFMU_variables[];",
         f"#define PMD_FMU_VARIABLE_COUNT {len(variables)}",
         "",
+        "/* The C-Motion name of each opcode without the PMD prefix (commands.csv), NULL for none. */",
+        "extern const char *const PMDFMU_command_names[256];",
+        "",
         "#endif",
         "",
     ]
     c = [HEADER.format("variables.csv"), '#include "PMDfmu_ports.h"', "", "const PMDFMUVariable PMDFMU_variables[] = {"]
     c += [f"    {{\"{v.name}\", {v.vr}u, '{v.type[0]}'}}," for v in variables]
+    c += ["};", "", "const char *const PMDFMU_command_names[256] = {"]
+    c += [f'    [0x{cmd.opcode:02X}] = "{cmd.name}",' for cmd in sorted(commands, key=lambda cmd: cmd.opcode)]
     c += ["};", ""]
     return "\n".join(h), "\n".join(c)
 
@@ -231,7 +238,7 @@ def main(outdir: Path) -> None:
     constants = tables.read_constants(HERE / "constants.csv")
     variables = tables.read_variables(HERE / "variables.csv")
     outdir.mkdir(parents=True, exist_ok=True)
-    ports_h, ports_c = ports(variables)
+    ports_h, ports_c = ports(variables, commands)
     write_files(
         outdir,
         {

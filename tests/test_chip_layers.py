@@ -18,6 +18,7 @@ CHIP = ROOT / "fmu_src" / "chip"
 LAYERS = [
     ("events",),  # the log and the event status bits
     ("status",),  # register views derived from the state
+    ("machine",),  # the switch and index inputs that follow the actual position
     ("memory",),  # the external memory
     ("scurve",),  # the S-curve generator
     ("profile",),  # trajectory generators, stops, Update

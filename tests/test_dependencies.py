@@ -46,6 +46,7 @@ PLANT_INPUTS = (
     "axis{axis}.actualPosition",
     "axis{axis}.positiveLimit",
     "axis{axis}.negativeLimit",
+    "axis{axis}.index",
     "axis{axis}.home",
     "analog",
     "io.input",
@@ -193,6 +194,8 @@ class Probe:
             return [16]
         if name == "script":
             return ["no-such.script"]
+        if name == "machine":
+            return ["[axis1]\nhome = [1, 2]\n"]
         if name == "record.columns":
             return ["axis1.activityStatus,axis2.position"]
         if name == "axis{axis}.actualPosition":  # 0: where a Reset puts the commanded position too
@@ -536,6 +539,7 @@ def test_fmi3_parameters_are_types_every_tool_knows():
         "memorySize": "Int32",
         "loopback": "Boolean",
         "script": "String",
+        "machine": "String",
         "record.capacity": "Int32",
     }
 

@@ -27,7 +27,10 @@ pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 
 
 def includes(gen: Path):
-    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "fmi", "fmi_common")] + [f"-I{gen}", f"-I{HEADERS}"]
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "fmi", "fmi_common")] + [
+        f"-I{gen}",
+        f"-I{HEADERS}",
+    ]
 
 
 @pytest.fixture(scope="module")

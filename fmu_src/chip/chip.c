@@ -5,6 +5,7 @@
 
 #include "chip.h"
 #include "events.h"
+#include "machine.h"
 #include "profile.h"
 #include "servo.h"
 #include "status.h"
@@ -47,6 +48,7 @@ void pmd_chip_reset(PmdChip *chip)
         ax->positiveLimitInput = inputs[n].positiveLimitInput;
         ax->negativeLimitInput = inputs[n].negativeLimitInput;
         ax->homeInput = inputs[n].homeInput;
+        ax->indexInput = inputs[n].indexInput;
         /* the encoder count as the last cycle sampled it (its offset gone), not the live input:
          * a command reads the plant only through a cycle (docs/decisions.md) */
         ax->actualPosition = loopback ? 0
@@ -185,26 +187,30 @@ static void check_position_error(PmdChip *chip, int n)
     }
 }
 
-/* The home input captures the actual position when it becomes active, if the
- * capture source is home and the last capture has been read. */
+/* The capture source's input (home or index) captures the actual position in
+ * the cycle it becomes active, if the last capture has been read. */
 static void check_capture(PmdChip *chip, int n, uint16_t signals)
 {
     PmdAxis *ax = &chip->s.axis[n];
-    int home = !(signals & PMDSignalEncoderHomeMask);
-    if (home && !ax->homeWasActive && ax->captureSource == PMDCaptureSourceHome && !ax->captured) {
+    int home = !(signals & PMDSignalEncoderHomeMask), index = !(signals & PMDSignalEncoderIndexMask);
+    int edge = ax->captureSource == PMDCaptureSourceHome ? home && !ax->homeWasActive
+                                                         : index && !ax->indexWasActive;
+    if (edge && !ax->captured) {
         ax->captured = 1;
         ax->captureValue = ax->actualPosition;
         pmd_set_event(chip, n, PMDEventCaptureReceivedMask);
     }
     ax->homeWasActive = (uint8_t)home;
+    ax->indexWasActive = (uint8_t)index;
 }
 
 /* Whether no limit or capture can happen: every switch idle, none latched, no
  * sense inversion. Only the checks below change the latches. */
 static int switches_idle(const PmdAxis *ax)
 {
-    return !(ax->positiveLimitInput | ax->negativeLimitInput | ax->homeInput | ax->inPositiveLimit |
-             ax->inNegativeLimit | ax->homeWasActive | (ax->signalSense != 0));
+    return !(ax->positiveLimitInput | ax->negativeLimitInput | ax->homeInput | ax->indexInput |
+             ax->inPositiveLimit | ax->inNegativeLimit | ax->homeWasActive | ax->indexWasActive |
+             (ax->signalSense != 0));
 }
 
 PmdRunFacts pmd_chip_run_facts(const PmdChip *chip)
@@ -212,6 +218,9 @@ PmdRunFacts pmd_chip_run_facts(const PmdChip *chip)
     PmdRunFacts facts;
     int trace = chip->s.trace.active || chip->s.trace.start, n;
     unsigned busy = 0, ideal = 0, unskippable = 0;
+    /* an axis whose inputs a machine drives may meet a switch or index edge in any cycle: every
+     * cycle of it runs the checks, and none is skipped (docs/machine.md) */
+    const unsigned machine = chip->machine ? chip->machine->axes : 0;
     for (n = 0; n < PMD_AXES; n++) {
         const PmdAxis *ax = &chip->s.axis[n];
         unsigned bit = 1u << n;
@@ -219,9 +228,9 @@ PmdRunFacts pmd_chip_run_facts(const PmdChip *chip)
                     ax->breakpoint[1].trigger != PMDBreakpointDisable;
         if (chip->s.loopback && ax->motorOn)
             ideal |= bit;
-        if (armed || ax->motion == PMD_MOTION_GEAR || !switches_idle(ax))
+        if (armed || ax->motion == PMD_MOTION_GEAR || !switches_idle(ax) || (machine & bit))
             busy |= bit;
-        if (armed || ax->motionCompletePending ||
+        if (armed || ax->motionCompletePending || (machine & bit) ||
             (ax->motion != PMD_MOTION_IDLE && (ax->motion != PMD_MOTION_EXTERNAL || !(ideal & bit))))
             unskippable |= bit;
     }
@@ -337,6 +346,10 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
             sample_actual(chip, n, loopback);
         }
     }
+    if (chip->machine)
+        for (n = 0; n < PMD_AXES; n++)
+            if (chip->machine->axes & (1u << n))
+                pmd_machine_inputs(chip, n);
     for (n = 0; n < PMD_AXES; n++) {
         if (!switches_idle(&chip->s.axis[n])) {
             uint16_t signals = pmd_signal_status(chip, n);

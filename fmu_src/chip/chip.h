@@ -5,6 +5,7 @@
  * Layers, each calling only those below it (tests/test_chip_layers.py):
  *   events     the chip's log and event status bits (events.h)
  *   status     register views derived from the state (status.h)
+ *   machine    the switch and index inputs that follow the actual position (machine.h)
  *   memory     the external memory (memory.h)
  *   scurve     the S-curve generator (scurve.h)
  *   profile    the trajectory generators, stops, Update (profile.h)
@@ -19,6 +20,7 @@
 
 #include "chip_types.h"
 #include "events.h"
+#include "machine.h"
 #include "memory.h"
 #include "pmd_constants.h"
 #include "profile.h"

@@ -314,7 +314,8 @@ typedef struct {
     /* actual position, errors and windows (reference 4.5) */
     int32_t actualPosition;
     int32_t previousActualPosition;
-    int32_t actualOffset;         /* without loopback: actual = input + offset (SetActualPosition) */
+    int32_t actualOffset;         /* SetActualPosition's shifts: without loopback actual = input + offset;
+                                   * with it, the stage's count a machine's switches are at is actual - offset */
     uint32_t positionErrorLimit;
     uint16_t settleTime, settleWindow, trackingWindow, settleCount;
     uint8_t autoStopMode, motionCompleteMode, motionCompletePending;
@@ -323,6 +324,7 @@ typedef struct {
     /* signals and capture */
     uint16_t signalSense;
     uint8_t captureSource, homeWasActive, captured;
+    uint8_t indexWasActive;       /* the index input as the last cycle's capture check saw it */
     int32_t captureValue;
 
     /* the servo filter and the motor output (servo.c) */
@@ -342,6 +344,7 @@ typedef struct {
     /* inputs from the plant; a switch input is true while the switch is active */
     int32_t actualPositionInput;
     uint8_t positiveLimitInput, negativeLimitInput, homeInput;
+    uint8_t indexInput;           /* the encoder's index line: true while the index pulse is active */
 } PmdAxis;
 
 typedef struct {
@@ -384,6 +387,33 @@ typedef struct {
     uint16_t ioOutput[PMD_IO_PORTS];             /* WriteIO(address, data) */
 } PmdChipState;
 
+/* The machine around the chip (docs/machine.md): per axis, which of its
+ * switch and index inputs follow the axis's actual position, and where they
+ * are active. Read-only configuration of the process (the FMU's `machine`
+ * parameter, parsed by fmu_src/machine/machine_toml.c), not chip state: the
+ * inputs it drives are the PmdAxis inputs above, which the state holds. */
+#define PMD_MACHINE_INDEX_POSITIONS 16
+enum {
+    PMD_MACHINE_HOME = 1,             /* home = [lo, hi]: active for lo <= actual <= hi */
+    PMD_MACHINE_POSITIVE_LIMIT = 2,   /* positive_limit = P: active for actual >= P */
+    PMD_MACHINE_NEGATIVE_LIMIT = 4,   /* negative_limit = N: active for actual <= N */
+    PMD_MACHINE_INDEX = 8             /* index = K or [p, ...]: a pulse at each multiple of K or listed position */
+};
+typedef struct {
+    uint8_t signals;                  /* PMD_MACHINE_* bits: the inputs the machine drives */
+    uint16_t signalSense;             /* signal-status bits (home, limits, index) wired active high: the
+                                       * level the chip sees is inverted unless SetSignalSense says so */
+    int32_t homeLow, homeHigh;
+    int32_t positiveLimit, negativeLimit;
+    uint32_t indexPeriod;             /* 0: the listed positions */
+    uint8_t indexCount;
+    int32_t indexPosition[PMD_MACHINE_INDEX_POSITIONS];
+} PmdMachineAxis;
+typedef struct PmdMachine {
+    PmdMachineAxis axis[PMD_AXES];
+    unsigned axes;                    /* bit n: axis n has an input the machine drives */
+} PmdMachine;
+
 /* Where the chip logs: each message under its category, a PmdLogCategory
  * (log_categories.h, generated from log_categories.csv: this header stays
  * plain C that compiles without the generated ones). */
@@ -397,6 +427,7 @@ typedef struct PmdChip {
     PmdLogger logger;
     void *logContext;
     unsigned logMask;        /* bit per PmdLogCategory: format messages only when someone listens */
+    const PmdMachine *machine;   /* the machine around the chip (its owner's), or NULL: inputs from the FMU */
 } PmdChip;
 
 /* Command table types (the table itself is generated from modelDescription/commands.csv). */

@@ -80,8 +80,8 @@ static void shift_actual(PmdChip *chip, int axis, int32_t delta)
     int n;
     ax->trajectory.position = pmd_int32((uint32_t)ax->trajectory.position + (uint32_t)delta);
     ax->active.position = pmd_int32((uint32_t)ax->active.position + (uint32_t)delta);
-    if (!chip->s.loopback)
-        ax->actualOffset = pmd_int32((uint32_t)ax->actualOffset + (uint32_t)delta);
+    /* with loopback too: a machine's switches stay where they are on the stage (machine.c) */
+    ax->actualOffset = pmd_int32((uint32_t)ax->actualOffset + (uint32_t)delta);
     ax->actualPosition = pmd_int32((uint32_t)ax->actualPosition + (uint32_t)delta);
     ax->previousActualPosition = pmd_int32((uint32_t)ax->previousActualPosition + (uint32_t)delta);
     for (n = 0; n < PMD_AXES; n++)

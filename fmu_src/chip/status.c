@@ -14,10 +14,13 @@ int32_t pmd_actual_velocity(const PmdAxis *ax)
 
 /* The input levels of the signal status, AxisOut aside. Switches are wired
  * active low, as on PMD boards: an active switch (input true) reads 0, an idle
- * one 1. The encoder A, B and index lines read 1. */
+ * one 1. The encoder A and B lines read 1; the index line as the switches:
+ * 0 while its pulse is active (docs/machine.md). */
 static uint16_t input_levels(const PmdAxis *ax)
 {
-    uint16_t level = PMDSignalEncoderAMask | PMDSignalEncoderBMask | PMDSignalEncoderIndexMask;
+    uint16_t level = PMDSignalEncoderAMask | PMDSignalEncoderBMask;
+    if (!ax->indexInput)
+        level |= PMDSignalEncoderIndexMask;
     if (!ax->homeInput)
         level |= PMDSignalEncoderHomeMask;
     if (!ax->positiveLimitInput)

@@ -45,6 +45,10 @@ static void set_defaults(PmdInstance *inst)
     free(inst->scriptPath);
     inst->scriptPath = NULL;
     pmd_script_free(&inst->script);
+    free(inst->machinePath);
+    inst->machinePath = NULL;
+    memset(&inst->machine, 0, sizeof inst->machine);
+    inst->chip.machine = NULL;
     free(inst->record);
     inst->record = NULL;
     inst->recordRows = 0;
@@ -89,6 +93,7 @@ void pmd_model_free(PmdInstance *inst)
     free(inst->instanceName);
     free(inst->scriptPath);
     free(inst->scriptStart);
+    free(inst->machinePath);
     free(inst->resources);
     pmd_script_free(&inst->script);
     free(inst->record);
@@ -332,15 +337,38 @@ PmdStatus pmd_model_enter_initialization(PmdInstance *inst, const char *fn, doub
  * the script compiled into a local, record.data sized for record.capacity (a
  * buffer of this process, which may have changed in initialization); a refused
  * ExitInitializationMode leaves the state as it was. */
+/* The machine parameter parsed into machine (all zero for ""), what it means
+ * logged under "machine"; PMD_ERROR with the file's line and reason. */
+static PmdStatus parse_machine(PmdInstance *inst, const char *fn, PmdMachine *machine)
+{
+    char error[8192], name[1100], meaning[2048];
+    const char *value = inst->machinePath ? inst->machinePath : "";
+    PmdScriptPlaces places;
+    places.resources = inst->resources;
+    places.noResources = inst->noResources;
+    if (pmd_machine_parse(value, &places, machine, name, sizeof name, error, sizeof error)) {
+        pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: machine refused: %s", fn, error);
+        return PMD_ERROR;
+    }
+    if (*value) {
+        pmd_machine_describe(machine, meaning, sizeof meaning);
+        pmd_instance_log(inst, PMD_OK, PMD_LOG_MACHINE, "%s: machine read from %s:\n%s", fn, name, meaning);
+    }
+    return PMD_OK;
+}
+
 PmdStatus pmd_model_exit_initialization(PmdInstance *inst, const char *fn)
 {
     PmdScript script;
+    PmdMachine machine;
     const char *value = pmd_script_value(inst);
     PmdStatus status = on_the_grid(inst, fn, inst->s.time, 0, inst->s.cycleTime);
     size_t i;
 
     if (status != PMD_OK)
         return status;
+    if (parse_machine(inst, fn, &machine) != PMD_OK)
+        return PMD_ERROR;
     memset(&script, 0, sizeof script);
     if (*value) {
         char error[8192];
@@ -373,6 +401,9 @@ PmdStatus pmd_model_exit_initialization(PmdInstance *inst, const char *fn)
                              script.name, script.tables[i].line, script.tables[i].name, script.tables[i].path);
     }
     inst->s.scriptDigest = pmd_script_digest(&inst->script);
+    inst->machine = machine;
+    inst->chip.machine = machine.axes ? &inst->machine : NULL;
+    inst->s.machineDigest = pmd_machine_digest(&inst->machine);
     if (!inst->s.recordEnabled) {                     /* an instance that does not record carries no buffer */
         free(inst->record);
         inst->record = NULL;
@@ -908,6 +939,7 @@ PmdStatus pmd_model2_set_boolean(PmdInstance *inst, const char *fn, unsigned vr,
     case VAR_axis_positiveLimit: if (apply) AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;
     case VAR_axis_negativeLimit: if (apply) AXIS_OF(v)->negativeLimitInput = (uint8_t)value; break;
     case VAR_axis_home: if (apply) AXIS_OF(v)->homeInput = (uint8_t)value; break;
+    case VAR_axis_index: if (apply) AXIS_OF(v)->indexInput = (uint8_t)value; break;
     case VAR_record_enabled:
         /* recording needs its buffer: allocated by the check, so that applying cannot fail */
         if (!apply)
@@ -926,6 +958,7 @@ PmdStatus pmd_model_get_string(PmdInstance *inst, const char *fn, unsigned vr, c
         return PMD_ERROR;
     switch (v->family) {
     case VAR_script: *value = pmd_script_value(inst); break;
+    case VAR_machine: *value = inst->machinePath ? inst->machinePath : ""; break;
     case VAR_record_columns: *value = inst->columns.text ? inst->columns.text : ""; break;
     default: return unhandled(inst, fn, v, "String getter");
     }
@@ -938,7 +971,7 @@ PmdStatus pmd_model_set_string(PmdInstance *inst, const char *fn, unsigned vr, c
     char *copy;
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
-    if (v->family != VAR_script && v->family != VAR_record_columns)
+    if (v->family != VAR_script && v->family != VAR_machine && v->family != VAR_record_columns)
         return unhandled(inst, fn, v, "String setter");
     if (!value) {
         pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: %s: the value is NULL", fn, v->name);
@@ -954,6 +987,11 @@ PmdStatus pmd_model_set_string(PmdInstance *inst, const char *fn, unsigned vr, c
         return PMD_ERROR;
     }
     strcpy(copy, value);
+    if (v->family == VAR_machine) {
+        free(inst->machinePath);
+        inst->machinePath = copy;
+        return PMD_OK;
+    }
     free(inst->scriptPath);
     inst->scriptPath = copy;
     return PMD_OK;

@@ -11,6 +11,7 @@
 
 #include "chip.h"
 #include "model.h"
+#include "machine_toml.h"
 #include "script.h"
 #include "variables.h"
 
@@ -69,6 +70,7 @@ typedef struct {
     /* how far the script ran */
     size_t scriptNext;               /* the next step to run */
     uint64_t scriptDigest;           /* of the compiled script it runs (0: none): a snapshot runs on only with it */
+    uint64_t machineDigest;          /* of the machine it runs in (0: none): a snapshot runs on only in it */
 
     uint8_t recordEnabled;           /* record.enabled */
 } PmdInstanceState;
@@ -92,6 +94,11 @@ struct PmdModel {
     char *scriptPath;
     char *scriptStart;
     PmdScript script;
+    /* the machine parameter, parsed at the end of initialization like the script
+     * (docs/machine.md); NULL: "" (no machine). chip.machine points at machine
+     * while it has an axis with an input to drive. */
+    char *machinePath;
+    PmdMachine machine;
     /* where relative paths are looked for: the FMU's resources folder, as the
      * importer named it at instantiation (ending in a separator), or NULL and why */
     char *resources;

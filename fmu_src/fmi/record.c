@@ -264,6 +264,7 @@ static inline void record_row(PmdInstance *inst, const PmdGrid *g, unsigned char
         PMD_INTEGER_VALUES(INTEGER_COLUMN)
         PMD_BOOLEAN_VALUES(BOOLEAN_COLUMN)
         case VAR_script:
+        case VAR_machine:
         case VAR_record_columns:
         case VAR_record_data:
         case VAR_FAMILY_COUNT:

@@ -195,6 +195,9 @@ static int check_instance(const PmdInstanceState *s, const PmdChip *chip, const 
         if (s->scriptDigest != live->s.scriptDigest || s->scriptNext > live->script.count)
             return WHY("scriptDigest: the state runs another script than this instance (restore it into an "
                        "instance initialized with the same script)");
+        if (s->machineDigest != live->s.machineDigest)
+            return WHY("machineDigest: the state runs in another machine than this instance (restore it into an "
+                       "instance initialized with the same machine)");
     } else if (s->scriptNext != 0) {
         return WHY("scriptNext = %zu before the script is compiled", s->scriptNext);
     }

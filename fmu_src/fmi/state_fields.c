@@ -169,6 +169,7 @@ static const PmdStateField axis_fields[] = {
     UNSIGNED(PmdAxis, captureSource, PMD_REG_CaptureSource_RANGE),
     UNSIGNED(PmdAxis, homeWasActive, BOOL),
     UNSIGNED(PmdAxis, captured, BOOL),
+    UNSIGNED(PmdAxis, indexWasActive, BOOL),
     SIGNED(PmdAxis, captureValue, ANY_I32),
     STRUCT(PmdAxis, filter, filter),
     UNSIGNED(PmdAxis, motorLimit, PMD_REG_MotorLimit_RANGE),
@@ -197,6 +198,7 @@ static const PmdStateField axis_fields[] = {
     UNSIGNED(PmdAxis, positiveLimitInput, BOOL),
     UNSIGNED(PmdAxis, negativeLimitInput, BOOL),
     UNSIGNED(PmdAxis, homeInput, BOOL),
+    UNSIGNED(PmdAxis, indexInput, BOOL),
 };
 static const PmdStateStruct axis = DESCRIBE(PmdAxis, axis_fields);
 
@@ -273,6 +275,7 @@ static const PmdStateField instance_state_fields[] = {
     SIGNEDS(PmdInstanceState, memoryData, ANY_I32),
     UNSIGNED(PmdInstanceState, scriptNext, 0, INT64_MAX),            /* within this instance's script: state.c */
     UNSIGNED(PmdInstanceState, scriptDigest, 0, INT64_MAX),
+    UNSIGNED(PmdInstanceState, machineDigest, 0, INT64_MAX),
     UNSIGNED(PmdInstanceState, recordEnabled, BOOL),
 };
 static const PmdStateStruct instance_state = DESCRIBE(PmdInstanceState, instance_state_fields);

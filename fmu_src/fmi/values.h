@@ -62,6 +62,7 @@
     X(VAR_axis_positiveLimit, PMD_AXIS(i)->positiveLimitInput) \
     X(VAR_axis_negativeLimit, PMD_AXIS(i)->negativeLimitInput) \
     X(VAR_axis_home, PMD_AXIS(i)->homeInput) \
+    X(VAR_axis_index, PMD_AXIS(i)->indexInput) \
     X(VAR_record_enabled, inst->s.recordEnabled) \
     X(VAR_host_interrupt, pmd_host_interrupt(&inst->chip))
 

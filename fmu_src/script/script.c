@@ -1040,3 +1040,42 @@ uint64_t pmd_script_digest(const PmdScript *script)
     h = pmd_fnv1a(h, script->pool, script->poolCount * sizeof *script->pool);
     return (h & (uint64_t)INT64_MAX) | 1u;          /* never 0: that means no script */
 }
+
+int pmd_parameter_file(const char *value, const PmdScriptPlaces *places, const char *what, char **text, char **name,
+                       char *error, size_t errorSize)
+{
+    char path[MAX_PATH], why[4 * MAX_PATH];
+    const char *reason = "";
+    Places files;
+    Reader in;
+    memset(&in, 0, sizeof in);
+    memset(&files, 0, sizeof files);
+    *text = *name = NULL;
+    add_resources(&files, places);
+    add_place(&files, "the working directory", NULL, 0, NULL);
+    if (locate(value, &files, path, why, sizeof why)) {
+        snprintf(error, errorSize, "%s: cannot open the %s: %s", value, what, why);
+        return -1;
+    }
+    if (open_reader(&in, path, &reason)) {
+        snprintf(error, errorSize, "%s: cannot open the %s: %s", path, what, reason);
+        return -1;
+    }
+    if (memchr(in.text, '\0', in.length)) {
+        close_reader(&in);
+        snprintf(error, errorSize, "%s: NUL byte in the file (a %s is text)", path, what);
+        return -1;
+    }
+    if ((*text = (char *)malloc(in.length + 1)) != NULL && (*name = (char *)malloc(strlen(path) + 1)) != NULL) {
+        memcpy(*text, in.text, in.length);
+        (*text)[in.length] = '\0';
+        strcpy(*name, path);
+        close_reader(&in);
+        return 0;
+    }
+    free(*text);
+    *text = NULL;
+    close_reader(&in);
+    snprintf(error, errorSize, "%s: out of memory", path);
+    return -1;
+}

@@ -74,6 +74,12 @@ int pmd_script_load(const char *path, uint32_t memoryWords, PmdScript *script, c
 #define PMD_SCRIPT_START "script.start"
 int pmd_script_read_start(const char *resources, char **value, char *error, size_t errorSize);
 void pmd_script_free(PmdScript *script);
+/* Reads the file a parameter names as the script's path is found (absolute as
+ * is; relative, the resources folder's, then the working directory's): 0 with
+ * *text (NUL-terminated) and *name (the path read) allocated, or -1 with
+ * "value: cannot open the <what>: why" in error. The machine parameter's file. */
+int pmd_parameter_file(const char *value, const PmdScriptPlaces *places, const char *what, char **text, char **name,
+                       char *error, size_t errorSize);
 /* The 64-bit FNV-1a hash of n bytes, continuing from h (start: PMD_FNV1A_BASIS):
  * the script digest and the FMU state checksum. */
 #define PMD_FNV1A_BASIS UINT64_C(14695981039346656037)

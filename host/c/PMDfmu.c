@@ -53,6 +53,10 @@ typedef struct PMDFMUDevice {
     int initialized;                /* out of initialization mode: Terminate before FreeInstance */
     uint64_t hostNs;                /* the host clock: ns since the chip's time 0 */
     int commandsTakeTime;           /* 0 for the host interface `none`: commands run no cycle */
+    uint64_t cycles;                /* cycles run since the chip was opened */
+    uint64_t maxCycles;             /* PMDFMU_MAX_CYCLES: 0 none */
+    int lastOpcode, lastAxis;       /* the command sent last (-1: none yet), what a program polls */
+    unsigned long lastRepeats;      /* how many times in a row it was sent */
 #ifdef PMD_HAVE_HOSTTIME
     PMDHostInterface hostInterface;
 #endif
@@ -157,11 +161,42 @@ static uint64_t to_ns(double seconds)
     return seconds <= 0 ? 0 : (uint64_t)llround(seconds * 1e9);
 }
 
+/* PMDFMU_MAX_CYCLES reached: the program is waiting for something that has not come in that many
+   cycles. One line on stderr (the program's own output may be a pipe that shows nothing else),
+   naming the command it sent last: what a polling loop waits on. */
+static void give_up(PMDFMUDevice *d)
+{
+    char text[512];
+    const char *name = d->lastOpcode >= 0 ? PMDFMU_command_names[d->lastOpcode] : NULL;
+    if (d->lastOpcode < 0)
+        snprintf(text, sizeof text, "PMDFMU_MAX_CYCLES=%llu: the chip has run %llu cycles and the program is "
+                 "still running; it has sent no command", (unsigned long long)d->maxCycles,
+                 (unsigned long long)d->cycles);
+    else
+        snprintf(text, sizeof text, "PMDFMU_MAX_CYCLES=%llu: the chip has run %llu cycles and the program is "
+                 "still waiting: its last command was PMD%s on axis %d (PMDAxis%d), sent %lu time%s in a row",
+                 (unsigned long long)d->maxCycles, (unsigned long long)d->cycles, name ? name : "(unknown)",
+                 d->lastAxis, d->lastAxis + 1, d->lastRepeats, d->lastRepeats == 1 ? "" : "s");
+    log_text(d, text);
+    fprintf(stderr, "%s\n", text);
+    fflush(NULL);
+    exit(PMDFMU_EXIT_MAX_CYCLES);
+}
+
 /* One doStep that runs the next `cycles` cycles of the grid (python/pmdfmu/chip.py: Chip._step). */
 static PMDresult step(PMDFMUDevice *d, const Grid *g, uint64_t cycles)
 {
-    if (d->doStep(d->instance, g->now, (g->next - g->now) + (double)cycles * g->cycle, fmi2True) > fmi2Warning)
+    int over = 0;
+    if (d->maxCycles && cycles > d->maxCycles - d->cycles) {
+        cycles = d->maxCycles - d->cycles;        /* the last cycles allowed, then the end */
+        over = 1;
+    }
+    if (cycles &&
+        d->doStep(d->instance, g->now, (g->next - g->now) + (double)cycles * g->cycle, fmi2True) > fmi2Warning)
         return fmi_failed(d, PMD_ERR_Driver, "fmi2DoStep");
+    d->cycles += cycles;
+    if (over)
+        give_up(d);
     return PMD_ERR_OK;
 }
 
@@ -485,10 +520,12 @@ static PMDresult initialize(PMDFMUDevice *d)
     fmi2SetBooleanTYPE *setBoolean;
     fmi2SetStringTYPE *setString;
     const fmi2ValueReference cycleTime = PMD_FMU_VR_CYCLE_TIME, memorySize = PMD_FMU_VR_MEMORY_SIZE,
-                             loopback = PMD_FMU_VR_LOOPBACK, script = PMD_FMU_VR_SCRIPT;
+                             loopback = PMD_FMU_VR_LOOPBACK, script = PMD_FMU_VR_SCRIPT,
+                             machineVr = PMD_FMU_VR_MACHINE;
     const fmi2Boolean loop = d->options.loopback ? fmi2True : fmi2False;
     const fmi2Integer size = d->options.memorySize;
     const fmi2String text = d->options.script;
+    const fmi2String machine = d->options.machine ? d->options.machine : getenv("PMDFMU_MACHINE");
     load(d, "fmi2SetupExperiment", &setup);
     load(d, "fmi2EnterInitializationMode", &enter);
     load(d, "fmi2ExitInitializationMode", &leave);
@@ -509,10 +546,17 @@ static PMDresult initialize(PMDFMUDevice *d)
         return fmi_failed(d, PMD_ERR_Driver, "fmi2SetBoolean of loopback");
     if (text && setString(d->instance, &script, 1, &text) > fmi2Warning)
         return fmi_failed(d, PMD_ERR_Driver, "fmi2SetString of script");
+    if (machine && *machine && setString(d->instance, &machineVr, 1, &machine) > fmi2Warning)
+        return fmi_failed(d, PMD_ERR_Driver, "fmi2SetString of machine");
     if (enter(d->instance) > fmi2Warning)
         return fmi_failed(d, PMD_ERR_Driver, "fmi2EnterInitializationMode");
-    if (leave(d->instance) > fmi2Warning)
+    if (leave(d->instance) > fmi2Warning) {
+        /* a machine the environment names is the user's, not the program's: a program that sets no
+           log callback would never say why it cannot open the chip */
+        if (!d->options.machine && machine && *machine && !d->options.log && strstr(d->fmuError, "machine refused"))
+            fprintf(stderr, "PMDFMU_MACHINE=%s: %s\n", machine, d->fmuError);
         return fmi_failed(d, PMD_ERR_Driver, "fmi2ExitInitializationMode");
+    }
     d->initialized = 1;
     return PMD_ERR_OK;
 }
@@ -543,6 +587,18 @@ PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumb
     d->commandsTakeTime = d->hostInterface.kind != PMDHostNone;
 #endif
     d->options.hostInterface = NULL;        /* copied: the caller's may go */
+    d->lastOpcode = -1;
+    {
+        const char *max = getenv("PMDFMU_MAX_CYCLES");
+        char *end = NULL;
+        if (max && *max) {
+            d->maxCycles = strtoull(max, &end, 10);
+            if (*end != '\0' || d->maxCycles == 0) {
+                fprintf(stderr, "PMDFMU_MAX_CYCLES=%s is not a whole number of cycles above 0: ignored\n", max);
+                d->maxCycles = 0;
+            }
+        }
+    }
     d->self.axis = 0;
     d->self.transport_data = d;
     r = open_device(d, fmu);
@@ -613,6 +669,10 @@ PMDresult PMDFMU_Command(PMDAxisInterface axis_intf, PMDuint8 opcode, int chipWi
     if (axis_intf->axis > 0xFF || nargs < 0 || n > PMD_FMU_BATCH_WORDS || nreply < 0 ||
         nreply > PMD_FMU_BATCH_WORDS)
         return PMD_ERR_InvalidHandle;
+    if (opcode == d->lastOpcode && (int)axis_intf->axis == d->lastAxis)
+        d->lastRepeats++;
+    else
+        d->lastOpcode = opcode, d->lastAxis = (int)axis_intf->axis, d->lastRepeats = 1;
     /* the instruction word: opcode in bits 0-7, the axis above it (pmd-reference 1.1) */
     values[0] = opcode | (chipWide ? 0 : axis_intf->axis << 8);
     for (i = 0; i < nargs; i++)

@@ -44,6 +44,8 @@ typedef struct {
     PMDint32 memorySize;        /* the FMU parameter memorySize, 32-bit words; 0: its default (16384) */
     int loopback;               /* the FMU parameter loopback: actual position = commanded (default 1) */
     const char *script;         /* the FMU parameter script; NULL: none */
+    const char *machine;        /* the FMU parameter machine (docs/machine.md): a machine file's path or
+                                   its TOML text; NULL: the environment's PMDFMU_MACHINE, else none */
     PMDFMULogCallback log;      /* NULL: no FMU logging; errors still make a call fail */
     void *logContext;
     const char *const *logCategories;   /* the FMU's categories the log gets, NULL-terminated; an
@@ -55,6 +57,12 @@ typedef struct {
     void *cycleContext;
     const struct PMDHostInterface *hostInterface;   /* NULL: the default, parallel16 */
 } PMDFMUOptions;
+
+/* PMDFMU_MAX_CYCLES=N in the environment: a program whose chip has run N cycles and is still
+   running (a poll for an event that cannot come runs forever, as on a real machine) is ended: the
+   library writes one line to stderr naming the command it sent last (what it was polling) and
+   exits with this status. */
+#define PMDFMU_EXIT_MAX_CYCLES 124
 
 /* The defaults above; a NULL options pointer means the same. */
 void PMDFMUOptionsInit(PMDFMUOptions *options);

@@ -513,7 +513,8 @@ def _check_out(out, cycles: int, dtype: np.dtype) -> None:
 class Chip:
     """A motion processor in an FMU instance: Chip(fmi_version=2, fmu=None, **parameters).
 
-    parameters are the FMU's (cycleTime, memorySize, loopback, script). log_categories
+    parameters are the FMU's (cycleTime, memorySize, loopback, script, machine: a machine
+    file's path or TOML text, docs/machine.md). log_categories
     enables FMU logging (True for all, or a list such as ["warnings", "events"]);
     messages collect in chip.messages, errors always.
 
@@ -615,8 +616,9 @@ class Chip:
         """The FMU's categories to log (its own message names an unknown one and lists the rest)."""
         self.fmu.setDebugLogging(True, categories)
 
-    def _script_value(self, value) -> str:
-        """What the `script` parameter gets: a script's text (a value holding a line feed) as it is; a
+    def _script_value(self, value, name: str = "script") -> str:
+        """What the `script` parameter (or `machine`, taken the same way) gets: a script's text (a value
+        holding a line feed) as it is; a
         relative path the FMU holds in its resources folder as it is (the FMU looks there first); any
         other path resolved from the user's working directory, so that it means the same file whatever
         directory the FMU or a sweep's worker runs in. A Path is a file, never text: one holding a line
@@ -625,8 +627,8 @@ class Chip:
             text = os.fspath(value)
             if "\n" in text:
                 raise ValueError(
-                    f"script: the path {text!r} holds a line feed, and the FMU reads a script value "
-                    "holding one as the script's text (docs/scripts.md): rename the file or its folder"
+                    f"{name}: the path {text!r} holds a line feed, and the FMU reads a {name} value "
+                    f"holding one as the {name}'s text (docs/scripts.md): rename the file or its folder"
                 )
         text = str(value) if value else ""
         if not text or "\n" in text:
@@ -638,8 +640,8 @@ class Chip:
 
     def _initialize(self, parameters) -> None:
         for name, value in parameters.items():
-            if name == "script":
-                value = self._script_value(value)
+            if name in ("script", "machine"):
+                value = self._script_value(value, name)
             self.set(name, value)
         try:
             if self.fmi_version == 2:

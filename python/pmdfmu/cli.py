@@ -8,6 +8,7 @@ pmdfmu sweep CASES  run a table of cases on Dask; write a summary table and plot
 pmdfmu verify FILE  run a script or table and check it against a golden trace and assertions
                     (exit 0 pass, 1 fail, 2 malformed input; JUnit XML, Markdown, diff plots)
 pmdfmu pack SCRIPT  write a copy of the FMU that runs the script with no parameter set
+pmdfmu machine --check FILE  check a machine file and say what it means (docs/machine.md)
 pmdfmu validate   check the FMU with fmpy.validation
 pmdfmu info       the FMU's variables and the chip's commands
 """
@@ -56,11 +57,15 @@ EXIT_INTERRUPTED = 130  # 128 + SIGINT: what a shell reports for a command ended
 # what the FMU's initialization error says after the FMI function's name (fmu_src/fmi/instance.c); its
 # file:line: reason follows
 _SCRIPT_REFUSED = ": script refused: "
+_MACHINE_REFUSED = ": machine refused: "
 
 
 def _without_function(line: str) -> str:
-    """line without `fmi2ExitInitializationMode: script refused: ` before the FMU's file:line: reason."""
+    """line without `fmi2ExitInitializationMode: script refused: ` (or `machine refused: `) before the
+    FMU's file:line: reason."""
     head, found, reason = line.partition(_SCRIPT_REFUSED)
+    if not found:
+        head, found, reason = line.partition(_MACHINE_REFUSED)
     before, _, function = head.rpartition(" ")
     if not found or not function.startswith(("fmi2", "fmi3")):
         return line
@@ -200,6 +205,21 @@ def cmd_run(args) -> int:
     csv_path, plot_path = args.csv, args.plot
     _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path)], [path, fmu])
     title = f"pmdfmu run {path}"
+    machine = _machine_file(args.machine)
+    if machine is not None:
+        run = profile.run_profile(
+            path if profile.is_segment_table(path) else _script_file(path),
+            fmu,
+            args.fmi_version,
+            args.cycle_time,
+            args.upload,
+            args.max_cycles,
+            parameters={"machine": machine},
+        )
+        for m in run.messages:
+            print(f"{m.status}: {m.message}", file=sys.stderr)
+        _write_run(run, csv_path, plot_path, title)
+        return 0
     if profile.is_segment_table(path):
         _run_table(
             path, fmu, args.cycle_time, args.upload, args.max_cycles, csv_path, plot_path, title, args.fmi_version
@@ -209,6 +229,32 @@ def cmd_run(args) -> int:
     for m in run.messages:
         print(f"{m.status}: {m.message}", file=sys.stderr)
     _write_run(run, csv_path, plot_path, title)
+    return 0
+
+
+def _machine_file(path: Optional[Path]) -> Optional[str]:
+    """--machine FILE: a regular file, for the FMU's `machine` parameter (never text)."""
+    if path is None:
+        return None
+    if "\n" in str(path):
+        raise CommandLineError(f"{files.shown_path(path)}: the machine file's path holds a line feed: rename it")
+    files.check_regular(path)
+    return str(path.resolve())
+
+
+def cmd_machine(args) -> int:
+    """The FMU parses the file (the one parser every surface uses) and logs what it means; a bad file is
+    its file:line: reason, the path as given."""
+    from .chip import Chip
+
+    path = _machine_file(args.file)
+    try:
+        with Chip(fmi_version=2, fmu=_fmu_file(args.fmu), machine=path, log_categories=["machine"]) as chip:
+            meaning = [m.message.partition(":\n")[2] for m in chip.messages if m.category == "machine"]
+    except FMUError as e:
+        raise FMUError(str(e).replace(path, str(args.file))) from None
+    print(f"{args.file}: a machine")
+    print("".join(meaning), end="")
     return 0
 
 
@@ -497,6 +543,14 @@ def _parser() -> argparse.ArgumentParser:
                 help="fill the buffers through the dual-port memory or with WriteBuffer",
             )
             p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
+            p.add_argument(
+                "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
+            )
+
+    p = sub.add_parser("machine", help="check a machine file and say what it means")
+    p.add_argument("--check", dest="file", type=Path, required=True, metavar="FILE", help="the machine file")
+    p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
+    p.set_defaults(func=cmd_machine)
 
     p = sub.add_parser("sweep", help="run a table of cases on Dask")
     p.add_argument("cases", type=Path, help="CSV: name, script or table, fmi_version, max_cycles, FMU parameters")

@@ -1,0 +1,60 @@
+/* SPDX-License-Identifier: BSD-2-Clause */
+/* The machine around the chip (machine.h): a switch is a range of actual
+ * position, an index pulse a single count. The chip samples its encoder once
+ * a cycle, so a pulse the axis runs over between two samples is seen in the
+ * cycle that passes it, as a real index pulse would be latched by the
+ * encoder's interface: never lost, whatever the speed. */
+#include "machine.h"
+#include "pmd_constants.h"
+
+/* Whether a multiple of period lies in [low, high] (low <= high, 64-bit: no wrap). */
+static int multiple_within(int64_t low, int64_t high, int64_t period)
+{
+    int64_t q = high / period;
+    if (high % period != 0 && high < 0)
+        q--;                                   /* floor(high / period) */
+    return q * period >= low;
+}
+
+int pmd_machine_index_active(const PmdMachineAxis *m, int32_t before, int32_t now)
+{
+    /* the counts passed since the last sample: (before, now] upward, [now, before) downward,
+     * the one count now at rest; the step as the 32-bit register wraps */
+    int64_t step = pmd_int32((uint32_t)now - (uint32_t)before);
+    int64_t low = step > 0 ? (int64_t)before + 1 : (int64_t)now;
+    int64_t high = step < 0 ? (int64_t)before - 1 : (int64_t)before + step;
+    unsigned i;
+    if (m->indexPeriod != 0)
+        return multiple_within(low, high, m->indexPeriod);
+    for (i = 0; i < m->indexCount; i++) {
+        int64_t d = pmd_int32((uint32_t)m->indexPosition[i] - (uint32_t)before);   /* from before, wrapped */
+        if (step == 0 ? d == 0 : step > 0 ? (d > 0 && d <= step) : (d < 0 && d >= step))
+            return 1;
+    }
+    return 0;
+}
+
+/* A switch's input: true while the chip, at its reset signal sense, sees it
+ * active; a switch the machine wires active high reads the other way. */
+static uint8_t level(const PmdMachineAxis *m, uint16_t bit, int active)
+{
+    return (uint8_t)((m->signalSense & bit) ? !active : active != 0);
+}
+
+void pmd_machine_inputs(PmdChip *chip, int n)
+{
+    const PmdMachineAxis *m = &chip->machine->axis[n];
+    PmdAxis *ax = &chip->s.axis[n];
+    /* the stage's count: SetActualPosition and AdjustActualPosition move the register, not the stage */
+    int32_t at = pmd_int32((uint32_t)ax->actualPosition - (uint32_t)ax->actualOffset);
+    int32_t before = pmd_int32((uint32_t)ax->previousActualPosition - (uint32_t)ax->actualOffset);
+    if (m->signals & PMD_MACHINE_HOME)
+        ax->homeInput = level(m, PMDSignalEncoderHomeMask, at >= m->homeLow && at <= m->homeHigh);
+    if (m->signals & PMD_MACHINE_POSITIVE_LIMIT)
+        ax->positiveLimitInput = level(m, PMDSignalPositiveLimitMask, at >= m->positiveLimit);
+    if (m->signals & PMD_MACHINE_NEGATIVE_LIMIT)
+        ax->negativeLimitInput = level(m, PMDSignalNegativeLimitMask, at <= m->negativeLimit);
+    if (m->signals & PMD_MACHINE_INDEX)
+        ax->indexInput = level(m, PMDSignalEncoderIndexMask,
+                               pmd_machine_index_active(m, before, at));
+}
