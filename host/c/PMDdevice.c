@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <stdint.h>
 #include <time.h>
 
 #include "c-motion.h"
@@ -459,4 +460,209 @@ int PMDFMU_RunUserTask(void (*task)(PMDTaskParam), const char *name)
     pthread_mutex_unlock(&engine_lock);
     fflush(stdout);
     return 0;
+}
+
+/* ---- memory, events and what the twin has no counterpart of ---- */
+
+PMDresult PMDDeviceOpenMemory(PMDMemoryHandle *hMemory, PMDDeviceHandle *hDevice, PMDparam datasize,
+                              PMDparam memorytype)
+{
+    PMDresult r = device_check(hDevice);
+    if (!hMemory)
+        return PMD_ERR_InvalidHandle;
+    if (r != PMD_ERR_OK)
+        return r;
+    hMemory->hDevice = hDevice;
+    hMemory->datasize = datasize;
+    hMemory->memorytype = memorytype;
+    return PMD_ERR_OK;
+}
+
+PMDresult PMDMemoryRead(PMDMemoryHandle *hMemory, void *data, PMDuint32 offset, PMDuint32 length)
+{
+    (void)data;
+    (void)offset;
+    (void)length;
+    return hMemory ? PMD_ERR_NotSupported : PMD_ERR_InvalidHandle;
+}
+
+PMDresult PMDMemoryWrite(PMDMemoryHandle *hMemory, void *data, PMDuint32 offset, PMDuint32 length)
+{
+    PMDuint32 words[64];
+    const unsigned char *bytes = data;
+    PMDuint32 done = 0, i, n;
+    PMDresult r;
+    if (!hMemory || !hMemory->hDevice)
+        return PMD_ERR_InvalidHandle;
+    if (hMemory->memorytype != PMDMemoryAddress_DPRAM || hMemory->datasize != PMDDataSize_32Bit)
+        return PMD_ERR_NotSupported;
+    /* the program's 32-bit words as the host stores them (uint32_t-sized, whatever a long is) */
+    while (done < length) {
+        n = length - done < 64 ? length - done : 64;
+        for (i = 0; i < n; i++) {
+            uint32_t w;
+            memcpy(&w, bytes + 4 * (done + i), 4);
+            words[i] = w;
+        }
+        r = PMDFMU_WriteDPRAM(&hMemory->hDevice->hAxis.transport_data, offset + done, n, words);
+        if (r != PMD_ERR_OK)
+            return r;
+        done += n;
+    }
+    return PMD_ERR_OK;
+}
+
+PMDresult PMDMemoryErase(PMDMemoryHandle *hMemory)
+{
+    return hMemory ? PMD_ERR_NotSupported : PMD_ERR_InvalidHandle;
+}
+
+PMDresult PMDMemoryClose(PMDMemoryHandle *hMemory)
+{
+    if (!hMemory)
+        return PMD_ERR_InvalidHandle;
+    hMemory->hDevice = NULL;
+    return PMD_ERR_OK;
+}
+
+PMDresult PMDPeriphOpenPeriphMultiDrop(PMDPeriphHandle *hPeriph, PMDPeriphHandle *hPeriphParent, PMDparam address)
+{
+    (void)address;
+    if (!hPeriph || !hPeriphParent)
+        return PMD_ERR_InvalidHandle;
+    *hPeriph = *hPeriphParent;
+    return PMD_ERR_OK;
+}
+
+#define NOT_SUPPORTED(handle) return (handle) ? PMD_ERR_NotSupported : PMD_ERR_InvalidHandle
+
+PMDresult PMDDeviceGetDefault(PMDDeviceHandle *hDevice, PMDparam defaultcode, void *value, PMDparam valueSize)
+{
+    (void)defaultcode;
+    (void)value;
+    (void)valueSize;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDDeviceSetDefault(PMDDeviceHandle *hDevice, PMDparam defaultcode, void *value, PMDparam valueSize)
+{
+    (void)defaultcode;
+    (void)value;
+    (void)valueSize;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDDeviceGetInfo(PMDDeviceHandle *hDevice, PMDparam infoID, PMDuint16 option, PMDuint32 *value)
+{
+    (void)infoID;
+    (void)option;
+    (void)value;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDDeviceGetResetCause(PMDDeviceHandle *hDevice, PMDuint16 *resetcause, PMDuint16 resetmask)
+{
+    (void)resetcause;
+    (void)resetmask;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDDeviceGetFaultCode(PMDDeviceHandle *hDevice, PMDparam faultID, PMDuint32 *value)
+{
+    (void)faultID;
+    (void)value;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDDeviceGetEvent(PMDDeviceHandle *hDevice, PMDEvent *eventdata)
+{
+    (void)eventdata;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDWaitForEvent(PMDDeviceHandle *hDevice, PMDEvent *eventdata, PMDparam timeout)
+{
+    (void)eventdata;
+    (void)timeout;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDCMETaskGetState(PMDDeviceHandle *hDevice, PMDTaskState *state)
+{
+    (void)state;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDCMETaskStart(PMDDeviceHandle *hDevice, PMDparam taskparam)
+{
+    (void)taskparam;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDCMETaskStop(PMDDeviceHandle *hDevice)
+{
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDCMEGetUserCodeVersion(PMDDeviceHandle *hDevice, PMDuint32 *version)
+{
+    (void)version;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDCMEGetUserCodeName(PMDDeviceHandle *hDevice, char *name)
+{
+    (void)name;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDCMEGetUserCodeDate(PMDDeviceHandle *hDevice, char *date)
+{
+    (void)date;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDCMESetConsole(PMDDeviceHandle *hDevice, PMDPeriphHandle *hPeriph)
+{
+    (void)hPeriph;
+    NOT_SUPPORTED(hDevice);
+}
+
+PMDresult PMDAtlasAxisOpen(PMDAxisInterface hSourceAxis, PMDAxisInterface hAtlasAxis)
+{
+    (void)hAtlasAxis;
+    NOT_SUPPORTED(hSourceAxis);
+}
+
+/* ---- PMDutil.h ---- */
+
+PMDresult WaitForEvent(PMDAxisHandle *phAxis, PMDuint16 eventmask, PMDuint32 timeoutms)
+{
+    uint64_t start, now;
+    PMDuint16 status = 0;
+    PMDresult r = PMDFMU_GetHostTime(phAxis, &start);
+    while (r == PMD_ERR_OK) {
+        r = PMDGetEventStatus(phAxis, &status);
+        if (r != PMD_ERR_OK || (status & eventmask))
+            break;
+        /* each poll is a command: host time passes as it does for the program's own loop */
+        r = PMDFMU_GetHostTime(phAxis, &now);
+        if (r == PMD_ERR_OK && now - start >= (uint64_t)timeoutms * 1000000u)
+            return PMD_ERR_Timeout;
+    }
+    return r;
+}
+
+PMDresult ReadBuffer(PMDAxisHandle *phAxis, PMDuint16 bufferID, PMDint32 *pbuffer, PMDuint32 dwords_to_read)
+{
+    PMDuint32 i;
+    PMDresult r = PMD_ERR_OK;
+    for (i = 0; i < dwords_to_read && r == PMD_ERR_OK; i++)
+        r = PMDReadBuffer(phAxis, bufferID, &pbuffer[i]);
+    return r;
+}
+
+PMDresult WaitForAtlasToConnect(PMDAxisHandle *phAxis)
+{
+    NOT_SUPPORTED(phAxis);
 }

@@ -16,6 +16,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include "PMDfmu_types.h"
 #include "PMDfmu.h"
 
@@ -105,6 +106,65 @@ PMDresult PMDWriteDPRAM(PMDAxisInterface axis_intf, PMDuint32 *data, PMDuint32 o
                         PMDuint32 dwords_to_write);
 PMDresult PMDReadDPRAM(PMDAxisInterface axis_intf, PMDuint32 *data, PMDuint32 offset_in_dwords,
                        PMDuint32 dwords_to_read);
+
+/* An axis's event, as PMDWaitForEvent and PMDDeviceGetEvent give it */
+typedef struct tagPMDAxisEvent {
+    PMDAxis axis;
+    PMDuint16 eventstatus;
+} PMDEvent;
+
+/* A device's memory (PMDDeviceOpenMemory): the external memory (PMDMemoryAddress_DPRAM) as words of
+   datasize bytes; only 32-bit writes reach it (the FMU's memory port), anything else is
+   PMD_ERR_NotSupported. */
+typedef struct tagPMDMemoryHandle {
+    PMDDeviceHandle *hDevice;
+    PMDparam datasize;
+    PMDparam memorytype;
+} PMDMemoryHandle;
+
+PMDresult PMDDeviceOpenMemory(PMDMemoryHandle *hMemory, PMDDeviceHandle *hDevice, PMDparam datasize,
+                              PMDparam memorytype);
+PMDresult PMDMemoryRead(PMDMemoryHandle *hMemory, void *data, PMDuint32 offset, PMDuint32 length);
+PMDresult PMDMemoryWrite(PMDMemoryHandle *hMemory, void *data, PMDuint32 offset, PMDuint32 length);
+PMDresult PMDMemoryErase(PMDMemoryHandle *hMemory);
+PMDresult PMDMemoryClose(PMDMemoryHandle *hMemory);
+#define PMDMemoryOpen PMDDeviceOpenMemory
+
+/* A peripheral on a multi-drop line behind another: the same link */
+PMDresult PMDPeriphOpenPeriphMultiDrop(PMDPeriphHandle *hPeriph, PMDPeriphHandle *hPeriphParent, PMDparam address);
+
+/* What the twin has no counterpart of (a C-Motion Engine's defaults, user code store, console,
+   reset cause and fault codes, events, an Atlas amplifier): PMD_ERR_NotSupported. */
+PMDresult PMDDeviceGetDefault(PMDDeviceHandle *hDevice, PMDparam defaultcode, void *value, PMDparam valueSize);
+PMDresult PMDDeviceSetDefault(PMDDeviceHandle *hDevice, PMDparam defaultcode, void *value, PMDparam valueSize);
+PMDresult PMDDeviceGetInfo(PMDDeviceHandle *hDevice, PMDparam infoID, PMDuint16 option, PMDuint32 *value);
+PMDresult PMDDeviceGetResetCause(PMDDeviceHandle *hDevice, PMDuint16 *resetcause, PMDuint16 resetmask);
+PMDresult PMDDeviceGetFaultCode(PMDDeviceHandle *hDevice, PMDparam faultID, PMDuint32 *value);
+PMDresult PMDDeviceGetEvent(PMDDeviceHandle *hDevice, PMDEvent *eventdata);
+PMDresult PMDWaitForEvent(PMDDeviceHandle *hDevice, PMDEvent *eventdata, PMDparam timeout);
+PMDresult PMDCMETaskGetState(PMDDeviceHandle *hDevice, PMDTaskState *state);
+PMDresult PMDCMETaskStart(PMDDeviceHandle *hDevice, PMDparam taskparam);
+PMDresult PMDCMETaskStop(PMDDeviceHandle *hDevice);
+PMDresult PMDCMEGetUserCodeVersion(PMDDeviceHandle *hDevice, PMDuint32 *version);
+PMDresult PMDCMEGetUserCodeName(PMDDeviceHandle *hDevice, char *name);
+PMDresult PMDCMEGetUserCodeDate(PMDDeviceHandle *hDevice, char *date);
+PMDresult PMDCMESetConsole(PMDDeviceHandle *hDevice, PMDPeriphHandle *hPeriph);
+#define PMDDeviceSetConsole PMDCMESetConsole
+PMDresult PMDAtlasAxisOpen(PMDAxisInterface hSourceAxis, PMDAxisInterface hAtlasAxis);
+
+/* PMDutil.h's helpers: polls the event status until a bit of eventmask is set (PMD_ERR_OK) or
+   timeoutms of host time pass (PMD_ERR_Timeout); reads dwords_to_read words of a buffer. */
+PMDresult WaitForEvent(PMDAxisHandle *phAxis, PMDuint16 eventmask, PMDuint32 timeoutms);
+PMDresult ReadBuffer(PMDAxisHandle *phAxis, PMDuint16 bufferID, PMDint32 *pbuffer, PMDuint32 dwords_to_read);
+/* No Atlas amplifier is modelled: PMD_ERR_NotSupported */
+PMDresult WaitForAtlasToConnect(PMDAxisHandle *phAxis);
+
+/* Clears a handle before its opening */
+#define PMD_INITIALIZEHANDLE(handle) memset(&handle, 0, sizeof(handle));
+#define PMD_IP4_ADDR(o1, o2, o3, o4)                                                                       \
+    (((PMDuint32)((o1) & 0xff) << 24) | ((PMDuint32)((o2) & 0xff) << 16) | ((PMDuint32)((o3) & 0xff) << 8) |  \
+     (PMDuint32)((o4) & 0xff))
+#define PMD_WAITFOREVER ((PMDparam)0xFFFFFFFFUL)
 
 /* ---- PMDdiag.h ---- */
 
