@@ -202,3 +202,11 @@ def test_every_magellan_only_call_is_sent_and_answered_as_a_navigator_answers(ge
     code, out, err = run(compile_program(source, tmp_path / "magellan", generated, warnings=True))
     assert code == 0, err
     assert out.splitlines() == [f"{c.name} 0x2 1 0x2" for c in calls]
+
+
+def test_the_docs_list_every_call_of_both_generations():
+    """docs/c-motion.md's list is the tables' (python modelDescription/generate_cmotion.py --markdown)."""
+    import generate_cmotion
+
+    text = (ROOT / "docs" / "c-motion.md").read_text()
+    assert generate_cmotion.calls_markdown() in text, "run: python modelDescription/generate_cmotion.py --markdown"

@@ -28,6 +28,8 @@ typedef short PMDint16;
 typedef unsigned long PMDuint32;
 typedef long PMDint32;
 typedef long PMDlong32;
+/* seed 000 section 1.3's spelling of the 32-bit unsigned word */
+typedef PMDuint32 PMDUINT32;
 /* the 5.x peripheral calls' integer argument */
 typedef PMDuint32 PMDparam;
 

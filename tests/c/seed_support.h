@@ -20,9 +20,6 @@
 #include "c-motion.h"
 #include "PMDhosttime.h"
 
-/* the storage type seed 1.3 names: C-Motion's 32-bit unsigned integer */
-typedef PMDuint32 PMDUINT32;
-
 #define SEED_AXES 4
 #define SEGMENT_CYCLES 64          /* cycles of each leg of the scenario's tables */
 #define SEED_ENTRIES 5             /* rows of each axis's table: four legs and a time-0 row */
