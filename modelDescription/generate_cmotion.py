@@ -73,8 +73,17 @@ class Call:
 
 
 def command_call(c, symbol=None) -> Call:
-    return Call(symbol or f"PMD{c.name}", c.opcode, c.scope, c.args, c.arg_words, c.reply, c.reply_words, {},
-                f"{c.name}: {c.summary}")
+    return Call(
+        symbol or f"PMD{c.name}",
+        c.opcode,
+        c.scope,
+        c.args,
+        c.arg_words,
+        c.reply,
+        c.reply_words,
+        {},
+        f"{c.name}: {c.summary}",
+    )
 
 
 def table_call(k, by_opcode, magellan, symbol=None) -> Call:
@@ -88,8 +97,9 @@ def table_call(k, by_opcode, magellan, symbol=None) -> Call:
         what = f"{k.name}: C-Motion 5.x's call, the Navigator's {command.name}"
     else:
         what = f"{k.name}: {magellan[k.opcode]}; a Navigator answers invalid instruction"
-    return Call(symbol or f"PMD{k.name}", k.opcode, k.scope or "axis", args, arg_words, reply, reply_words, k.types,
-                what)
+    return Call(
+        symbol or f"PMD{k.name}", k.opcode, k.scope or "axis", args, arg_words, reply, reply_words, k.types, what
+    )
 
 
 def encode_lines(c):
@@ -105,7 +115,8 @@ def encode_lines(c):
             words.setdefault(f.word, []).append(f"((PMDuint16){f.name} << {f.shift})")
         elif f.width == 32:
             checks.append(
-                f"!PMDFMU_FitsU32((unsigned long long){f.name})" if f.kind == "u32"
+                f"!PMDFMU_FitsU32((unsigned long long){f.name})"
+                if f.kind == "u32"
                 else f"!PMDFMU_FitsS32((long long){f.name})"
             )
             lines.append(f"args[{f.word}] = (PMDuint16)((PMDuint32){f.name} >> 16);")
@@ -172,8 +183,9 @@ def calls_of(commands, table, magellan):
         if k.opcode is None:
             continue
         if k.opcode not in by_opcode and k.opcode not in magellan:
-            raise ValueError(f"cmotion_calls.csv: {k.name}: opcode 0x{k.opcode:02X} is in neither commands.csv "
-                             "nor out_of_scope.csv")
+            raise ValueError(
+                f"cmotion_calls.csv: {k.name}: opcode 0x{k.opcode:02X} is in neither commands.csv nor out_of_scope.csv"
+            )
         out.append(table_call(k, by_opcode, magellan, variants[k.name][1] if k.name in variants else None))
     return out, variants
 
@@ -225,7 +237,7 @@ def constants_header(constants, names, errors) -> str:
         body, plain = [], 0
         for name, value in rows:
             if name in navigator and navigator[name] == value:
-                continue    # the same constant under the same name: declared once, above
+                continue  # the same constant under the same name: declared once, above
             lines = entry(name, value, 5, navigator)
             plain += len(lines) == 1
             body += lines
@@ -233,13 +245,22 @@ def constants_header(constants, names, errors) -> str:
             out += ["typedef enum {", *body, f"}} {group};"]
         elif body:
             # every name is 5.x's only where 2.x has another value: the type is an int in 2.x
-            out += ["#if PMD_CMOTION_GENERATION != 2", "typedef enum {",
-                    *(line for line in body if not line.startswith("#")), f"}} {group};", "#else",
-                    f"typedef int {group};", "#endif"]
+            out += [
+                "#if PMD_CMOTION_GENERATION != 2",
+                "typedef enum {",
+                *(line for line in body if not line.startswith("#")),
+                f"}} {group};",
+                "#else",
+                f"typedef int {group};",
+                "#endif",
+            ]
         else:
             out += [f"typedef int {group};    /* its names are constants.csv's, above */"]
-    out += ["", "/* C-Motion 5.x's result codes (cmotion_errors.csv); 0x01-0x23 are the chip's. */",
-            "typedef enum PMDErrorCodesEnum {"]
+    out += [
+        "",
+        "/* C-Motion 5.x's result codes (cmotion_errors.csv); 0x01-0x23 are the chip's. */",
+        "typedef enum PMDErrorCodesEnum {",
+    ]
     for name, value, _m in errors:
         if name in navigator and navigator[name] == value:
             continue
@@ -252,8 +273,13 @@ def opcodes_header(commands, magellan, table) -> str:
     """PMDocode.h: PMDOP<name> = opcode for every command of commands.csv and out_of_scope.csv (the
     Magellan's SetSampleTime and GetSampleTime under PMD_CMOTION_GENERATION 5), and the 5.x names of
     Navigator opcodes (cmotion_calls.csv)."""
-    out = [HEADER.format("commands.csv, out_of_scope.csv and cmotion_calls.csv"), "#ifndef PMD_OCODE_H",
-           "#define PMD_OCODE_H", "", "enum {"]
+    out = [
+        HEADER.format("commands.csv, out_of_scope.csv and cmotion_calls.csv"),
+        "#ifndef PMD_OCODE_H",
+        "#define PMD_OCODE_H",
+        "",
+        "enum {",
+    ]
     navigator = {c.name: c.opcode for c in commands}
     seen = set()
     for c in commands:
@@ -301,8 +327,13 @@ def calls_header(calls, variants) -> str:
         out += [c.comment(), c.signature() + ";"]
     out += ["", "/* Where the generations' signatures differ, PMD_CMOTION_GENERATION picks the name's form. */"]
     for name, (two, five) in variants.items():
-        out += ["#if PMD_CMOTION_GENERATION == 2", f"#define PMD{name} {two}", "#else",
-                f"#define PMD{name} {five}", "#endif"]
+        out += [
+            "#if PMD_CMOTION_GENERATION == 2",
+            f"#define PMD{name} {two}",
+            "#else",
+            f"#define PMD{name} {five}",
+            "#endif",
+        ]
     out += ["", "#ifdef __cplusplus", "}", "#endif", "", "#endif", ""]
     return "\n".join(out)
 
@@ -315,20 +346,31 @@ def errors_source(errors, magellan, commands) -> str:
         if value in seen or not message:
             continue
         seen.add(value)
-        out.append(f"    case 0x{value:X}: return \"{message}\";    /* {name} */")
-    out += ["    default: return \"Undefined error occurred\";", "    }", "}", "",
-            "const char *PMDGetOpcodeText(PMDuint16 opCode)", "{", "    switch (opCode) {"]
+        out.append(f'    case 0x{value:X}: return "{message}";    /* {name} */')
+    out += [
+        '    default: return "Undefined error occurred";',
+        "    }",
+        "}",
+        "",
+        "const char *PMDGetOpcodeText(PMDuint16 opCode)",
+        "{",
+        "    switch (opCode) {",
+    ]
     names = {c.opcode: c.name for c in commands}
     names.update({op: n for op, n in magellan.items() if op not in names})
     for opcode, name in sorted(names.items()):
-        out.append(f"    case 0x{opcode:02X}: return \"{name}\";")
-    out += ["    default: return \"Unknown opcode\";", "    }", "}", ""]
+        out.append(f'    case 0x{opcode:02X}: return "{name}";')
+    out += ['    default: return "Unknown opcode";', "    }", "}", ""]
     return "\n".join(out)
 
 
 def source(calls, errors, magellan, commands) -> str:
-    out = [HEADER.format("commands.csv, cmotion_calls.csv and cmotion_errors.csv"), "#include <stddef.h>",
-           '#include "c-motion.h"', ""]
+    out = [
+        HEADER.format("commands.csv, cmotion_calls.csv and cmotion_errors.csv"),
+        "#include <stddef.h>",
+        '#include "c-motion.h"',
+        "",
+    ]
     out += [function(c) for c in calls]
     out.append(errors_source(errors, magellan, commands))
     return "\n".join(out)
@@ -336,9 +378,24 @@ def source(calls, errors, magellan, commands) -> str:
 
 # the vendor's header names a program includes, with or without the c-motion/ folder; each one is
 # the whole API here (host/c/PMDcmotion.h), so any subset a program picks compiles
-VENDOR_HEADERS = ("c-motion.h", "C-Motion.h", "PMDtypes.h", "PMDocode.h", "PMDecode.h", "PMDdevice.h",
-                  "PMDperiph.h", "PMDdiag.h", "PMDsys.h", "PMDutil.h", "PMDRPtypes.h", "PMDser.h", "PMDpar.h",
-                  "PMDW32Ser.h", "PMDtrans.h", "PMDintf.h")
+VENDOR_HEADERS = (
+    "c-motion.h",
+    "C-Motion.h",
+    "PMDtypes.h",
+    "PMDocode.h",
+    "PMDecode.h",
+    "PMDdevice.h",
+    "PMDperiph.h",
+    "PMDdiag.h",
+    "PMDsys.h",
+    "PMDutil.h",
+    "PMDRPtypes.h",
+    "PMDser.h",
+    "PMDpar.h",
+    "PMDW32Ser.h",
+    "PMDtrans.h",
+    "PMDintf.h",
+)
 
 
 def ports(variables):
@@ -420,15 +477,20 @@ def calls_markdown() -> str:
             command = by_opcode[k.opcode]
             if k.inherit or (k.arg_words, k.reply_words) == (command.arg_words, command.reply_words):
                 what = f"the Navigator's {command.name} (0x{k.opcode:02X})" + (
-                    ", the 5.x argument types" if k.name == command.name else ", under its 5.x name")
+                    ", the 5.x argument types" if k.name == command.name else ", under its 5.x name"
+                )
             else:
                 words = f"{k.arg_words} argument word{'s' if k.arg_words != 1 else ''}"
-                what = (f"sends 0x{k.opcode:02X} (the Magellan's opcode) with {words}: a Navigator reads 0x{k.opcode:02X} "
-                        f"as its {command.name}")
+                what = (
+                    f"sends 0x{k.opcode:02X} (the Magellan's opcode) with {words}: a Navigator reads 0x{k.opcode:02X} "
+                    f"as its {command.name}"
+                )
             if k.name in variants:
                 era = "5.x"
         else:
-            what = f"sends 0x{k.opcode:02X}, the Magellan's {magellan[k.opcode]}: a Navigator answers invalid instruction"
+            what = (
+                f"sends 0x{k.opcode:02X}, the Magellan's {magellan[k.opcode]}: a Navigator answers invalid instruction"
+            )
             if k.name in variants:
                 era = "5.x"
         rows.append((k.name, era, what))
@@ -468,7 +530,7 @@ def main(outdir: Path) -> None:
     write_files(outdir, files)
 
 
-UMBRELLA = "/* Generated by modelDescription/generate_cmotion.py: do not edit. */\n#include \"PMDcmotion.h\"\n"
+UMBRELLA = '/* Generated by modelDescription/generate_cmotion.py: do not edit. */\n#include "PMDcmotion.h"\n'
 
 
 if __name__ == "__main__":

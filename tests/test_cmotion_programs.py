@@ -16,7 +16,7 @@ import sys
 import pytest
 
 import pmdfmu
-from cmotion_build import FMI_HEADERS, HOST_C, ROOT, compile_program, generate
+from cmotion_build import HOST_C, ROOT, compile_program, generate
 
 sys.path.insert(0, str(ROOT / "modelDescription"))
 from generating import harness_tables  # noqa: E402
@@ -24,8 +24,22 @@ from generating import harness_tables  # noqa: E402
 pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 
 PROGRAMS = ("cmotion5_host", "cmotion5_engine", "cmotion2_host")
-VENDOR_HEADERS = ("c-motion.h", "C-Motion.h", "PMDtypes.h", "PMDocode.h", "PMDecode.h", "PMDdevice.h", "PMDperiph.h",
-                  "PMDdiag.h", "PMDsys.h", "PMDutil.h", "PMDRPtypes.h", "PMDser.h", "PMDpar.h", "PMDW32Ser.h")
+VENDOR_HEADERS = (
+    "c-motion.h",
+    "C-Motion.h",
+    "PMDtypes.h",
+    "PMDocode.h",
+    "PMDecode.h",
+    "PMDdevice.h",
+    "PMDperiph.h",
+    "PMDdiag.h",
+    "PMDsys.h",
+    "PMDutil.h",
+    "PMDRPtypes.h",
+    "PMDser.h",
+    "PMDpar.h",
+    "PMDW32Ser.h",
+)
 
 
 @pytest.fixture(scope="module")
@@ -146,8 +160,19 @@ def test_every_vendor_header_name_alone_brings_the_api_with_the_vendors_types(ge
         "    return PMDGetSampleTime(&hAxis, &sample) == PMD_ERR_OK && MAXINT32 > 0 && MININT16 < 0;\n}\n"
     )
     subprocess.run(
-        ["cc", "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", f"-DPMD_CMOTION_GENERATION={generation}",
-         f"-I{HOST_C}", f"-I{generated}", "-fsyntax-only", str(source)],
+        [
+            "cc",
+            "-std=c99",
+            "-Wall",
+            "-Wextra",
+            "-Wpedantic",
+            "-Werror",
+            f"-DPMD_CMOTION_GENERATION={generation}",
+            f"-I{HOST_C}",
+            f"-I{generated}",
+            "-fsyntax-only",
+            str(source),
+        ],
         check=True,
     )
 
@@ -163,9 +188,7 @@ def test_every_call_of_cmotion_calls_csv_is_declared_and_defined(generated, tmp_
             f"#define PMD_CMOTION_GENERATION {generation}\n"
             '#include "c-motion.h"\n'
             "typedef void (*any)(void);\n"
-            "static const any calls[] = {\n"
-            + "".join(f"    (any)PMD{c.name},\n" for c in calls)
-            + "};\n"
+            "static const any calls[] = {\n" + "".join(f"    (any)PMD{c.name},\n" for c in calls) + "};\n"
             "int main(void) { return calls[0] == 0; }\n"
         )
         run(compile_program(source, tmp_path / f"addresses{generation}", generated, warnings=True))
@@ -179,21 +202,30 @@ def test_every_magellan_only_call_is_sent_and_answered_as_a_navigator_answers(ge
     tables = harness_tables()
     commands = {c.name: c for c in tables.read_commands(md / "commands.csv")}
     navigator = {c.opcode for c in commands.values()}
-    calls = [c for c in tables.read_cmotion_calls(md / "cmotion_calls.csv", md / "constants.csv")
-             if c.opcode is not None and c.opcode not in navigator]
+    calls = [
+        c
+        for c in tables.read_cmotion_calls(md / "cmotion_calls.csv", md / "constants.csv")
+        if c.opcode is not None and c.opcode not in navigator
+    ]
     assert len(calls) > 60
-    lines = ['#include <stdio.h>', '#include "c-motion.h"', "int main(void)", "{", "    PMDAxisHandle h, h1;",
-             "    PMDuint16 status = 0, code = 0;",
-             "    if (PMDSetupAxisInterface_Parallel(&h, PMDAxis2, 0)) return 1;",
-             "    PMDCopyAxisInterface(&h1, &h, PMDAxis1);",
-             "    PMDGetHostIOError(&h, &code);"]
+    lines = [
+        "#include <stdio.h>",
+        '#include "c-motion.h"',
+        "int main(void)",
+        "{",
+        "    PMDAxisHandle h, h1;",
+        "    PMDuint16 status = 0, code = 0;",
+        "    if (PMDSetupAxisInterface_Parallel(&h, PMDAxis2, 0)) return 1;",
+        "    PMDCopyAxisInterface(&h1, &h, PMDAxis1);",
+        "    PMDGetHostIOError(&h, &code);",
+    ]
     for c in calls:
         symbol = f"PMD{c.name}_5" if c.name in commands else f"PMD{c.name}"
         arguments = ", ".join(["&h"] + ["0"] * len(c.args) + ["NULL"] * len(c.reply))
         lines += [
-            f"    printf(\"{c.name} 0x%X\", (unsigned){symbol}({arguments}));",
+            f'    printf("{c.name} 0x%X", (unsigned){symbol}({arguments}));',
             f"    PMDGetEventStatus(&{'h1' if c.scope == 'chip' else 'h'}, &status); PMDGetHostIOError(&h, &code);",
-            "    printf(\" %d 0x%X\\n\", (status & PMDEventInstructionErrorMask) != 0, (unsigned)code);",
+            '    printf(" %d 0x%X\\n", (status & PMDEventInstructionErrorMask) != 0, (unsigned)code);',
             "    PMDResetEventStatus(&h, 0); PMDResetEventStatus(&h1, 0);",
         ]
     lines += ["    PMDCloseAxisInterface(&h1);", "    return PMDCloseAxisInterface(&h);", "}", ""]
