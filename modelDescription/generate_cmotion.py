@@ -2,11 +2,20 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Generates the C-Motion C library's table-driven half from the tables beside this file:
 
-  c-motion.h        the C-Motion 2.x API over the FMU: every constant of constants.csv under its
-                    C-Motion name, and one PMD<Command>(axis_intf, args...) per row of commands.csv
+  PMDconstants.h    the constants of both C-Motion generations: constants.csv's (2.x, the Navigator's
+                    names), cmotion_names.csv's (5.x, under the vendor's type names) and the result
+                    codes of cmotion_errors.csv; a name the two define differently takes the value of
+                    PMD_CMOTION_GENERATION
+  PMDopcodes.h      PMDOP<name> for commands.csv and out_of_scope.csv
+  PMDcalls.h        one PMD<Command>(axis_intf, args...) per row of commands.csv (the Navigator's
+                    argument order and types) and per row of cmotion_calls.csv with an opcode (5.x's
+                    names and signatures, the Magellan's commands)
   c-motion.c        those calls: each encodes its words as the harness does (python/pmdfmu/chip.py:
                     encode/decode; 32-bit values high word first, packed fields at their register
-                    field) and hands them to the FMU transport (host/c/PMDfmu.c)
+                    field) and hands them to the FMU transport (host/c/PMDfmu.c); PMDGetErrorMessage
+                    and PMDGetOpcodeText
+  c-motion.h ...    every header name of PMD's (VENDOR_HEADERS), also under c-motion/: the whole API
+                    (host/c/PMDcmotion.h)
   PMDfmu_ports.h/.c the FMU variables the transport reads and writes, by value reference
                     (variables.csv), and every FMI 2 variable by name for PMDFMU_GetInteger/GetReal
 
