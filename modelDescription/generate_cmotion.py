@@ -2,11 +2,20 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Generates the C-Motion C library's table-driven half from the tables beside this file:
 
-  c-motion.h        the C-Motion 2.x API over the FMU: every constant of constants.csv under its
-                    C-Motion name, and one PMD<Command>(axis_intf, args...) per row of commands.csv
+  PMDconstants.h    the constants of both C-Motion generations: constants.csv's (2.x, the Navigator's
+                    names), cmotion_names.csv's (5.x, under the vendor's type names) and the result
+                    codes of cmotion_errors.csv; a name the two define differently takes the value of
+                    PMD_CMOTION_GENERATION
+  PMDopcodes.h      PMDOP<name> for commands.csv and out_of_scope.csv
+  PMDcalls.h        one PMD<Command>(axis_intf, args...) per row of commands.csv (the Navigator's
+                    argument order and types) and per row of cmotion_calls.csv with an opcode (5.x's
+                    names and signatures, the Magellan's commands)
   c-motion.c        those calls: each encodes its words as the harness does (python/pmdfmu/chip.py:
                     encode/decode; 32-bit values high word first, packed fields at their register
-                    field) and hands them to the FMU transport (host/c/PMDfmu.c)
+                    field) and hands them to the FMU transport (host/c/PMDfmu.c); PMDGetErrorMessage
+                    and PMDGetOpcodeText
+  c-motion.h ...    every header name of PMD's (VENDOR_HEADERS), also under c-motion/: the whole API
+                    (host/c/PMDcmotion.h)
   PMDfmu_ports.h/.c the FMU variables the transport reads and writes, by value reference
                     (variables.csv), and every FMI 2 variable by name for PMDFMU_GetInteger/GetReal
 
@@ -14,8 +23,10 @@ The tables are read through python/pmdfmu/tables.py, as generate.py and the Pyth
 them, so the C calls, the Python methods and the chip's command table cannot disagree.
 
 Usage: generate_cmotion.py OUTDIR
+       generate_cmotion.py --markdown   (docs/c-motion.md's list of the calls)
 """
 
+import csv
 import sys
 from pathlib import Path
 
@@ -42,33 +53,81 @@ def bits_type(f) -> str:
     return "PMDuint8"
 
 
-def c_type(f) -> str:
+def c_type(f, types=None) -> str:
+    """The C type of a field: the generation's override (cmotion_calls.csv's types column), else
+    its kind's."""
+    if types and f.name in types:
+        return types[f.name]
     return bits_type(f) if f.kind == "bits" else C_TYPES[f.kind]
 
 
-def signature(c) -> str:
-    params = ["PMDAxisInterface axis_intf"]
-    params += [f"{c_type(f)} {f.name}" for f in c.args]
-    params += [f"{c_type(f)} *{f.name}" for f in c.reply]
-    return f"PMDresult PMD{c.name}({', '.join(params)})"
+class Call:
+    """One generated C-Motion call: a commands.csv command, or a cmotion_calls.csv row with an opcode
+    (sent as that opcode, with its own fields or, if it gives none, the command's)."""
+
+    def __init__(self, symbol, opcode, scope, args, arg_words, reply, reply_words, types, summary):
+        self.symbol, self.opcode, self.scope, self.summary = symbol, opcode, scope, summary
+        self.args, self.arg_words, self.reply, self.reply_words = args, arg_words, reply, reply_words
+        self.types = types
+
+    def signature(self) -> str:
+        params = ["PMDAxisInterface axis_intf"]
+        params += [f"{c_type(f, self.types)} {f.name}" for f in self.args]
+        params += [f"{c_type(f, self.types)} *{f.name}" for f in self.reply]
+        return f"PMDresult {self.symbol}({', '.join(params)})"
+
+    def comment(self) -> str:
+        scope = "chip-wide: sent with axis field 0" if self.scope == "chip" else "acts on the handle's axis"
+        return f"/* 0x{self.opcode:02X} {self.summary} ({scope}). */"
 
 
-def comment(c) -> str:
-    scope = "chip-wide: sent with axis field 0" if c.scope == "chip" else "acts on the handle's axis"
-    return f"/* 0x{c.opcode:02X} {c.name}: {c.summary} ({scope}). */"
+def command_call(c, symbol=None) -> Call:
+    return Call(
+        symbol or f"PMD{c.name}",
+        c.opcode,
+        c.scope,
+        c.args,
+        c.arg_words,
+        c.reply,
+        c.reply_words,
+        {},
+        f"{c.name}: {c.summary}",
+    )
+
+
+def table_call(k, by_opcode, magellan, symbol=None) -> Call:
+    """A cmotion_calls.csv row: what it sends, and what a Navigator makes of it."""
+    command = by_opcode.get(k.opcode)
+    if k.inherit and command:
+        args, arg_words, reply, reply_words = command.args, command.arg_words, command.reply, command.reply_words
+    else:
+        args, arg_words, reply, reply_words = k.args, k.arg_words, k.reply, k.reply_words
+    if command:
+        what = f"{k.name}: C-Motion 5.x's call, the Navigator's {command.name}"
+    else:
+        what = f"{k.name}: {magellan[k.opcode]}; a Navigator answers invalid instruction"
+    return Call(
+        symbol or f"PMD{k.name}", k.opcode, k.scope or "axis", args, arg_words, reply, reply_words, k.types, what
+    )
 
 
 def encode_lines(c):
-    """The statements that fill args[] from the arguments, and the range check of packed fields
-    (a value that does not fit its field is refused, nothing masked: chip.py's encode)."""
+    """The statements that fill args[] from the arguments, and the range checks: a packed field's
+    value must fit its bits, a 32-bit value (a long, 64 bits on LP64 hosts, as the vendor's
+    PMDint32/PMDuint32) must be a 32-bit word's; nothing is masked (chip.py's encode)."""
     checks, lines = [], []
     words = {}
     for f in c.args:
         if f.kind == "bits":
-            if f.width < (8 if bits_type(f) == "PMDuint8" else 16):  # else the C type cannot exceed it
+            if f.width < (8 if c_type(f, c.types) == "PMDuint8" else 16):  # else the C type cannot exceed it
                 checks.append(f"{f.name} > 0x{(1 << f.width) - 1:X}u")
             words.setdefault(f.word, []).append(f"((PMDuint16){f.name} << {f.shift})")
         elif f.width == 32:
+            checks.append(
+                f"!PMDFMU_FitsU32((unsigned long long){f.name})"
+                if f.kind == "u32"
+                else f"!PMDFMU_FitsS32((long long){f.name})"
+            )
             lines.append(f"args[{f.word}] = (PMDuint16)((PMDuint32){f.name} >> 16);")
             lines.append(f"args[{f.word + 1}] = (PMDuint16)((PMDuint32){f.name} & 0xFFFFu);")
         else:
@@ -85,7 +144,7 @@ def decode_lines(c):
     """The statements that store reply[] into the result pointers (chip.py's decode)."""
     lines = []
     for f in c.reply:
-        t = c_type(f)
+        t = c_type(f, c.types)
         if f.kind == "bits":
             value = f"({t})((reply[{f.word}] >> {f.shift}) & 0x{(1 << f.width) - 1:X}u)"
         elif f.width == 32:
@@ -93,6 +152,8 @@ def decode_lines(c):
             value = f"PMDFMU_Int32({raw})" if f.signed else raw
         else:
             value = f"PMDFMU_Int16(reply[{f.word}])" if f.signed else f"reply[{f.word}]"
+            if t not in ("PMDuint16", "PMDint16"):
+                value = f"({t}){value}"
         lines.append(f"if ({f.name}) *{f.name} = {value};")
     return lines
 
@@ -116,58 +177,234 @@ def function(c) -> str:
         body.append("return PMD_ERR_OK;")
     else:
         body.append(f"return {call};")
-    return "\n".join([comment(c), signature(c), "{", *("    " + line for line in body), "}", ""])
+    return "\n".join([c.comment(), c.signature(), "{", *("    " + line for line in body), "}", ""])
 
 
-def header(commands, constants) -> str:
+def calls_of(commands, table, magellan):
+    """Every generated call, and the names whose 2.x and 5.x forms differ: name -> (2.x symbol, 5.x
+    symbol). A cmotion_calls.csv row named as a commands.csv command is that command's 5.x form;
+    the header picks one by PMD_CMOTION_GENERATION."""
+    names = {c.name for c in commands}
+    by_opcode = {c.opcode: c for c in commands}
+    variants = {k.name: (f"PMD{k.name}_2", f"PMD{k.name}_5") for k in table if k.opcode is not None and k.name in names}
+    out = [command_call(c, variants[c.name][0] if c.name in variants else None) for c in commands]
+    for k in table:
+        if k.opcode is None:
+            continue
+        if k.opcode not in by_opcode and k.opcode not in magellan:
+            raise ValueError(
+                f"cmotion_calls.csv: {k.name}: opcode 0x{k.opcode:02X} is in neither commands.csv nor out_of_scope.csv"
+            )
+        out.append(table_call(k, by_opcode, magellan, variants[k.name][1] if k.name in variants else None))
+    return out, variants
+
+
+def constants_header(constants, names, errors) -> str:
+    """PMDconstants.h: the Navigator's constants (constants.csv), the 5.x names (cmotion_names.csv, one
+    typedef enum per vendor type) and the result codes (cmotion_errors.csv). A name both generations
+    define with different values takes the one of PMD_CMOTION_GENERATION."""
     out = [
-        HEADER.format("commands.csv and constants.csv"),
-        "#ifndef PMD_C_MOTION_H",
-        "#define PMD_C_MOTION_H",
+        HEADER.format("constants.csv, cmotion_names.csv and cmotion_errors.csv"),
+        "#ifndef PMD_CONSTANTS_H",
+        "#define PMD_CONSTANTS_H",
         "",
-        "/* C-Motion (the 2.x API of PMD's Navigator C-Motion) over the PMDMotionProcessor FMU:",
-        "   open a chip with PMDSetupAxisInterface_FMU (PMDfmu.h), then call PMD<Command>(&hAxis, ...).",
-        "   Every call returns the chip's host I/O error code (PMD_ERR_OK = 0) or a host-side code",
-        "   (PMDtypes.h); a Get stores its values through its pointers only when it succeeds. */",
+        "/* The C-Motion constants of constants.csv, one enum per group. A program that declares a",
+        "   group itself (seed 000's section 1.1 declares the buffer functions) defines",
+        "   PMD_OMIT_CONSTANTS_<group> before including the headers. */",
+    ]
+    navigator = {}
+    for _group, name, value in constants:
+        if name in navigator:
+            raise ValueError(f"constants.csv: {name} twice")
+        navigator[name] = value
+    later = {name: value for _g, name, value in names}
+    later.update({name: value for name, value, _m in errors})
+
+    def entry(name, value, mine, other):
+        text = f"    {name} = {f'0x{value:X}' if value > 9 else value},"
+        if name in other and other[name] != value:
+            return [f"#if PMD_CMOTION_GENERATION {'== 2' if mine == 2 else '!= 2'}", text, "#endif"]
+        return [text]
+
+    groups = []
+    for group, name, value in constants:
+        if not groups or groups[-1][0] != group:
+            groups.append((group, []))
+        groups[-1][1].append((name, value))
+    for group, rows in groups:
+        out += [f"#ifndef PMD_OMIT_CONSTANTS_{group}", "enum {"]
+        for name, value in rows:
+            out += entry(name, value, 2, later)
+        out += [f"}};    /* {group} */", "#endif"]
+    out += ["", "/* C-Motion 5.x's names (cmotion_names.csv), under the vendor's type names. */"]
+    groups = []
+    for group, name, value in names:
+        if not groups or groups[-1][0] != group:
+            groups.append((group, []))
+        groups[-1][1].append((name, value))
+    for group, rows in groups:
+        body, plain = [], 0
+        for name, value in rows:
+            if name in navigator and navigator[name] == value:
+                continue  # the same constant under the same name: declared once, above
+            lines = entry(name, value, 5, navigator)
+            plain += len(lines) == 1
+            body += lines
+        if plain:
+            out += ["typedef enum {", *body, f"}} {group};"]
+        elif body:
+            # every name is 5.x's only where 2.x has another value: the type is an int in 2.x
+            out += [
+                "#if PMD_CMOTION_GENERATION != 2",
+                "typedef enum {",
+                *(line for line in body if not line.startswith("#")),
+                f"}} {group};",
+                "#else",
+                f"typedef int {group};",
+                "#endif",
+            ]
+        else:
+            out += [f"typedef int {group};    /* its names are constants.csv's, above */"]
+    out += [
         "",
-        '#include "PMDtypes.h"',
+        "/* C-Motion 5.x's result codes (cmotion_errors.csv); 0x01-0x23 are the chip's. */",
+        "typedef enum PMDErrorCodesEnum {",
+    ]
+    for name, value, _m in errors:
+        if name in navigator and navigator[name] == value:
+            continue
+        out += entry(name, value, 5, navigator)
+    out += ["} PMDErrorCode;", "", "#endif", ""]
+    return "\n".join(out)
+
+
+def opcodes_header(commands, magellan, table) -> str:
+    """PMDocode.h: PMDOP<name> = opcode for every command of commands.csv and out_of_scope.csv (the
+    Magellan's SetSampleTime and GetSampleTime under PMD_CMOTION_GENERATION 5), and the 5.x names of
+    Navigator opcodes (cmotion_calls.csv)."""
+    out = [
+        HEADER.format("commands.csv, out_of_scope.csv and cmotion_calls.csv"),
+        "#ifndef PMD_OCODE_H",
+        "#define PMD_OCODE_H",
+        "",
+        "enum {",
+    ]
+    navigator = {c.name: c.opcode for c in commands}
+    seen = set()
+    for c in commands:
+        text = f"    PMDOP{c.name} = 0x{c.opcode:02X},"
+        if c.name in magellan.values():
+            out += ["#if PMD_CMOTION_GENERATION == 2", text, "#endif"]
+        else:
+            out.append(text)
+        seen.add(c.name)
+    for opcode, name in sorted(magellan.items()):
+        text = f"    PMDOP{name} = 0x{opcode:02X},"
+        if name in navigator:
+            out += ["#if PMD_CMOTION_GENERATION != 2", text, "#endif"]
+        else:
+            out.append(text)
+        seen.add(name)
+    for k in table:
+        if k.opcode is not None and k.name not in seen and k.opcode in navigator.values():
+            out.append(f"    PMDOP{k.name} = 0x{k.opcode:02X},")
+    out += ["};", "", "#endif", ""]
+    return "\n".join(out)
+
+
+def calls_header(calls, variants) -> str:
+    out = [
+        HEADER.format("commands.csv and cmotion_calls.csv"),
+        "#ifndef PMD_CALLS_H",
+        "#define PMD_CALLS_H",
+        "",
+        "/* C-Motion's calls of the chip: every command of commands.csv under its Navigator name and",
+        "   arguments, and every call of cmotion_calls.csv (C-Motion 5.x's names, and the Magellan's",
+        "   commands, which a Navigator refuses as invalid instructions). Every call returns the chip's",
+        "   host I/O error code (PMD_ERR_OK = 0) or a host-side code; a Get stores its values through its",
+        "   pointers only when it succeeds. */",
+        "",
+        '#include "PMDfmu_types.h"',
         '#include "PMDfmu.h"',
         "",
         "#ifdef __cplusplus",
         'extern "C" {',
         "#endif",
         "",
-        "/* The C-Motion constants of constants.csv, one enum per group. A program that declares a",
-        "   group itself (seed 000's section 1.1 declares the buffer functions) defines",
-        "   PMD_OMIT_CONSTANTS_<group> before including this header. */",
     ]
-    groups = []
-    for group, name, value in constants:
-        if not groups or groups[-1][0] != group:
-            groups.append((group, []))
-        groups[-1][1].append((name, value))
-    seen = set()
-    for group, rows in groups:
-        guard = f"PMD_OMIT_CONSTANTS_{group}"
-        out += [f"#ifndef {guard}", "enum {"]
-        for name, value in rows:
-            if name in seen:
-                raise ValueError(f"constants.csv: {name} twice")
-            seen.add(name)
-            text = f"0x{value:X}" if value > 9 else str(value)
-            out.append(f"    {name} = {text},")
-        out += [f"}};    /* {group} */", "#endif"]
-    out += ["", "/* The commands of commands.csv. */"]
-    for c in commands:
-        out += [comment(c), signature(c) + ";"]
+    for c in calls:
+        out += [c.comment(), c.signature() + ";"]
+    out += ["", "/* Where the generations' signatures differ, PMD_CMOTION_GENERATION picks the name's form. */"]
+    for name, (two, five) in variants.items():
+        out += [
+            "#if PMD_CMOTION_GENERATION == 2",
+            f"#define PMD{name} {two}",
+            "#else",
+            f"#define PMD{name} {five}",
+            "#endif",
+        ]
     out += ["", "#ifdef __cplusplus", "}", "#endif", "", "#endif", ""]
     return "\n".join(out)
 
 
-def source(commands) -> str:
-    out = [HEADER.format("commands.csv"), "#include <stddef.h>", '#include "c-motion.h"', ""]
-    out += [function(c) for c in commands]
+def errors_source(errors, magellan, commands) -> str:
+    """PMDGetErrorMessage (the vendor's texts, cmotion_errors.csv) and PMDGetOpcodeText."""
+    out = ["", "const char *PMDGetErrorMessage(PMDresult errorCode)", "{", "    switch (errorCode) {"]
+    seen = set()
+    for name, value, message in errors:
+        if value in seen or not message:
+            continue
+        seen.add(value)
+        out.append(f'    case 0x{value:X}: return "{message}";    /* {name} */')
+    out += [
+        '    default: return "Undefined error occurred";',
+        "    }",
+        "}",
+        "",
+        "const char *PMDGetOpcodeText(PMDuint16 opCode)",
+        "{",
+        "    switch (opCode) {",
+    ]
+    names = {c.opcode: c.name for c in commands}
+    names.update({op: n for op, n in magellan.items() if op not in names})
+    for opcode, name in sorted(names.items()):
+        out.append(f'    case 0x{opcode:02X}: return "{name}";')
+    out += ['    default: return "Unknown opcode";', "    }", "}", ""]
     return "\n".join(out)
+
+
+def source(calls, errors, magellan, commands) -> str:
+    out = [
+        HEADER.format("commands.csv, cmotion_calls.csv and cmotion_errors.csv"),
+        "#include <stddef.h>",
+        '#include "c-motion.h"',
+        "",
+    ]
+    out += [function(c) for c in calls]
+    out.append(errors_source(errors, magellan, commands))
+    return "\n".join(out)
+
+
+# the vendor's header names a program includes, with or without the c-motion/ folder; each one is
+# the whole API here (host/c/PMDcmotion.h), so any subset a program picks compiles
+VENDOR_HEADERS = (
+    "c-motion.h",
+    "C-Motion.h",
+    "PMDtypes.h",
+    "PMDocode.h",
+    "PMDecode.h",
+    "PMDdevice.h",
+    "PMDperiph.h",
+    "PMDdiag.h",
+    "PMDsys.h",
+    "PMDutil.h",
+    "PMDRPtypes.h",
+    "PMDser.h",
+    "PMDpar.h",
+    "PMDW32Ser.h",
+    "PMDtrans.h",
+    "PMDintf.h",
+)
 
 
 def ports(variables, commands):
@@ -233,24 +470,89 @@ def ports(variables, commands):
     return "\n".join(h), "\n".join(c)
 
 
-def main(outdir: Path) -> None:
+MARKDOWN_BEGIN = "<!-- the calls: generated by modelDescription/generate_cmotion.py --markdown -->"
+MARKDOWN_END = "<!-- end of the calls -->"
+
+
+def calls_markdown() -> str:
+    """docs/c-motion.md's list of every call of both generations with what it does here, from the
+    tables (tests/test_cmotion_programs.py keeps the page in step)."""
+    commands, table, magellan = read_tables()[:3]
+    by_opcode = {c.opcode: c for c in commands}
+    names = {c.name for c in commands}
+    variants = {k.name for k in table if k.opcode is not None and k.name in names}
+    rows = []
+    for c in commands:
+        era = "2.x" if c.name in variants else "2.x, 5.x"
+        rows.append((c.name, era, f"0x{c.opcode:02X} {c.summary.rstrip('.')}"))
+    for k in table:
+        era = ", ".join(f"{e}.x" for e in k.era)
+        if k.opcode is None:
+            what = k.summary
+        elif k.opcode in by_opcode:
+            command = by_opcode[k.opcode]
+            if k.inherit or (k.arg_words, k.reply_words) == (command.arg_words, command.reply_words):
+                what = f"the Navigator's {command.name} (0x{k.opcode:02X})" + (
+                    ", the 5.x argument types" if k.name == command.name else ", under its 5.x name"
+                )
+            else:
+                words = f"{k.arg_words} argument word{'s' if k.arg_words != 1 else ''}"
+                what = (
+                    f"sends 0x{k.opcode:02X} (the Magellan's opcode) with {words}: a Navigator reads 0x{k.opcode:02X} "
+                    f"as its {command.name}"
+                )
+            if k.name in variants:
+                era = "5.x"
+        else:
+            what = (
+                f"sends 0x{k.opcode:02X}, the Magellan's {magellan[k.opcode]}: a Navigator answers invalid instruction"
+            )
+            if k.name in variants:
+                era = "5.x"
+        rows.append((k.name, era, what))
+    out = [MARKDOWN_BEGIN, "", "| call | generation | here |", "|---|---|---|"]
+    out += [f"| `PMD{name}` | {era} | {what.replace('|', '/')} |" for name, era, what in rows]
+    return "\n".join(out + ["", MARKDOWN_END])
+
+
+def read_tables():
     commands = tables.read_commands(HERE / "commands.csv", HERE / "constants.csv")
+    table = tables.read_cmotion_calls(HERE / "cmotion_calls.csv", HERE / "constants.csv")
+    with open(HERE / "out_of_scope.csv", newline="") as f:
+        magellan = {int(r["opcode"], 16): r["name"] for r in csv.DictReader(f)}
+    return commands, table, magellan
+
+
+def main(outdir: Path) -> None:
+    commands, table, magellan = read_tables()
     constants = tables.read_constants(HERE / "constants.csv")
     variables = tables.read_variables(HERE / "variables.csv")
+    names = tables.read_cmotion_names(HERE / "cmotion_names.csv")
+    errors = tables.read_cmotion_errors(HERE / "cmotion_errors.csv")
+    calls, variants = calls_of(commands, table, magellan)
     outdir.mkdir(parents=True, exist_ok=True)
     ports_h, ports_c = ports(variables, commands)
-    write_files(
-        outdir,
-        {
-            "c-motion.h": header(commands, constants),
-            "c-motion.c": source(commands),
-            "PMDfmu_ports.h": ports_h,
-            "PMDfmu_ports.c": ports_c,
-        },
-    )
+    files = {
+        "PMDconstants.h": constants_header(constants, names, errors),
+        "PMDopcodes.h": opcodes_header(commands, magellan, table),
+        "PMDcalls.h": calls_header(calls, variants),
+        "c-motion.c": source(calls, errors, magellan, commands),
+        "PMDfmu_ports.h": ports_h,
+        "PMDfmu_ports.c": ports_c,
+    }
+    # every vendor header name, also under the c-motion/ folder some programs name: the whole API
+    files.update({name: UMBRELLA for name in VENDOR_HEADERS})
+    files.update({f"c-motion/{name}": UMBRELLA for name in VENDOR_HEADERS})
+    write_files(outdir, files)
+
+
+UMBRELLA = '/* Generated by modelDescription/generate_cmotion.py: do not edit. */\n#include "PMDcmotion.h"\n'
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
+    if sys.argv[1:] == ["--markdown"]:
+        print(calls_markdown())
+    elif len(sys.argv) == 2:
+        main(Path(sys.argv[1]))
+    else:
         sys.exit(__doc__)
-    main(Path(sys.argv[1]))

@@ -20,14 +20,23 @@ def generate(out: Path) -> Path:
     return out
 
 
-def compile_program(source: Path, exe: Path, generated: Path, sanitize: str = "") -> Path:
-    """source linked with the library into exe; sanitize: "" or a -fsanitize= list."""
-    library = [HOST_C / "PMDfmu.c", HOST_C / "PMDhosttime.c", generated / "c-motion.c", generated / "PMDfmu_ports.c"]
+def compile_program(source: Path, exe: Path, generated: Path, sanitize: str = "", warnings: bool = False) -> Path:
+    """source linked with the library into exe; sanitize: "" or a -fsanitize= list; warnings: the
+    project's own flags (-Wall -Wextra -Wpedantic -Werror) for library and program alike."""
+    library = [
+        HOST_C / "PMDfmu.c",
+        HOST_C / "PMDhosttime.c",
+        HOST_C / "PMDdevice.c",
+        generated / "c-motion.c",
+        generated / "PMDfmu_ports.c",
+    ]
     flags = (
         ["-O1"]
         if not sanitize
         else ["-O1", "-g", "-fno-omit-frame-pointer", f"-fsanitize={sanitize}", "-fno-sanitize-recover=all"]
     )
+    if warnings:
+        flags += ["-Wall", "-Wextra", "-Wpedantic", "-Werror"]
     subprocess.run(
         [
             "cc",

@@ -306,8 +306,9 @@ def transcribe_1_6(chip, cycles=5000):
 
 
 def test_seed_1_6_breakpoint_interrupt_at_completion_as_the_python_transcription(programs):
-    cycles, results, errors = run_c(programs, "seed_1_6")
-    assert not errors
+    """With the Update the text means (`meant`), between the snippet's two paragraphs."""
+    cycles, results, errors = run_c(programs, "seed_1_6", "meant")
+    assert errors == [["PMDUpdate(PMDAxis1)", "0x1106"]]
     with pmdfmu.Chip() as chip:
         t, started = transcribe_1_6(chip)
     assert cycles == t.cycles and results == t.results == [["breakpoint", "0", "0", "0"]]
@@ -323,8 +324,8 @@ def test_seed_1_6_polling_loop_ends_at_completion_plus_the_transfer_time(program
     completing cycle; the chip's cycles are those of the run without polling."""
     from pmdfmu.hosttime import HostInterface
 
-    cycles, results, errors = run_c(programs, "seed_1_6", "poll", host=None)
-    assert not errors
+    cycles, results, errors = run_c(programs, "seed_1_6", "meant", "poll", host=None)
+    assert errors == [["PMDUpdate(PMDAxis1)", "0x1106"]]
     start, end, polls = (int(x) for x in results[0][1:])
     host = HostInterface("parallel16")
     per_poll = host.request_ns(1) + host.reply_ns(1)
@@ -342,6 +343,32 @@ def test_seed_1_6_polling_loop_ends_at_completion_plus_the_transfer_time(program
     polled = [c[1:] for c in cycles[started:]]
     assert polled == [c[1:] for c in t.cycles[t_started : t_started + len(polled)]]
     assert field_ex(polled[-1][3], "PMDActivityProfileSegment") == 0 and polled[-1][-1] == 1  # interrupt
+
+
+@pytest.mark.parametrize("mode", [[], ["poll"]])
+def test_seed_1_6_as_printed_its_update_of_an_axis_number_is_refused_unsent(programs, mode):
+    """PMDUpdate(PMDAxis1) hands the library a null handle: PMD_ERR_InvalidHandle, no crash, and
+    the chip never sees an Update, so the external profile never starts: no cycle shows a profile
+    segment, and the chip's cycles are the transcription's without the Update (whose breakpoint,
+    "bit 13 low", then fires at once)."""
+    cycles, results, errors = run_c(programs, "seed_1_6", *mode)
+    assert errors == [["PMDUpdate(PMDAxis1)", "0x1106"]]
+    assert not any(field_ex(c[4], "PMDActivityProfileSegment") for c in cycles)
+    if not mode:
+        with pmdfmu.Chip() as chip:
+            t = Transcription(chip)
+            t.setup_buffers(3)
+            t.populate(3)
+            t.initial_moves(range(3))
+            t.wait_at_rest(3)
+            ax = t.hAxis[0]
+            ax.SetProfileMode(PMDExternalProfile)
+            ax.SetInterruptMask(pmdfmu.PMDEventBreakpoint1Mask)
+            ax.SetBreakpointValue(pmdfmu.PMDBreakpoint1, (0x2000 << 16) | 0x0000)
+            ax.SetBreakpoint(pmdfmu.PMDBreakpoint1, 0, pmdfmu.PMDBreakpointNoAction, pmdfmu.PMDBreakpointActivityStatus)
+            t.run(5000)
+            t.results.append(["breakpoint", *map(str, ax.GetBreakpoint(pmdfmu.PMDBreakpoint1))])
+        assert cycles == t.cycles and results == t.results
 
 
 def test_the_example_host_program_runs_to_completion(programs):

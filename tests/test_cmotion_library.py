@@ -20,7 +20,7 @@ from cmotion_build import ROOT, compile_program, generate
 
 SANITIZERS = {"thread": "thread", "address": "address,undefined"}
 FLAVOURS = ["plain"] + [s for s in os.environ.get("PMDFMU_C_SANITIZERS", "").split(",") if s]
-PMD_ERR_Driver, PMD_ERR_OpeningPort = 0x1208, 0x1205  # host/c/PMDtypes.h
+PMD_ERR_Driver, PMD_ERR_OpeningPort = 0x1208, 0x1205  # modelDescription/cmotion_errors.csv
 
 pytestmark = [pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler"), pytest.mark.slow]  # compiles programs
 

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The README is a front door whose examples run: its Python blocks print what their `# ->` lines
-say, its C program compiles against the C-Motion library and prints what it says (the CI gate's
+say, its C programs compile against the C-Motion library and prints what it says (the CI gate's
 commands are run by tests/test_verify_cli.py, the systems' by tests/test_systems.py)."""
 
 import os
@@ -37,13 +37,16 @@ def test_every_python_block_prints_what_it_says(tmp_path):
 
 
 @pytest.mark.slow
-def test_the_c_program_runs_to_its_printed_position(tmp_path):
-    (code,) = blocks("c")
-    source = tmp_path / "first.c"
-    source.write_text(code)
-    exe = compile_program(source, tmp_path / "first", generate(tmp_path / "generated"))
-    (tmp_path / "build").mkdir()
-    os.symlink(pmdfmu.default_fmu(2), tmp_path / "build" / "PMDMotionProcessor-fmi2.fmu")
-    done = subprocess.run([str(exe)], cwd=tmp_path, capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
-    assert done.stdout.split() == re.findall(r"/\* -> (\S+) \*/", code)
+def test_the_c_programs_run_to_their_printed_results(tmp_path):
+    """The 2.x and the 5.x program, each compiled as shown, opening the twin from its own set-up code."""
+    programs = blocks("c")
+    assert len(programs) == 2
+    generated = generate(tmp_path / "generated")
+    for n, code in enumerate(programs):
+        source = tmp_path / f"program{n}.c"
+        source.write_text(code)
+        exe = compile_program(source, tmp_path / f"program{n}", generated)
+        env = dict(os.environ, PMDFMU_FMU=str(pmdfmu.default_fmu(2)))
+        done = subprocess.run([str(exe)], cwd=tmp_path, capture_output=True, text=True, timeout=120, env=env)
+        assert done.returncode == 0, done.stderr
+        assert done.stdout.split() == re.findall(r"/\* -> (\S+) \*/", code)

@@ -16,7 +16,7 @@
 #define PMDFMU_VERSION "0.1.0"
 
 #include <stdint.h>
-#include "PMDtypes.h"
+#include "PMDfmu_types.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -128,6 +128,18 @@ static inline PMDint32 PMDFMU_Int32(PMDuint32 x)
 static inline PMDint16 PMDFMU_Int16(PMDuint16 x)
 {
     return (PMDint16)(x < 0x8000u ? (int)x : (int)x - 0x10000);
+}
+
+/* Whether a 32-bit argument's value, held in a long (64 bits on LP64 hosts, as the vendor's
+   PMDint32 and PMDuint32), is a 32-bit word's: any int32 or uint32 value, whichever the
+   parameter's signedness (a program that writes 0xFFFF0000 for -65536 meant the word). */
+static inline int PMDFMU_FitsS32(long long x)
+{
+    return x >= -2147483647LL - 1 && x <= 4294967295LL;
+}
+static inline int PMDFMU_FitsU32(unsigned long long x)
+{
+    return x <= 0xFFFFFFFFull || x >= 0xFFFFFFFF80000000ull;
 }
 
 #ifdef __cplusplus

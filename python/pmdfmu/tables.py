@@ -339,3 +339,67 @@ def read_constants(path: Path) -> List[Tuple[str, str, int]]:
     """(group, C-Motion name, value) rows."""
     with open(path, newline="") as f:
         return [(r["group"], r["name"], int(r["value"], 0)) for r in csv.DictReader(f)]
+
+
+@dataclass(frozen=True)
+class CMotionCall:
+    """A C-Motion call that is not a command of commands.csv under its own name and arguments: a row
+    of cmotion_calls.csv. With an opcode it is sent to the chip like any command (a Magellan-only
+    opcode of out_of_scope.csv, or a Navigator opcode under the 5.x name or argument types); without
+    one it is a library call written in host/c (opening, closing, messages), listed for the docs."""
+
+    name: str
+    opcode: Optional[int]
+    scope: str
+    era: Tuple[str, ...]  # the generations whose API has the name: ("2",), ("5",), ("2", "5")
+    args: Tuple[Field, ...]
+    arg_words: int
+    reply: Tuple[Field, ...]
+    reply_words: int
+    inherit: bool  # no fields given: the opcode's commands.csv fields
+    types: Dict[str, str]  # field -> the C type the generation's header gives it, where not its kind's
+    summary: str
+
+
+def read_cmotion_calls(path: Path, constants: Optional[Path] = None) -> List[CMotionCall]:
+    """The rows of cmotion_calls.csv (fields in commands.csv's notation)."""
+    fields = read_fields(constants or Path(path).parent / "constants.csv")
+    out: List[CMotionCall] = []
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            args, nargs = parse_fields(row["args"], fields)
+            reply, nreply = parse_fields(row["reply"], fields)
+            era = tuple(row["era"].split())
+            if not era or set(era) - {"2", "5"}:
+                raise ValueError(f"{path}: {row['call']}: era must be 2, 5 or '2 5'")
+            types = dict(t.split("=", 1) for t in row["types"].split())
+            out.append(
+                CMotionCall(
+                    row["call"],
+                    int(row["opcode"], 16) if row["opcode"] else None,
+                    row["scope"],
+                    era,
+                    args,
+                    nargs,
+                    reply,
+                    nreply,
+                    not row["args"] and not row["reply"],
+                    types,
+                    row["summary"],
+                )
+            )
+    if len({c.name for c in out}) != len(out):
+        raise ValueError(f"{path}: a call twice")
+    return out
+
+
+def read_cmotion_names(path: Path) -> List[Tuple[str, str, int]]:
+    """(the 5.x type name, the constant's name, value) rows of cmotion_names.csv."""
+    with open(path, newline="") as f:
+        return [(r["group"], r["name"], int(r["value"], 0)) for r in csv.DictReader(f)]
+
+
+def read_cmotion_errors(path: Path) -> List[Tuple[str, int, str]]:
+    """(name, value, the vendor's message) rows of cmotion_errors.csv."""
+    with open(path, newline="") as f:
+        return [(r["name"], int(r["value"], 0), r["message"]) for r in csv.DictReader(f)]

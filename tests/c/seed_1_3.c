@@ -7,8 +7,8 @@
    Around them (seed_support.h, as plain library calls): 1.1's buffers for three axes, 1.4's
    initial moves and synchronized start, and the cycles run. Added declarations: the sizes the
    snippets name (num_axes, num_variables, num_data_entries; memory_start, memory_size as 1.1
-   sets them), buffer_id, write_offset, buffer_length, free_buffer_entries and the storage
-   type PMDUINT32 (seed_support.h).
+   sets them), buffer_id, write_offset, buffer_length, free_buffer_entries. Its storage
+   type PMDUINT32 is the library's (host/c/PMDfmu_types.h).
 
    The snippets declare `data` and then read it: "the storage structure is simplified", so the
    program fills it (fill(), the scenario's tables) between the declaration and the loop.

@@ -20,9 +20,6 @@
 #include "c-motion.h"
 #include "PMDhosttime.h"
 
-/* the storage type seed 1.3 names: C-Motion's 32-bit unsigned integer */
-typedef PMDuint32 PMDUINT32;
-
 #define SEED_AXES 4
 #define SEGMENT_CYCLES 64          /* cycles of each leg of the scenario's tables */
 #define SEED_ENTRIES 5             /* rows of each axis's table: four legs and a time-0 row */
@@ -57,7 +54,10 @@ static void check(PMDresult result, const char *call)
         printf("E %s 0x%X\n", call, (unsigned)result);
 }
 
-/* Opens the chip (the FMU of $PMDFMU_FMU or the build tree's) with hAxis[0..3] on its axes. */
+/* Opens the chip the 2.x way, PMDSetupAxisInterface_Serial + PMDCopyAxisInterface (the twin
+   in-process: the FMU of $PMDFMU_FMU or the build tree's), with hAxis[0..3] on its axes; the
+   options give every opening the cycle printer and the host interface ($PMDFMU_HOST_INTERFACE,
+   else the library's default, parallel16, whatever link the opening names). */
 static void seed_open(void)
 {
     PMDFMUOptions options;
@@ -75,9 +75,10 @@ static void seed_open(void)
         host = PMDHostInterfaceOf(PMDHostInterfaceKind(name));
     }
     options.hostInterface = &host;
-    r = PMDSetupAxisInterface_FMU(&hAxis[PMDAxis1], PMDAxis1, &options);
+    PMDFMU_SetOpenOptions(&options);
+    r = PMDSetupAxisInterface_Serial(&hAxis[PMDAxis1], PMDAxis1, 1);
     if (r != PMD_ERR_OK) {
-        fprintf(stderr, "PMDSetupAxisInterface_FMU: 0x%X\n", (unsigned)r);
+        fprintf(stderr, "PMDSetupAxisInterface_Serial: 0x%X %s\n", (unsigned)r, PMDGetErrorMessage(r));
         exit(1);
     }
     for (axis = 1; axis < SEED_AXES; axis++)
