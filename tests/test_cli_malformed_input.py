@@ -201,17 +201,22 @@ def test_run_answers_a_common_mistake_with_one_line(tmp_path, capsys, mistake, e
         ("missing", "nope.fmu: No such file or directory"),
         ("a folder", "a folder, not a regular file"),
         ("a zip without a model description", "g.npz: not an FMU"),
+        ("no zip", "x.fmu: not an FMU: File is not a zip file"),
     ],
 )
-def test_info_answers_a_bad_fmu_with_one_line(tmp_path, capsys, what, expected):
+@pytest.mark.parametrize("command", ["info", "validate"])
+def test_info_and_validate_answer_a_bad_fmu_with_one_line_naming_it(tmp_path, capsys, what, expected, command):
     fmu = {
         "missing": tmp_path / "nope.fmu",
         "a folder": tmp_path,
         "a zip without a model description": EXAMPLES / "ci" / "two_axis.golden.npz",
+        "no zip": tmp_path / "x.fmu",
     }[what]
     if what.startswith("a zip"):
         fmu = shutil.copy(fmu, tmp_path / "g.npz")
-    assert_one_line(cli(capsys, "info", fmu), "info", expected)
+    if what == "no zip":
+        fmu.write_text("not a zip")
+    assert_one_line(cli(capsys, command, fmu), command, expected)
 
 
 def test_a_genuine_bug_keeps_its_traceback(monkeypatch, capsys):

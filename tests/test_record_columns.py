@@ -255,6 +255,31 @@ def test_an_interrupt_after_a_lent_step_leaves_no_loan_and_recording_off(monkeyp
         assert holds_no_loan(chip, loans)
 
 
+def test_a_lent_step_whose_dostep_fails_ends_the_loan_and_the_next_run_is_a_fresh_chips(monkeypatch):
+    """The second chunk's doStep refused inside the native lent step (a communication point the FMU is not
+    at): FMICallException naming fmi2DoStep, the loan ended by that same call, record.enabled off, and the
+    next run records as a fresh chip at the same cycle does."""
+    loans = spy_loans(monkeypatch)
+    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 100}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+        for c in (chip, ref):
+            busy_chip(c)
+        spy = recording.lent_stepper
+
+        def failing(c):
+            step_into = spy(c)
+            return lambda address, size, now, step: step_into(address, size, now + (len(loans) == 1), step)
+
+        monkeypatch.setattr(recording, "lent_stepper", failing)
+        with pytest.raises(FMICallException, match="fmi2DoStep"):
+            chip.run(300, record=record_outputs([0]))
+        assert len(loans) == 2 and chip.cycles == 100 and not chip.get("record.enabled")
+        assert any("fmi2DoStep" in m.message for m in chip.messages if m.status == "Error")
+        monkeypatch.setattr(recording, "lent_stepper", spy)
+        ref.run(100)
+        assert chip.run(300, record=record_outputs([0])).tobytes() == ref.run(300, record=record_outputs([0])).tobytes()
+        assert holds_no_loan(chip, loans)
+
+
 def test_a_grid_change_the_harness_cannot_redo_raises(monkeypatch, tmp_path):
     """The last guard: a recording step that ran other cycles than its rows (doStep's Warning) with no saved
     state to redo it from raises RuntimeError. Here the harness is made to believe the chip has no script."""

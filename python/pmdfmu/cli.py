@@ -405,8 +405,7 @@ def cmd_validate(args) -> int:
     from fmpy.validation import validate_fmu
 
     failed = 0
-    for path in [args.fmu] if args.fmu else [default_fmu(2), default_fmu(3)]:
-        files.check_regular(path)
+    for path in [_fmu_file(args.fmu)] if args.fmu else [default_fmu(2), default_fmu(3)]:
         problems = validate_fmu(str(path))
         for p in problems:
             print(p)
