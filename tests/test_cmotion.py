@@ -419,7 +419,7 @@ SANITIZED = [s for s in os.environ.get("PMDFMU_C_SANITIZERS", "").split(",") if 
 @pytest.mark.skipif(not SANITIZED, reason="PMDFMU_C_SANITIZERS names no sanitizer (./dev sanitize does)")
 @pytest.mark.parametrize("flavour", SANITIZED)
 @pytest.mark.parametrize(
-    "name, args", [(p, ()) for p in PROGRAMS] + [("seed_1_3", ("dpram",)), ("seed_1_6", ("poll",))]
+    "name, args", [(p, ()) for p in PROGRAMS] + [("seed_1_3", ("dpram",)), ("seed_1_6", ("meant", "poll"))]
 )
 def test_the_programs_under_a_sanitizer_print_what_they_print_plain(programs, tmp_path, flavour, name, args):
     """The seed's programs and the example built with ThreadSanitizer or ASan + UBSan: no report, and the
