@@ -284,10 +284,13 @@ def maestro_run(fmi_version, names, tmp_path, packed):
         if fmi_version == 3:
             # Maestro 3.1.1 sets every FMI 3 parameter itself and takes a Boolean, Int32 or String only
             # from the multi-model (the XML's start arrives as a list it cannot cast), a Float64 only
-            # from the XML (docs/tools.md): the start values, the packed FMU's script among them
-            starts = {v.name: v.start for v in fmpy.read_model_description(str(fmu)).modelVariables}
+            # from the XML (docs/tools.md): the start values, the packed FMU's script and every other
+            # String parameter (machine) among them
+            described = fmpy.read_model_description(str(fmu)).modelVariables
+            strings = {v.name: v.start for v in described if v.type == "String" and v.causality == "parameter"}
+            assert {"script", "machine"} <= set(strings)
             parameters = dict(
-                {"script": starts["script"]},
+                strings,
                 **parameters,
                 loopback=True,
                 memorySize=16384,
