@@ -230,15 +230,23 @@ def test_a_killed_sweeps_folder_is_removed_by_the_next_sweep(cluster, tmp_path):
     assert Path(left[0], "token").exists()  # nothing removed it
     alive = Path(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{os.getpid()}-test")
     alive.mkdir()
-    (alive / "token").write_text(f"{os.getpid()}-abc")
-    held = sweeps._hold(alive / "token")  # as a running sweep holds it
+    held = sweeps._hold(alive / "token", f"{os.getpid()}-abc")  # as a running sweep holds it
+    # a sweep killed between its folder and its token: removed once older than any sweep takes to write it,
+    # a young one (a sweep starting now) left alone
+    tokenless, young = (Path(sweeps.handoff_root(), f"{sweeps.HANDOFF_PREFIX}{os.getpid()}-{n}") for n in "ty")
+    for folder in (tokenless, young):
+        folder.mkdir()
+    old = time.time() - 2 * sweeps.TOKENLESS_AGE
+    os.utime(tokenless, (old, old))
     try:
         with Client(cluster, set_as_default=False) as client:
             pmdfmu.sweep([Case("short", script=str(long_move(tmp_path / "short.script", 100)))], scheduler=client)
         assert not Path(left[0]).exists() and alive.exists()
+        assert not tokenless.exists() and young.exists()
     finally:
         os.close(held)
-        shutil.rmtree(alive, ignore_errors=True)
+        for folder in (alive, tokenless, young):
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def test_a_sweep_interrupted_at_random_times_leaves_no_folder(tmp_path):

@@ -40,6 +40,7 @@ import shutil
 import signal
 import tempfile
 import threading
+import time
 import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -55,7 +56,8 @@ PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
 COLUMNS = ("name", "script", "table", "fmi_version", "max_cycles", *PARAMETERS, "golden", "assertions")
 BATCHES_PER_THREAD = 4  # tasks per worker thread: enough to even out cases of unequal length
 HANDOFF_BYTES = 1 << 20  # a recording this large, or larger, is handed back through a file (when it can be)
-HANDOFF_PREFIX = "pmdfmu-sweep-"  # the handoff folders: pmdfmu-sweep-<pid of the sweep>-<random>
+HANDOFF_PREFIX = "pmdfmu-sweep-"
+TOKENLESS_AGE = 60  # s: a handoff folder this old with no token file is an orphan (_remove_orphans)  # the handoff folders: pmdfmu-sweep-<pid of the sweep>-<random>
 
 
 @dataclass(frozen=True)
@@ -390,8 +392,7 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
     lock = None
     try:
         token = f"{os.getpid()}-{secrets.token_hex(16)}"
-        Path(folder, "token").write_text(token)
-        lock = _hold(Path(folder, "token"))
+        lock = _hold(Path(folder, "token"), token)
         futures = client.map(run_cases, _batches(cases, threads), handoff=(folder, token), pure=False)
         where = {future.key: i for i, future in enumerate(futures)}
         batches: List[list] = [[] for _ in futures]
@@ -407,14 +408,19 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
             os.close(lock)
 
 
-def _hold(token: Path) -> Optional[int]:
-    """A lock on the sweep's token file for as long as the sweep runs (_remove_orphans); its descriptor."""
-    if os.name != "posix":
-        return None
-    import fcntl
+def _hold(path: Path, token: str) -> Optional[int]:
+    """The sweep's token file, made new and locked before the token is written into it, so that another
+    sweep's _remove_orphans never finds it unlocked while this sweep runs; the lock lasts as long as the
+    returned descriptor stays open. Without flock (not POSIX): written, no lock."""
+    fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o600)
+    if os.name == "posix":
+        import fcntl
 
-    fd = os.open(token, os.O_RDONLY)
-    fcntl.flock(fd, fcntl.LOCK_EX)
+        fcntl.flock(fd, fcntl.LOCK_EX)
+    os.write(fd, token.encode())
+    if os.name != "posix":
+        os.close(fd)
+        return None
     return fd
 
 
@@ -443,10 +449,18 @@ def _remove_orphans(root: str) -> None:
     for entry in entries:
         if not entry.name.startswith(HANDOFF_PREFIX):
             continue
+        status = None
         try:
-            if entry.stat(follow_symlinks=False).st_uid != os.getuid() or not entry.is_dir(follow_symlinks=False):
+            status = entry.stat(follow_symlinks=False)
+            if status.st_uid != os.getuid() or not entry.is_dir(follow_symlinks=False):
                 continue
             fd = os.open(os.path.join(entry.path, "token"), os.O_RDONLY | os.O_NOFOLLOW)
+        except FileNotFoundError:
+            # no token: a sweep killed between making its folder and its token (microseconds apart), once
+            # the folder is older than any sweep takes to get there
+            if status is not None and time.time() - status.st_mtime > TOKENLESS_AGE:
+                shutil.rmtree(entry.path, ignore_errors=True)
+            continue
         except OSError:
             continue
         try:
