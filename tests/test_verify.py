@@ -301,6 +301,8 @@ def test_a_malformed_or_missing_npz_is_an_input_error(tmp_path):
         ("[axis1]\nposition_min = 5\nposition_max = 4\n", "a.toml:2: axis1.position_min: is above position_max"),
         ("[axis1]\nmax_velocity = nan\n", "a.toml:2: axis1.max_velocity: nan is not a finite number"),
         ("[axis1]\nmax_jerk = inf\n", "a.toml:2: axis1.max_jerk: inf is not a finite number"),
+        ("[axis2]\ncomplete_by = 1e300\n", "a.toml:2: axis2.complete_by: 1e[+]300 is not a finite number in"),
+        ("[axis2]\nmax_velocity = -1e19\n", "a.toml:2: axis2.max_velocity: -1e[+]19 is not a finite number in"),
         ('[tolerance]\n"axis1.velocity" = nan\n', "a.toml:2: axis1.velocity: the tolerance nan is not a finite number"),
     ],
 )

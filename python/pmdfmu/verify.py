@@ -287,10 +287,11 @@ LIMIT_RANGE = 2**63 - 1  # a limit is compared with int64 columns: beyond it, no
 
 def _limit_number(value) -> bool:
     """A limit or tolerance: a TOML integer or float, finite, within +-LIMIT_RANGE (TOML integers have no
-    bound in tomllib: 10**400 would overflow the float a comparison makes of it)."""
+    bound in tomllib: 10**400 would overflow the float a comparison makes of it; a float such as 1e300
+    is no limit either)."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return False
-    return abs(value) <= LIMIT_RANGE if isinstance(value, int) else math.isfinite(value)
+    return (isinstance(value, int) or math.isfinite(value)) and abs(value) <= LIMIT_RANGE
 
 
 def parse_assertions(data: Mapping, where: str = "assertions", text: Optional[str] = None) -> Assertions:
