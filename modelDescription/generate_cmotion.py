@@ -312,6 +312,22 @@ def opcodes_header(commands, magellan, table) -> str:
     return "\n".join(out)
 
 
+def told_by_pointer(calls, variants):
+    """name -> (reply pointer, its 2.x type, the 5.x call): the variants whose forms a Get's reply pointer
+    tells apart (the same arguments, a reply of another type), so that C11's _Generic can pick one."""
+    by_symbol = {c.symbol: c for c in calls}
+    told = {}
+    for name, (two, five) in variants.items():
+        older, newer = by_symbol[two], by_symbol[five]
+        if [f.name for f in older.args] != [f.name for f in newer.args] or len(older.reply) != len(newer.reply):
+            continue
+        for a, b in zip(older.reply, newer.reply):
+            if c_type(a, older.types) != c_type(b, newer.types):
+                told[name] = (a.name, c_type(a, older.types), newer)
+                break
+    return told
+
+
 def calls_header(calls, variants) -> str:
     out = [
         HEADER.format("commands.csv and cmotion_calls.csv"),
@@ -334,15 +350,29 @@ def calls_header(calls, variants) -> str:
     ]
     for c in calls:
         out += [c.comment(), c.signature() + ";"]
-    out += ["", "/* Where the generations' signatures differ, PMD_CMOTION_GENERATION picks the name's form. */"]
+    out += [
+        "",
+        "/* Where the generations' signatures differ, PMD_CMOTION_GENERATION picks the name's form. Where a",
+        "   program names no generation and a Get's reply pointers differ in type, C11 lets the pointer",
+        "   pick (_Generic): a 2.x program's 8- or 16-bit variable is never written as a wider one. */",
+    ]
+    told = told_by_pointer(calls, variants)
     for name, (two, five) in variants.items():
-        out += [
-            "#if PMD_CMOTION_GENERATION == 2",
-            f"#define PMD{name} {two}",
-            "#else",
-            f"#define PMD{name} {five}",
-            "#endif",
-        ]
+        if name in told:
+            pointer, older_type, newer = told[name]
+            params = ", ".join(["axis_intf"] + [f.name for f in newer.args] + [f.name for f in newer.reply])
+            out += [
+                "#if defined(PMD_CMOTION_GENERATION_UNNAMED) && !defined(__cplusplus) && \\",
+                "    defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L",
+                f"#define PMD{name}({params}) \\",
+                f"    _Generic(({pointer}), {older_type} *: {two}, default: {five})({params})",
+                "/* the name's own function (5.x's form), for a program that takes its address */",
+                newer.signature().replace(f"PMDresult {five}(", f"PMDresult (PMD{name})(") + ";",
+                "#elif PMD_CMOTION_GENERATION == 2",
+            ]
+        else:
+            out.append("#if PMD_CMOTION_GENERATION == 2")
+        out += [f"#define PMD{name} {two}", "#else", f"#define PMD{name} {five}", "#endif"]
     out += ["", "#ifdef __cplusplus", "}", "#endif", "", "#endif", ""]
     return "\n".join(out)
 
@@ -373,7 +403,7 @@ def errors_source(errors, magellan, commands) -> str:
     return "\n".join(out)
 
 
-def source(calls, errors, magellan, commands) -> str:
+def source(calls, errors, magellan, commands, variants) -> str:
     out = [
         HEADER.format("commands.csv, cmotion_calls.csv and cmotion_errors.csv"),
         "#include <stddef.h>",
@@ -381,6 +411,17 @@ def source(calls, errors, magellan, commands) -> str:
         "",
     ]
     out += [function(c) for c in calls]
+    for name, (_pointer, _type, newer) in told_by_pointer(calls, variants).items():
+        params = ", ".join(["axis_intf"] + [f.name for f in newer.args] + [f.name for f in newer.reply])
+        out += [
+            f"#undef PMD{name}",
+            "/* the name's own function where a Get's pointer picks its form (PMDcalls.h): 5.x's */",
+            newer.signature().replace(f"PMDresult {newer.symbol}(", f"PMDresult PMD{name}("),
+            "{",
+            f"    return {newer.symbol}({params});",
+            "}",
+            "",
+        ]
     out.append(errors_source(errors, magellan, commands))
     return "\n".join(out)
 
@@ -536,7 +577,7 @@ def main(outdir: Path) -> None:
         "PMDconstants.h": constants_header(constants, names, errors),
         "PMDopcodes.h": opcodes_header(commands, magellan, table),
         "PMDcalls.h": calls_header(calls, variants),
-        "c-motion.c": source(calls, errors, magellan, commands),
+        "c-motion.c": source(calls, errors, magellan, commands, variants),
         "PMDfmu_ports.h": ports_h,
         "PMDfmu_ports.c": ports_c,
     }

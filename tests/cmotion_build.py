@@ -20,9 +20,12 @@ def generate(out: Path) -> Path:
     return out
 
 
-def compile_program(source: Path, exe: Path, generated: Path, sanitize: str = "", warnings: bool = False) -> Path:
+def compile_program(
+    source: Path, exe: Path, generated: Path, sanitize: str = "", warnings: bool = False, std: str = "c99"
+) -> Path:
     """source linked with the library into exe; sanitize: "" or a -fsanitize= list; warnings: the
-    project's own flags (-Wall -Wextra -Wpedantic -Werror) for library and program alike."""
+    project's own flags (-Wall -Wextra -Wpedantic -Werror) for library and program alike; std: the C
+    standard of both."""
     library = [
         HOST_C / "PMDfmu.c",
         HOST_C / "PMDhosttime.c",
@@ -40,7 +43,7 @@ def compile_program(source: Path, exe: Path, generated: Path, sanitize: str = ""
     subprocess.run(
         [
             "cc",
-            "-std=c99",
+            f"-std={std}",
             *flags,
             "-DPMD_HAVE_HOSTTIME",
             f"-I{HOST_C}",

@@ -194,6 +194,49 @@ def test_every_call_of_cmotion_calls_csv_is_declared_and_defined(generated, tmp_
         run(compile_program(source, tmp_path / f"addresses{generation}", generated, warnings=True))
 
 
+def test_with_no_generation_named_a_gets_reply_pointer_picks_its_form_in_c11(generated, tmp_path):
+    """A 2.x program (its GetGearMaster source a PMDuint8, its sample time a PMDuint16) and a 5.x one (both
+    16 or 32 bits wide) built as C11 with no PMD_CMOTION_GENERATION, under ASan: neither variable is
+    written wider than it is (the bytes beside it keep their canary), each gets the chip's value, and
+    every call's address is still taken (the name's own function, 5.x's form)."""
+    source = tmp_path / "pointers.c"
+    source.write_text(
+        r"""#include <stdio.h>
+#include "c-motion.h"
+typedef void (*any)(void);
+static const any taken[] = {(any)PMDGetGearMaster, (any)PMDGetSampleTime};
+int main(void)
+{
+    PMDAxisHandle h;
+    PMDAxis master = 0;
+    struct { PMDuint8 source, canary[7]; } g2 = {9, {0xAA, 0xAA, 0xAA, 0xAA, 0xAA, 0xAA, 0xAA}};
+    struct { PMDuint16 source, canary[3]; } g5 = {9, {0xBBBB, 0xBBBB, 0xBBBB}};
+    struct { PMDuint16 time, canary[3]; } t2 = {0, {0xCCCC, 0xCCCC, 0xCCCC}};
+    PMDuint32 t5 = 0;
+    PMDresult r;
+    if (PMDSetupAxisInterface_Serial(&h, PMDAxis2, 1) != PMD_ERR_OK)
+        return 1;
+    PMDSetGearMaster(&h, PMDAxis3, 1);
+    r = PMDGetGearMaster(&h, &master, &g2.source);
+    printf("%x %x\n", r, g2.source);
+    r = PMDGetGearMaster(&h, &master, &g5.source);
+    printf("%x %x\n", r, g5.source);
+    r = PMDGetSampleTime(&h, &t2.time);
+    printf("%x %x\n", r, t2.time);
+    r = PMDGetSampleTime(&h, &t5);
+    printf("%x %lx\n", r, t5);
+    printf("%x %x %x %d\n", g2.canary[0], g5.canary[0], t2.canary[0], taken[0] != 0);
+    return PMDCloseAxisInterface(&h);
+}
+"""
+    )
+    status, out, err = run(compile_program(source, tmp_path / "pointers", generated, "address,undefined", std="c11"))
+    assert status == 0 and "Sanitizer" not in err, err
+    # 2.x's forms: the gear source, the Navigator's GetSampleTime (100 us); 5.x's GetSampleTime is the
+    # Magellan's opcode, refused by a Navigator as an invalid instruction, the variable left as it was
+    assert out.splitlines() == ["0 1", "0 1", "0 64", "2 0", "aa bbbb cccc 1"]
+
+
 def test_every_magellan_only_call_is_sent_and_answered_as_a_navigator_answers(generated, tmp_path):
     """Each call of cmotion_calls.csv whose opcode is out_of_scope.csv's goes to the chip: invalid
     instruction (0x02), the instruction-error event bit set on the instruction's axis (the handle's,

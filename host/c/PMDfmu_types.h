@@ -16,6 +16,7 @@
    and C-Motion Engine programs, the Tcl and Python wrappers). docs/c-motion.md lists the names. */
 #ifndef PMD_CMOTION_GENERATION
 #define PMD_CMOTION_GENERATION 5
+#define PMD_CMOTION_GENERATION_UNNAMED 1    /* a Get's reply pointer picks where it can (PMDcalls.h) */
 #endif
 #if PMD_CMOTION_GENERATION != 2 && PMD_CMOTION_GENERATION != 5
 #error "PMD_CMOTION_GENERATION must be 2 (C-Motion 2.x/3.x, Navigator) or 5 (C-Motion 5.x)"
