@@ -96,6 +96,30 @@ def test_index_capture_latches_the_cycle_that_passes_a_pulse_downward_too(fmi_ve
         assert ax.GetCaptureValue() == rows["axis1.commandedPosition"][k]
 
 
+def wrapped_index_active(before, step, period):
+    """index_active for a step that may take the 32-bit register past either end: the register's values
+    passed, each as the int32 it is, a pulse at each of them that is a multiple of period (by brute force)."""
+    values = range(before + 1, before + step + 1) if step > 0 else range(before + step, before)
+    return any((((v + 2**31) % 2**32) - 2**31) % period == 0 for v in values)
+
+
+@pytest.mark.parametrize("velocity", [0x7FFF0000, -0x7FFF0000], ids=["up", "down"])
+def test_index_pulses_are_seen_as_the_stage_wraps_past_either_end_of_the_register(velocity, tmp_path):
+    """32767 counts a cycle with a pulse every 3 counts (3 does not divide 2^32: the pulses lie otherwise
+    on each side of the wrap): every cycle that passes one shows it, the cycles across the wrap too."""
+    machine = "[axis1]\nindex = 3\n"
+    with pmdfmu.Chip(machine=machine) as chip:
+        ax = chip.axis(0)
+        velocity_move(ax, velocity, acceleration=0x7FFF0000)
+        chip.run(65_530)
+        rows = chip.run(20, record=["axis1.commandedPosition", "axis1.index"])
+        stage = rows["axis1.commandedPosition"].astype(np.int64)
+        steps = [((int(n) - int(b) + 2**31) % 2**32) - 2**31 for b, n in zip(stage[:-1], stage[1:])]
+        assert any(abs(int(n) - int(b)) > 2**31 for b, n in zip(stage[:-1], stage[1:]))  # the wrap is here
+        expected = [wrapped_index_active(int(b), s, 3) for b, s in zip(stage[:-1], steps)]
+        assert list(rows["axis1.index"][1:]) == expected
+
+
 def test_the_axis_index_input_captures_as_a_plant_drives_it():
     with pmdfmu.Chip() as chip:
         ax = chip.axis(1)

@@ -16,16 +16,28 @@ static int multiple_within(int64_t low, int64_t high, int64_t period)
     return q * period >= low;
 }
 
+/* Whether a multiple of period is among the register's values low..high, counted on from before
+ * without wrapping (64-bit): a run past either end of the 32-bit register is two runs of its values. */
+static int multiple_passed(int64_t low, int64_t high, int64_t period)
+{
+    const int64_t wrap = INT64_C(1) << 32;
+    if (low < INT32_MIN)
+        return multiple_within(low + wrap, INT32_MAX, period) || multiple_within(INT32_MIN, high, period);
+    if (high > INT32_MAX)
+        return multiple_within(low, INT32_MAX, period) || multiple_within(INT32_MIN, high - wrap, period);
+    return multiple_within(low, high, period);
+}
+
 int pmd_machine_index_active(const PmdMachineAxis *m, int32_t before, int32_t now)
 {
     /* the counts passed since the last sample: (before, now] upward, [now, before) downward,
-     * the one count now at rest; the step as the 32-bit register wraps */
+     * the one count now at rest; the step as the 32-bit register wraps, counted on from before */
     int64_t step = pmd_int32((uint32_t)now - (uint32_t)before);
-    int64_t low = step > 0 ? (int64_t)before + 1 : (int64_t)now;
+    int64_t low = step > 0 ? (int64_t)before + 1 : (int64_t)before + step;
     int64_t high = step < 0 ? (int64_t)before - 1 : (int64_t)before + step;
     unsigned i;
     if (m->indexPeriod != 0)
-        return multiple_within(low, high, m->indexPeriod);
+        return multiple_passed(low, high, m->indexPeriod);
     for (i = 0; i < m->indexCount; i++) {
         int64_t d = pmd_int32((uint32_t)m->indexPosition[i] - (uint32_t)before);   /* from before, wrapped */
         if (step == 0 ? d == 0 : step > 0 ? (d > 0 && d <= step) : (d < 0 && d >= step))
