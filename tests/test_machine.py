@@ -120,6 +120,38 @@ def test_index_pulses_are_seen_as_the_stage_wraps_past_either_end_of_the_registe
         assert list(rows["axis1.index"][1:]) == expected
 
 
+def test_a_chip_reset_restarts_the_counter_but_leaves_the_stage_on_its_switch():
+    """Reset zeroes the actual position register; the ideal servo's stage does not move, so a home switch it
+    stands on stays active (its count is the register minus the offset Reset leaves)."""
+    with pmdfmu.Chip(machine="[axis1]\nhome = [100, 200]\n") as chip:
+        ax = chip.axis(0)
+        ax.SetProfileMode(PMDTrapezoidal)
+        ax.SetPosition(150)
+        ax.SetVelocity(0x10000)
+        ax.SetAcceleration(0x1000)
+        ax.Update()
+        chip.run(3000)
+        assert ax.GetActualPosition() == 150 and not ax.GetSignalStatus() & PMDSignalEncoderHomeMask
+        ax.Reset()
+        ax.GetHostIOError()  # the reset's error 1, read and so cleared
+        chip.run(2)
+        assert ax.GetActualPosition() == 0 and not ax.GetSignalStatus() & PMDSignalEncoderHomeMask
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_an_input_the_machine_drives_cannot_be_set_one_it_does_not_can(fmi_version):
+    """axis1.home under a machine with a home switch: Error naming it, nothing changed (it would be taken
+    back at the next cycle without a word); axis1.positiveLimit, which this machine leaves alone, is set."""
+    with pmdfmu.Chip(fmi_version=fmi_version, machine="[axis1]\nhome = [100, 200]\n") as chip:
+        chip.run(2)
+        before = chip.axis(0).GetSignalStatus()
+        with pytest.raises(pmdfmu.FMUError, match=r"axis1.home\) is driven every cycle by the machine"):
+            chip.set("axis1.home", True)
+        assert chip.axis(0).GetSignalStatus() == before
+        chip.set("axis1.positiveLimit", True)
+        chip.set("axis2.home", True)
+
+
 def test_the_axis_index_input_captures_as_a_plant_drives_it():
     with pmdfmu.Chip() as chip:
         ax = chip.axis(1)

@@ -928,12 +928,37 @@ PmdStatus pmd_model2_set_integers(PmdInstance *inst, const char *fn, const unsig
     return pmd_set_integer(inst, fn, vr[0], value[0], apply);
 }
 
+/* Whether an axis input may be set: not one the machine drives every cycle (docs/machine.md), which
+ * would take the value back at the next cycle without a word. */
+static int not_driven(PmdInstance *inst, const char *fn, const PmdVariable *v, unsigned signal)
+{
+    if (!inst->chip.machine || !(inst->chip.machine->axis[v->index].signals & signal))
+        return 1;
+    pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: value reference %u (%s) is driven every cycle by "
+                     "the machine (its machine parameter) and cannot be set", fn, v->vr, v->name);
+    return 0;
+}
+
 PmdStatus pmd_model2_set_boolean(PmdInstance *inst, const char *fn, unsigned vr, int value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_BOOLEAN);
     if (!v || !settable(inst, fn, v))
         return PMD_ERROR;
     value = value != 0;
+    switch (v->family) {
+    case VAR_axis_positiveLimit:
+    case VAR_axis_negativeLimit:
+    case VAR_axis_home:
+    case VAR_axis_index:
+        if (!not_driven(inst, fn, v,
+                        v->family == VAR_axis_positiveLimit   ? PMD_MACHINE_POSITIVE_LIMIT
+                        : v->family == VAR_axis_negativeLimit ? PMD_MACHINE_NEGATIVE_LIMIT
+                        : v->family == VAR_axis_home          ? PMD_MACHINE_HOME
+                                                              : PMD_MACHINE_INDEX))
+            return PMD_ERROR;
+        break;
+    default: break;
+    }
     switch (v->family) {
     case VAR_loopback: if (apply) inst->chip.s.loopback = (uint8_t)value; break;
     case VAR_axis_positiveLimit: if (apply) AXIS_OF(v)->positiveLimitInput = (uint8_t)value; break;
