@@ -314,6 +314,19 @@ static int set_key(const Where *w, PmdMachineAxis *a, int key, const Value *v)
     }
 }
 
+/* x in the fewest digits that read back as x (7.2e-06, not 7.1999999999999997e-06). */
+static const char *shortest(double x, char text[32])
+{
+    int precision;
+    for (precision = 1; precision < 17; precision++) {
+        snprintf(text, 32, "%.*g", precision, x);
+        if (strtod(text, NULL) == x)
+            return text;
+    }
+    snprintf(text, 32, "%.17g", x);
+    return text;
+}
+
 /* ---- [axisN.plant]: the motor's parameters, named and bounded as the plant FMU's (plant.csv) ---- */
 
 static double *real_member(PlantModel *m, const PlantVariable *p)
@@ -363,8 +376,10 @@ static int set_plant_key(const Where *w, PmdMachineAxis *a, int index, const Val
         return fail(w, "%s is a whole number", p->name);
     if (strcmp(p->name, "internalStep") == 0 && min < FINEST_INTERNAL_STEP)
         min = FINEST_INTERNAL_STEP;
-    if (x < min || x > p->max)
-        return fail(w, "%s = %.17g is outside %.17g .. %.17g", p->name, x, min, p->max);
+    if (x < min || x > p->max) {
+        char a[32], b[32], c[32];
+        return fail(w, "%s = %s is outside %s .. %s", p->name, shortest(x, a), shortest(min, b), shortest(p->max, c));
+    }
     if (p->type3 == PLANT3_FLOAT64)
         *real_member(&a->plant, p) = x;
     else
@@ -598,9 +613,9 @@ void pmd_machine_describe(const PmdMachine *machine, char *out, size_t outSize)
                 const PlantVariable *p = &plant_variables[i];
                 if (p->causality != PLANT_PARAMETER)
                     continue;
+                char text[32];
                 if (p->type3 == PLANT3_FLOAT64)
-                    used = append(out, outSize, used, " %s %.17g", p->name,
-                                  *real_member(&m, p));
+                    used = append(out, outSize, used, " %s %s", p->name, shortest(*real_member(&m, p), text));
                 else
                     used = append(out, outSize, used, " %s %d", p->name,
                                   (int)*int_member(&m, p));
