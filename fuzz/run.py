@@ -79,7 +79,9 @@ def include_flags(gen: Path):
 def generated(gen: Path = ROOT / "build" / "fuzz" / "generated") -> Path:
     """The generated C files, in a folder of the fuzzer's own (never the CMake build's)."""
     subprocess.run([sys.executable, str(ROOT / "modelDescription" / "generate.py"), str(gen)], check=True)
-    subprocess.run([sys.executable, str(ROOT / "modelDescription" / "generate_plant.py"), str(gen / "plant")], check=True)
+    subprocess.run(
+        [sys.executable, str(ROOT / "modelDescription" / "generate_plant.py"), str(gen / "plant")], check=True
+    )
     return gen
 
 

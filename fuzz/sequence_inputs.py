@@ -55,7 +55,9 @@ RECORDABLE = [
 CYCLE_TIMES = [1e-4, 1e-6, 0.065535, 1e-3, 2.5e-5, 3e-4, 0.065534, 2e-6]
 # fuzz_sequence.c's MACHINE_NUMBERS (op_machine), and the plant's variables in plant.csv's order
 # (plant_variables[], which op_machine indexes: a row that is no parameter is refused by the parser)
-MACHINE_NUMBERS = re.findall(r'"([^"]*)"', re.search(r"MACHINE_NUMBERS\[\] = \{(.*?)\};", (HERE / "fuzz_sequence.c").read_text(), re.S).group(1))
+MACHINE_NUMBERS = re.findall(
+    r'"([^"]*)"', re.search(r"MACHINE_NUMBERS\[\] = \{(.*?)\};", (HERE / "fuzz_sequence.c").read_text(), re.S).group(1)
+)
 PLANT_PARAMETERS = [
     line.split(",", 1)[0] for line in (HERE.parent / "modelDescription" / "plant.csv").read_text().splitlines()[1:]
 ]
@@ -848,8 +850,13 @@ def seeds():
         s = Seq(fmi3=fmi3).machine(
             [
                 {"servo_plant": True, "plant": [("loadInertia", "7.2e-6"), ("internalStep", "2e-6")]},
-                {"home": (1000, 500), "positive_limit": 30000, "negative_limit": -30000, "index": [0, 2000, -7],
-                 "signal_sense": 0x08},
+                {
+                    "home": (1000, 500),
+                    "positive_limit": 30000,
+                    "negative_limit": -30000,
+                    "index": [0, 2000, -7],
+                    "signal_sense": 0x08,
+                },
             ],
             loopback=fmi3,
         )

@@ -54,7 +54,17 @@ def needs(tmp_path_factory):
     for src in sources:
         obj = out / (src.stem + ".o")
         subprocess.run(
-            ["cc", "-std=c99", "-c", f"-I{CHIP}", f"-I{ROOT / 'fmu_src' / 'plant'}", f"-I{out}", str(src), "-o", str(obj)],
+            [
+                "cc",
+                "-std=c99",
+                "-c",
+                f"-I{CHIP}",
+                f"-I{ROOT / 'fmu_src' / 'plant'}",
+                f"-I{out}",
+                str(src),
+                "-o",
+                str(obj),
+            ],
             check=True,
         )
         defined[src.stem] = symbols(obj, "--defined-only", "-g")

@@ -79,7 +79,9 @@ def test_a_coasting_motor_turns_in_one_long_step_as_cycle_by_cycle():
     machine = PLANT + "[axis1.plant]\ninitialSpeed = 50.0\n"
     with pmdfmu.Chip(machine=machine) as one, pmdfmu.Chip(machine=machine) as many:
         long = one.run(4000, record=["axis1.actualPosition"])["axis1.actualPosition"]
-        short = np.concatenate([many.run(1, record=["axis1.actualPosition"])["axis1.actualPosition"] for _ in range(4000)])
+        short = np.concatenate(
+            [many.run(1, record=["axis1.actualPosition"])["axis1.actualPosition"] for _ in range(4000)]
+        )
         assert np.array_equal(long, short)
         assert long[0] > 0 and long[-1] == long[-2] > 1000  # friction stops it: 50 rad/s coasts ~1500 counts
         assert one.axis(0).GetActualPosition() == long[-1]
