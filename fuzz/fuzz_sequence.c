@@ -61,6 +61,7 @@
 #include "fmi3Functions.h"
 #include "command_table.h"
 #include "instance.h"
+#include "plant_variables.h"
 #include "state_fields.h"
 #include "variables.h"
 #include "variables3.h"
@@ -229,7 +230,7 @@ static const char *vr_name(unsigned v)
 }
 
 static struct {
-    unsigned time, cycleTime, memorySize, loopback, script, recordEnabled, recordCapacity;
+    unsigned time, cycleTime, memorySize, loopback, script, machine, recordEnabled, recordCapacity;
     unsigned recordData, recordColumns, recordRowSize;
     unsigned hostWord, hostWordCount, hostStrobe, hostReply, hostReplyCount, hostError;
     unsigned memoryAddress, memoryCount, memoryStrobe, memoryData, chipTime;
@@ -243,6 +244,7 @@ static void find_value_references(void)
     VR.memorySize = vr("memorySize");
     VR.loopback = vr("loopback");
     VR.script = vr("script");
+    VR.machine = vr("machine");
     VR.recordEnabled = vr("record.enabled");
     VR.recordCapacity = vr("record.capacity");
     VR.recordData = vr("record.data");
@@ -657,6 +659,8 @@ static int chip_quiet(const PmdInstance *inst)
     int n;
     if (inst->s.scriptNext < inst->script.count || s->trace.active || s->trace.start)
         return 0;
+    if (inst->chip.machine)                  /* a machine's axes run every cycle (PmdRunFacts) */
+        return 0;
     for (n = 0; n < PMD_AXES; n++) {
         const PmdAxis *ax = &s->axis[n];
         if (ax->motion != PMD_MOTION_IDLE || ax->motionCompletePending || ax->breakpoint[0].trigger ||
@@ -724,27 +728,40 @@ static double step_cycles(Fuzz *f, Reader *r, int allow_huge)
     }
 }
 
+/* A machine's motors' internal steps per second, in the budget's units: 8 internal steps (a division
+ * each) cost about a chip cycle. Whatever the sample time, a motor takes 1 / internalStep of them a
+ * second. */
+static double plant_rate(const PmdInstance *inst)
+{
+    double rate = 0;
+    int n;
+    for (n = 0; n < PMD_AXES; n++)
+        if (inst->chip.machine && (inst->chip.machine->plantAxes & (1u << n)))
+            rate += 1 / inst->chip.machine->axis[n].plant.internalStep / 8;
+    return rate;
+}
+
 /* A doStep of `cycles` cycles of the current grid, made smaller if the cycles
- * it may run (at the smallest sample time a pending batch sets) exceed the
- * budget. Returns the status; t advances unless it failed. */
+ * it may run (at the smallest sample time a pending batch sets), and a machine's
+ * motors' internal steps, exceed the budget. Returns the status; t advances unless it failed. */
 static int step(Fuzz *f, double cycles)
 {
     const PmdInstance *inst = instance(f);
     int harmless, pending = pending_batch(inst, &harmless);
-    double h = cycles * cycle_time(inst), fastest = cycle_time(inst), estimate;
+    double h = cycles * cycle_time(inst), fastest = cycle_time(inst), estimate, motors = plant_rate(inst);
     int status;
     if (pending && pending * 1e-6 < fastest)
         fastest = pending * 1e-6;
     if (inst->s.scriptNext < inst->script.count)     /* the script may set any sample time */
         fastest = 1e-6;
-    estimate = h / fastest;
+    estimate = h / fastest + h * motors;
     /* a recording step of a quiet chip runs its rows one by one, the cycles past their room (a grid made
      * finer inside the step) as an unrecorded step runs them: fast-forwarded */
     if (inst->s.recordEnabled && harmless && chip_quiet(inst) && estimate > (double)inst->recordCapacity)
         estimate = inst->recordCapacity;
     if (estimate > (double)f->budget && !(harmless && chip_idle(inst))) {
         estimate = f->budget > 1 ? (double)f->budget : 1;
-        h = estimate * fastest;
+        h = motors > 0 ? estimate / (1 / fastest + motors) : estimate * fastest;
     }
     if (!(h > 0))
         h = fastest;
@@ -1723,6 +1740,77 @@ static void op_memory_block(Fuzz *f, Reader *r)
     }
 }
 
+/* A machine (the machine parameter, given as text): for each axis a byte of
+ * which keys its table gives - servo = "plant" (bit 0), home (1), positive
+ * limit (2), negative limit (3), index every K counts (4), index at listed
+ * positions (5), signal_sense (6), an [axisN.plant] table of 1..4 motor
+ * parameters (7) - their values from value() (the parser refuses what it
+ * refuses: the fallback is the defaults), the motor's from MACHINE_NUMBERS;
+ * then a new initialization with a cycle time and loopback. */
+static const char *const MACHINE_NUMBERS[] = {"0", "1", "24", "2e-6", "1e-5", "1e-6", "7.2e-6", "0.03",
+                                              "4000", "1048576", "-3.5", "1e300", "65535", "1E-3", "0.004", "50.0"};
+static void op_machine(Fuzz *f, Reader *r)
+{
+    char text[4096];
+    size_t used = 0;
+    unsigned bits = byte(r), n, k;
+    double cycle = cycle_times[below(r, sizeof cycle_times / sizeof cycle_times[0])];
+    const char *value_text = text;
+    int status;
+#define PUT(...) (used += (size_t)snprintf(text + used, sizeof text - used, __VA_ARGS__))
+    for (n = 0; n < PMD_AXES; n++) {
+        unsigned keys = byte(r);
+        if (!keys)
+            continue;
+        PUT("[axis%u]\n", n + 1);
+        if (keys & 1)
+            PUT("servo = \"plant\"\n");
+        if (keys & 2) {
+            long long lo = (long long)value(f, r, INT32_MIN, INT32_MAX);
+            PUT("home = [%lld, %lld]\n", lo, lo + (long long)value(f, r, 0, 100000));
+        }
+        if (keys & 4)
+            PUT("positive_limit = %lld\n", (long long)value(f, r, INT32_MIN, INT32_MAX));
+        if (keys & 8)
+            PUT("negative_limit = %lld\n", (long long)value(f, r, INT32_MIN, INT32_MAX));
+        if (keys & 16)
+            PUT("index = %lld\n", (long long)value(f, r, 1, INT32_MAX));
+        else if (keys & 32) {
+            unsigned count = 1 + below(r, 4);
+            PUT("index = [");
+            for (k = 0; k < count; k++)
+                PUT("%s%lld", k ? ", " : "", (long long)value(f, r, INT32_MIN, INT32_MAX));
+            PUT("]\n");
+        }
+        if (keys & 64)
+            PUT("signal_sense = 0x%llX\n", (unsigned long long)value(f, r, 0, 0x3C));
+        if (keys & 128) {
+            unsigned count = 1 + below(r, 4);
+            PUT("[axis%u.plant]\n", n + 1);
+            for (k = 0; k < count; k++) {
+                const char *name = plant_variables[below(r, PLANT_VARIABLE_COUNT)].name;   /* read in this order */
+                PUT("%s = %s\n", name, MACHINE_NUMBERS[below(r, sizeof MACHINE_NUMBERS / sizeof MACHINE_NUMBERS[0])]);
+            }
+        }
+    }
+#undef PUT
+    if (used == 0)
+        snprintf(text, sizeof text, "# no axis\n");
+    say("  machine:\n%s", text);
+    CALL(f, MUST_SUCCEED, reset(f));
+    CALL(f, MUST_SUCCEED, enter_initialization(f, 0));
+    CALL(f, MUST_SUCCEED, set_real(f, VR.cycleTime, cycle));
+    CALL(f, MUST_SUCCEED, set_bool(f, VR.loopback, !(bits & 1)));
+    CALL(f, MUST_SUCCEED, f->fmi3 ? fmi3SetString(f->c, &VR.machine, 1, &value_text, 1)
+                                  : fmi2SetString(f->c, &VR.machine, 1, &value_text));
+    status = CALL(f, MAY_FAIL, exit_initialization(f));     /* a machine the parser refuses */
+    f->t = 0;
+    if (status != OK) {
+        CALL(f, MUST_SUCCEED, reset(f));
+        initialize_defaults(f);
+    }
+}
+
 typedef struct {
     const char *name;
     void (*run)(Fuzz *f, Reader *r);
@@ -1759,6 +1847,7 @@ static const Operation OPS[] = {
     {"lend", op_lend},                        /* 27 */
     {"record_data", op_record_data},          /* 28 */
     {"memory_block", op_memory_block},        /* 29 */
+    {"machine", op_machine},                  /* 30 */
 };
 #define N_OPS (sizeof OPS / sizeof OPS[0])
 

@@ -40,11 +40,15 @@ def sources(target: str, gen: Path):
     fmi = [
         str(ROOT / "fmu_src" / "fmi" / n) for n in ("instance.c", "messages.c", "record.c", "state.c", "state_fields.c")
     ]
-    script = [str(ROOT / "fmu_src" / "script" / "script.c"), str(ROOT / "fmu_src" / "machine" / "machine_toml.c")]
+    script = [
+        str(ROOT / "fmu_src" / "script" / "script.c"),
+        str(ROOT / "fmu_src" / "machine" / "machine_toml.c"),
+        str(ROOT / "fmu_src" / "plant" / "plant.c"),  # a machine's servo = "plant"
+    ]
     generated = [
         str(gen / n)
         for n in ("variables.c", "command_table.c", "register_table.c", "pmd_constants.c", "log_categories.c")
-    ]
+    ] + [str(gen / "plant" / "plant_variables.c")]
     # fuzz_resource_uri.c includes fmi2.c itself (its URI decoder is static there)
     extra = {
         "fmi": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c"],
@@ -65,8 +69,9 @@ def sources(target: str, gen: Path):
 
 def include_flags(gen: Path):
     headers = Path(__import__("fmpy").__file__).parent / "c-code"
-    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "fmi", "fmi_common")] + [
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "plant", "fmi", "fmi_common")] + [
         f"-I{gen}",
+        f"-I{gen / 'plant'}",
         f"-I{headers}",
     ]
 
@@ -74,6 +79,9 @@ def include_flags(gen: Path):
 def generated(gen: Path = ROOT / "build" / "fuzz" / "generated") -> Path:
     """The generated C files, in a folder of the fuzzer's own (never the CMake build's)."""
     subprocess.run([sys.executable, str(ROOT / "modelDescription" / "generate.py"), str(gen)], check=True)
+    subprocess.run(
+        [sys.executable, str(ROOT / "modelDescription" / "generate_plant.py"), str(gen / "plant")], check=True
+    )
     return gen
 
 

@@ -53,6 +53,14 @@ RECORDABLE = [
 ]
 
 CYCLE_TIMES = [1e-4, 1e-6, 0.065535, 1e-3, 2.5e-5, 3e-4, 0.065534, 2e-6]
+# fuzz_sequence.c's MACHINE_NUMBERS (op_machine), and the plant's variables in plant.csv's order
+# (plant_variables[], which op_machine indexes: a row that is no parameter is refused by the parser)
+MACHINE_NUMBERS = re.findall(
+    r'"([^"]*)"', re.search(r"MACHINE_NUMBERS\[\] = \{(.*?)\};", (HERE / "fuzz_sequence.c").read_text(), re.S).group(1)
+)
+PLANT_PARAMETERS = [
+    line.split(",", 1)[0] for line in (HERE.parent / "modelDescription" / "plant.csv").read_text().splitlines()[1:]
+]
 START_TIMES = [0, 1, 0.5, -1, 1e3, 1e-4]
 
 
@@ -381,6 +389,50 @@ class Seq:
 
     def exit_initialization(self):
         self.op("exit_initialization")
+        return self
+
+    def machine(self, axes, cycle_time=1e-4, loopback=True):
+        """A new initialization with a machine (op_machine): axes, up to 4 dicts (or None: no table) of
+        the keys servo_plant (bool), home ((lo, width)), positive_limit, negative_limit, index (K or a
+        list of 1..4 positions), signal_sense, plant (1..4 (parameter, number) pairs, number one of
+        MACHINE_NUMBERS)."""
+        self.op("machine")
+        self.byte(0 if loopback else 1)
+        self.byte(CYCLE_TIMES.index(cycle_time))
+        for n in range(4):
+            a = axes[n] if n < len(axes) and axes[n] else {}
+            index = a.get("index")
+            keys = (
+                (1 if a.get("servo_plant") else 0)
+                | (2 if "home" in a else 0)
+                | (4 if "positive_limit" in a else 0)
+                | (8 if "negative_limit" in a else 0)
+                | (16 if isinstance(index, int) else 32 if index else 0)
+                | (64 if "signal_sense" in a else 0)
+                | (128 if a.get("plant") else 0)
+            )
+            self.byte(keys)
+            if "home" in a:
+                self.value(a["home"][0])
+                self.value(a["home"][1])
+            for key in ("positive_limit", "negative_limit"):
+                if key in a:
+                    self.value(a[key])
+            if isinstance(index, int):
+                self.value(index)
+            elif index:
+                assert 1 <= len(index) <= 4
+                self.byte(len(index) - 1)
+                for p in index:
+                    self.value(p)
+            if "signal_sense" in a:
+                self.value(a["signal_sense"])
+            if a.get("plant"):
+                assert 1 <= len(a["plant"]) <= 4
+                self.byte(len(a["plant"]) - 1)
+                for name, number in a["plant"]:
+                    self.byte(PLANT_PARAMETERS.index(name))
+                    self.byte(MACHINE_NUMBERS.index(number))
         return self
 
     def columns(self, kind, *lists, check=True):
@@ -791,6 +843,29 @@ def seeds():
     s.memory_block(0, 16, 2, prefix="address", prefix_value=0x100, check=False).memory("strobe").step(1)
     s.memory_block(10, 12, 4, gap=True, again=True).memory("write", 0x200, 64, 11).step(1)
     out["memory-data-blocks-fmi2"] = s
+    # a machine: axis 1 closes its loop through the motor (a lighter one, a coarser integration), axis 2
+    # meets its home switch, index pulses and limits, both moving; a state saved and replayed mid-move
+    gains = [("SetKp", 100), ("SetKd", 4000), ("SetDerivativeTime", 4), ("SetKvff", 164), ("SetKaff", 32768)]
+    for fmi3 in (False, True):
+        s = Seq(fmi3=fmi3).machine(
+            [
+                {"servo_plant": True, "plant": [("loadInertia", "7.2e-6"), ("internalStep", "2e-6")]},
+                {
+                    "home": (1000, 500),
+                    "positive_limit": 30000,
+                    "negative_limit": -30000,
+                    "index": [0, 2000, -7],
+                    "signal_sense": 0x08,
+                },
+            ],
+            loopback=fmi3,
+        )
+        for name, value in gains:
+            s.command(name, value)
+        s.command("Update").command("SetMotorMode", 1)
+        s.move(0, 5000, 0x50000, 0x1000).move(1, 0, 0x80000, 0x2000, axis=1).step(300)
+        s.save().step(1200).replay(100, 2.5, ("fraction", 7)).restore(via_bytes=True).step(40)
+        out[f"machine-plant-and-switches-fmi{3 if fmi3 else 2}"] = s
     out["memory-data-blocks-fmi3"] = (
         Seq(fmi3=True)
         .memory_block(fmi3_kind="array", seed=7)

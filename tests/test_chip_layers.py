@@ -53,7 +53,20 @@ def needs(tmp_path_factory):
     defined, undefined = {}, {}
     for src in sources:
         obj = out / (src.stem + ".o")
-        subprocess.run(["cc", "-std=c99", "-c", f"-I{CHIP}", f"-I{out}", str(src), "-o", str(obj)], check=True)
+        subprocess.run(
+            [
+                "cc",
+                "-std=c99",
+                "-c",
+                f"-I{CHIP}",
+                f"-I{ROOT / 'fmu_src' / 'plant'}",
+                f"-I{out}",
+                str(src),
+                "-o",
+                str(obj),
+            ],
+            check=True,
+        )
         defined[src.stem] = symbols(obj, "--defined-only", "-g")
         undefined[src.stem] = symbols(obj, "-u")
     owner = {name: stem for stem, names in defined.items() for name in names}

@@ -107,6 +107,7 @@ def test_the_cycles_floor_division_equals_cs_signed_division_floored(tmp_path):
             "-O1",
             "-std=c99",
             f"-I{root / 'fmu_src' / 'chip'}",
+            f"-I{root / 'fmu_src' / 'plant'}",
             f"-I{generated}",
             str(root / "tests" / "c" / "floor_division.c"),
             "-o",

@@ -280,7 +280,6 @@ BAD = [
     ("[axis1]\npositive_limit = 1__0\n", 2, "an underscore must stand between two digits"),
     ("[axis1]\nnegative_limit = 010\n", 2, "leading zero"),
     ('[axis1]\nservo = "stepper"\n', 2, 'the servo is "ideal"'),
-    ('[axis1]\nservo = "plant"\n', 2, "not available yet"),
     ("[axis1]\nspeed = 3\n", 2, "unknown key 'speed'"),
     ("[axis1]\nhome = [1, 2\n", 2, "an array must close on its line"),
     ("[axis1]\nhome = {lo = 1}\n", 2, "an inline table"),

@@ -27,7 +27,7 @@ pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 
 
 def includes(gen: Path):
-    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "fmi", "fmi_common")] + [
+    return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "plant", "fmi", "fmi_common")] + [
         f"-I{gen}",
         f"-I{HEADERS}",
     ]

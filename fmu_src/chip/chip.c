@@ -24,6 +24,7 @@ void pmd_chip_reset(PmdChip *chip)
     uint8_t loopback = chip->s.loopback;
     uint16_t sampleTime = chip->s.sampleTime;
     PmdAxis inputs[PMD_AXES];
+    unsigned plant = chip->machine ? chip->machine->plantAxes : 0;
     int n, f;
 
     uint16_t analogInput[PMD_ANALOG_CHANNELS], ioInput[PMD_IO_PORTS];
@@ -49,10 +50,14 @@ void pmd_chip_reset(PmdChip *chip)
         ax->negativeLimitInput = inputs[n].negativeLimitInput;
         ax->homeInput = inputs[n].homeInput;
         ax->indexInput = inputs[n].indexInput;
+        /* a machine's motor is physics: it turns on through a chip reset */
+        ax->motorAngle = inputs[n].motorAngle;
+        ax->motorSpeed = inputs[n].motorSpeed;
         /* the encoder count as the last cycle sampled it (its offset gone), not the live input:
          * a command reads the plant only through a cycle (docs/decisions.md) */
-        ax->actualPosition = loopback ? 0
-                                      : pmd_int32((uint32_t)inputs[n].actualPosition - (uint32_t)inputs[n].actualOffset);
+        ax->actualPosition = loopback && !(plant & (1u << n))
+                                 ? 0
+                                 : pmd_int32((uint32_t)inputs[n].actualPosition - (uint32_t)inputs[n].actualOffset);
         ax->previousActualPosition = ax->actualPosition;
         /* the ideal servo's stage stays where it is while its counter restarts at 0, as a motor's does:
          * a machine's switches (machine.c) are at the stage's count actual - offset */
@@ -316,6 +321,9 @@ void pmd_chip_record(const PmdChip *chip, int32_t row[PMD_RECORD_WORDS])
  * are quiet_cycles(). */
 static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closedForm, int32_t *row)
 {
+    /* a machine's plant closes its axis's loop whatever the loopback parameter (never in a quiet run:
+     * a machine's axes make none) */
+    const unsigned plant = quiet || !chip->machine ? 0 : chip->machine->plantAxes;
     int n;
     chip->s.time = chip->s.nextTime++;
     if (quiet && row)
@@ -337,7 +345,7 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
             if (row)
                 record_axis(chip, n, row);
         } else if (chip->s.axis[n].motion != PMD_MOTION_GEAR) {
-            sample_actual(chip, n, loopback);
+            sample_actual(chip, n, loopback && !(plant & (1u << n)));
         }
     }
     if (quiet) {
@@ -347,7 +355,7 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
     for (n = 0; n < PMD_AXES; n++) {
         if (chip->s.axis[n].motion == PMD_MOTION_GEAR) {
             pmd_gear_cycle(chip, n);
-            sample_actual(chip, n, loopback);
+            sample_actual(chip, n, loopback && !(plant & (1u << n)));
         }
     }
     if (chip->machine)
@@ -360,7 +368,7 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
             check_limits(chip, n, signals);
             check_capture(chip, n, signals);
         }
-        check_servo(chip, n, loopback && chip->s.axis[n].motorOn);
+        check_servo(chip, n, loopback && !(plant & (1u << n)) && chip->s.axis[n].motorOn);
     }
     /* breakpoints last: a source axis may be any axis, and all have moved */
     for (n = 0; n < PMD_AXES; n++)
@@ -369,6 +377,11 @@ static inline void cycle(PmdChip *chip, int quiet, int loopback, unsigned closed
     for (n = 0; n < PMD_AXES; n++)
         pmd_servo_cycle(chip, n);
     pmd_trace_cycle(chip);
+    /* the plants last, with the motor commands the cycle ends with: the next cycle samples their encoders */
+    if (plant)
+        for (n = 0; n < PMD_AXES; n++)
+            if (plant & (1u << n))
+                pmd_machine_plant_cycle(chip, n);
     if (row)
         pmd_chip_record(chip, row);
 }

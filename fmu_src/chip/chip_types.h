@@ -8,6 +8,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "plant.h"              /* a machine's motor (servo = "plant"): fmu_src/plant */
+
 #define PMD_AXES 4
 #define PMD_BUFFERS 32       /* buffer IDs 0..31; 0 and 1 belong to the trace (seed 000, 1.1) */
 #define PMD_FIRST_PROFILE_BUFFER 2
@@ -345,6 +347,11 @@ typedef struct {
     int32_t actualPositionInput;
     uint8_t positiveLimitInput, negativeLimitInput, homeInput;
     uint8_t indexInput;           /* the encoder's index line: true while the index pulse is active */
+
+    /* the machine's motor (servo = "plant", machine.c): its shaft, physics rather than a register,
+     * whose encoder count is actualPositionInput; a chip reset leaves it turning */
+    double motorAngle;            /* rad */
+    double motorSpeed;            /* rad/s */
 } PmdAxis;
 
 typedef struct {
@@ -399,6 +406,7 @@ enum {
     PMD_MACHINE_NEGATIVE_LIMIT = 4,   /* negative_limit = N: active for actual <= N */
     PMD_MACHINE_INDEX = 8             /* index = K or [p, ...]: a pulse at each multiple of K or listed position */
 };
+enum { PMD_MACHINE_SERVO_IDEAL, PMD_MACHINE_SERVO_PLANT };
 typedef struct {
     uint8_t signals;                  /* PMD_MACHINE_* bits: the inputs the machine drives */
     uint16_t signalSense;             /* signal-status bits (home, limits, index) wired active high: the
@@ -408,10 +416,13 @@ typedef struct {
     uint32_t indexPeriod;             /* 0: the listed positions */
     uint8_t indexCount;
     int32_t indexPosition[PMD_MACHINE_INDEX_POSITIONS];
+    uint8_t servo;                    /* PMD_MACHINE_SERVO_*: servo = "ideal" or "plant" */
+    PlantModel plant;                 /* servo = "plant": the motor's parameters (its state is PmdAxis's) */
 } PmdMachineAxis;
 typedef struct PmdMachine {
     PmdMachineAxis axis[PMD_AXES];
-    unsigned axes;                    /* bit n: axis n has an input the machine drives */
+    unsigned axes;                    /* bit n: axis n has an input the machine drives (a plant's too) */
+    unsigned plantAxes;               /* bit n: axis n's loop closes through the plant */
 } PmdMachine;
 
 /* Where the chip logs: each message under its category, a PmdLogCategory

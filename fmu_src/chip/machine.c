@@ -4,6 +4,9 @@
  * a cycle, so a pulse the axis runs over between two samples is seen in the
  * cycle that passes it, as a real index pulse would be latched by the
  * encoder's interface: never lost, whatever the speed. */
+#include <math.h>
+
+#include "events.h"
 #include "machine.h"
 #include "pmd_constants.h"
 
@@ -69,4 +72,40 @@ void pmd_machine_inputs(PmdChip *chip, int n)
     if (m->signals & PMD_MACHINE_INDEX)
         ax->indexInput = level(m, PMDSignalEncoderIndexMask,
                                pmd_machine_index_active(m, before, at));
+}
+
+/* The plant's model (plant.h) with the machine's parameters and the axis's shaft. */
+static PlantModel motor_of(const PmdChip *chip, int n)
+{
+    PlantModel m = chip->machine->axis[n].plant;
+    m.angle = chip->s.axis[n].motorAngle;
+    m.speed = chip->s.axis[n].motorSpeed;
+    m.motorCommand = chip->s.axis[n].filter.output;
+    return m;
+}
+
+void pmd_machine_plant_start(PmdChip *chip, int n)
+{
+    PlantModel m = chip->machine->axis[n].plant;
+    plant_start(&m);
+    chip->s.axis[n].motorAngle = m.angle;
+    chip->s.axis[n].motorSpeed = m.speed;
+    chip->s.axis[n].actualPositionInput = m.encoderCount;
+}
+
+void pmd_machine_plant_cycle(PmdChip *chip, int n)
+{
+    PlantModel m = motor_of(chip, n);
+    /* the plant FMU's step of one communication step, h the cycle as the FMU's grid has it (sampleTime us) */
+    plant_advance(&m, chip->s.sampleTime / 1e6);
+    if (!isfinite(m.angle) || !isfinite(m.speed)) {
+        /* the parser's ranges keep a motor finite for longer than any run; the plant FMU refuses such a
+         * step, and so does the machine: the shaft stays where it was */
+        pmd_log(chip, PMD_LOG_ERRORS, "axis %d: the machine's motor would leave the range of doubles (angle %g, "
+                "speed %g): not moved", n + 1, m.angle, m.speed);
+        return;
+    }
+    chip->s.axis[n].motorAngle = m.angle;
+    chip->s.axis[n].motorSpeed = m.speed;
+    chip->s.axis[n].actualPositionInput = m.encoderCount;
 }

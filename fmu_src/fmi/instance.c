@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "instance.h"
+#include "machine.h"
 #include "values.h"
 
 #define DEFAULT_CYCLE_TIME 1e-4
@@ -416,6 +417,10 @@ PmdStatus pmd_model_exit_initialization(PmdInstance *inst, const char *fn)
     inst->s.anchorTime = 0;
     inst->s.anchorCycle = 0;
     inst->chip.s.sampleTime = sample_time_of(inst->s.cycleTime);
+    /* a machine's motors at their initial angle and speed, as a plant FMU leaves initialization */
+    for (i = 0; i < PMD_AXES; i++)
+        if (inst->machine.plantAxes & (1u << i))
+            pmd_machine_plant_start(&inst->chip, (int)i);
     inst->s.state = PMD_STEP_MODE;
     return PMD_OK;
 }

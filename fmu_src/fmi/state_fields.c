@@ -199,6 +199,8 @@ static const PmdStateField axis_fields[] = {
     UNSIGNED(PmdAxis, negativeLimitInput, BOOL),
     UNSIGNED(PmdAxis, homeInput, BOOL),
     UNSIGNED(PmdAxis, indexInput, BOOL),
+    REAL(PmdAxis, motorAngle),
+    REAL(PmdAxis, motorSpeed),
 };
 static const PmdStateStruct axis = DESCRIBE(PmdAxis, axis_fields);
 

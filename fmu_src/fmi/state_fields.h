@@ -13,7 +13,7 @@
 #include "instance.h"
 
 /* Bumped whenever a field is added, removed or changes meaning. */
-#define PMD_STATE_VERSION 6u
+#define PMD_STATE_VERSION 7u
 
 /* The declared state as a snapshot holds it: the instance's, then the chip's.
  * Its fields are named as the instance reaches them (hostWordCount,

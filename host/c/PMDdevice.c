@@ -450,6 +450,13 @@ PMDuint32 PMDDeviceGetTickCount(void)
     return (PMDuint32)((unsigned long long)now.tv_sec * 1000u + (unsigned long long)now.tv_nsec / 1000000u);
 }
 
+void PMDTaskWaitUntil(PMDuint32 *pPreviousTime, PMDuint32 increment)
+{
+    PMDTaskWait(increment);
+    if (pPreviousTime)
+        *pPreviousTime += increment;
+}
+
 int PMDFMU_RunUserTask(void (*task)(PMDTaskParam), const char *name)
 {
     (void)name;

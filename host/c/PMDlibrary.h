@@ -198,6 +198,12 @@ void PMDTaskAbort(int UserAbortCode);
 /* Host milliseconds since the first call (PMDTaskWait's time: chip time as the host sees it). */
 PMDuint32 PMDDeviceGetTickCount(void);
 
+/* A periodic task's wait (the C-Motion Engine's, as FreeRTOS's vTaskDelayUntil): the period after
+   *pPreviousTime, which moves on by it. On the twin the wait is PMDTaskWait(increment): chip time
+   passes by the period whatever the host's clock did, so a periodic loop polls the chip at its
+   period, run after run alike. */
+void PMDTaskWaitUntil(PMDuint32 *pPreviousTime, PMDuint32 increment);
+
 /* Runs a C-Motion Engine task on the host: task(0), then closes the engine's device if the task
    opened it (PMDAxisOpen(&hAxis, NULL, axis)); returns the program's exit code. */
 int PMDFMU_RunUserTask(void (*task)(PMDTaskParam), const char *name);
