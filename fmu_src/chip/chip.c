@@ -61,7 +61,7 @@ void pmd_chip_reset(PmdChip *chip)
         ax->previousActualPosition = ax->actualPosition;
         /* the ideal servo's stage stays where it is while its counter restarts at 0, as a motor's does:
          * a machine's switches (machine.c) are at the stage's count actual - offset */
-        if (loopback)
+        if (loopback && !(plant & (1u << n)))
             ax->actualOffset = pmd_int32(0u - ((uint32_t)inputs[n].actualPosition - (uint32_t)inputs[n].actualOffset));
     }
 }
