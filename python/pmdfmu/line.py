@@ -165,8 +165,6 @@ class LineChip:
             if status == sp.BAD_CHECKSUM or status == -1:
                 self.resync()
                 continue
-            if status == sp.INVALID_INSTRUCTION and args:  # its data words were framed as a packet
-                self.resync()
             return status, words
         raise LineError(f"{self.device}: no well-formed reply to {packet.hex(' ')}")
 

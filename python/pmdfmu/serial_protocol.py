@@ -13,6 +13,7 @@ responder's address. Every packet's bytes, checksum included, add up to 0 mod 25
 
 from __future__ import annotations
 
+import csv
 import re
 from typing import Dict, List, NamedTuple, Optional, Sequence, Tuple
 
@@ -23,9 +24,21 @@ _COMMANDS = tables.read_commands(_tables_dir() / "commands.csv")
 _CONSTANTS = {name: value for _group, name, value in tables.read_constants(_tables_dir() / "constants.csv")}
 _FIELDS = tables.read_fields(_tables_dir() / "constants.csv")
 
-# data words each opcode's packet carries (commands.csv); an opcode the Navigator lacks carries none:
-# the chip cannot know more, answers invalid instruction, and the host resynchronises (3.2)
+# data words each opcode's packet carries: commands.csv's; for an opcode the Navigator lacks
+# (out_of_scope.csv), the words C-Motion sends with it (cmotion_calls.csv), so that the packet is
+# answered whole with invalid instruction, as the twin in-process answers it, instead of being cut
+# after 4 bytes (a choice: the public sources do not say how a Navigator frames such a packet, [L]);
+# any other opcode carries none
 ARG_WORDS: Dict[int, int] = {c.opcode: c.arg_words for c in _COMMANDS}
+_TYPE_WORDS = {"u16": 1, "i16": 1, "u32": 2, "i32": 2}
+with open(_tables_dir() / "out_of_scope.csv", newline="") as _f:
+    _LACKED = {int(row["opcode"], 16) for row in csv.DictReader(_f)}
+with open(_tables_dir() / "cmotion_calls.csv", newline="") as _f:
+    for _row in csv.DictReader(_f):
+        if _row["opcode"] and int(_row["opcode"], 16) in _LACKED:
+            ARG_WORDS.setdefault(
+                int(_row["opcode"], 16), sum(_TYPE_WORDS[a.split(":")[-1]] for a in _row["args"].split())
+            )
 REPLY_WORDS: Dict[int, int] = {c.opcode: c.reply_words for c in _COMMANDS}
 OPCODE_NAMES: Dict[int, str] = {c.opcode: c.name for c in _COMMANDS}
 SET_SERIAL_PORT_MODE = next(c.opcode for c in _COMMANDS if c.name == "SetSerialPortMode")
