@@ -72,7 +72,7 @@ static int open_tcp(const char *where, char *why, size_t size)
     int fd = -1, e, one = 1;
     size_t n = colon ? (size_t)(colon - where) : 0;
     if (!colon || n == 0 || n >= sizeof host || !colon[1]) {
-        snprintf(why, size, "tcp:%s: expected tcp:HOST:PORT", where);
+        snprintf(why, size, "expected tcp:HOST:PORT");
         return -1;
     }
     memcpy(host, where, n);
@@ -86,7 +86,7 @@ static int open_tcp(const char *where, char *why, size_t size)
     hints.ai_socktype = SOCK_STREAM;
     e = getaddrinfo(host, colon + 1, &hints, &list);
     if (e != 0) {
-        snprintf(why, size, "tcp:%s: %s", where, gai_strerror(e));
+        snprintf(why, size, "%s: %s", host, gai_strerror(e));
         return -1;
     }
     for (a = list; a; a = a->ai_next) {
@@ -100,7 +100,7 @@ static int open_tcp(const char *where, char *why, size_t size)
     }
     freeaddrinfo(list);
     if (fd < 0) {
-        snprintf(why, size, "tcp:%s: %s", where, strerror(e));
+        snprintf(why, size, "cannot connect: %s", strerror(e));
         return -1;
     }
     /* one small packet per command: no coalescing delay */
@@ -117,7 +117,7 @@ PMDresult PMDLineOpen(PMDLine **line, const char *device, PMDuint32 baud, unsign
     else if (strncmp(device, "tcp:", 4) == 0)
         fd = open_tcp(device + 4, why, size);
     else
-        snprintf(why, size, "%s: expected serial:PATH or tcp:HOST:PORT", device);
+        snprintf(why, size, "expected serial:PATH or tcp:HOST:PORT");
     if (fd < 0)
         return PMD_ERR_OpeningPort;
     *line = calloc(1, sizeof **line);
