@@ -129,7 +129,10 @@ def test_a_2x_host_program_sets_up_copies_multiupdates_and_polls_activity(progra
 @pytest.mark.parametrize(
     "device,line",
     [
-        ("serial:/nonexistent/ttyUSB0", "PMDFMU_DEVICE=serial:/nonexistent/ttyUSB0: /nonexistent/ttyUSB0: No such file"),
+        (
+            "serial:/nonexistent/ttyUSB0",
+            "PMDFMU_DEVICE=serial:/nonexistent/ttyUSB0: /nonexistent/ttyUSB0: No such file",
+        ),
         ("tcp:127.0.0.1:1", "PMDFMU_DEVICE=tcp:127.0.0.1:1: cannot connect: Connection refused"),
         ("usb", "PMDFMU_DEVICE=usb: expected serial:PATH or tcp:HOST:PORT"),
     ],

@@ -72,8 +72,19 @@ def test_c_codec_makes_and_reads_the_same_vectors(tmp_path):
     )
     exe = tmp_path / "vectors"
     subprocess.run(
-        ["cc", "-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Werror", f"-I{ROOT / 'host' / 'c'}",
-         str(source), str(ROOT / "host" / "c" / "PMDserial.c"), "-o", str(exe)],
+        [
+            "cc",
+            "-std=c99",
+            "-Wall",
+            "-Wextra",
+            "-Wpedantic",
+            "-Werror",
+            f"-I{ROOT / 'host' / 'c'}",
+            str(source),
+            str(ROOT / "host" / "c" / "PMDserial.c"),
+            "-o",
+            str(exe),
+        ],
         check=True,
     )
     out = iter(subprocess.run([str(exe)], capture_output=True, text=True, check=True).stdout.splitlines())

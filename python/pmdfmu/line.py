@@ -147,7 +147,7 @@ class LineChip:
         """One command packet out, its reply in: (status, words). A malformed or missing reply, or the
         checksum error, resynchronises and sends the packet once more."""
         packet = sp.command_packet(instruction, args, self.address)
-        for attempt in range(2):
+        for _attempt in range(2):
             self._write(packet)
             head = self._read(2, REPLY_TIMEOUT)
             if len(head) == 2 and head[0] != 0 and sum(head) & 0xFF == 0:

@@ -109,7 +109,9 @@ class Line:
     def disconnected(self, why: str) -> None:
         """A client went: a packet it left unfinished is dropped, never executed."""
         dropped = self.decoder.reset()
-        self._line(f"{self.line_ns} ns: {why}" + (f"; {dropped} bytes of an unfinished packet dropped" if dropped else ""))
+        self._line(
+            f"{self.line_ns} ns: {why}" + (f"; {dropped} bytes of an unfinished packet dropped" if dropped else "")
+        )
 
     def restart(self) -> None:
         """--reset-on-connect: every chip as new, the line's clock at 0."""
@@ -130,7 +132,7 @@ class Line:
             self.line_ns += self.chips[0].host_interface.request_ns(words)
             self._line(f"{self.line_ns} ns: in {p.data.hex(' ')}: no chip at address {p.address}")
             return b""
-        for i, c in enumerate(targets):
+        for c in targets:
             if c.host_time_ns < self.line_ns:  # the line's time its other traffic took
                 c.wait_ns(self.line_ns - c.host_time_ns)
             address = c.mode.reply_address()
