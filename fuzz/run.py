@@ -5,13 +5,16 @@ for a while. A crash leaves its input in fuzz/findings/; copy it into
 fuzz/regressions/TARGET/ and the test suite replays it from then on.
 
     python fuzz/run.py [--seconds 60] [--out DIR] [target ...]
-                       targets: host fmi script sequence script_text resource_uri machine_text
+                       targets: host fmi script sequence script_text resource_uri machine_text serial
 
 sequence (fuzz_sequence.c) decodes its input as a sequence of legal
 operations through FMI 2 or 3 and checks properties after every call (see the
 head of that file: the input format, the properties, FUZZ_SEQUENCE_TRACE=1 to
 print a crash file's calls); fuzz/sequence_inputs.py writes its hand-built
 seeds and regression inputs.
+
+serial (fuzz_serial.c) feeds any byte stream to the C library's serial packet
+codec (host/c/PMDserial.c), the chip's decoder and the host's reply parser.
 
 machine_text (fuzz_machine_text.c) parses machine files given as text and checks
 what they mean against the inputs the chip then gets.
@@ -32,7 +35,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-TARGETS = ("host", "fmi", "script", "sequence", "script_text", "resource_uri", "machine_text")
+TARGETS = ("host", "fmi", "script", "sequence", "script_text", "resource_uri", "machine_text", "serial")
 
 
 def sources(target: str, gen: Path):
@@ -51,6 +54,7 @@ def sources(target: str, gen: Path):
     ] + [str(gen / "plant" / "plant_variables.c")]
     # fuzz_resource_uri.c includes fmi2.c itself (its URI decoder is static there)
     extra = {
+        "serial": ["../host/c/PMDserial.c"],
         "fmi": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c"],
         "sequence": [
             "fmi_common/fmi2.c",
@@ -70,6 +74,7 @@ def sources(target: str, gen: Path):
 def include_flags(gen: Path):
     headers = Path(__import__("fmpy").__file__).parent / "c-code"
     return [f"-I{ROOT / 'fmu_src' / d}" for d in ("chip", "script", "machine", "plant", "fmi", "fmi_common")] + [
+        f"-I{ROOT / 'host' / 'c'}",
         f"-I{gen}",
         f"-I{gen / 'plant'}",
         f"-I{headers}",

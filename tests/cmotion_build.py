@@ -30,6 +30,8 @@ def compile_program(
         HOST_C / "PMDfmu.c",
         HOST_C / "PMDhosttime.c",
         HOST_C / "PMDdevice.c",
+        HOST_C / "PMDserial.c",
+        HOST_C / "PMDline.c",
         generated / "c-motion.c",
         generated / "PMDfmu_ports.c",
     ]

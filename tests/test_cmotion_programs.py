@@ -5,7 +5,8 @@ programs whose constructs they cover) compile unchanged against the library's he
 project's warnings as errors, and run to completion against the twin; their outputs are pinned.
 Around them: every vendor header name compiles alone in both generations, the vendor's types are
 the vendor's (PMDint32 is a long), every Magellan-only call of cmotion_calls.csv reaches the chip
-and gets a Navigator's answer, and PMDFMU_DEVICE's links answer PMD_ERR_OpeningPort."""
+and gets a Navigator's answer, and PMDFMU_DEVICE's links that cannot be opened answer
+PMD_ERR_OpeningPort (tests/test_cmotion_line.py runs the programs over a line)."""
 
 import os
 import re
@@ -128,8 +129,11 @@ def test_a_2x_host_program_sets_up_copies_multiupdates_and_polls_activity(progra
 @pytest.mark.parametrize(
     "device,line",
     [
-        ("serial:/dev/ttyUSB0", "PMDFMU_DEVICE=serial:/dev/ttyUSB0: the serial packet transport is not built yet"),
-        ("tcp:192.168.2.2:40100", "PMDFMU_DEVICE=tcp:192.168.2.2:40100: the TCP packet transport is not built yet"),
+        (
+            "serial:/nonexistent/ttyUSB0",
+            "PMDFMU_DEVICE=serial:/nonexistent/ttyUSB0: /nonexistent/ttyUSB0: No such file",
+        ),
+        ("tcp:127.0.0.1:1", "PMDFMU_DEVICE=tcp:127.0.0.1:1: cannot connect: Connection refused"),
         ("usb", "PMDFMU_DEVICE=usb: expected serial:PATH or tcp:HOST:PORT"),
     ],
 )

@@ -12,6 +12,7 @@
 #include <time.h>
 
 #include "c-motion.h"
+#include "PMDline.h"
 #ifdef PMD_HAVE_HOSTTIME
 #include "PMDhosttime.h"
 #endif
@@ -69,28 +70,25 @@ static void transport_line(const PMDFMUOptions *options, const char *format, ...
         options->log(options->logContext, "transport", 3, text);
 }
 
-/* PMDFMU_DEVICE: empty or "fmu" is the twin in-process; "serial:PATH" and "tcp:HOST:PORT" are the
-   chip's serial packets over a line, a transport not built yet. Returns PMD_ERR_OK for in-process. */
-static PMDresult device_link(const PMDFMUOptions *options)
+/* PMDFMU_DEVICE: empty or "fmu" is the twin in-process (NULL); "serial:PATH" and "tcp:HOST:PORT" are
+   the chip's serial packets over a line (PMDline.h): the device's text. Anything else: NULL and
+   *refused set. */
+static const char *device_link(const PMDFMUOptions *options, int *refused)
 {
     const char *device = getenv("PMDFMU_DEVICE");
     const char *colon;
+    *refused = 0;
     if (!device || !*device || strcmp(device, "fmu") == 0)
-        return PMD_ERR_OK;
-    if (strncmp(device, "serial:", 7) == 0 && device[7]) {
-        transport_line(options, "PMDFMU_DEVICE=%s: the serial packet transport is not built yet; unset "
-                       "PMDFMU_DEVICE to open the twin in-process", device);
-        return PMD_ERR_OpeningPort;
-    }
+        return NULL;
+    if (strncmp(device, "serial:", 7) == 0 && device[7])
+        return device;
     colon = strncmp(device, "tcp:", 4) == 0 ? strrchr(device + 4, ':') : NULL;
-    if (colon && colon > device + 4 && colon[1]) {
-        transport_line(options, "PMDFMU_DEVICE=%s: the TCP packet transport is not built yet; unset "
-                       "PMDFMU_DEVICE to open the twin in-process", device);
-        return PMD_ERR_OpeningPort;
-    }
+    if (colon && colon > device + 4 && colon[1])
+        return device;
     transport_line(options, "PMDFMU_DEVICE=%s: expected serial:PATH or tcp:HOST:PORT (or fmu, or nothing, "
                    "for the twin in-process)", device);
-    return PMD_ERR_OpeningPort;
+    *refused = 1;
+    return NULL;
 }
 
 /* The baud rates of C-Motion 5.x's PMDSerialBaud codes (cmotion_names.csv: the names carry them) */
@@ -106,7 +104,8 @@ static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host
 #ifdef PMD_HAVE_HOSTTIME
     PMDHostInterface interface;
 #endif
-    PMDresult r;
+    const char *device;
+    int refused;
     if (!handle)
         return PMD_ERR_InvalidHandle;
     handle->axis = axis;
@@ -126,9 +125,11 @@ static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host
         options.logCategories = no_categories;
     }
     pthread_mutex_unlock(&open_options_lock);
-    r = device_link(&options);
-    if (r != PMD_ERR_OK)
-        return r;
+    device = device_link(&options, &refused);
+    if (refused)
+        return PMD_ERR_OpeningPort;
+    if (device)     /* the reset mode's 57600 baud unless the program opened its port at another */
+        return PMDFMU_SetupAxisInterface_Line(handle, axis, device, baud ? baud : 57600, &options);
 #ifdef PMD_HAVE_HOSTTIME
     if (!options.hostInterface) {
         interface = PMDHostInterfaceOf(PMDHostInterfaceKind(host));

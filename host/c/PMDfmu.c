@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
 /* The C-Motion library's FMU transport (PMDfmu.h): loads the FMI 2 binary of the
    PMDMotionProcessor FMU with dlopen and drives it as a co-simulation master does. */
-#define _XOPEN_SOURCE 700     /* realpath, mkdtemp, nftw */
+#define _XOPEN_SOURCE 700     /* realpath, mkdtemp, nftw, nanosleep */
 #include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -17,11 +17,13 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "fmi2FunctionTypes.h"
 #include "c-motion.h"
 #include "PMDfmu_ports.h"
+#include "PMDline.h"
 #ifdef PMD_HAVE_HOSTTIME
 #include "PMDhosttime.h"
 #endif
@@ -57,6 +59,8 @@ typedef struct PMDFMUDevice {
     uint64_t maxCycles;             /* PMDFMU_MAX_CYCLES: 0 none */
     int lastOpcode, lastAxis;       /* the command sent last (-1: none yet), what a program polls */
     unsigned long lastRepeats;      /* how many times in a row it was sent */
+    PMDLine *line;                  /* PMDFMU_DEVICE's link to a chip elsewhere (no FMU here), or NULL */
+    uint64_t openedNs;              /* a line's: the host's monotonic clock when it was opened */
 #ifdef PMD_HAVE_HOSTTIME
     PMDHostInterface hostInterface;
 #endif
@@ -401,6 +405,8 @@ static void free_device(PMDFMUDevice *d)
             break;
         }
     pthread_mutex_unlock(&open_devices_lock);
+    if (d->line)
+        PMDLineClose(d->line);
     if (d->instance) {
         if (d->initialized)     /* FMI 2 terminates an initialized instance; a failed one is only freed */
             d->terminate(d->instance);
@@ -654,6 +660,71 @@ static PMDresult device_of(PMDAxisInterface axis_intf, PMDFMUDevice **d)
     return *d ? PMD_ERR_OK : PMD_ERR_InterfaceNotInitialized;
 }
 
+/* ---- a chip over a line (PMDline.h) ---- */
+
+static uint64_t monotonic_ns(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (uint64_t)t.tv_sec * 1000000000u + (uint64_t)t.tv_nsec;
+}
+
+static void sleep_ns(uint64_t ns)
+{
+    struct timespec t;
+    t.tv_sec = (time_t)(ns / 1000000000u);
+    t.tv_nsec = (long)(ns % 1000000000u);
+    while (nanosleep(&t, &t) != 0 && errno == EINTR)
+        ;
+}
+
+/* What only the twin in-process has (its FMU's variables, cycles, the dual-port memory) */
+static PMDresult not_over_a_line(PMDFMUDevice *d, const char *what)
+{
+    char text[256];
+    snprintf(text, sizeof text, "%s needs the twin in-process: over PMDFMU_DEVICE's line the chip takes "
+             "commands only", what);
+    log_text(d, text);
+    return PMD_ERR_NotSupported;
+}
+
+PMDresult PMDFMU_SetupAxisInterface_Line(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
+                                         PMDuint32 baud, const PMDFMUOptions *options)
+{
+    PMDFMUDevice *d;
+    char why[512];
+    PMDresult r;
+    if (!axis_handle)
+        return PMD_ERR_InvalidHandle;
+    axis_handle->axis = axisNumber;
+    axis_handle->transport_data = NULL;
+    d = calloc(1, sizeof *d);
+    if (!d)
+        return PMD_ERR_OpeningPort;
+    if (options)
+        d->options = *options;
+    d->options.hostInterface = NULL;
+    d->lastOpcode = -1;
+    r = PMDLineOpen(&d->line, device, baud, 0, why, sizeof why);
+    if (r != PMD_ERR_OK) {
+        char text[600];
+        snprintf(text, sizeof text, "PMDFMU_DEVICE=%s: %s", device, why);
+        log_text(d, text);
+        free(d);
+        return r;
+    }
+    d->openedNs = monotonic_ns();
+    d->handles = 1;
+    d->opener = pthread_self();
+    d->self.transport_data = d;
+    pthread_mutex_lock(&open_devices_lock);
+    d->next = open_devices;
+    open_devices = d;
+    pthread_mutex_unlock(&open_devices_lock);
+    axis_handle->transport_data = d;
+    return PMD_ERR_OK;
+}
+
 /* ---- the host port ---- */
 
 PMDresult PMDFMU_Command(PMDAxisInterface axis_intf, PMDuint8 opcode, int chipWide, const PMDuint16 *args,
@@ -673,6 +744,9 @@ PMDresult PMDFMU_Command(PMDAxisInterface axis_intf, PMDuint8 opcode, int chipWi
         d->lastRepeats++;
     else
         d->lastOpcode = opcode, d->lastAxis = (int)axis_intf->axis, d->lastRepeats = 1;
+    if (d->line)
+        return PMDLineCommand(d->line, (PMDuint16)(opcode | (chipWide ? 0 : axis_intf->axis << 8)), args, nargs,
+                              reply, nreply);
     /* the instruction word: opcode in bits 0-7, the axis above it (pmd-reference 1.1) */
     values[0] = opcode | (chipWide ? 0 : axis_intf->axis << 8);
     for (i = 0; i < nargs; i++)
@@ -727,6 +801,8 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
     if (!transport || !*transport)
         return PMD_ERR_InterfaceNotInitialized;
     d = *transport;
+    if (d->line)
+        return not_over_a_line(d, "the dual-port memory");
     if (d->getInteger(d->instance, &sizeVr, 1, &size) > fmi2Warning)
         return fmi_failed(d, PMD_ERR_Driver, "fmi2GetInteger of memorySize");
     if (offset > (PMDuint32)size || count > (PMDuint32)size - offset || (count && !data))
@@ -757,6 +833,10 @@ PMDresult PMDFMU_Wait(PMDAxisInterface axis_intf, PMDuint32 microseconds)
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
+    if (d->line) {      /* the host's own sleep: a chip over a line keeps its own time */
+        sleep_ns((uint64_t)microseconds * 1000u);
+        return PMD_ERR_OK;
+    }
     d->hostNs += (uint64_t)microseconds * 1000u;
     return run_due(d);
 }
@@ -775,12 +855,18 @@ static PMDFMUDevice *opened_here(PMDFMUDevice *d)
 void PMDTaskWait(PMDuint32 milliseconds)
 {
     PMDFMUDevice *d;
+    int slept = 0;
     pthread_mutex_lock(&open_devices_lock);
     d = opened_here(open_devices);
     pthread_mutex_unlock(&open_devices_lock);
     while (d) {
-        d->hostNs += (uint64_t)milliseconds * 1000000u;
-        run_due(d);
+        if (d->line && !slept) {       /* chips over a line keep their own time: the host sleeps once */
+            sleep_ns((uint64_t)milliseconds * 1000000u);
+            slept = 1;
+        } else if (!d->line) {
+            d->hostNs += (uint64_t)milliseconds * 1000000u;
+            run_due(d);
+        }
         pthread_mutex_lock(&open_devices_lock);
         d = opened_here(d->next);
         pthread_mutex_unlock(&open_devices_lock);
@@ -795,6 +881,8 @@ PMDresult PMDFMU_RunCycles(PMDAxisInterface axis_intf, PMDuint32 cycles)
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
+    if (d->line)
+        return not_over_a_line(d, "PMDFMU_RunCycles");
     for (i = 0; i < cycles; i += d->options.cycle ? 1 : cycles) {
         if ((r = read_grid(d, &g)) != PMD_ERR_OK || (r = step(d, &g, d->options.cycle ? 1 : cycles)) != PMD_ERR_OK)
             return r;
@@ -814,7 +902,7 @@ PMDresult PMDFMU_GetHostTime(PMDAxisInterface axis_intf, uint64_t *nanoseconds)
     PMDFMUDevice *d;
     PMDresult r = device_of(axis_intf, &d);
     if (r == PMD_ERR_OK && nanoseconds)
-        *nanoseconds = d->hostNs;
+        *nanoseconds = d->line ? monotonic_ns() - d->openedNs : d->hostNs;
     return r;
 }
 
@@ -835,6 +923,8 @@ PMDresult PMDFMU_GetInteger(PMDAxisInterface axis_intf, const char *name, PMDint
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
+    if (d->line)
+        return not_over_a_line(d, "PMDFMU_GetInteger");
     if (!v || (v->type != 'I' && v->type != 'B'))
         return PMD_ERR_InvalidAddress;
     if (v->type == 'B') {
@@ -858,6 +948,8 @@ PMDresult PMDFMU_GetReal(PMDAxisInterface axis_intf, const char *name, double *v
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
+    if (d->line)
+        return not_over_a_line(d, "PMDFMU_GetReal");
     if (!v || v->type != 'R')
         return PMD_ERR_InvalidAddress;
     if (d->getReal(d->instance, &v->vr, 1, &x) > fmi2Warning)

@@ -8,9 +8,9 @@
    Every opening opens the twin in-process: a new chip (FMU instance) of the FMU the environment's
    PMDFMU_FMU names, else the build tree's, with the options of PMDFMU_SetOpenOptions. The link a
    program names (COM port, IP address, board address) is kept, not used: one unchanged binary
-   runs against the twin. PMDFMU_DEVICE=serial:PATH or tcp:HOST:PORT asks for the chip's serial
-   packets over that link instead; that transport is not built yet, and such an opening answers
-   PMD_ERR_OpeningPort with a transport log line saying so. */
+   runs against the twin. PMDFMU_DEVICE=serial:PATH or tcp:HOST:PORT sends the chip's serial
+   packets over that line instead (PMDline.h): to `pmdfmu serve` or a real chip (docs/device.md);
+   an opening that cannot open the line answers PMD_ERR_OpeningPort with a transport log line. */
 #ifndef PMD_LIBRARY_H
 #define PMD_LIBRARY_H
 

@@ -522,7 +522,20 @@ class Chip:
     kind "none") sends commands in no chip time, as before; a kind's name
     ("parallel16", "parallel8", "serial", "spi", "fixed", with the defaults of
     modelDescription/host_interfaces.csv) or a pmdfmu.HostInterface makes each
-    command take its transfer time, the chip running the cycles that fall due."""
+    command take its transfer time, the chip running the cycles that fall due.
+
+    device="serial:PATH" or "tcp:HOST:PORT" (keywords address=, baud=) returns a chip reached
+    over its serial packet protocol instead (pmdfmu serve's twin or a real chip: line.LineChip,
+    docs/device.md): the same Axis methods, and batch and command; the calls that need the FMU
+    in-process (run, get, set, write_memory, wait, FMU states) raise line.NeedsFMU."""
+
+    def __new__(cls, *args, device: Optional[str] = None, **kwargs):
+        # device="serial:PATH" or "tcp:HOST:PORT": the chip over its serial packets (line.py), commands only
+        if device is not None and device != "fmu":
+            from .line import LineChip
+
+            return LineChip(device, **kwargs)
+        return super().__new__(cls)
 
     # how run(record=...) records: a class made per run with (chip, names, where, dtype), whose run(cycles)
     # returns the rows (a test sets another on an instance: its oracle)
@@ -535,6 +548,7 @@ class Chip:
         *,
         log_categories: Union[bool, Iterable[str]] = False,
         host_interface: Union[None, str, HostInterface] = None,
+        device: Optional[str] = None,
         **parameters,
     ):
         if fmi_version not in (2, 3):

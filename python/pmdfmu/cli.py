@@ -9,6 +9,8 @@ pmdfmu verify FILE  run a script or table and check it against a golden trace an
                     (exit 0 pass, 1 fail, 2 malformed input; JUnit XML, Markdown, diff plots)
 pmdfmu pack SCRIPT  write a copy of the FMU that runs the script with no parameter set
 pmdfmu machine --check FILE  check a machine file and say what it means (docs/machine.md)
+pmdfmu serve --serial PATH | --tcp HOST:PORT  the twin as a virtual device: the chip's serial
+                    packets on a pty or TCP, until Ctrl-C (docs/device.md)
 pmdfmu validate   check the FMU with fmpy.validation
 pmdfmu info       the FMU's variables and the chip's commands
 """
@@ -400,6 +402,59 @@ def cmd_pack(args) -> int:
     return 0
 
 
+def _tcp_endpoint(text: str) -> Tuple[str, int]:
+    host, colon, port = text.rpartition(":")
+    if not colon or not host or not port.isdigit() or int(port) > 65535:
+        raise ValueError(text)
+    return host.strip("[]"), int(port)
+
+
+_tcp_endpoint.__name__ = "HOST:PORT"
+
+
+def _chip_count(text: str) -> int:
+    value = _positive_int(text)
+    if value > 32:  # the multi-drop address is 5 bits (pmd-reference 3.3)
+        raise ValueError(text)
+    return value
+
+
+_chip_count.__name__ = "number of chips 1..32"
+
+
+def cmd_serve(args) -> int:
+    """Ctrl-C and SIGTERM are how a server is stopped: exit status 0, files written, the link removed
+    (docs/device.md)."""
+    from .serve import serve
+
+    fmu = _fmu_file(args.fmu)
+    if args.script:
+        files.check_regular(args.script)
+    script = str(_script_file(args.script).resolve()) if args.script else None
+    machine = _machine_file(args.machine)
+    inputs = [args.script, args.machine, fmu]
+    _refuse_overwriting([("--record", args.record), ("--log", args.log)], inputs)
+    if args.serial is not None and "\n" in str(args.serial):
+        raise CommandLineError(f"--serial {files.shown_path(args.serial)}: the link's path holds a line feed")
+    parameters = {"cycleTime": args.cycle_time}
+    if script:
+        parameters["script"] = script
+    if machine:
+        parameters["machine"] = machine
+    return serve(
+        serial=args.serial,
+        tcp=args.tcp,
+        chips=args.chips,
+        fmi_version=args.fmi_version,
+        fmu=fmu,
+        realtime=args.realtime,
+        reset_on_connect=args.reset_on_connect,
+        record=args.record,
+        log=args.log,
+        **parameters,
+    )
+
+
 def cmd_validate(args) -> int:
     """fmpy.validation on the given FMU, or on both built ones."""
     from fmpy.validation import validate_fmu
@@ -633,6 +688,32 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--fmu", type=Path, help="the FMU to copy (default: the built one of that FMI version)")
     p.set_defaults(func=cmd_pack)
+
+    p = sub.add_parser(
+        "serve",
+        help="the twin as a virtual device: the chip's serial packets on a pty or TCP (docs/device.md)",
+        description="Serves the chip's serial packet protocol until Ctrl-C or SIGTERM (exit status 0). "
+        "Virtual time by default: the chip runs the cycles the line's traffic takes at its baud.",
+    )
+    where = p.add_mutually_exclusive_group(required=True)
+    where.add_argument("--serial", type=Path, metavar="PATH", help="make a pty and a symlink PATH to its slave side")
+    where.add_argument("--tcp", type=_tcp_endpoint, metavar="HOST:PORT", help="listen on TCP (port 0: any free)")
+    p.add_argument("--chips", type=_chip_count, default=1, help="chips on the line, multi-drop addresses 0..N-1")
+    p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
+    p.add_argument(
+        "--cycle-time",
+        type=_cycle_time,
+        default=DEFAULT_CYCLE_TIME,
+        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
+    )
+    p.add_argument("--script", type=Path, help="a command script the chip runs from time 0")
+    p.add_argument("--machine", type=Path, help="a machine file (docs/machine.md)")
+    p.add_argument("--realtime", action="store_true", help="pace chip cycles to the wall clock")
+    p.add_argument("--reset-on-connect", action="store_true", help="a new client gets chips as after power-up")
+    p.add_argument("--record", type=Path, help="write the chips' cycles here when the server stops (CSV or .npz)")
+    p.add_argument("--log", type=Path, help="write every packet in and out, with chip time, here")
+    p.set_defaults(func=cmd_serve)
 
     for name, func, help_ in (
         ("validate", cmd_validate, "validate the FMU"),

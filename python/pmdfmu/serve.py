@@ -1,0 +1,378 @@
+# SPDX-License-Identifier: BSD-2-Clause
+"""`pmdfmu serve`: the twin as a virtual device on a pty or a TCP port, speaking the chip's serial
+packet protocol (serial_protocol.py, pmd-reference 3.1-3.3) byte for byte (docs/device.md).
+
+A Line holds the chips on one serial line (--chips N: multi-drop addresses 0..N-1) and the line's
+clock. Time is virtual by default: each packet costs its transfer time at the line's baud (the host
+timing model, hosttime.py, through each chip's host_interface "serial"), so a host polling over the
+line sees the chip times it would see in-process with Chip(host_interface="serial"). --realtime
+paces the chips to the wall clock as well."""
+
+from __future__ import annotations
+
+import errno
+import os
+import select
+import signal
+import socket
+import sys
+import termios
+import time
+import tty
+from pathlib import Path
+from typing import IO, List, Optional
+
+import numpy as np
+
+from . import hosttime
+from . import serial_protocol as sp
+from .chip import Chip
+from .recording import RECORDED
+
+# how often an idle server looks at the wall clock (--realtime) and for a pty's next client, s
+IDLE_TICK = 0.005
+RECONNECT_POLL = 0.02
+
+
+class ServedChip(Chip):
+    """A chip on the line: its serial port mode (the chip's own register, kept here as it changes:
+    the framing and the line's timing follow it) and, with --record, its cycles' rows."""
+
+    record_names: List[str] = []
+
+    def _step(self, cycles: int) -> int:
+        # with --record every cycle the host's traffic runs is recorded (Chip.run's recorder)
+        if not self.record_names:
+            return super()._step(cycles)
+        self.rows.append(self._run(cycles, self.record_names, None))
+        return 0
+
+    def start(self, address: Optional[int], record: bool) -> None:
+        """The mode after reset (GetSerialPortMode, sent in no chip time), then, on a line of several
+        chips, multi-drop with this address; then every command takes its time on the line."""
+        self.host_interface = hosttime.HostInterface("none")
+        self.rows: List[np.ndarray] = []
+        self.record_names = list(RECORDED) if record else []
+        baud, parity, stop, _protocol, _address = self.command(0, "GetSerialPortMode")
+        self.reset_mode = sp.SerialPortMode.word(baud, parity, stop, sp.POINT_TO_POINT, 0)
+        mode = self.reset_mode
+        if address is not None:
+            self.command(0, "SetSerialPortMode", [baud, parity, stop, sp.MULTI_DROP_ADDRESS_BIT, address])
+            mode = sp.SerialPortMode.word(baud, parity, stop, sp.MULTI_DROP_ADDRESS_BIT, address)
+        self.set_mode(mode)
+
+    def set_mode(self, word: int) -> None:
+        """A new serial port mode: from the next command on (reference 3.3: the reply to
+        SetSerialPortMode still goes out with the old settings)."""
+        self.mode = sp.SerialPortMode.of(word)
+        self.host_interface = hosttime.HostInterface(
+            "serial", baud=self.mode.baud, parity=1 if self.mode.parity else 0, stop_bits=self.mode.stop_bits
+        )
+
+    def recording(self) -> np.ndarray:
+        return np.concatenate(self.rows) if self.rows else np.zeros(0, dtype=self._columns(self.record_names)[1])
+
+
+class Line:
+    """The chips on one serial line: bytes in, the chips' replies out."""
+
+    def __init__(self, chips: List[ServedChip], realtime: bool = False, log: Optional[IO[str]] = None):
+        self.chips = chips
+        self.realtime = realtime
+        self.log = log
+        self.decoder = sp.PacketDecoder()
+        self.line_ns = 0  # the line's clock: ns of chip time its traffic (and, --realtime, the wall) took
+        self.t0 = time.monotonic_ns()
+        self.packets = 0
+
+    def _line(self, text: str) -> None:
+        if self.log:
+            self.log.write(text + "\n")
+
+    def tick(self) -> None:
+        """--realtime: every chip runs the cycles the wall clock has reached."""
+        if not self.realtime:
+            return
+        wall = time.monotonic_ns() - self.t0
+        for c in self.chips:
+            if wall > c.host_time_ns:
+                c.wait_ns(wall - c.host_time_ns)
+        self.line_ns = max(self.line_ns, wall)
+
+    def receive(self, data: bytes) -> bytes:
+        """The replies to the packets data completes."""
+        out = b""
+        for packet in self.decoder.feed(data):
+            out += self.packet(packet)
+        return out
+
+    def disconnected(self, why: str) -> None:
+        """A client went: a packet it left unfinished is dropped, never executed."""
+        dropped = self.decoder.reset()
+        self._line(
+            f"{self.line_ns} ns: {why}" + (f"; {dropped} bytes of an unfinished packet dropped" if dropped else "")
+        )
+
+    def restart(self) -> None:
+        """--reset-on-connect: every chip as new, the line's clock at 0."""
+        for c in self.chips:
+            address = c.mode.address if c.mode.multi_drop else None
+            record = bool(c.record_names)
+            c.reinitialize(**c.parameters)
+            c.start(address, record)
+        self.line_ns, self.t0 = 0, time.monotonic_ns()
+
+    def packet(self, p: sp.Packet) -> bytes:
+        self.packets += 1
+        self.tick()
+        words = 1 + len(p.args)
+        reply = b""
+        targets = [c for c in self.chips if c.mode.answers(p.address)]
+        if not targets:  # for another address: its bytes still take the line's time
+            self.line_ns += self.chips[0].host_interface.request_ns(words)
+            self._line(f"{self.line_ns} ns: in {p.data.hex(' ')}: no chip at address {p.address}")
+            return b""
+        for c in targets:
+            if c.host_time_ns < self.line_ns:  # the line's time its other traffic took
+                c.wait_ns(self.line_ns - c.host_time_ns)
+            address = c.mode.reply_address()
+            if not p.checksum_ok:  # received whole, answered with the checksum error, not executed
+                c.wait_ns(c.host_interface.request_ns(words))
+                status, result = sp.BAD_CHECKSUM, []
+                c.wait_ns(c.host_interface.reply_ns(0, failed=True))
+            else:
+                status, result = c.batch([p.instruction, *p.args])
+                if status == 0 and p.opcode == sp.SET_SERIAL_PORT_MODE:
+                    c.set_mode(p.args[0])
+                elif status == 0 and p.opcode == sp.RESET:
+                    c.set_mode(c.reset_mode)
+            self.line_ns = max(self.line_ns, c.host_time_ns)
+            answer = sp.reply_packet(status, result, address)
+            reply += answer
+            if self.log:
+                name = sp.OPCODE_NAMES.get(p.opcode, "unknown opcode")
+                self._line(
+                    f"{self.line_ns} ns cycle {c.cycles} chip {self.chips.index(c)}: in {p.data.hex(' ')} "
+                    f"({name}) out {answer.hex(' ')}"
+                )
+        return reply
+
+
+# ---- the endpoints ----
+
+
+class _Stop:
+    """SIGINT and SIGTERM end the server between packets: the handler sets the flag, and the
+    wake-up pipe ends the select the loop waits in."""
+
+    def __init__(self):
+        self.signal = 0
+        self.r, self.w = os.pipe()
+        os.set_blocking(self.w, False)
+        os.set_blocking(self.r, False)
+        self.old = {s: signal.signal(s, self._handle) for s in (signal.SIGINT, signal.SIGTERM)}
+        self.old_fd = signal.set_wakeup_fd(self.w)
+
+    def _handle(self, signum, _frame) -> None:
+        self.signal = signum
+
+    def close(self) -> None:
+        signal.set_wakeup_fd(self.old_fd)
+        for s, h in self.old.items():
+            signal.signal(s, h)
+        os.close(self.r)
+        os.close(self.w)
+
+
+def _write_all(fd: int, data: bytes) -> bool:
+    """Writes data whole; False if the client went meanwhile."""
+    view = memoryview(data)
+    while view:
+        try:
+            n = os.write(fd, view)
+        except BlockingIOError:
+            select.select([], [fd], [], 1.0)
+            continue
+        except OSError as e:
+            if e.errno in (errno.EIO, errno.EPIPE, errno.ECONNRESET):
+                return False
+            raise
+        view = view[n:]
+    return True
+
+
+class PtyEndpoint:
+    """A pseudo-terminal, PATH a symlink to its slave side (as socat's link=). The chip sees no
+    connection on a serial line, but a pty tells when the last client closed it (EIO): the server
+    then drops an unfinished packet and waits for the next client."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        if os.path.lexists(path):
+            raise FileExistsError(errno.EEXIST, "exists already: pmdfmu serve makes the link itself", str(path))
+        self.master, slave = os.openpty()
+        # raw bytes both ways (no echo, no line editing) for a client that sets no mode of its own
+        tty.setraw(slave, termios.TCSANOW)
+        self.slave_name = os.ttyname(slave)
+        os.close(slave)
+        os.set_blocking(self.master, False)
+        os.symlink(self.slave_name, path)
+        self.connected = False
+
+    def describe(self) -> str:
+        return f"serial {self.path} (pty {self.slave_name})"
+
+    def close(self) -> None:
+        try:
+            if os.readlink(self.path) == self.slave_name:
+                os.unlink(self.path)
+        except OSError:
+            pass
+        os.close(self.master)
+
+
+def _serve_pty(end: PtyEndpoint, line: Line, stop: _Stop, reset_on_connect: bool) -> None:
+    while not stop.signal:
+        readable, _, _ = select.select([end.master, stop.r], [], [], IDLE_TICK if line.realtime else None)
+        if stop.r in readable:
+            os.read(stop.r, 64)
+            continue
+        if end.master not in readable:
+            line.tick()
+            continue
+        try:
+            data = os.read(end.master, 65536)
+        except BlockingIOError:
+            continue
+        except OSError as e:
+            if e.errno != errno.EIO:
+                raise
+            # no client has the slave open: wait for one (a pty's master is readable meanwhile)
+            if end.connected:
+                end.connected = False
+                line.disconnected("the client closed the port")
+            time.sleep(RECONNECT_POLL)
+            line.tick()
+            continue
+        if not end.connected:
+            end.connected = True
+            if reset_on_connect:
+                line.restart()
+        reply = line.receive(data)
+        if reply and not _write_all(end.master, reply):
+            end.connected = False
+            line.disconnected("the client closed the port before the reply")
+
+
+class TcpEndpoint:
+    """A TCP port, one client at a time, the bytes as on the serial line (a serial-to-Ethernet
+    converter); the next client waits in the listen queue."""
+
+    def __init__(self, host: str, port: int):
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+        family, kind, proto, _name, address = infos[0]
+        self.listener = socket.socket(family, kind, proto)
+        self.listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        self.listener.bind(address)
+        self.listener.listen(8)
+        self.address = self.listener.getsockname()
+
+    def describe(self) -> str:
+        host, port = self.address[0], self.address[1]
+        return f"tcp {'[' + host + ']' if ':' in host else host}:{port}"
+
+    def close(self) -> None:
+        self.listener.close()
+
+
+def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool) -> None:
+    client: Optional[socket.socket] = None
+    try:
+        while not stop.signal:
+            waiting = [stop.r, client if client else end.listener]
+            readable, _, _ = select.select(waiting, [], [], IDLE_TICK if line.realtime else None)
+            if stop.r in readable:
+                os.read(stop.r, 64)
+                continue
+            if not readable:
+                line.tick()
+                continue
+            if client is None:
+                client, _peer = end.listener.accept()
+                client.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+                if reset_on_connect:
+                    line.restart()
+                continue
+            try:
+                data = client.recv(65536)
+            except OSError:
+                data = b""
+            if not data:
+                client.close()
+                client = None
+                line.disconnected("the client disconnected")
+                continue
+            reply = line.receive(data)
+            if reply and not _write_all(client.fileno(), reply):
+                client.close()
+                client = None
+                line.disconnected("the client disconnected before the reply")
+    finally:
+        if client is not None:
+            client.close()
+
+
+def serve(
+    serial: Optional[Path] = None,
+    tcp: Optional[tuple] = None,
+    chips: int = 1,
+    fmi_version: int = 2,
+    fmu: Optional[Path] = None,
+    realtime: bool = False,
+    reset_on_connect: bool = False,
+    record: Optional[Path] = None,
+    log: Optional[Path] = None,
+    out: IO[str] = sys.stdout,
+    **parameters,
+) -> int:
+    """Serves until SIGINT or SIGTERM (the normal stop: returns 0); parameters are the FMU's
+    (cycleTime, script, machine)."""
+    from .verify import write_recording
+
+    served: List[ServedChip] = []
+    end = None
+    log_file = open(log, "w") if log else None
+    stop = _Stop()
+    try:
+        for k in range(chips):
+            c = ServedChip(fmi_version, fmu, **parameters)
+            c.parameters = parameters
+            served.append(c)
+            c.start(k if chips > 1 else None, record is not None)
+        end = PtyEndpoint(serial) if serial is not None else TcpEndpoint(*tcp)
+        line = Line(served, realtime, log_file)
+        m = served[0].mode
+        time_text = (
+            "real time: chip cycles paced to the wall clock"
+            if realtime
+            else f"virtual time: chip time from the line's traffic at {m.baud} baud"
+        )
+        drop = f", multi-drop addresses 0..{chips - 1}" if chips > 1 else ""
+        print(f"pmdfmu serve: {end.describe()}, {chips} chip{'s' if chips > 1 else ''}{drop}, {time_text}", file=out)
+        print("Ctrl-C or SIGTERM stops it", file=out, flush=True)
+        (_serve_pty if serial is not None else _serve_tcp)(end, line, stop, reset_on_connect)
+        print(f"pmdfmu serve: stopped after {line.packets} packets", file=out, flush=True)
+        if record is not None:
+            for k, c in enumerate(served):
+                path = record if chips == 1 else record.with_name(f"{record.stem}-chip{k}{record.suffix}")
+                write_recording(path, c.recording())
+                print(f"wrote {path}", file=out, flush=True)
+        return 0
+    finally:
+        stop.close()
+        if end is not None:
+            end.close()
+        if log_file:
+            log_file.close()
+        for c in served:
+            c.close()

@@ -1,0 +1,288 @@
+# SPDX-License-Identifier: BSD-2-Clause
+"""`pmdfmu serve` with real clients (docs/device.md): pyserial on the pty, sockets on TCP,
+pmdfmu.Chip(device=...). Every reply equals, byte for byte, what the twin in-process answers
+with host_interface="serial" to the same commands, so chip times equal the host timing model's."""
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+import pmdfmu
+from pmdfmu import serial_protocol as sp
+from pmdfmu.chip import COMMANDS, encode, instruction_word
+from pmdfmu.line import NeedsFMU
+
+serial = pytest.importorskip("serial")  # pyserial: the test extra's
+
+PMDFMU = Path(sys.executable).parent / "pmdfmu"
+
+
+class Server:
+    """pmdfmu serve in a process of its own; its first line says where it listens."""
+
+    def __init__(self, *args):
+        self.process = subprocess.Popen(
+            [str(PMDFMU), "serve", *map(str, args)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        )
+        self.first = self.process.stdout.readline()
+        assert self.first.startswith("pmdfmu serve: "), self.first + self.process.stderr.read()
+        self.process.stdout.readline()  # how to stop it
+
+    @property
+    def tcp(self):
+        host_port = self.first.split()[3].rstrip(",")
+        host, _, port = host_port.rpartition(":")
+        return host, int(port)
+
+    def stop(self, sig=signal.SIGINT):
+        self.process.send_signal(sig)
+        out, err = self.process.communicate(timeout=60)
+        return self.process.returncode, out, err
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.communicate()
+
+
+def packet(name, args=(), axis=0, address=0):
+    c = COMMANDS[name]
+    return sp.command_packet(instruction_word(c.opcode, 0 if c.scope == "chip" else axis), encode(c, args), address)
+
+
+class Twin:
+    """The reference: the twin in-process, each good packet sent as a timed batch on the serial host
+    interface, a packet with a bad checksum only its time on the line (it is not executed)."""
+
+    def __init__(self):
+        self.chip = pmdfmu.Chip(host_interface="serial")
+
+    def reply(self, data: bytes) -> bytes:
+        out = b""
+        for p in sp.PacketDecoder().feed(data):
+            if not p.checksum_ok:
+                h = self.chip.host_interface
+                self.chip.wait_ns(h.request_ns(1 + len(p.args)) + h.reply_ns(0, failed=True))
+                out += sp.reply_packet(sp.BAD_CHECKSUM)
+                continue
+            status, words = self.chip.batch([p.instruction, *p.args])
+            out += sp.reply_packet(status, words)
+        return out
+
+
+def exchange(port, data: bytes, n: int) -> bytes:
+    port.write(data)
+    return port.read(n)
+
+
+def reply_length(name, failed=False):
+    return sp.reply_length(0 if failed else COMMANDS[name].reply_words)
+
+
+@pytest.fixture
+def pty_server(tmp_path):
+    link = tmp_path / "pmd"
+    with Server("--serial", link, "--log", tmp_path / "log.txt", "--record", tmp_path / "rec.csv") as s:
+        s.link = link
+        yield s
+
+
+def test_a_pyserial_session_is_answered_as_the_twin_in_process_answers_it(pty_server, tmp_path):
+    """Version, a trapezoidal move polled to motion complete, an external profile uploaded with
+    WriteBuffer and run, a bad checksum, an opcode the Navigator lacks, garbage then C-Motion's
+    resynchronisation: byte for byte the in-process twin's replies, GetTime's chip times included."""
+    twin = Twin()
+    port = serial.Serial(str(pty_server.link), 57600, timeout=2)
+
+    def same(data, n):
+        got = exchange(port, data, n)
+        assert got == twin.reply(data), data.hex(" ")
+        return got
+
+    version = same(packet("GetVersion"), reply_length("GetVersion"))
+    assert version[0] == 0 and len(version) == 6
+    for name, args in [
+        ("SetProfileMode", [pmdfmu.PMDTrapezoidal]),
+        ("SetPosition", [2000]),
+        ("SetVelocity", [0x40000]),
+        ("SetAcceleration", [0x1000]),
+        ("SetDeceleration", [0x1000]),
+        ("Update", []),
+    ]:
+        assert same(packet(name, args), reply_length(name)) == b"\x00\x00"
+    polls = 0
+    while True:
+        status = sp.parse_reply(same(packet("GetEventStatus"), reply_length("GetEventStatus")))[1][0]
+        polls += 1
+        if status & pmdfmu.PMDEventMotionCompleteMask:
+            break
+    assert polls > 10
+    same(packet("GetTime"), reply_length("GetTime"))
+    # an external profile: 20 cycles at 1 count/cycle, uploaded through the processor (WriteBuffer)
+    rows = [(0, 0x10000, 0, 0, 20), (20, 0, 0, 0, 0)]
+    for f in range(5):
+        for name, args in [
+            ("SetBufferStart", [2 + f, 0x200 + 8 * f]),
+            ("SetBufferLength", [2 + f, 8]),
+            ("SetBufferFunction", [f, 2 + f]),
+        ]:
+            same(packet(name, args), reply_length(name))
+        for row in rows:
+            same(packet("WriteBuffer", [2 + f, row[f]]), reply_length("WriteBuffer"))
+    for name, args in [("SetProfileMode", [pmdfmu.PMDExternalProfile]), ("Update", [])]:
+        same(packet(name, args), reply_length(name))
+    while sp.parse_reply(same(packet("GetActivityStatus"), 4))[1][0] & pmdfmu.PMDActivityProfileSegmentMask:
+        pass
+    assert sp.parse_reply(same(packet("GetCommandedPosition"), 6))[1] == [0, 20]  # the rows are positions
+    # a bad checksum: the checksum error alone, nothing executed
+    bad = bytearray(packet("SetPosition", [777]))
+    bad[1] ^= 0x55
+    assert same(bytes(bad), 2) == bytes.fromhex("09 f7")
+    assert sp.parse_reply(same(packet("GetPosition"), 6))[1] == [0, 2000]
+    # an opcode the Navigator lacks (SetOperatingMode, Magellan only): invalid instruction
+    assert same(sp.command_packet(0x65, [1]), 2) == bytes.fromhex("02 fe")
+    # garbage, then single zero bytes until a 2-byte reply comes back
+    port.write(bytes.fromhex("05 07"))
+    twin_garbage, port.timeout = b"\x05\x07", 0.2
+    for _ in range(8):
+        port.write(b"\0")
+        twin_garbage += b"\0"
+        got = port.read(2)
+        if len(got) == 2:
+            break
+    port.timeout = 2
+    assert got == twin.reply(twin_garbage)
+    same(packet("GetTime"), reply_length("GetTime"))
+    port.close()
+    code, out, err = pty_server.stop()
+    assert code == 0 and not err and not pty_server.link.exists()
+    assert "wrote" in out
+    log = (tmp_path / "log.txt").read_text()
+    assert "in 00 71 00 8f (GetVersion) out " + version.hex(" ") in log
+    recording = (tmp_path / "rec.csv").read_text().splitlines()
+    assert recording[0].startswith("cycle,axis1.commandedPosition")
+    assert int(recording[-1].split(",")[0]) == twin.chip.cycles - 1
+
+
+def test_a_baud_change_takes_effect_from_the_next_command(tmp_path):
+    """Reference 3.3: the reply to SetSerialPortMode still goes at the old baud; the next command's
+    bytes take 115200's time, as the twin in-process with that host interface from then on."""
+    twin = Twin()
+    with Server("--serial", tmp_path / "pmd") as s:
+        port = serial.Serial(str(tmp_path / "pmd"), 57600, timeout=2)
+        mode = packet("SetSerialPortMode", [pmdfmu.PMDSerialBaud115200, 0, 0, 0, 0])
+        assert exchange(port, mode, 2) == twin.reply(mode) == b"\x00\x00"
+        twin.chip.host_interface = pmdfmu.HostInterface("serial", baud=115200)
+        for _ in range(3):
+            assert exchange(port, packet("GetTime"), 6) == twin.reply(packet("GetTime"))
+        port.close()
+        assert s.stop()[0] == 0
+
+
+def test_tcp_clients_one_after_another_and_one_killed_mid_packet(tmp_path):
+    """The chip stays as the last client left it; a packet cut by a disconnect is never executed,
+    and the next client is answered at once."""
+    with Server("--tcp", "127.0.0.1:0") as s:
+        with socket.create_connection(s.tcp) as c:
+            c.sendall(packet("SetPosition", [1234]))
+            assert c.recv(2) == b"\x00\x00"
+        with socket.create_connection(s.tcp) as c:
+            c.sendall(packet("GetPosition"))
+            assert sp.parse_reply(c.recv(6)) == (0, [0, 1234])
+        cut = packet("SetPosition", [4321])[:5]
+        killed = subprocess.run(
+            [
+                sys.executable,
+                "-c",
+                "import os, socket, sys; c = socket.create_connection(('%s', %d)); c.sendall(bytes.fromhex(sys.argv[1])); "
+                "os.kill(os.getpid(), 9)" % s.tcp,
+                cut.hex(),
+            ]
+        )
+        assert killed.returncode == -9
+        with pmdfmu.Chip(device="tcp:%s:%d" % s.tcp) as chip:
+            ax = chip.axis(pmdfmu.PMDAxis1)
+            assert ax.GetPosition() == 1234
+            assert ax.GetVersion() == pmdfmu.Chip().axis(0).GetVersion()
+            with pytest.raises(NeedsFMU, match="needs the twin in-process"):
+                chip.run(10)
+            with pytest.raises(pmdfmu.PMDError):
+                ax.SetBufferFunction(99, 99)
+        # a flood: 0xFF bytes frame as packets of an unknown opcode with a bad checksum, each answered
+        # with the checksum error; the client goes without reading them, the server stays up
+        with socket.create_connection(s.tcp) as c:
+            c.sendall(b"\xff" * 50_001)
+        with pmdfmu.Chip(device="tcp:%s:%d" % s.tcp) as chip:
+            assert chip.axis(0).GetPosition() == 1234
+        code, out, err = s.stop(signal.SIGTERM)
+        assert code == 0 and not err
+
+
+def test_a_multi_drop_line_of_two_chips_each_answering_only_its_address(tmp_path):
+    """--chips 2: addresses 0 and 1; a packet for address 5 gets no answer; each chip keeps its own
+    registers; Chip(device=..., address=1) talks to the second."""
+    with Server("--tcp", "127.0.0.1:0", "--chips", "2") as s:
+        assert "multi-drop addresses 0..1" in s.first
+        with socket.create_connection(s.tcp) as c:
+            c.settimeout(2)
+            c.sendall(packet("SetPosition", [500], address=1))
+            assert c.recv(2) == b"\x00\x00"
+            c.sendall(packet("GetSerialPortMode", address=1))
+            assert sp.parse_reply(c.recv(4))[1] == [sp.SerialPortMode.word(4, 0, 0, sp.MULTI_DROP_ADDRESS_BIT, 1)]
+            c.sendall(packet("GetPosition", address=5))
+            c.settimeout(0.3)
+            with pytest.raises(socket.timeout):
+                c.recv(6)
+        with pmdfmu.Chip(device="tcp:%s:%d" % s.tcp, address=0) as chip0:
+            assert chip0.axis(0).GetPosition() == 0
+        with pmdfmu.Chip(device="tcp:%s:%d" % s.tcp, address=1) as chip1:
+            assert chip1.axis(0).GetPosition() == 500
+        assert s.stop()[0] == 0
+
+
+def test_reset_on_connect_gives_each_client_a_chip_as_after_power_up(tmp_path):
+    with Server("--tcp", "127.0.0.1:0", "--reset-on-connect") as s:
+        for _ in range(2):
+            with pmdfmu.Chip(device="tcp:%s:%d" % s.tcp) as chip:
+                assert chip.axis(0).GetHostIOError() == pmdfmu.PMD_ERR_ChipsetReset
+        assert s.stop()[0] == 0
+
+
+def test_realtime_says_so_in_its_first_line_and_chip_time_follows_the_wall_clock(tmp_path):
+    with Server("--tcp", "127.0.0.1:0", "--realtime") as s:
+        assert "real time" in s.first
+        with pmdfmu.Chip(device="tcp:%s:%d" % s.tcp) as chip:
+            t0 = chip.axis(0).GetTime()
+            time.sleep(0.3)
+            t1 = chip.axis(0).GetTime()
+        assert 2000 <= t1 - t0 <= 30000  # 0.3 s of 100 us cycles, give or take a slow machine
+        assert s.stop()[0] == 0
+
+
+@pytest.mark.parametrize(
+    "args,reason",
+    [
+        (["--tcp", "nowhere"], "argument --tcp: invalid HOST:PORT value"),
+        (["--tcp", "127.0.0.1:0", "--chips", "33"], "invalid number of chips 1..32 value"),
+        (["--serial", "{existing}"], "exists already"),
+        (["--tcp", "127.0.0.1:0", "--script", "{missing}"], "No such file"),
+    ],
+)
+def test_bad_command_lines_exit_2_with_one_line(tmp_path, args, reason):
+    existing = tmp_path / "file"
+    existing.write_text("")
+    args = [a.format(existing=existing, missing=tmp_path / "missing.script") for a in args]
+    out = subprocess.run([str(PMDFMU), "serve", *args], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 2
+    assert len(out.stderr.splitlines()) == 1 and out.stderr.startswith("pmdfmu serve")
+    assert reason in out.stderr
+    assert os.path.exists(existing)
