@@ -315,13 +315,15 @@ class ProfileRun:
     """A run of run_profile: the recording, the axes recorded (0..3), the chip's
     cycle time (s), the FMU's log messages (warnings: refused script commands) and
     whether the profile had ended by the recording's last cycle (profile_ended):
-    False when max_cycles cut the run short."""
+    False when max_cycles cut the run short; window: the caller asked for such a
+    cut (`pmdfmu run --cycles N`)."""
 
     recording: np.ndarray
     axes: List[int]
     cycle_time: float
     messages: list
     ended: bool = True
+    window: bool = False  # the caller asked for the first max_cycles cycles, the profile ended or not
 
 
 def profile_ended(recording: np.ndarray, axes: Sequence[int], last_script_cycle: Optional[int] = None) -> bool:
