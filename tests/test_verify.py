@@ -44,7 +44,10 @@ def test_a_run_passes_against_its_own_golden_csv_and_npz(goldens):
     for suffix in ("csv", "npz"):
         result = pmdfmu.verify(SQUARE, against=folder / f"square.{suffix}")
         assert result.passed and result.exit_status == 0 and not result.failures
-        assert result.cases[0].cycles == len(square) and [c.name for c in result.cases[0].checks] == ["golden trace"]
+        assert result.cases[0].cycles == len(square) and [c.name for c in result.cases[0].checks] == [
+            "profile ended",
+            "golden trace",
+        ]
         assert pmdfmu.verify(SCRIPT, against=folder / f"script.{suffix}", fmi_version=3).passed
 
 
@@ -67,7 +70,8 @@ def test_a_changed_segment_is_caught_at_its_first_cycle_with_its_segment(goldens
     table = changed_square(tmp_path, "2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500")
     result = pmdfmu.verify(table, against=folder / "square.npz", out=tmp_path / "out")
     assert not result.passed and result.exit_status == 1
-    [f] = result.failures
+    f, *others = result.failures  # the first difference, then each other column's first
+    assert [o.column for o in others] == ["axis2.velocity", "axis2.commandedPosition", "axis2.position"]
     row = 3 * LEG
     assert (f.check, f.column, f.axis, f.row, f.cycle) == (
         "golden",
@@ -80,8 +84,8 @@ def test_a_changed_segment_is_caught_at_its_first_cycle_with_its_segment(goldens
     assert f.segment == field_ex(int(square["axis2.activityStatus"][row]), "PMDActivityProfileSegment")
     assert (f.buffer, f.read_index) == (7, 4)  # axis 2's buffers are 7..11 (axis 1's 2..6); row 4 read
     assert (
-        f"first difference at cycle {f.cycle} (row {row}): axis2.commandedVelocity expected -131072, "
-        "actual -65536" in f.message
+        f"first difference at cycle {f.cycle} (row {row}): axis2.commandedVelocity expected -131072 "
+        "(-2 counts/cycle = -20000 counts/s), actual -65536 (-1 counts/cycle = -10000 counts/s)" in f.message
     )
     assert "axis 2 position buffer 7 read index 4" in f.message
     case = result.cases[0]
@@ -95,7 +99,7 @@ def test_a_changed_segment_is_caught_at_its_first_cycle_with_its_segment(goldens
 def test_a_changed_first_segment_shows_in_axis_1_at_the_profiles_first_cycle(goldens, tmp_path):
     folder, square, _ = goldens
     table = changed_square(tmp_path, "1,0,0x20000,0,0,500", "1,0,0x20001,0,0,500")
-    [f] = pmdfmu.verify(table, against=folder / "square.csv").failures
+    f = pmdfmu.verify(table, against=folder / "square.csv").failures[0]
     assert (f.column, f.row, f.cycle, f.read_index) == ("axis1.commandedVelocity", 0, int(square["cycle"][0]), 1)
 
 
@@ -147,7 +151,7 @@ def script_run():
 def test_the_demo_limits_pass(script_run):
     result = pmdfmu.verify(SCRIPT, assertions=EXAMPLES / "ci" / "two_axis.toml")
     assert result.passed, result.report()
-    assert len(result.cases[0].checks) == 16  # 7 of axis 1, 8 of axis 2, host errors
+    assert len(result.cases[0].checks) == 17  # the profile ended, 7 of axis 1, 8 of axis 2, host errors
 
 
 @pytest.mark.parametrize("units,column,scale", [("counts", "velocity", 1), ("raw", "commandedVelocity", 1)])
@@ -322,11 +326,12 @@ def test_junit_xml_has_one_testcase_per_check_and_the_right_counts(goldens, tmp_
         table, against=folder / "square.csv", assertions={"all_axes": {"max_velocity": 1e9, "final_position": 1}}
     )
     root = ET.fromstring(result.to_junit())
-    assert root.tag == "testsuites" and (root.get("tests"), root.get("failures"), root.get("errors")) == ("5", "3", "0")
+    assert root.tag == "testsuites" and (root.get("tests"), root.get("failures"), root.get("errors")) == ("6", "3", "0")
     [suite] = root
-    assert suite.get("name") == "changed" and suite.get("tests") == "5" and suite.get("failures") == "3"
+    assert suite.get("name") == "changed" and suite.get("tests") == "6" and suite.get("failures") == "3"
     cases = {tc.get("name"): tc for tc in suite}
     assert set(cases) == {
+        "profile ended",
         "golden trace",
         "axis1 max |velocity| <= 1e+09 counts/s",
         "axis1 final position 1",
@@ -353,11 +358,11 @@ def test_markdown_summary(goldens, tmp_path):
     folder, _, _ = goldens
     good = pmdfmu.verify(SQUARE, against=folder / "square.csv")
     text = good.to_markdown()
-    assert text.startswith("### pmdfmu verify: 1 of 1 case passed\n") and "| square | pass | 2001 | 1 of 1 |" in text
+    assert text.startswith("### pmdfmu verify: 1 of 1 case passed\n") and "| square | pass | 2001 | 2 of 2 |" in text
     table = changed_square(tmp_path, "2,1000,-0x20000,0,0,500", "2,1000,-0x10000,0,0,500")
     bad = pmdfmu.verify(table, against=folder / "square.csv", out=tmp_path)
     text = bad.to_markdown()
-    assert "0 of 1 case passed" in text and "| changed | **FAIL** | 2001 | 0 of 1 | first difference at cycle" in text
+    assert "0 of 1 case passed" in text and "| changed | **FAIL** | 2001 | 1 of 2 | first difference at cycle" in text
     assert "#### changed" in text and "diff plot: `" in text
 
 

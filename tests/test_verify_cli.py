@@ -58,7 +58,7 @@ def test_the_examples_ci_job_passes_and_writes_its_reports(tmp_path, capsys):
         == 0
     )
     root = ET.parse(junit).getroot()
-    assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("17", "0", "0")
+    assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("18", "0", "0")
     assert summary.read_text().startswith("### pmdfmu verify: 1 of 1 case passed")
     assert not (tmp_path / "out").exists()  # nothing failed: no plot
 
@@ -86,7 +86,7 @@ def test_a_changed_table_fails_with_the_first_difference_and_a_plot(tmp_path, ca
     assert (
         "FAIL changed" in out
         and "golden trace: first difference at cycle 1756 (row 1500): "
-        "axis2.commandedVelocity expected -131072, actual -65536"
+        "axis2.commandedVelocity expected -131072 (-2 counts/cycle = -20000 counts/s), actual -65536"
         in out
     )
     assert "axis 2 position buffer 7 read index 4" in out
@@ -206,7 +206,7 @@ def test_batch_with_a_failing_and_a_broken_case(tmp_path, capsys):
     assert "first difference at cycle 1756 (row 1500): axis2.commandedVelocity" in out
     assert "axis 2 position buffer 7 read index 4" in out  # located by a run of the case alone
     root = ET.parse(junit).getroot()
-    assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("3", "1", "1")
+    assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("5", "1", "1")
     assert (tmp_path / "out" / "changed.diff.png").exists()
     text = summary.read_text()
     assert "1 of 3 cases passed" in text and "| broken | **error** |" in text

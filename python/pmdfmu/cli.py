@@ -131,18 +131,44 @@ def _refuse_overwriting(outputs: Iterable[Tuple[str, Optional[Path]]], inputs: I
                 raise CommandLineError(f"{flag} {out}: names the input {path}; nothing overwrites an input")
 
 
-def _write_run(run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Optional[Path], title: str) -> None:
+_verbosity = 0  # -q: -1, -v: 1 (main sets it from the command line)
+
+
+def _say(text: str, level: int = 0) -> None:
+    """A line of standard output shown at this verbosity: level 0 unless -q, level 1 with -v."""
+    if _verbosity >= level:
+        print(text)
+
+
+def _not_ended(run: profile.ProfileRun) -> str:
+    rec = run.recording
+    end = int(rec["cycle"][-1]) if len(rec) else 0
+    return (
+        f"the profile had not ended at cycle {end}: {len(rec)} cycles recorded, the --max-cycles limit; "
+        f"nothing written: give a larger --max-cycles, or --cycles {len(rec)} to record a window of the profile"
+    )
+
+
+def _write_run(
+    run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Optional[Path], title: str, command: str = "run"
+) -> int:
     """`pmdfmu run`'s outputs: the recording (CSV, or compressed numpy for a .npz name: either is a golden
-    trace for `pmdfmu verify --against`) and the plot."""
+    trace for `pmdfmu verify --against`; a window says so) and the plot. Exit status 1 and nothing written
+    when the run stopped at --max-cycles before the profile ended (run.ended) and no window was asked for
+    (window: True for --cycles)."""
     from .verify import write_recording
 
     rec = run.recording
+    if not run.ended and not run.window:
+        print(f"pmdfmu {command}: {_not_ended(run)}", file=sys.stderr)
+        return 1
     if csv_path:
-        write_recording(csv_path, rec)
-        print(f"wrote {csv_path} ({len(rec)} cycles)")
+        write_recording(csv_path, rec, run.ended)
+        _say(f"wrote {csv_path} ({len(rec)} cycles{'' if run.ended else ', a window: the profile goes on'})")
     if plot_path:
         profile.plot(plot_path, rec, run.cycle_time, title=title)
-        print(f"wrote {plot_path}")
+        _say(f"wrote {plot_path}")
+    return 0
 
 
 def _run_table(
@@ -155,14 +181,24 @@ def _run_table(
     plot_path: Optional[Path],
     title: str,
     fmi_version: int = 2,
-) -> None:
+    window: bool = False,
+    command: str = "run",
+) -> int:
     """source: a segment table's file, or its tables read already (profile.run_profile)."""
     run = profile.run_profile(source, fmu, fmi_version, cycle_time, upload, max_cycles)
-    _write_run(run, csv_path, plot_path, title)
+    run.window = window
+    status = _write_run(run, csv_path, plot_path, title, command)
+    if status:
+        return status
     rec = run.recording
     for axis in run.axes:
         n = axis + 1
-        print(f"axis {n}: ended at position {int(rec[f'axis{n}.commandedPosition'][-1])} after {len(rec)} cycles")
+        position = int(rec[f"axis{n}.commandedPosition"][-1])
+        if run.ended:
+            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
+        else:
+            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
+    return 0
 
 
 def cmd_build(args) -> int:
@@ -175,7 +211,7 @@ def cmd_build(args) -> int:
         if status:  # cmake has said why
             print(f"pmdfmu build: {' '.join(command[:2])} ... failed with exit status {status}", file=sys.stderr)
             return 1
-    print(f"built {build / 'PMDMotionProcessor-fmi2.fmu'}")
+    _say(f"built {build / 'PMDMotionProcessor-fmi2.fmu'}")
     return 0
 
 
@@ -186,8 +222,8 @@ def cmd_demo(args) -> int:
     out.mkdir(parents=True, exist_ok=True)
     tables = circle_table()
     profile.write_segment_table(out / "demo_table.csv", tables)
-    print(f"wrote {out / 'demo_table.csv'}")
-    _run_table(
+    _say(f"wrote {out / 'demo_table.csv'}")
+    return _run_table(
         tables,
         _fmu_file(args.fmu),
         args.cycle_time,
@@ -196,42 +232,47 @@ def cmd_demo(args) -> int:
         out / "demo.csv",
         out / "demo.png",
         "pmdfmu demo: 2-axis external profile (circle)",
+        command="demo",
     )
-    return 0
 
 
 def cmd_run(args) -> int:
     """A .csv file is a segment table; anything else is a script (README, "Scripts"). profile.run_profile
-    runs either, as `pmdfmu verify` does."""
+    runs either, as `pmdfmu verify` does. Exit status 1 when --max-cycles stopped the run before the
+    profile ended, unless --cycles asked for a window."""
     path, fmu = args.file, _fmu_file(args.fmu)
     csv_path, plot_path = args.csv, args.plot
     _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path)], [path, fmu])
     title = f"pmdfmu run {path}"
     machine = _machine_file(args.machine)
-    if machine is not None:
-        run = profile.run_profile(
-            path if profile.is_segment_table(path) else _script_file(path),
+    limit = args.cycles or args.max_cycles
+    table = profile.is_segment_table(path)
+    if table and machine is None:
+        return _run_table(
+            path,
             fmu,
-            args.fmi_version,
             args.cycle_time,
             args.upload,
-            args.max_cycles,
-            parameters={"machine": machine},
+            limit,
+            csv_path,
+            plot_path,
+            title,
+            args.fmi_version,
+            bool(args.cycles),
         )
-        for m in run.messages:
-            print(f"{m.status}: {m.message}", file=sys.stderr)
-        _write_run(run, csv_path, plot_path, title)
-        return 0
-    if profile.is_segment_table(path):
-        _run_table(
-            path, fmu, args.cycle_time, args.upload, args.max_cycles, csv_path, plot_path, title, args.fmi_version
-        )
-        return 0
-    run = profile.run_profile(_script_file(path), fmu, args.fmi_version, args.cycle_time, args.upload, args.max_cycles)
+    run = profile.run_profile(
+        path if table else _script_file(path),
+        fmu,
+        args.fmi_version,
+        args.cycle_time,
+        args.upload,
+        limit,
+        parameters={"machine": machine} if machine is not None else None,
+    )
+    run.window = bool(args.cycles)
     for m in run.messages:
         print(f"{m.status}: {m.message}", file=sys.stderr)
-    _write_run(run, csv_path, plot_path, title)
-    return 0
+    return _write_run(run, csv_path, plot_path, title)
 
 
 def _machine_file(path: Optional[Path]) -> Optional[str]:
@@ -272,13 +313,19 @@ def cmd_sweep(args) -> int:
     result = sweep(cases, scheduler=args.scheduler, workers=args.workers)
     result.write(args.out)
     failed = [r for r in result.rows if r["status"] != "ok"]
-    print(
+    for r in result.rows:
+        if r["status"] == "ok":
+            _say(
+                f"ok: {r['name']}: {r['cycles']} cycles{'' if r['ended'] == 'yes' else ', cut short by max_cycles'}", 1
+            )
+    _say(
         f"{len(result.rows) - len(failed)} of {len(result.rows)} cases ran; wrote {args.out}/summary.csv, "
         f"{args.out}/summary.png"
     )
     for r in failed:
         print(f"failed: {r['name']}: {r['reason']}")
-    return 0
+    # a failed case is a row of the summary, not a failure of the sweep, unless the user asks
+    return 1 if failed and args.fail_on_error else 0
 
 
 # --limit flags of pmdfmu verify: flag -> (assertion key(s), how AXIS=VALUE's value reads)
@@ -289,6 +336,7 @@ LIMIT_FLAGS = {
     "position_window": ("position_min", "position_max"),
     "final_position": ("final_position",),
     "complete_by": ("complete_by",),
+    "max_step": ("max_step",),
 }
 
 
@@ -343,6 +391,8 @@ def cmd_verify(args) -> int:
     extra = _limit_flags(args)
     if bool(args.file) == bool(args.cases):
         raise InputError("command line: give a script or segment table, or --cases CASES.csv")
+    if args.cases and args.cycles:
+        raise InputError("command line: --cycles checks a window of one profile; a case table's runs are whole")
     _refuse_overwriting(
         [("--junit", args.junit), ("--summary", args.summary if args.summary != Path("-") else None)],
         [args.file, args.cases, args.against, args.assertions, _fmu_file(args.fmu)],
@@ -375,19 +425,21 @@ def cmd_verify(args) -> int:
             upload=args.upload,
             max_cycles=args.max_cycles,
             out=args.out,
+            cycles=args.cycles,
         )
-    print(result.report(), end="")
+    if _verbosity >= 0 or not result.passed:  # -q: the report only when something failed
+        print(result.report(verbose=_verbosity > 0), end="")
     if args.junit:
         args.junit.parent.mkdir(parents=True, exist_ok=True)
         with files.replaced(args.junit, text=True) as f:
             f.write(result.to_junit())
-        print(f"wrote {args.junit}")
+        _say(f"wrote {args.junit}")
     if args.summary == Path("-"):
         print(result.to_markdown(), end="")
     elif args.summary:
         with open(args.summary, "a") as f:  # GITHUB_STEP_SUMMARY is appended to, in one write
             f.write(result.to_markdown())
-        print(f"wrote {args.summary}")
+        _say(f"wrote {args.summary}")
     return result.exit_status
 
 
@@ -396,9 +448,9 @@ def cmd_pack(args) -> int:
     from .pack import pack
 
     packed = pack(args.script, args.out, args.fmi_version, _fmu_file(args.fmu))
-    print(f"wrote {packed.fmu} (FMI {args.fmi_version}): script starts at {packed.start!r}")
+    _say(f"wrote {packed.fmu} (FMI {args.fmi_version}): script starts at {packed.start!r}")
     for name in packed.files:
-        print(f"  {name}")
+        _say(f"  {name}")
     return 0
 
 
@@ -529,10 +581,12 @@ class _Parser(argparse.ArgumentParser):
 def main(argv: Optional[List[str]] = None) -> int:
     """The command; exit status 0 done, 1 failed (verify: a check failed; validate: problems found), 2 an input
     error (one line: INPUT_ERRORS), 130 interrupted (one line)."""
+    global _verbosity
     command = "pmdfmu"
     try:
         args = _parser().parse_args(argv)
         command = f"pmdfmu {args.command}"
+        _verbosity = args.verbosity
         return args.func(args)
     except INPUT_ERRORS as e:
         print(f"{command}: {one_line(e)}", file=sys.stderr)
@@ -541,6 +595,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         # a file being written is removed (files.replaced); what was written whole stays
         print(f"{command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    finally:
+        _verbosity = 0
 
 
 def console() -> None:
@@ -551,22 +607,78 @@ def console() -> None:
     sys.exit(status)
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="pmdfmu", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--version", action="version", version=f"pmdfmu {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True)
+EPILOG = """exit status:
+  0    done (verify: every check passed)
+  1    a check failed: verify's checks, validate's problems, a run that --max-cycles stopped before
+       its profile ended (give --cycles N for a window), sweep --fail-on-error with a failed case
+  2    bad input: one line on standard error, `pmdfmu CMD: file:line: reason`
+  130  interrupted (Ctrl-C): one line, `pmdfmu CMD: interrupted`; no partial file is left
 
-    p = sub.add_parser("build", help="build the FMU with CMake")
-    p.add_argument("--source", type=Path, default=REPO)
-    p.add_argument("--build-dir", type=Path, default=REPO / "build")
+pmdfmu CMD --help: a command's options. docs/cli.md, docs/verify.md."""
+
+FMI_VERSION_HELP = "FMI version of the built FMU to use: 2 or 3 (default 2)"
+FMU_HELP = "the FMU to use (default: the built one)"
+MAX_CYCLES_HELP = (
+    "at most this many cycles (default 1000000); a run that stops here before the profile ends is an error (exit 1)"
+)
+CYCLES_HELP = "record a window: the first N cycles, whether or not the profile has ended by then"
+
+
+def _verbosity_options(parser: argparse.ArgumentParser, default) -> None:
+    """-q/--quiet and -v/--verbose, on pmdfmu and on each command (pmdfmu -q run ... or pmdfmu run -q ...);
+    a command's default is SUPPRESS so it does not undo pmdfmu's."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument(
+        "-q",
+        "--quiet",
+        dest="verbosity",
+        action="store_const",
+        const=-1,
+        default=default,
+        help="print only what went wrong (errors, failed checks and cases)",
+    )
+    group.add_argument(
+        "-v",
+        "--verbose",
+        dest="verbosity",
+        action="store_const",
+        const=1,
+        default=default,
+        help="print more: every check of verify, every case of a sweep",
+    )
+
+
+def _run_limits(p: argparse.ArgumentParser) -> None:
+    """--max-cycles N or --cycles N (a window), never both."""
+    group = p.add_mutually_exclusive_group()
+    group.add_argument("--max-cycles", type=_positive_int, default=1_000_000, metavar="N", help=MAX_CYCLES_HELP)
+    group.add_argument("--cycles", type=_positive_int, metavar="N", help=CYCLES_HELP)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="pmdfmu", description=__doc__, epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument("--version", action="version", version=f"pmdfmu {__version__}", help="print the version")
+    _verbosity_options(parser, 0)
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    def command(name: str, help_: str, **kwargs) -> argparse.ArgumentParser:
+        p = sub.add_parser(name, help=help_, epilog="exit status: pmdfmu --help", **kwargs)
+        _verbosity_options(p, argparse.SUPPRESS)
+        return p
+
+    p = command("build", "build the FMU with CMake")
+    p.add_argument("--source", type=Path, default=REPO, help="the source folder (default: this checkout)")
+    p.add_argument("--build-dir", type=Path, default=REPO / "build", help="the build folder (default build/)")
     p.set_defaults(func=cmd_build)
 
     for name, func, help_ in (
         ("demo", cmd_demo, "run the bundled 2-axis demo"),
-        ("run", cmd_run, "run a segment table"),
+        ("run", cmd_run, "run a script or a segment table; write CSV and plot"),
     ):
-        p = sub.add_parser(name, help=help_)
-        p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
+        p = command(name, help_)
+        p.add_argument("--fmu", type=Path, help=FMU_HELP)
         p.add_argument(
             "--cycle-time",
             type=_cycle_time,
@@ -582,7 +694,7 @@ def _parser() -> argparse.ArgumentParser:
                 type=Path,
                 help="a script, or a CSV segment table (axis,position,velocity,acceleration,jerk,time in raw units)",
             )
-            p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
+            p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
             p.add_argument(
                 "--csv",
                 type=Path,
@@ -596,26 +708,35 @@ def _parser() -> argparse.ArgumentParser:
                 default="memory",
                 help="fill the buffers through the dual-port memory or with WriteBuffer",
             )
-            p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
+            _run_limits(p)
             p.add_argument(
                 "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
             )
 
-    p = sub.add_parser("machine", help="check a machine file and say what it means")
+    p = command("machine", "check a machine file and say what it means")
     p.add_argument("--check", dest="file", type=Path, required=True, metavar="FILE", help="the machine file")
-    p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
+    p.add_argument("--fmu", type=Path, help=FMU_HELP)
     p.set_defaults(func=cmd_machine)
 
-    p = sub.add_parser("sweep", help="run a table of cases on Dask")
+    p = command(
+        "sweep",
+        "run a table of cases on Dask",
+        description="Runs every case of the table and writes summary.csv, CASE.csv and summary.png. A case "
+        "that fails is a row of the summary with its reason and does not change the exit status (0) unless "
+        "--fail-on-error is given.",
+    )
     p.add_argument("cases", type=Path, help="CSV: name, script or table, fmi_version, max_cycles, FMU parameters")
     p.add_argument("--out", type=Path, default=Path("sweep-out"), help="output folder (default sweep-out)")
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'serial' (default: a local cluster)")
     p.add_argument("--workers", type=_positive_int, default=2, help="local cluster processes (default 2)")
+    p.add_argument(
+        "--fail-on-error", action="store_true", help="exit status 1 if any case failed (default: 0, the rows say)"
+    )
     p.set_defaults(func=cmd_sweep)
 
-    p = sub.add_parser(
+    p = command(
         "verify",
-        help="check a run against a golden trace and assertions (CI)",
+        "check a run against a golden trace and assertions (CI)",
         description="Runs a script or segment table as `pmdfmu run` does (or a case table on Dask) "
         "and checks it; exit status 0 pass, 1 fail, 2 malformed input. docs/verify.md.",
     )
@@ -662,30 +783,27 @@ def _parser() -> argparse.ArgumentParser:
         default=Path("verify-out"),
         help="where a failure's diff plot and recording go (default verify-out)",
     )
-    p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
-    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
+    p.add_argument("--fmu", type=Path, help=FMU_HELP)
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
     p.add_argument(
         "--cycle-time",
         type=_cycle_time,
         default=DEFAULT_CYCLE_TIME,
         help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
     )
-    p.add_argument("--upload", choices=("memory", "command"), default="memory")
-    p.add_argument("--max-cycles", type=_positive_int, default=1_000_000)
+    p.add_argument(
+        "--upload",
+        choices=("memory", "command"),
+        default="memory",
+        help="fill the buffers through the dual-port memory or with WriteBuffer",
+    )
+    _run_limits(p)
     p.set_defaults(func=cmd_verify)
 
-    p = sub.add_parser("pack", help="write an FMU that runs a script profile with no parameter set")
+    p = command("pack", "write an FMU that runs a script profile with no parameter set")
     p.add_argument("script", type=Path, help="the script; the segment tables it loads go with it")
     p.add_argument("--out", type=Path, required=True, help="the FMU to write, e.g. my-profile.fmu")
-    p.add_argument(
-        "--fmi",
-        "--fmi-version",
-        dest="fmi_version",
-        type=int,
-        choices=(2, 3),
-        default=2,
-        help="FMI version (default 2)",
-    )
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
     p.add_argument("--fmu", type=Path, help="the FMU to copy (default: the built one of that FMI version)")
     p.set_defaults(func=cmd_pack)
 
@@ -719,8 +837,13 @@ def _parser() -> argparse.ArgumentParser:
         ("validate", cmd_validate, "validate the FMU"),
         ("info", cmd_info, "list variables and commands"),
     ):
-        p = sub.add_parser(name, help=help_)
-        p.add_argument("fmu", nargs="?", type=Path)
+        p = command(name, help_)
+        p.add_argument(
+            "fmu",
+            nargs="?",
+            type=Path,
+            help="the FMU" + (" (default: both built ones)" if name == "validate" else " (default: the built one)"),
+        )
         p.set_defaults(func=func)
 
     return parser

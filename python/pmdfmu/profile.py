@@ -264,9 +264,12 @@ def run_segment_table(
     return run_until_halted(chip, axes, max_cycles=max_cycles, record=record)
 
 
-def write_csv(path: Path, recorded: np.ndarray) -> None:
+def write_csv(path: Path, recorded: np.ndarray, comment: Optional[str] = None) -> None:
+    """A recording as CSV: a header of its column names, a row per cycle; comment: a first line (`# ...`)."""
     names = recorded.dtype.names
     with files.replaced(path, text=True) as f:
+        if comment is not None:
+            f.write(comment + "\n")
         w = csv.writer(f)
         w.writerow(names)
         for row in recorded:
@@ -310,12 +313,31 @@ def plot(path: Path, recorded: np.ndarray, cycle_time: float, title: str = "Exte
 @dataclass
 class ProfileRun:
     """A run of run_profile: the recording, the axes recorded (0..3), the chip's
-    cycle time (s) and the FMU's log messages (warnings: refused script commands)."""
+    cycle time (s), the FMU's log messages (warnings: refused script commands) and
+    whether the profile had ended by the recording's last cycle (profile_ended):
+    False when max_cycles cut the run short; window: the caller asked for such a
+    cut (`pmdfmu run --cycles N`)."""
 
     recording: np.ndarray
     axes: List[int]
     cycle_time: float
     messages: list
+    ended: bool = True
+    window: bool = False  # the caller asked for the first max_cycles cycles, the profile ended or not
+
+
+def profile_ended(recording: np.ndarray, axes: Sequence[int], last_script_cycle: Optional[int] = None) -> bool:
+    """Whether the profile had ended at the recording's last cycle, as run_until_halted and run_script
+    stop: a table's when every axis's profile segment number is 0 (seed 000, 1.6); a script's
+    (last_script_cycle: script.lastCycle) when the time of its last @ line has passed and every axis
+    is at rest."""
+    if not len(recording):
+        return False
+    last = recording[-1]
+    if last_script_cycle is None:
+        return all(field_ex(last[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0 for a in axes)
+    at_rest = all(not last[f"axis{a + 1}.activityStatus"] & CONSTANTS["PMDActivityInMotionMask"] for a in axes)
+    return bool(last["cycle"] >= last_script_cycle and at_rest)
 
 
 def is_segment_table(path: Union[str, Path]) -> bool:
@@ -357,9 +379,11 @@ def run_profile(
                 raise TableError(
                     f"{path or 'segment tables'}: {e}: an axis starts at its first row's position"
                 ) from None
+            ended = profile_ended(rec, axes)
         else:
             axes = script_axes(chip)
             rec = run_script(chip, axes, max_cycles=max_cycles, record=record)
+            ended = profile_ended(rec, axes, chip.get("script.lastCycle"))
         if inspect is not None:
             inspect(chip)
-        return ProfileRun(rec, list(axes), chip.cycle_time, list(chip.messages))
+        return ProfileRun(rec, list(axes), chip.cycle_time, list(chip.messages), ended)

@@ -203,12 +203,13 @@ def _give_back(key: Tuple[tuple, int], chip: Chip) -> None:
         _idle.setdefault(key, []).append(chip)
 
 
-def _summary(case: Case, rec: np.ndarray, axes: Sequence[int], messages) -> dict:
+def _summary(case: Case, rec: np.ndarray, axes: Sequence[int], messages, ended: bool) -> dict:
     row = {
         "name": case.name,
         "status": "ok",
         "reason": "",
         "cycles": len(rec),
+        "ended": "yes" if ended else "no",  # no: max_cycles cut the run short (profile.profile_ended)
         "warnings": sum(m.status == "Warning" for m in messages),
     }
     for a in range(4):
@@ -234,16 +235,18 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
             if case.script:
                 axes = profile.script_axes(chip)
                 rec = profile.run_script(chip, axes, max_cycles=case.max_cycles, record=case.record)
+                ended = profile.profile_ended(rec, axes, chip.get("script.lastCycle"))
             else:
                 tables = profile.read_segment_table(Path(case.table))
                 axes = sorted(tables)
                 rec = profile.run_segment_table(chip, tables, max_cycles=case.max_cycles, record=case.record)
-            return _summary(case, rec, axes, chip.messages), rec
+                ended = profile.profile_ended(rec, axes)
+            return _summary(case, rec, axes, chip.messages, ended), rec
         finally:
             _give_back(key, chip)
     except Exception as e:  # the sweep goes on: the row says why
         reason = " ".join(str(e).split()) or type(e).__name__
-        row = {"name": case.name, "status": "failed", "reason": reason, "cycles": 0, "warnings": 0}
+        row = {"name": case.name, "status": "failed", "reason": reason, "cycles": 0, "ended": "", "warnings": 0}
         row.update(
             {f"axis{n}.{q}": "" for n in range(1, 5) for q in ("finalPosition", "peakVelocity", "peakAcceleration")}
         )

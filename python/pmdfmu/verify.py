@@ -34,6 +34,8 @@ from .chip import CONSTANTS, DEFAULT_CYCLE_TIME, DTYPES, field_ex
 from .verify_report import EXIT_FAIL, EXIT_INPUT, EXIT_PASS, CaseResult, Check, Failure, VerifyResult  # noqa: F401
 
 NPZ_KEY = "recording"  # the one array of a .npz golden: the structured array `pmdfmu run` records
+NPZ_ENDED = "ended"  # beside it: whether the profile had ended by its last cycle (a 0-d bool; absent: it had)
+WINDOW_COMMENT = "# pmdfmu: a window"  # a CSV golden's first line when its profile had not ended
 PathLike = Union[str, Path]
 
 
@@ -45,15 +47,33 @@ class InputError(ValueError):
 # ---- recordings: CSV (profile.write_csv) and compressed numpy ------------------------------------
 
 
-def write_recording(path: PathLike, recording: np.ndarray) -> None:
+def write_recording(path: PathLike, recording: np.ndarray, ended: bool = True) -> None:
     """A recording as a golden trace: a .npz name writes np.savez_compressed (the structured array, its
-    column types kept), any other name profile.write_csv's CSV."""
+    column types kept, and `ended`), any other name profile.write_csv's CSV (a recording whose profile
+    had not ended, a window, first says so in a comment line: WINDOW_COMMENT). ended: whether the
+    profile had ended by the recording's last cycle (profile.ProfileRun.ended)."""
     path = Path(path)
     if path.suffix.lower() == ".npz":
         with files.replaced(path) as f:
-            np.savez_compressed(f, **{NPZ_KEY: recording})
+            np.savez_compressed(f, **{NPZ_KEY: recording, NPZ_ENDED: np.array(bool(ended))})
     else:
-        profile.write_csv(path, recording)
+        profile.write_csv(path, recording, comment=None if ended else window_comment(recording))
+
+
+def window_comment(recording: np.ndarray) -> str:
+    """The first line of a CSV recording cut short (read_golden knows it by WINDOW_COMMENT)."""
+    end = f" at cycle {int(recording['cycle'][-1])}" if len(recording) else ""
+    return f"{WINDOW_COMMENT} of {len(recording)} cycles: the profile had not ended{end}"
+
+
+@dataclass
+class Golden:
+    """A golden trace as read_golden reads it: the recording, and whether its profile had ended by its last
+    cycle (False: a window, `pmdfmu run --cycles N`; a golden written before goldens said so reads as
+    ended)."""
+
+    recording: np.ndarray
+    ended: bool = True
 
 
 def _read_input(path: Path, what: str) -> str:
@@ -75,23 +95,36 @@ def _range_of(name: str) -> Tuple[int, int]:
 def read_recording(path: PathLike) -> np.ndarray:
     """A golden trace written by write_recording (or `pmdfmu run --csv`): a structured array with a `cycle`
     column. Raises InputError naming the file, line and column of what it cannot read."""
+    return read_golden(path).recording
+
+
+def read_golden(path: PathLike) -> Golden:
+    """A golden trace (read_recording) and whether its profile had ended (a window says it had not: the
+    .npz's `ended`, the CSV's first line WINDOW_COMMENT; a golden that does not say had ended)."""
     path = Path(path)
     if path.suffix.lower() == ".npz":
         return _read_npz(path)
-    reader = csv.reader(io.StringIO(_read_input(path, "golden trace"), newline=""))
+    text = _read_input(path, "golden trace")
+    # comment lines before the header: the window's, or a person's
+    lines = text.split("\n")
+    skipped = 0
+    while skipped < len(lines) and lines[skipped].lstrip().startswith("#"):
+        skipped += 1
+    ended = not any(line.strip().startswith(WINDOW_COMMENT) for line in lines[:skipped])
+    reader = csv.reader(io.StringIO("\n".join(lines[skipped:]), newline=""))
     try:
         rows = list(reader)
     except csv.Error as e:  # a field over csv's limit of 131072 characters, a NUL byte
-        raise InputError(f"{path}:{reader.line_num}: {e}") from None
+        raise InputError(f"{path}:{reader.line_num + skipped}: {e}") from None
     if not rows or not rows[0]:
-        raise InputError(f"{path}:1: no header: a golden trace is `pmdfmu run ... --csv` output")
+        raise InputError(f"{path}:{skipped + 1}: no header: a golden trace is `pmdfmu run ... --csv` output")
     header = [h.strip() for h in rows[0]]
-    _check_columns(path, header)
+    _check_columns(path, header, skipped + 1)
     # the chip's registers are integers: a golden's cell of one that is not, or that the register cannot
     # hold, is a malformed golden; a Real's cell is a double's text (profile.write_csv writes its repr)
     ranges = [_range_of(h) if h == "cycle" or np.dtype(DTYPES[h]).kind in "iub" else None for h in header]
     columns: List[list] = [[] for _ in header]
-    for line, row in enumerate(rows[1:], start=2):
+    for line, row in enumerate(rows[1:], start=skipped + 2):
         if len(row) != len(header):
             raise InputError(f"{path}:{line}: {len(row)} values, the header names {len(header)} columns")
         for i, cell in enumerate(row):
@@ -117,10 +150,10 @@ def read_recording(path: PathLike) -> np.ndarray:
     out = np.zeros(len(rows) - 1, dtype=[(h, np.float64 if r is None else np.int64) for h, r in zip(header, ranges)])
     for name, values in zip(header, columns):
         out[name] = values
-    return out
+    return Golden(out, ended)
 
 
-def _read_npz(path: Path) -> np.ndarray:
+def _read_npz(path: Path) -> Golden:
     try:
         files.check_regular(path)  # np.load would wait on a FIFO
         with np.load(path, allow_pickle=False) as data:
@@ -130,16 +163,19 @@ def _read_npz(path: Path) -> np.ndarray:
                     "write goldens with `pmdfmu run ... --csv NAME.npz`"
                 )
             rec = data[NPZ_KEY]
+            ended = data[NPZ_ENDED] if NPZ_ENDED in data.files else np.array(True)
     except InputError:
         raise
     except Exception as e:  # a missing file, not a zip, a damaged member, a pickled array
         raise InputError(f"{path}: cannot read the golden trace: {e}") from None
     if rec.dtype.names is None or rec.ndim != 1:
         raise InputError(f"{path}: {NPZ_KEY!r} is not a recording (a 1-d structured array)")
+    if ended.shape != () or ended.dtype.kind != "b":
+        raise InputError(f"{path}: {NPZ_ENDED!r} is not true or false (a 0-d bool array)")
     _check_columns(path, list(rec.dtype.names))
     for i, name in enumerate(rec.dtype.names, start=1):
         _check_npz_type(path, i, name, rec.dtype[name], rec[name])
-    return rec
+    return Golden(rec, bool(ended))
 
 
 def _check_npz_type(path: Path, i: int, name: str, dtype: np.dtype, values: np.ndarray) -> None:
@@ -162,17 +198,17 @@ def _check_npz_type(path: Path, i: int, name: str, dtype: np.dtype, values: np.n
             )
 
 
-def _check_columns(path: Path, header: Sequence[str]) -> None:
+def _check_columns(path: Path, header: Sequence[str], line: int = 1) -> None:
     if "cycle" not in header:
-        raise InputError(f"{path}:1: no 'cycle' column: a golden trace is `pmdfmu run ... --csv` output")
+        raise InputError(f"{path}:{line}: no 'cycle' column: a golden trace is `pmdfmu run ... --csv` output")
     seen = set()
     for i, name in enumerate(header, start=1):
         if name in seen:
-            raise InputError(f"{path}:1: column {i}: {shown(name)} named twice")
+            raise InputError(f"{path}:{line}: column {i}: {shown(name)} named twice")
         seen.add(name)
         if name != "cycle" and name not in DTYPES:
             raise InputError(
-                f"{path}:1: column {i}: {shown(name)} is not an output of the FMU (pmdfmu info lists them)"
+                f"{path}:{line}: column {i}: {shown(name)} is not an output of the FMU (pmdfmu info lists them)"
             )
 
 
@@ -192,6 +228,7 @@ AXIS_KEYS = {
     "max_velocity": (float, "max |velocity|"),
     "max_acceleration": (float, "max |acceleration|"),
     "max_jerk": (float, "max |jerk|"),
+    "max_step": (float, "max |position step|"),
     "position_min": (int, "position >="),
     "position_max": (int, "position <="),
     "final_position": (int, "final position"),
@@ -199,7 +236,7 @@ AXIS_KEYS = {
     "no_events": (object, "no events"),
 }
 TOP_KEYS = ("units", "no_host_errors", "tolerance", "all_axes", "axis1", "axis2", "axis3", "axis4")
-# the quantity each limit reads, in each unit: (column, scale of its per-cycle difference, unit text)
+# the quantity each limit reads, in each unit: (register column, scale of its per-cycle difference, unit text)
 QUANTITIES = {
     ("velocity", "counts"): ("velocity", None, "counts/s"),
     ("acceleration", "counts"): ("acceleration", None, "counts/s^2"),
@@ -208,6 +245,37 @@ QUANTITIES = {
     ("acceleration", "raw"): ("commandedAcceleration", None, "raw 16.16 counts/cycle^2"),
     ("jerk", "raw"): ("commandedAcceleration", 65536, "raw 0.32 counts/cycle^3"),
 }
+# the same quantities from the position's own differences: (order of the difference, a raw unit's value of
+# 1 count/cycle^order, what the difference is called). The position is axisN.position, the commanded
+# position with its fraction (the chip's 16 fraction bits), so each difference is exact.
+DIFFERENCES = {
+    "velocity": (1, 65536, "difference"),
+    "acceleration": (2, 65536, "second difference"),
+    "jerk": (3, 2**32, "third difference"),
+}
+# One count of jump in the position passes: an external profile's segment starts at its row's whole count
+# (32.0) while the position run up to it has a fraction, so a table that is right jumps by less than a
+# count at a segment's start. A jump of e counts moves the k-th difference by at most e * C(k-1, (k-1)//2):
+# 1, 1 and 2 counts per cycle^k for velocity, acceleration and jerk.
+JUMP_ALLOWED = {1: 1, 2: 1, 3: 2}
+RAW_UNITS = {
+    "commandedVelocity": (1, "counts/cycle", "counts/s"),
+    "commandedAcceleration": (2, "counts/cycle^2", "counts/s^2"),
+}
+
+
+def converted(column: str, value, cycle_time: Optional[float]) -> str:
+    """A raw 16.16 register value's meaning, for reports: `(-2 counts/cycle = -20000 counts/s)`; the empty
+    string for any other column."""
+    unit = RAW_UNITS.get(column.partition(".")[2])
+    if unit is None or value is None:
+        return ""
+    order, per_cycle, per_second = unit
+    counts = float(value) / 65536
+    text = f" ({counts:g} {per_cycle}"
+    if cycle_time:
+        text += f" = {counts / cycle_time**order:g} {per_second}"
+    return text + ")"
 
 
 @dataclass
@@ -396,7 +464,11 @@ def load_assertions(
     data, where, text = _assertion_data(assertions)
     if not extra:
         return parse_assertions(data, where, text)
-    return parse_assertions(_merge(data, extra), f"{where} with the command line's limits", text)
+    return parse_assertions(
+        _merge(data, extra),
+        "the command line's limits" if where == "command line" else f"{where} with the command line's limits",
+        text,
+    )
 
 
 # ---- the golden comparison ------------------------------------------------------------------------
@@ -418,16 +490,26 @@ def _segment(rec: np.ndarray, axis: int, row: int) -> Optional[int]:
     return int(field_ex(int(rec[column][row]), "PMDActivityProfileSegment"))
 
 
+def _values(column: str, expected, actual, cycle_time: Optional[float], named: bool = True) -> str:
+    """`axis2.commandedVelocity expected -131072 (-2 counts/cycle = -20000 counts/s), actual ...` for reports."""
+    return (
+        f"{column + ' ' if named else ''}expected {expected!r}{converted(column, expected, cycle_time)}, "
+        f"actual {actual!r}{converted(column, actual, cycle_time)} (difference {actual - expected:+g})"
+    )
+
+
 def compare(
     expected: np.ndarray,
     actual: np.ndarray,
     required: Sequence[str] = (),
     tolerance: Optional[Mapping[str, float]] = None,
+    cycle_time: Optional[float] = None,
 ) -> List[Failure]:
     """The golden comparison, cycle by cycle: every column of the golden (integer columns bit-exact; Reals
     exact unless tolerance names them: |actual - expected| <= tolerance); required: the columns the run
-    records that the golden must hold; different lengths fail. At most one failure each for columns,
-    values (the first diverging row) and length."""
+    records that the golden must hold; different lengths fail. At most one failure each for columns and
+    length; for values, the first diverging row (the first failure), then every other differing column
+    at its own first row. cycle_time: raw 16.16 values are shown in counts/s too."""
     tolerance = tolerance or {}
     failures = []
     e_names, a_names = expected.dtype.names, actual.dtype.names
@@ -474,9 +556,8 @@ def compare(
         column = at[0]
         e, a = _number(expected[column][row]), _number(actual[column][row])
         axis = _axis_of(column)
-        text = (
-            f"first difference at cycle {int(actual['cycle'][row])} (row {row}): {column} expected {e!r}, "
-            f"actual {a!r} (difference {a - e:+g})"
+        text = f"first difference at cycle {int(actual['cycle'][row])} (row {row}): " + _values(
+            column, e, a, cycle_time
         )
         if len(at) > 1:
             text += f"; at that cycle also {', '.join(at[1:])}"
@@ -505,6 +586,23 @@ def compare(
                 segment=_segment(actual, axis, row) if axis else None,
             )
         )
+        # every other column that differs, at its own first row: which axes and quantities diverge
+        for other in sorted((c for c in first if c != column), key=lambda c: (first[c][0], e_names.index(c))):
+            i, count = first[other]
+            e, a = _number(expected[other][i]), _number(actual[other][i])
+            failures.append(
+                Failure(
+                    "golden",
+                    f"{other} first differs at cycle {int(actual['cycle'][i])} (row {i}): "
+                    f"{_values(other, e, a, cycle_time, named=False)}; in {count} of {n} rows",
+                    axis=_axis_of(other),
+                    column=other,
+                    cycle=int(actual["cycle"][i]),
+                    row=i,
+                    expected=e,
+                    actual=a,
+                )
+            )
     if len(expected) != len(actual):
 
         def end(rec):
@@ -527,34 +625,99 @@ def compare(
 # ---- the assertions -------------------------------------------------------------------------------
 
 
+def _first_violation(
+    key: str, n: int, values: np.ndarray, bad: np.ndarray, offset: int, rec: np.ndarray, limit, column: str
+) -> Failure:
+    """A Failure at the first row where bad is set; values[i] belongs to row i + offset."""
+    i, peak = int(np.argmax(bad)), int(np.argmax(np.abs(values)))
+    return Failure(
+        key,
+        "",
+        axis=n,
+        column=column,
+        cycle=int(rec["cycle"][i + offset]),
+        row=i + offset,
+        value=_number(values[i]),
+        limit=limit,
+        peak=_number(values[peak]),
+        peak_cycle=int(rec["cycle"][peak + offset]),
+    )
+
+
+def _register_check(key: str, n: int, limit, rec: np.ndarray, units: str, cycle_time: float) -> List[Failure]:
+    """|velocity|, |acceleration| or |jerk| as the chip's registers give them (jerk: the acceleration's
+    change from cycle to cycle)."""
+    quantity = key[4:]
+    column, scale, unit = QUANTITIES[(quantity, units)]
+    values = rec[f"axis{n}.{column}"].astype(np.float64 if scale != 65536 else np.int64)
+    offset = 0
+    if scale is not None:  # jerk: the recorded acceleration's difference from cycle to cycle
+        values = np.diff(values) * (65536 if scale == 65536 else 1 / cycle_time)
+        offset = 1
+    bad = np.abs(values) > limit
+    if not bad.any():
+        return []
+    f = _first_violation(key, n, values, bad, offset, rec, limit, f"axis{n}.{column}")
+    shown_value = f"{abs(f.value):g} {unit}" + (converted(f.column, abs(f.value), cycle_time) if scale is None else "")
+    f.message = (
+        f"axis {n}: |{quantity}| {shown_value} > {limit:g} at cycle {f.cycle} (peak {abs(f.peak):g} at cycle "
+        f"{f.peak_cycle}) in the register {f.column}"
+    )
+    f.source = "register"
+    return [f]
+
+
+def _position_check(key: str, n: int, limit, rec: np.ndarray, units: str, cycle_time: float) -> List[Failure]:
+    """|velocity|, |acceleration|, |jerk| or the step (max_step, counts per cycle) as the commanded
+    position's own differences from cycle to cycle give them: a jump of the position that no register
+    shows is caught (JUMP_ALLOWED: less than a count passes)."""
+    column = f"axis{n}.position"
+    position = rec[column].astype(np.float64)
+    if key == "max_step":
+        steps = np.diff(position)
+        bad = np.abs(steps) > limit
+        if not bad.any():
+            return []
+        f = _first_violation(key, n, steps, bad, 1, rec, limit, column)
+        f.message = (
+            f"axis {n}: the position moved {abs(f.value):g} counts in one cycle > {limit:g} at cycle {f.cycle} "
+            f"(peak {abs(f.peak):g} at cycle {f.peak_cycle}) in the position's difference ({column})"
+        )
+        f.source = "position difference"
+        return [f]
+    quantity = key[4:]
+    order, raw_scale, words = DIFFERENCES[quantity]
+    unit = QUANTITIES[(quantity, units)][2]
+    # the limit and the allowed jump in counts/cycle^order; values shown in the limit's unit
+    to_unit = raw_scale if units == "raw" else cycle_time**-order
+    differences = np.diff(position, order)
+    bad = np.abs(differences) > limit / to_unit + JUMP_ALLOWED[order]
+    if not bad.any():
+        return []
+    f = _first_violation(key, n, differences * to_unit, bad, order, rec, limit, column)
+    per_cycle = abs(float(differences[f.row - order]))
+    moved = (
+        f"{column} moved {per_cycle:g} counts in one cycle"
+        if order == 1
+        else f"{per_cycle:g} counts/cycle^{order} of {column}"
+    )
+    f.message = (
+        f"axis {n}: |{quantity}| {abs(f.value):g} {unit} > {limit:g} at cycle {f.cycle} (peak {abs(f.peak):g} "
+        f"at cycle {f.peak_cycle}) in the position's {words} ({moved})"
+    )
+    f.source = "position difference"
+    return [f]
+
+
 def _limit_check(key: str, axis: int, limit, rec: np.ndarray, units: str, cycle_time: float) -> List[Failure]:
     n = axis + 1
     if key in ("max_velocity", "max_acceleration", "max_jerk"):
-        quantity = key[4:]
-        column, scale, unit = QUANTITIES[(quantity, units)]
-        values = rec[f"axis{n}.{column}"].astype(np.float64 if scale != 65536 else np.int64)
-        offset = 0
-        if scale is not None:  # jerk: the recorded acceleration's difference from cycle to cycle
-            values = np.diff(values) * (65536 if scale == 65536 else 1 / cycle_time)
-            offset = 1
-        bad = np.abs(values) > limit
-        if not bad.any():
-            return []
-        i, peak = int(np.argmax(bad)), int(np.argmax(np.abs(values)))
-        return [
-            Failure(
-                key,
-                f"axis {n}: |{quantity}| {abs(_number(values[i])):g} {unit} > {limit:g} at cycle "
-                f"{int(rec['cycle'][i + offset])} (peak {abs(_number(values[peak])):g} at cycle "
-                f"{int(rec['cycle'][peak + offset])})",
-                axis=n,
-                column=f"axis{n}.{column}",
-                cycle=int(rec["cycle"][i + offset]),
-                row=i + offset,
-                value=_number(values[i]),
-                limit=limit,
-            )
-        ]
+        # the registers, and the position's own differences: a limit holds on both
+        return _register_check(key, n, limit, rec, units, cycle_time) + _position_check(
+            key, n, limit, rec, units, cycle_time
+        )
+    if key == "max_step":
+        return _position_check(key, n, limit, rec, units, cycle_time)
     position = rec[f"axis{n}.commandedPosition"].astype(np.int64)
     column = f"axis{n}.commandedPosition"
     if key in ("position_min", "position_max"):
@@ -658,6 +821,8 @@ def _check_name(axis: int, key: str, limit, units: str) -> str:
     words = AXIS_KEYS[key][1]
     if key in ("max_velocity", "max_acceleration", "max_jerk"):
         return f"axis{axis + 1} {words} <= {limit:g} {QUANTITIES[(key[4:], units)][2]}"
+    if key == "max_step":
+        return f"axis{axis + 1} {words} <= {limit:g} counts/cycle"
     if key == "no_events":
         return f"axis{axis + 1} no event {', '.join(limit)}"
     return f"axis{axis + 1} {words} {limit}"
@@ -794,6 +959,7 @@ def _finish(
     required: Sequence[str],
     out: Optional[PathLike],
     cycle_time: float,
+    ended: bool = True,
 ) -> None:
     """On a golden's failure: the diff plot and the run's own recording, in the golden's format, to `out`."""
     failing = [f for c in result.checks if c.name == "golden trace" for f in c.failures]
@@ -805,7 +971,7 @@ def _finish(
     out.mkdir(parents=True, exist_ok=True)
     columns = list(dict.fromkeys([*required, *golden.dtype.names]))
     result.actual, result.plot = _failure_files(result.name, out, golden_path)
-    write_recording(result.actual, rec[[c for c in columns if c in rec.dtype.names]])
+    write_recording(result.actual, rec[[c for c in columns if c in rec.dtype.names]], ended)
     plot_diff(result.plot, golden, rec, failing, cycle_time, title=f"pmdfmu verify {result.name}: {result.source}")
 
 
@@ -824,16 +990,27 @@ def verify(
     out: Optional[PathLike] = None,
     name: Optional[str] = None,
     locate: bool = True,
+    cycles: Optional[int] = None,
 ) -> VerifyResult:
     """Runs a script or segment table (a path, or tables) exactly as `pmdfmu run` does and checks it against
     the golden trace `against` (a .csv or .npz recording) and `assertions` (a TOML file, a dict of its shape
     or Assertions); tolerance: column -> absolute tolerance (over the file's). On a golden's failure it
-    writes NAME.diff.png and NAME.actual.csv|npz to `out` (None: no files). Raises InputError for a
-    malformed golden or assertion file; a profile that does not run is a failed case."""
+    writes NAME.diff.png and NAME.actual.csv|npz to `out` (None: no files). A run that max_cycles cuts
+    short before the profile ends fails ("profile ended"); cycles=N checks a window instead: the first N
+    cycles, the profile ended or not. Raises InputError for a malformed golden or assertion file, and for a
+    golden that is a window (recorded with `pmdfmu run --cycles`) unless cycles is given; a profile that
+    does not run is a failed case."""
     spec = load_assertions(assertions, {"tolerance": dict(tolerance)} if tolerance else None)
-    golden = read_recording(against) if against is not None else None
+    read = read_golden(against) if against is not None else None
+    golden = read.recording if read is not None else None
+    if cycles is not None:
+        max_cycles = cycles
     if isinstance(max_cycles, bool) or not isinstance(max_cycles, int) or max_cycles < 1:
-        raise InputError(f"max_cycles {max_cycles!r}: a run records at least 1 cycle")
+        raise InputError(
+            f"{'cycles' if cycles is not None else 'max_cycles'} {max_cycles!r}: a run records at least 1 cycle"
+        )
+    if read is not None and not read.ended and cycles is None:
+        raise InputError(_window_golden(against, golden))
     name = name or _name_of(source)
     _refuse_writing_over_inputs(
         name,
@@ -868,8 +1045,43 @@ def verify(
         messages=run.messages,
         locate_args={**args, "record": extra} if locate else None,
         out=out,
+        ended=run.ended,
+        window=cycles,
     )
     return VerifyResult([result])
+
+
+def _window_golden(path: PathLike, golden: np.ndarray) -> str:
+    return (
+        f"{path}: the golden trace is a window: its profile had not ended at its last cycle "
+        f"({len(golden)} cycles, recorded with --cycles or cut short); a whole run is not compared with it: "
+        f"record the golden again (a larger --max-cycles if need be), or give --cycles {len(golden)} to check "
+        "the same window"
+    )
+
+
+def _ended_check(rec: np.ndarray, ended: bool, window: Optional[int]) -> Check:
+    """Whether the profile had ended by the run's last cycle: a run cut short by max_cycles is no run of
+    the profile (its limits and final position would pass on a part of it), unless a window of so many
+    cycles was asked for (window: verify's `cycles`)."""
+    check = Check("profile ended")
+    if ended:
+        return check
+    end = int(rec["cycle"][-1]) if len(rec) else 0
+    if window is not None:
+        check.skipped = f"a window of {window} cycles was asked for (--cycles); the profile goes on after cycle {end}"
+        return check
+    check.failures.append(
+        Failure(
+            "ended",
+            f"the profile had not ended at cycle {end}: {len(rec)} cycles recorded, the --max-cycles limit; "
+            f"give a larger --max-cycles, or --cycles {len(rec)} to check a window of the profile",
+            cycle=end,
+            row=len(rec) - 1 if len(rec) else None,
+            value=len(rec),
+        )
+    )
+    return check
 
 
 def _evaluate(
@@ -884,17 +1096,20 @@ def _evaluate(
     warnings: Optional[int] = None,
     locate_args: Optional[dict] = None,
     out=None,
+    ended: bool = True,
+    window: Optional[int] = None,
 ) -> None:
     result.cycles = len(rec)
     required = ["cycle", *profile.record_outputs(axes)]
+    result.checks.append(_ended_check(rec, ended, window))
     if golden is not None:
-        check = Check("golden trace", compare(golden, rec, required, spec.tolerance))
-        for f in check.failures:
-            if f.check == "golden" and f.row is not None and locate_args is not None:
-                _locate(f, locate_args, axes)
+        check = Check("golden trace", compare(golden, rec, required, spec.tolerance, cycle_time))
+        first = next((f for f in check.failures if f.check == "golden" and f.row is not None), None)
+        if first is not None and locate_args is not None:  # the first difference only: a run each
+            _locate(first, locate_args, axes)
         result.checks.append(check)
     result.checks += check_assertions(spec, rec, axes, cycle_time, messages, warnings)
-    _finish(result, rec, golden, Path(golden_path) if golden_path else None, required, out, cycle_time)
+    _finish(result, rec, golden, Path(golden_path) if golden_path else None, required, out, cycle_time, ended)
 
 
 # ---- batches: a sweep's case table ----------------------------------------------------------------
@@ -966,7 +1181,10 @@ def verify_cases(
     for vc in vcases:
         data, where, text = _assertion_data(vc.assertions)
         specs.append(parse_assertions(_merge(base, data), where, text))  # the case's file over the common
-        goldens.append(read_recording(vc.golden) if vc.golden else None)
+        read = read_golden(vc.golden) if vc.golden else None
+        if read is not None and not read.ended:
+            raise InputError(_window_golden(vc.golden, read.recording))
+        goldens.append(read.recording if read is not None else None)
         _refuse_writing_over_inputs(vc.case.name, out, [vc.golden, vc.assertions, vc.case.script or vc.case.table])
     run_cases = []
     for vc, spec, golden in zip(vcases, specs, goldens):
@@ -1010,5 +1228,6 @@ def verify_cases(
             warnings=row.get("warnings"),
             locate_args=locate_args,
             out=out,
+            ended=row.get("ended") == "yes",
         )
     return VerifyResult(results)

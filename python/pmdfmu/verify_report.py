@@ -23,8 +23,10 @@ EXIT_PASS, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
 @dataclass
 class Failure:
     """One violation: what check, where (axis 1..4, column, chip cycle, row of the recording), the values
-    (expected/actual for a golden, value/limit for a limit), and where the profile was (segment number,
-    position buffer and its read index) when the check is a golden's."""
+    (expected/actual for a golden, value/limit for a limit, and the peak and its cycle), where the profile
+    was (segment number, position buffer and its read index) when the check is a golden's, and for a
+    limit on velocity, acceleration, jerk or step what broke it: source "register" (the chip's register)
+    or "position difference" (the commanded position's own change from cycle to cycle)."""
 
     check: str
     message: str
@@ -39,6 +41,9 @@ class Failure:
     segment: Optional[int] = None
     buffer: Optional[int] = None
     read_index: Optional[int] = None
+    peak: object = None
+    peak_cycle: Optional[int] = None
+    source: Optional[str] = None
 
 
 @dataclass
@@ -95,8 +100,8 @@ class VerifyResult:
     def exit_status(self) -> int:
         return EXIT_PASS if self.passed else EXIT_FAIL
 
-    def report(self) -> str:
-        return text_report(self)
+    def report(self, verbose: bool = False) -> str:
+        return text_report(self, verbose)
 
     def to_junit(self) -> str:
         return junit_xml(self)
@@ -116,22 +121,33 @@ def _headline(result: VerifyResult) -> str:
     return f"pmdfmu verify: {passed} of {len(result.cases)} {'case' if len(result.cases) == 1 else 'cases'} passed"
 
 
-def text_report(result: VerifyResult) -> str:
-    """What `pmdfmu verify` prints: a line per case, and under a failed one every failure."""
+def plural(count: int, word: str) -> str:
+    """`1 check`, `2 checks`."""
+    return f"{count} {word}{'' if count == 1 else 's'}"
+
+
+def text_report(result: VerifyResult, verbose: bool = False) -> str:
+    """What `pmdfmu verify` prints: a line per case, and under a failed one every failure (verbose: every
+    check, PASS, FAIL or SKIP, under every case)."""
     lines = []
     for case in result.cases:
         checks = len(case.checks)
         if case.passed:
-            lines.append(f"PASS {case.name} ({case.source}): {case.cycles} cycles, {checks} checks")
+            lines.append(f"PASS {case.name} ({case.source}): {plural(case.cycles, 'cycle')}, {plural(checks, 'check')}")
+            if verbose:
+                lines += [f"  {'SKIP' if c.skipped else 'PASS'} {c.name}" for c in case.checks]
             continue
+        failed = sum(not c.passed for c in case.checks)
         lines.append(
             f"FAIL {case.name} ({case.source}): "
             + (
                 f"did not run: {case.error}"
                 if case.error is not None
-                else f"{case.cycles} cycles, {sum(not c.passed for c in case.checks)} of {checks} checks failed"
+                else f"{plural(case.cycles, 'cycle')}, {failed} of {plural(checks, 'check')} failed"
             )
         )
+        if verbose:
+            lines += [f"  {'SKIP' if c.skipped else 'PASS'} {c.name}" for c in case.checks if c.passed]
         for check in case.checks:
             for f in check.failures:
                 lines.append(f"  {check.name}: {f.message}")
