@@ -24,7 +24,7 @@ def test_every_command_is_a_method_of_the_class_with_its_arguments_as_parameters
         method = vars(Axis)[name]  # on the class itself, not made on attribute lookup
         assert method.__name__ == name
         assert method.__qualname__ == f"Axis.{name}"
-        assert method.__module__ == "pmdfmu.chip"
+        assert method.__module__ == Axis.__module__ == "pmdfmu.calls"  # the calls' layer (calls.py)
         assert list(inspect.signature(getattr(ax, name)).parameters) == [f.name for f in command.args]
         assert list(inspect.signature(method).parameters) == ["self"] + [f.name for f in command.args]
         assert name in dir(ax)

@@ -74,6 +74,12 @@ void PMDFMUOptionsInit(PMDFMUOptions *options);
    to the calling thread: its PMDTaskWait advances it. */
 PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const PMDFMUOptions *options);
 
+/* A chip over a line instead of in-process (PMDFMU_DEVICE; host/c/PMDline.h): the handle's commands go out as
+   packets; what needs the FMU itself (PMDFMU_GetInteger, PMDFMU_RunCycles, the dual-port memory)
+   answers PMD_ERR_NotSupported with a transport log line; PMDTaskWait and PMDFMU_Wait sleep. */
+PMDresult PMDFMU_SetupAxisInterface_Line(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
+                                         PMDuint32 baud, const PMDFMUOptions *options);
+
 /* C-Motion's: another axis of the same chip. */
 PMDresult PMDCopyAxisInterface(PMDAxisHandle *dest_handle, const PMDAxisHandle *src_handle, PMDAxis axis);
 

@@ -6,7 +6,6 @@
 
 #include <stddef.h>
 #include "PMDfmu_types.h"
-#include "PMDfmu.h"
 
 typedef struct PMDLine PMDLine;
 
@@ -21,11 +20,5 @@ PMDresult PMDLineCommand(PMDLine *line, PMDuint16 instruction, const PMDuint16 *
                          int nreply);
 
 void PMDLineClose(PMDLine *line);
-
-/* A chip over a line instead of in-process (host/c/PMDfmu.c): the handle's commands go out as
-   packets; what needs the FMU itself (PMDFMU_GetInteger, PMDFMU_RunCycles, the dual-port memory)
-   answers PMD_ERR_NotSupported with a transport log line; PMDTaskWait and PMDFMU_Wait sleep. */
-PMDresult PMDFMU_SetupAxisInterface_Line(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
-                                         PMDuint32 baud, const PMDFMUOptions *options);
 
 #endif

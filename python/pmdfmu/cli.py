@@ -818,7 +818,7 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--tcp", type=_tcp_endpoint, metavar="HOST:PORT", help="listen on TCP (port 0: any free)")
     p.add_argument("--chips", type=_chip_count, default=1, help="chips on the line, multi-drop addresses 0..N-1")
     p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
-    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
     p.add_argument(
         "--cycle-time",
         type=_cycle_time,

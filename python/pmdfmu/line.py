@@ -17,8 +17,20 @@ import tty
 from typing import List, Optional, Sequence, Tuple, Union
 
 from . import serial_protocol as sp
-from .chip import COMMANDS, BATCH_WORDS, Axis, Command, PMDError, axis_number, decode, encode, instruction_word
-from .chip import OPCODES, field_ex, to_word
+from .calls import (
+    BATCH_WORDS,
+    COMMANDS,
+    OPCODES,
+    Axis,
+    PMDError,
+    axis_number,
+    decode,
+    encode,
+    field_ex,
+    instruction_word,
+)
+from .fixed import to_word
+from .tables import Command
 
 # how long a reply may take before the host gives up on it and resynchronises, s
 REPLY_TIMEOUT = 2.0
