@@ -28,6 +28,7 @@ static PMDHostInterface open_host;
 /* The C-Motion Engine's own device (PMDAxisOpen with no device), opened on first use. */
 static pthread_mutex_t engine_lock = PTHREAD_MUTEX_INITIALIZER;
 static PMDDeviceHandle engine;
+static PMDDeviceHandle *engine_device(PMDDeviceHandle *hDevice, PMDresult *r);
 
 /* No FMU category for the default log: the FMU's errors only (the stderr log keeps the transport's) */
 static const char *const no_categories[] = {NULL};
@@ -321,20 +322,57 @@ PMDresult PMDDeviceClose(PMDDeviceHandle *hDevice)
 
 PMDresult PMDDeviceReset(PMDDeviceHandle *hDevice)
 {
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     return r != PMD_ERR_OK ? r : PMDReset(&hDevice->hAxis);
 }
 
 PMDresult PMDDeviceNoOperation(PMDDeviceHandle *hDevice)
 {
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     return r != PMD_ERR_OK ? r : PMDNoOperation(&hDevice->hAxis);
+}
+
+/* C-Motion Engine user code names its own device NULL: the engine's motion processor, on its local
+   bus, opened the first time a call names it */
+static PMDDeviceHandle *engine_device(PMDDeviceHandle *hDevice, PMDresult *r)
+{
+    *r = PMD_ERR_OK;
+    if (hDevice)
+        return hDevice;
+    pthread_mutex_lock(&engine_lock);
+    if (engine.type == PMDDeviceTypeNone) {
+        *r = open_twin(&engine.hAxis, PMDAxis1, "parallel16", 0);
+        if (*r == PMD_ERR_OK)
+            engine.type = PMDDeviceTypeMotionProcessor;
+    }
+    pthread_mutex_unlock(&engine_lock);
+    return &engine;
+}
+
+PMDresult PMDAxisOpen(PMDAxisHandle *hAxis, PMDDeviceHandle *hDevice, PMDAxis axis_number)
+{
+    PMDresult r;
+    if (!hAxis)
+        return PMD_ERR_InvalidHandle;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
+    return r != PMD_ERR_OK ? r : PMDCopyAxisInterface(hAxis, &hDevice->hAxis, axis_number);
 }
 
 PMDresult PMDDeviceGetVersion(PMDDeviceHandle *hDevice, PMDuint32 *major, PMDuint32 *minor)
 {
     PMDuint16 generation, motorType, axes, special, custom, ma, mi;
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     if (r == PMD_ERR_OK)
         r = PMDGetVersion(&hDevice->hAxis, &generation, &motorType, &axes, &special, &custom, &ma, &mi);
     if (r != PMD_ERR_OK)
@@ -346,27 +384,6 @@ PMDresult PMDDeviceGetVersion(PMDDeviceHandle *hDevice, PMDuint32 *major, PMDuin
     return PMD_ERR_OK;
 }
 
-PMDresult PMDAxisOpen(PMDAxisHandle *hAxis, PMDDeviceHandle *hDevice, PMDAxis axis_number)
-{
-    PMDresult r = PMD_ERR_OK;
-    if (!hAxis)
-        return PMD_ERR_InvalidHandle;
-    if (!hDevice) {
-        /* C-Motion Engine user code: the engine's own motion processor, on its local bus */
-        pthread_mutex_lock(&engine_lock);
-        if (engine.type == PMDDeviceTypeNone) {
-            r = open_twin(&engine.hAxis, PMDAxis1, "parallel16", 0);
-            if (r == PMD_ERR_OK)
-                engine.type = PMDDeviceTypeMotionProcessor;
-        }
-        pthread_mutex_unlock(&engine_lock);
-        if (r != PMD_ERR_OK)
-            return r;
-        hDevice = &engine;
-    }
-    r = device_check(hDevice);
-    return r != PMD_ERR_OK ? r : PMDCopyAxisInterface(hAxis, &hDevice->hAxis, axis_number);
-}
 
 PMDresult PMDAxisClose(PMDAxisHandle *hAxis)
 {
@@ -475,7 +492,10 @@ int PMDFMU_RunUserTask(void (*task)(PMDTaskParam), const char *name)
 PMDresult PMDDeviceOpenMemory(PMDMemoryHandle *hMemory, PMDDeviceHandle *hDevice, PMDparam datasize,
                               PMDparam memorytype)
 {
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     if (!hMemory)
         return PMD_ERR_InvalidHandle;
     if (r != PMD_ERR_OK)
@@ -673,4 +693,10 @@ PMDresult ReadBuffer(PMDAxisHandle *phAxis, PMDuint16 bufferID, PMDint32 *pbuffe
 PMDresult WaitForAtlasToConnect(PMDAxisHandle *phAxis)
 {
     NOT_SUPPORTED(phAxis);
+}
+
+/* PMDutil.h's phase initialization: the chip's InitializePhase, whatever it answers */
+PMDresult InitializePhase(PMDAxisHandle *phAxis)
+{
+    return PMDInitializePhase(phAxis);
 }
