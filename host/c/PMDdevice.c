@@ -98,8 +98,9 @@ static const PMDuint32 serial_baud[] = {1200, 2400, 9600, 19200, 57600, 115200, 
 
 /* Opens a new chip with the handle on axis, the host interface named `host` (a kind of
    host_interfaces.csv) unless the open options give one; baud: a serial line's, 0 for the
-   table's default. */
-static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host, PMDuint32 baud)
+   table's default; address: the chip's on a multi-drop line (PMDFMU_DEVICE's links only). */
+static PMDresult open_twin_at(PMDAxisHandle *handle, PMDAxis axis, const char *host, PMDuint32 baud,
+                              unsigned address)
 {
     PMDFMUOptions options;
 #ifdef PMD_HAVE_HOSTTIME
@@ -130,7 +131,7 @@ static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host
     if (refused)
         return PMD_ERR_OpeningPort;
     if (device)     /* the reset mode's 57600 baud unless the program opened its port at another */
-        return PMDFMU_SetupAxisInterface_Line(handle, axis, device, baud ? baud : 57600, &options);
+        return PMDFMU_SetupAxisInterface_LineAt(handle, axis, device, baud ? baud : 57600, address, &options);
 #ifdef PMD_HAVE_HOSTTIME
     if (!options.hostInterface) {
         interface = PMDHostInterfaceOf(PMDHostInterfaceKind(host));
@@ -142,7 +143,13 @@ static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host
     (void)host;
     (void)baud;
 #endif
+    (void)address;      /* one chip in-process: it answers whatever address */
     return PMDSetupAxisInterface_FMU(handle, axis, &options);
+}
+
+static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host, PMDuint32 baud)
+{
+    return open_twin_at(handle, axis, host, baud, 0);
 }
 
 /* ---- 2.x ---- */
@@ -286,7 +293,7 @@ static PMDresult open_device(PMDDeviceHandle *hDevice, PMDPeriphHandle *hPeriph,
     default:
         break;
     }
-    r = open_twin(&hDevice->hAxis, PMDAxis1, host, baud);
+    r = open_twin_at(&hDevice->hAxis, PMDAxis1, host, baud, hPeriph->multidrop ? (unsigned)(hPeriph->multidrop - 1) : 0);
     if (r != PMD_ERR_OK)
         return r;
     hDevice->type = type;
@@ -553,12 +560,16 @@ PMDresult PMDMemoryClose(PMDMemoryHandle *hMemory)
     return PMD_ERR_OK;
 }
 
+/* A chip at address on the parent's multi-drop line: a device opened on it sends that address in
+   every packet (PMDFMU_DEVICE's links; in-process there is one chip, which answers any address) */
 PMDresult PMDPeriphOpenPeriphMultiDrop(PMDPeriphHandle *hPeriph, PMDPeriphHandle *hPeriphParent, PMDparam address)
 {
-    (void)address;
     if (!hPeriph || !hPeriphParent)
         return PMD_ERR_InvalidHandle;
+    if (address > 0xFF)
+        return PMD_ERR_InvalidParameter;
     *hPeriph = *hPeriphParent;
+    hPeriph->multidrop = address + 1;
     return PMD_ERR_OK;
 }
 
