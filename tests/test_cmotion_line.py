@@ -84,3 +84,32 @@ def test_what_needs_the_twin_in_process_answers_not_supported_over_a_line(tmp_pa
     assert code == 0
     assert out.splitlines() == ["GetInteger 0x1101", "GetHostIOError 0x0 1"]  # PMD_ERR_NotSupported
     assert "PMDFMU_GetInteger needs the twin in-process" in err
+
+
+def test_a_5x_program_addresses_each_chip_of_a_multi_drop_line(tmp_path):
+    """pmdfmu serve --chips 2: PMDPeriphOpenPeriphMultiDrop's address goes into every packet of the
+    device opened on it, so each chip (addresses 0 and 1) keeps the position written to it."""
+    source = tmp_path / "multidrop.c"
+    source.write_text(
+        '#include "c-motion.h"\n#include <stdio.h>\n'
+        "int main(void) { PMDPeriphHandle line = {0}, drop[2]; PMDDeviceHandle dev[2]; PMDAxisHandle ax[2];\n"
+        "  PMDint32 p = 0; int i;\n"
+        "  if (PMDPeriphOpenCOM(&line, NULL, PMDSerialPort1, PMDSerialBaud57600, PMDSerialParityNone, PMDSerialStopBits1)) return 1;\n"
+        "  for (i = 0; i < 2; i++) {\n"
+        "    if (PMDPeriphOpenPeriphMultiDrop(&drop[i], &line, (PMDparam)i)) return 2;\n"
+        "    if (PMDPeriphOpenDeviceMP(&dev[i], &drop[i])) return 3;\n"
+        "    if (PMDAxisOpen(&ax[i], &dev[i], PMDAxis1)) return 4;\n"
+        "    PMDSetPosition(&ax[i], 1000 * (i + 1)); }\n"
+        "  for (i = 0; i < 2; i++) { PMDresult r = PMDGetPosition(&ax[i], &p);\n"
+        '    printf("chip %d: 0x%X %ld\\n", i, (unsigned)r, (long)p); PMDDeviceClose(&dev[i]); }\n'
+        "  return 0; }\n"
+    )
+    exe = compile_program(source, tmp_path / "multidrop", generate(tmp_path / "generated"), warnings=True)
+    p, _first = serve("--serial", tmp_path / "pmd", "--chips", 2)
+    try:
+        code, out, err = run(exe, f"serial:{tmp_path / 'pmd'}")
+    finally:
+        p.send_signal(signal.SIGTERM)
+        assert p.wait(timeout=60) == 0
+    assert code == 0, err
+    assert out.splitlines() == ["chip 0: 0x0 1000", "chip 1: 0x0 2000"]

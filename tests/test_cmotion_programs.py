@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Host programs written the way public C-Motion programs of both generations are
-(tests/c/cmotion5_host.c, cmotion5_engine.c, cmotion2_host.c; docs/sources.md names the public
+(tests/c/cmotion5_host.c, cmotion5_engine.c, cmotion2_host.c, cmotion5_machine.c; docs/sources.md names the public
 programs whose constructs they cover) compile unchanged against the library's headers, with the
 project's warnings as errors, and run to completion against the twin; their outputs are pinned.
 Around them: every vendor header name compiles alone in both generations, the vendor's types are
@@ -24,7 +24,7 @@ from generating import harness_tables  # noqa: E402
 
 pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 
-PROGRAMS = ("cmotion5_host", "cmotion5_engine", "cmotion2_host")
+PROGRAMS = ("cmotion5_host", "cmotion5_engine", "cmotion2_host", "cmotion5_machine")
 VENDOR_HEADERS = (
     "c-motion.h",
     "C-Motion.h",
@@ -123,6 +123,28 @@ def test_a_2x_host_program_sets_up_copies_multiupdates_and_polls_activity(progra
         "PMDSetProfileMode: 0x4 Invalid data parameter",
         "PMDUpdate: 0x1106 Invalid handle",
         "host I/O error 4",
+    ]
+
+
+def test_a_5x_program_homes_on_home_then_index_clears_a_limit_and_runs_20_moves_against_a_machine(programs):
+    """examples/machine/stage.toml: the home flag from 12345 (hunting at 8 counts/cycle, the capture
+    latches the first cycle inside it), the index every 2000 stage counts (1652 past the new origin),
+    the positive limit at 40000 stage counts (27652 in the homed register, passed by up to 20 counts at
+    20 counts/cycle), its event cleared and the axis moved out; axis 2 (no switches) ends its 20 moves
+    exactly at the last target."""
+    code, out, err = run(
+        programs["cmotion5_machine"], {"PMDFMU_MACHINE": str(ROOT / "examples" / "machine" / "stage.toml")}
+    )
+    assert code == 0 and not err
+    assert out.splitlines() == [
+        "Home captured at 12348",
+        "Back at 12348, made the origin",
+        "Index captured at 1652",
+        "Positive limit: event 0x0029 signals 0x002F at 27670",
+        "Cleared: event 0x0009",
+        "Moved out to 0: event 0x0009",
+        "20 moves in 46489 cycles, at -50000, target -50000",
+        "Done",
     ]
 
 

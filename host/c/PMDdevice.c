@@ -28,6 +28,7 @@ static PMDHostInterface open_host;
 /* The C-Motion Engine's own device (PMDAxisOpen with no device), opened on first use. */
 static pthread_mutex_t engine_lock = PTHREAD_MUTEX_INITIALIZER;
 static PMDDeviceHandle engine;
+static PMDDeviceHandle *engine_device(PMDDeviceHandle *hDevice, PMDresult *r);
 
 /* No FMU category for the default log: the FMU's errors only (the stderr log keeps the transport's) */
 static const char *const no_categories[] = {NULL};
@@ -97,8 +98,9 @@ static const PMDuint32 serial_baud[] = {1200, 2400, 9600, 19200, 57600, 115200, 
 
 /* Opens a new chip with the handle on axis, the host interface named `host` (a kind of
    host_interfaces.csv) unless the open options give one; baud: a serial line's, 0 for the
-   table's default. */
-static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host, PMDuint32 baud)
+   table's default; address: the chip's on a multi-drop line (PMDFMU_DEVICE's links only). */
+static PMDresult open_twin_at(PMDAxisHandle *handle, PMDAxis axis, const char *host, PMDuint32 baud,
+                              unsigned address)
 {
     PMDFMUOptions options;
 #ifdef PMD_HAVE_HOSTTIME
@@ -129,7 +131,7 @@ static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host
     if (refused)
         return PMD_ERR_OpeningPort;
     if (device)     /* the reset mode's 57600 baud unless the program opened its port at another */
-        return PMDFMU_SetupAxisInterface_Line(handle, axis, device, baud ? baud : 57600, &options);
+        return PMDFMU_SetupAxisInterface_LineAt(handle, axis, device, baud ? baud : 57600, address, &options);
 #ifdef PMD_HAVE_HOSTTIME
     if (!options.hostInterface) {
         interface = PMDHostInterfaceOf(PMDHostInterfaceKind(host));
@@ -141,7 +143,13 @@ static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host
     (void)host;
     (void)baud;
 #endif
+    (void)address;      /* one chip in-process: it answers whatever address */
     return PMDSetupAxisInterface_FMU(handle, axis, &options);
+}
+
+static PMDresult open_twin(PMDAxisHandle *handle, PMDAxis axis, const char *host, PMDuint32 baud)
+{
+    return open_twin_at(handle, axis, host, baud, 0);
 }
 
 /* ---- 2.x ---- */
@@ -285,7 +293,7 @@ static PMDresult open_device(PMDDeviceHandle *hDevice, PMDPeriphHandle *hPeriph,
     default:
         break;
     }
-    r = open_twin(&hDevice->hAxis, PMDAxis1, host, baud);
+    r = open_twin_at(&hDevice->hAxis, PMDAxis1, host, baud, hPeriph->multidrop ? (unsigned)(hPeriph->multidrop - 1) : 0);
     if (r != PMD_ERR_OK)
         return r;
     hDevice->type = type;
@@ -321,20 +329,57 @@ PMDresult PMDDeviceClose(PMDDeviceHandle *hDevice)
 
 PMDresult PMDDeviceReset(PMDDeviceHandle *hDevice)
 {
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     return r != PMD_ERR_OK ? r : PMDReset(&hDevice->hAxis);
 }
 
 PMDresult PMDDeviceNoOperation(PMDDeviceHandle *hDevice)
 {
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     return r != PMD_ERR_OK ? r : PMDNoOperation(&hDevice->hAxis);
+}
+
+/* C-Motion Engine user code names its own device NULL: the engine's motion processor, on its local
+   bus, opened the first time a call names it */
+static PMDDeviceHandle *engine_device(PMDDeviceHandle *hDevice, PMDresult *r)
+{
+    *r = PMD_ERR_OK;
+    if (hDevice)
+        return hDevice;
+    pthread_mutex_lock(&engine_lock);
+    if (engine.type == PMDDeviceTypeNone) {
+        *r = open_twin(&engine.hAxis, PMDAxis1, "parallel16", 0);
+        if (*r == PMD_ERR_OK)
+            engine.type = PMDDeviceTypeMotionProcessor;
+    }
+    pthread_mutex_unlock(&engine_lock);
+    return &engine;
+}
+
+PMDresult PMDAxisOpen(PMDAxisHandle *hAxis, PMDDeviceHandle *hDevice, PMDAxis axis_number)
+{
+    PMDresult r;
+    if (!hAxis)
+        return PMD_ERR_InvalidHandle;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
+    return r != PMD_ERR_OK ? r : PMDCopyAxisInterface(hAxis, &hDevice->hAxis, axis_number);
 }
 
 PMDresult PMDDeviceGetVersion(PMDDeviceHandle *hDevice, PMDuint32 *major, PMDuint32 *minor)
 {
     PMDuint16 generation, motorType, axes, special, custom, ma, mi;
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     if (r == PMD_ERR_OK)
         r = PMDGetVersion(&hDevice->hAxis, &generation, &motorType, &axes, &special, &custom, &ma, &mi);
     if (r != PMD_ERR_OK)
@@ -346,27 +391,6 @@ PMDresult PMDDeviceGetVersion(PMDDeviceHandle *hDevice, PMDuint32 *major, PMDuin
     return PMD_ERR_OK;
 }
 
-PMDresult PMDAxisOpen(PMDAxisHandle *hAxis, PMDDeviceHandle *hDevice, PMDAxis axis_number)
-{
-    PMDresult r = PMD_ERR_OK;
-    if (!hAxis)
-        return PMD_ERR_InvalidHandle;
-    if (!hDevice) {
-        /* C-Motion Engine user code: the engine's own motion processor, on its local bus */
-        pthread_mutex_lock(&engine_lock);
-        if (engine.type == PMDDeviceTypeNone) {
-            r = open_twin(&engine.hAxis, PMDAxis1, "parallel16", 0);
-            if (r == PMD_ERR_OK)
-                engine.type = PMDDeviceTypeMotionProcessor;
-        }
-        pthread_mutex_unlock(&engine_lock);
-        if (r != PMD_ERR_OK)
-            return r;
-        hDevice = &engine;
-    }
-    r = device_check(hDevice);
-    return r != PMD_ERR_OK ? r : PMDCopyAxisInterface(hAxis, &hDevice->hAxis, axis_number);
-}
 
 PMDresult PMDAxisClose(PMDAxisHandle *hAxis)
 {
@@ -475,7 +499,10 @@ int PMDFMU_RunUserTask(void (*task)(PMDTaskParam), const char *name)
 PMDresult PMDDeviceOpenMemory(PMDMemoryHandle *hMemory, PMDDeviceHandle *hDevice, PMDparam datasize,
                               PMDparam memorytype)
 {
-    PMDresult r = device_check(hDevice);
+    PMDresult r;
+    hDevice = engine_device(hDevice, &r);
+    if (r == PMD_ERR_OK)
+        r = device_check(hDevice);
     if (!hMemory)
         return PMD_ERR_InvalidHandle;
     if (r != PMD_ERR_OK)
@@ -533,12 +560,16 @@ PMDresult PMDMemoryClose(PMDMemoryHandle *hMemory)
     return PMD_ERR_OK;
 }
 
+/* A chip at address on the parent's multi-drop line: a device opened on it sends that address in
+   every packet (PMDFMU_DEVICE's links; in-process there is one chip, which answers any address) */
 PMDresult PMDPeriphOpenPeriphMultiDrop(PMDPeriphHandle *hPeriph, PMDPeriphHandle *hPeriphParent, PMDparam address)
 {
-    (void)address;
     if (!hPeriph || !hPeriphParent)
         return PMD_ERR_InvalidHandle;
+    if (address > 0xFF)
+        return PMD_ERR_InvalidParameter;
     *hPeriph = *hPeriphParent;
+    hPeriph->multidrop = address + 1;
     return PMD_ERR_OK;
 }
 
@@ -673,4 +704,10 @@ PMDresult ReadBuffer(PMDAxisHandle *phAxis, PMDuint16 bufferID, PMDint32 *pbuffe
 PMDresult WaitForAtlasToConnect(PMDAxisHandle *phAxis)
 {
     NOT_SUPPORTED(phAxis);
+}
+
+/* PMDutil.h's phase initialization: the chip's InitializePhase, whatever it answers */
+PMDresult InitializePhase(PMDAxisHandle *phAxis)
+{
+    return PMDInitializePhase(phAxis);
 }

@@ -691,6 +691,12 @@ static PMDresult not_over_a_line(PMDFMUDevice *d, const char *what)
 PMDresult PMDFMU_SetupAxisInterface_Line(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
                                          PMDuint32 baud, const PMDFMUOptions *options)
 {
+    return PMDFMU_SetupAxisInterface_LineAt(axis_handle, axisNumber, device, baud, 0, options);
+}
+
+PMDresult PMDFMU_SetupAxisInterface_LineAt(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
+                                           PMDuint32 baud, unsigned address, const PMDFMUOptions *options)
+{
     PMDFMUDevice *d;
     char why[512];
     PMDresult r;
@@ -705,7 +711,7 @@ PMDresult PMDFMU_SetupAxisInterface_Line(PMDAxisHandle *axis_handle, PMDAxis axi
         d->options = *options;
     d->options.hostInterface = NULL;
     d->lastOpcode = -1;
-    r = PMDLineOpen(&d->line, device, baud, 0, why, sizeof why);
+    r = PMDLineOpen(&d->line, device, baud, address, why, sizeof why);
     if (r != PMD_ERR_OK) {
         char text[600];
         snprintf(text, sizeof text, "PMDFMU_DEVICE=%s: %s", device, why);

@@ -79,6 +79,9 @@ PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumb
    answers PMD_ERR_NotSupported with a transport log line; PMDTaskWait and PMDFMU_Wait sleep. */
 PMDresult PMDFMU_SetupAxisInterface_Line(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
                                          PMDuint32 baud, const PMDFMUOptions *options);
+/* The same, every packet carrying address (a multi-drop line's chip address, 0..255) */
+PMDresult PMDFMU_SetupAxisInterface_LineAt(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
+                                           PMDuint32 baud, unsigned address, const PMDFMUOptions *options);
 
 /* C-Motion's: another axis of the same chip. */
 PMDresult PMDCopyAxisInterface(PMDAxisHandle *dest_handle, const PMDAxisHandle *src_handle, PMDAxis axis);

@@ -84,6 +84,7 @@ typedef struct tagPMDPeriphHandle {
     PMDparam address;           /* the port number, IP address, I/O address, CAN address ... */
     PMDparam parameter;         /* the baud code, TCP port ... */
     void *transport_data;       /* reserved for PMDFMU_DEVICE's links */
+    PMDparam multidrop;         /* PMDPeriphOpenPeriphMultiDrop's chip address + 1; 0: the parent's */
 } PMDPeriphHandle;
 
 /* C-Motion 5.x's device: a motion processor (or a resource-protocol product around one) reached

@@ -108,9 +108,23 @@ PMDresult PMDReadDPRAM(PMDAxisInterface axis_intf, PMDuint32 *data, PMDuint32 of
                        PMDuint32 dwords_to_read);
 
 /* An axis's event, as PMDWaitForEvent and PMDDeviceGetEvent give it */
+/* The event's status word is `eventstatus` in today's SDK and `event` in earlier 5.x releases: both
+   name it (an anonymous union, a GNU C and C11 feature; elsewhere only `eventstatus`). */
 typedef struct tagPMDAxisEvent {
     PMDAxis axis;
+#if defined(__GNUC__)
+    __extension__ union {
+        PMDuint16 eventstatus;
+        PMDuint16 event;
+    };
+#elif defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
+    union {
+        PMDuint16 eventstatus;
+        PMDuint16 event;
+    };
+#else
     PMDuint16 eventstatus;
+#endif
 } PMDEvent;
 
 /* A device's memory (PMDDeviceOpenMemory): the external memory (PMDMemoryAddress_DPRAM) as words of
@@ -148,6 +162,14 @@ PMDresult PMDCMETaskStop(PMDDeviceHandle *hDevice);
 PMDresult PMDCMEGetUserCodeVersion(PMDDeviceHandle *hDevice, PMDuint32 *version);
 PMDresult PMDCMEGetUserCodeName(PMDDeviceHandle *hDevice, char *name);
 PMDresult PMDCMEGetUserCodeDate(PMDDeviceHandle *hDevice, char *date);
+/* The same calls under earlier 5.x releases' names (PMD's C-Motion Engine examples of that SDK) */
+#define PMDMPDeviceOpen PMDPeriphOpenDeviceMP
+#define PMDRPDeviceOpen PMDPeriphOpenDevicePRP
+#define PMDPeriphOpenMultiDrop PMDPeriphOpenPeriphMultiDrop
+#define PMDTaskGetState PMDCMETaskGetState
+#define PMDGetUserCodeFileVersion PMDCMEGetUserCodeVersion
+#define PMDGetUserCodeFileName PMDCMEGetUserCodeName
+#define PMDGetUserCodeFileDate PMDCMEGetUserCodeDate
 PMDresult PMDCMESetConsole(PMDDeviceHandle *hDevice, PMDPeriphHandle *hPeriph);
 #define PMDDeviceSetConsole PMDCMESetConsole
 PMDresult PMDAtlasAxisOpen(PMDAxisInterface hSourceAxis, PMDAxisInterface hAtlasAxis);
@@ -158,6 +180,8 @@ PMDresult WaitForEvent(PMDAxisHandle *phAxis, PMDuint16 eventmask, PMDuint32 tim
 PMDresult ReadBuffer(PMDAxisHandle *phAxis, PMDuint16 bufferID, PMDint32 *pbuffer, PMDuint32 dwords_to_read);
 /* No Atlas amplifier is modelled: PMD_ERR_NotSupported */
 PMDresult WaitForAtlasToConnect(PMDAxisHandle *phAxis);
+/* Sends InitializePhase and returns the chip's answer */
+PMDresult InitializePhase(PMDAxisHandle *phAxis);
 
 /* Clears a handle before its opening */
 #define PMD_INITIALIZEHANDLE(handle) memset(&handle, 0, sizeof(handle));
@@ -165,6 +189,15 @@ PMDresult WaitForAtlasToConnect(PMDAxisHandle *phAxis);
     (((PMDuint32)((o1) & 0xff) << 24) | ((PMDuint32)((o2) & 0xff) << 16) | ((PMDuint32)((o3) & 0xff) << 8) |  \
      (PMDuint32)((o4) & 0xff))
 #define PMD_WAITFOREVER ((PMDparam)0xFFFFFFFFUL)
+/* PMDRPtypes.h's and PMDintf.h's platform names: the C-Motion Engine's TCP port, the CAN
+   identifiers' bases (a node's are base + node ID), and the byte type of older examples */
+#define DEFAULT_ETHERNET_PORT 40100
+#define CAN_ADDRESS_BASE_RX 0x580
+#define CAN_ADDRESS_BASE_TX 0x600
+#define CAN_ADDRESS_BASE_INTR 0x180
+#ifndef BYTE
+#define BYTE PMDuint8
+#endif
 
 /* ---- PMDdiag.h ---- */
 
