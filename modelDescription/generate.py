@@ -204,7 +204,12 @@ def dependency_attributes(references) -> str:
 BASE_UNITS = ("kg", "m", "s", "A", "rad")
 # the range of each FMI 3 integer type: a min or max of variables.csv outside it (host.word's -32768,
 # FMI 2's way of writing a word) stays in FMI 2 only
-FMI3_RANGE = {"Int16": (-(2**15), 2**15 - 1), "UInt16": (0, 2**16 - 1), "Int32": (-(2**31), 2**31 - 1), "UInt32": (0, 2**32 - 1)}
+FMI3_RANGE = {
+    "Int16": (-(2**15), 2**15 - 1),
+    "UInt16": (0, 2**16 - 1),
+    "Int32": (-(2**31), 2**31 - 1),
+    "UInt32": (0, 2**32 - 1),
+}
 
 
 def read_csv(name: str):
@@ -231,7 +236,9 @@ def read_ranges():
     out = {}
     for row in read_csv("variables.csv"):
         name = row["declaredType"]
-        if name and (name not in types or (types[name]["type"], types[name]["fmi3Type"]) != (row["type"], row["fmi3Type"])):
+        if name and (
+            name not in types or (types[name]["type"], types[name]["fmi3Type"]) != (row["type"], row["fmi3Type"])
+        ):
             sys.exit(f"variables.csv: {row['name']}: declaredType {name} is no type of types.csv of its types")
         out[tables._family(row["name"])] = (name, row["min"], row["max"])
     return out
