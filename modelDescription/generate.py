@@ -47,6 +47,12 @@ METADATA = (
     f'version="{VERSION}" license="BSD-2-Clause" copyright="Copyright (c) 2026 pmdfmu authors" author="pmdfmu authors"'
 )
 MODEL_IDENTIFIER = "PMDMotionProcessor"
+DESCRIPTION = "PMD Navigator/Pilot-class motion processor: external profile engine, buffer memory, host interface"
+# Every name is a name of FMI's structured convention (axis1.position, host.word[3]: tests/test_fmu.py
+# parses each with FMPy's grammar), declared "flat", which allows any name: FMPy's validation, which
+# fmpy.simulate_fmu runs on every call, parses each structured name with an Earley parser, ~8 ms a
+# name, 2.7 s for FMI 2's 318 (docs/performance.md, "Model description").
+NAMING = "flat"
 
 
 def LOG_CATEGORIES():
@@ -92,7 +98,7 @@ def cycle_time(variables) -> str:
 def instantiation_token() -> str:
     """Changes whenever an interface table changes, so an FMU never runs with a foreign XML."""
     digest = hashlib.sha256()
-    for name in ("variables.csv", "commands.csv", "constants.csv"):
+    for name in ("variables.csv", "commands.csv", "constants.csv", "types.csv", "units.csv"):
         digest.update((HERE / name).read_bytes())
     return "{" + str(uuid.UUID(bytes=digest.digest()[:16])) + "}"
 
@@ -124,9 +130,9 @@ def index_array(declaration: str, keys, size: int):
 # doStep. So the Outputs list inputs, and the parameters and the start time count in Initialization
 # Mode only (FMI 2.0.5, 2.2.8: the knowns there are the inputs, the variables with initial="exact"
 # and the independent variable; FMI 3.0, 2.4.8 the same): they are written `init:NAME`.
-# Every dependency is written with dependenciesKind "dependent": a batch is no linear factor, and
-# FMI allows the other kinds for floating-point unknowns only (and not "fixed", "tunable" or
-# "discrete" in InitialUnknowns).
+# Every dependency is of kind "dependent", the default when dependenciesKind is left out (which halves the
+# ModelStructure): a batch is no linear factor, and FMI allows the other kinds for floating-point unknowns
+# only (and not "fixed", "tunable" or "discrete" in InitialUnknowns).
 
 KNOWN_CAUSALITIES = ("input", "parameter", "independent")
 DEPENDENCY_MODES = ("", "step", "init")
@@ -183,21 +189,132 @@ def resolve_dependencies(variables, rows):
 
 
 def dependency_attributes(references) -> str:
-    """The dependencies and dependenciesKind attributes of one unknown (sorted references)."""
-    if not references:
-        return ' dependencies=""'
-    return (
-        f' dependencies="{" ".join(str(r) for r in references)}"'
-        f' dependenciesKind="{" ".join(["dependent"] * len(references))}"'
-    )
+    """The dependencies attribute of one unknown (sorted references). dependenciesKind is left out:
+    its default is "dependent" for every dependency (FMI 2.0.5, 2.2.8; FMI 3.0, 2.4.8)."""
+    return f' dependencies="{" ".join(str(r) for r in references)}"'
+
+
+# ---- units, declared types, ranges -----------------------------------------------------------------
+#
+# units.csv defines every unit (of the chip and the plant alike: each model description lists the ones it
+# uses), types.csv the declared types, one per kind of signal, with their quantity and unit; variables.csv
+# names a row's declaredType (its unit is the type's) and its min and max. FMI 2 and FMI 3 give a unit to
+# floating-point variables only: an integer's type says its scaling in its description.
+
+BASE_UNITS = ("kg", "m", "s", "A", "rad")
+# the range of each FMI 3 integer type: a min or max of variables.csv outside it (host.word's -32768,
+# FMI 2's way of writing a word) stays in FMI 2 only
+FMI3_RANGE = {
+    "Int16": (-(2**15), 2**15 - 1),
+    "UInt16": (0, 2**16 - 1),
+    "Int32": (-(2**31), 2**31 - 1),
+    "UInt32": (0, 2**32 - 1),
+}
+
+
+def read_csv(name: str):
+    with open(HERE / name, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def read_types():
+    """{name: row of types.csv}, each unit defined in units.csv."""
+    units = {u["name"] for u in read_csv("units.csv")}
+    types = {t["name"]: t for t in read_csv("types.csv")}
+    for t in types.values():
+        if t["unit"] and t["unit"] not in units:
+            sys.exit(f"types.csv: {t['name']}: unit {t['unit']} is not in units.csv")
+        if t["unit"] and t["type"] != "Real":
+            sys.exit(f"types.csv: {t['name']}: only a Real has a unit in FMI")
+    return types
+
+
+def read_ranges():
+    """{family: (declaredType, min, max)} of variables.csv's rows, each type in types.csv and of
+    the row's own type."""
+    types = read_types()
+    out = {}
+    for row in read_csv("variables.csv"):
+        name = row["declaredType"]
+        if name and (
+            name not in types or (types[name]["type"], types[name]["fmi3Type"]) != (row["type"], row["fmi3Type"])
+        ):
+            sys.exit(f"variables.csv: {row['name']}: declaredType {name} is no type of types.csv of its types")
+        out[tables._family(row["name"])] = (name, row["min"], row["max"])
+    return out
+
+
+def unit_definitions(used):
+    """UnitDefinitions of the units of units.csv named in `used`, in the table's order (FMI 2 and 3 alike:
+    a unit without exponents has no BaseUnit, a count or a cycle is no SI quantity)."""
+    lines = ["  <UnitDefinitions>"]
+    for u in read_csv("units.csv"):
+        if u["name"] not in used:
+            continue
+        base = " ".join(f'{b}="{u[b]}"' for b in BASE_UNITS if u[b])
+        inner = [f"      <BaseUnit {base}/>"] if base else []
+        if u["displayUnit"]:
+            inner.append(f'      <DisplayUnit name="{u["displayUnit"]}" factor="{u["displayFactor"]}"/>')
+        if inner:
+            lines += [f'    <Unit name="{u["name"]}">', *inner, "    </Unit>"]
+        else:
+            lines.append(f'    <Unit name="{u["name"]}"/>')
+    return lines + ["  </UnitDefinitions>"]
+
+
+def type_attributes(t) -> str:
+    out = ""
+    for a in ("quantity", "unit", "displayUnit"):
+        if t[a]:
+            out += f' {a}="{t[a]}"'
+    return out
+
+
+def type_definitions(types, fmi3: bool):
+    used = sorted(types.values(), key=lambda t: list(read_types()).index(t["name"]))
+    lines = ["  <TypeDefinitions>"]
+    for t in used:
+        d = f" description={quoteattr(t['description'])}"
+        if fmi3:
+            lines.append(f'    <{t["fmi3Type"]}Type name="{t["name"]}"{d}{type_attributes(t)}/>')
+        else:
+            lines += [
+                f'    <SimpleType name="{t["name"]}"{d}>',
+                f"      <{t['type']}{type_attributes(t)}/>",
+                "    </SimpleType>",
+            ]
+    return lines + ["  </TypeDefinitions>"]
+
+
+def typed(variables, fmi3: bool):
+    """(types used, units used, {name: attributes}) of variables: declaredType, unit, min, max."""
+    types, ranges = read_types(), read_ranges()
+    used, units, attrs = {}, set(), {}
+    for v in variables:
+        name, low, high = ranges[v.family]
+        out = ""
+        if name:
+            t = used[name] = types[name]
+            out += f' declaredType="{name}"'
+            if t["unit"]:
+                units.add(t["unit"])
+                units.add(t["unit"])
+                out += f' unit="{t["unit"]}"'
+        lo, hi = FMI3_RANGE.get(v.type, (None, None)) if fmi3 else (None, None)
+        if low and (lo is None or int(low) >= lo):
+            out += f' min="{low}"'
+        if high and (hi is None or int(high) <= hi):
+            out += f' max="{high}"'
+        attrs[v.name] = out
+    return used, units, attrs
 
 
 def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
     lines = [
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="2.0" modelName="{MODEL_IDENTIFIER}" guid="{token}"',
-        '  description="PMD Navigator/Pilot-class motion processor: external profile engine, buffer memory, host interface"',
-        f'  {METADATA} generationTool="pmdfmu {VERSION}" variableNamingConvention="structured"',
+        f"  description={quoteattr(DESCRIPTION)}",
+        f'  {METADATA} generationTool="pmdfmu {VERSION}" variableNamingConvention="{NAMING}"',
         '  numberOfEventIndicators="0">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
         ' canNotUseMemoryManagementFunctions="true" canGetAndSetFMUstate="true" canSerializeFMUstate="true">',
@@ -213,6 +330,9 @@ def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
     ]
     outputs = []
     variables = [v for v in variables if v.type != "Binary"]  # FMI 2 has no Binary type
+    types, units, attrs = typed(variables, fmi3=False)
+    at = lines.index("  <LogCategories>")
+    lines[at:at] = unit_definitions(units) + type_definitions(types, fmi3=False)
     for i, v in enumerate(variables, start=1):
         initial = ' initial="exact"' if v.causality == "parameter" else ""
         lines.append(
@@ -221,7 +341,7 @@ def fmi2_xml(variables, token: str, sources=(), dependencies=None) -> str:
         )
         # parameters and inputs have a start value (FMI 2.0.5, 2.2.7), an empty String's too
         start = f' start="{v.start}"' if v.start != "" or v.causality in ("parameter", "input") else ""
-        lines.append(f"      <{v.type}{start}/>")
+        lines.append(f"      <{v.type}{attrs[v.name]}{start}/>")
         lines.append("    </ScalarVariable>")
         if v.causality == "output":
             outputs.append(i)
@@ -265,8 +385,8 @@ def fmi3_xml(variables3, token: str, dependencies=None) -> str:
     lines = [
         '<?xml version="1.0" encoding="UTF-8"?>',
         f'<fmiModelDescription fmiVersion="3.0" modelName="{MODEL_IDENTIFIER}" instantiationToken="{token}"',
-        '  description="PMD Navigator/Pilot-class motion processor: external profile engine, buffer memory, host interface"',
-        f'  {METADATA} generationTool="pmdfmu {VERSION}" variableNamingConvention="structured">',
+        f"  description={quoteattr(DESCRIPTION)}",
+        f'  {METADATA} generationTool="pmdfmu {VERSION}" variableNamingConvention="{NAMING}">',
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
         f' fixedInternalStepSize="{cycle_time(variables3)}" canGetAndSetFMUState="true" canSerializeFMUState="true"'
         ' hasEventMode="false" providesIntermediateUpdate="false"/>',
@@ -276,12 +396,15 @@ def fmi3_xml(variables3, token: str, dependencies=None) -> str:
         f'  <DefaultExperiment startTime="0" stopTime="0.1" stepSize="{cycle_time(variables3)}"/>',
         "  <ModelVariables>",
     ]
+    types, units, attrs = typed(variables3, fmi3=True)
+    at = lines.index("  <LogCategories>")
+    lines[at:at] = unit_definitions(units) + type_definitions(types, fmi3=True)
     for v in variables3:
         initial = ' initial="exact"' if v.causality == "parameter" else ""
         start = f' start="{" ".join([v.start] * v.count)}"' if v.start != "" and v.type != "String" else ""
         head = (
             f'    <{v.type} name="{v.name}" valueReference="{v.vr}" causality="{v.causality}"'
-            f' variability="{v.variability}"{initial}{start} description={quoteattr(v.description)}'
+            f' variability="{v.variability}"{initial}{attrs[v.name]}{start} description={quoteattr(v.description)}'
         )
         if v.type == "String":  # FMI 3 writes String start values as elements
             lines += [head + ">", f"      <Start value={quoteattr(v.start)}/>", f"    </{v.type}>"]

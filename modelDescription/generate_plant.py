@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-2-Clause
-"""Generates, from plant.csv and plant_units.csv beside this file, everything of
+"""Generates, from plant.csv and units.csv beside this file, everything of
 the plant FMU (pmdplant: a DC motor, its amplifier and a quadrature encoder)
 that must agree with them:
 
@@ -28,7 +28,7 @@ import uuid
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from generate import METADATA, VERSION, build_description  # the chip's generator, beside this one
+from generate import METADATA, VERSION, build_description, unit_definitions  # the chip's generator, beside this one
 from generating import write_files
 
 HERE = Path(__file__).resolve().parent
@@ -40,7 +40,6 @@ DESCRIPTION = (
 GENERATION_TOOL = f"pmdfmu {VERSION}"
 # (name, description): errors are always logged, whatever SetDebugLogging says
 LOG_CATEGORIES = [("errors", "Refused calls and values, with the function, the variable and the reason")]
-BASE_UNITS = ("kg", "m", "s", "A", "rad")
 C_TYPES = {"Real": "double", "Integer": "int32_t"}
 FMI2_OF_FMI3 = {"Float64": "Real", "Int32": "Integer", "Int16": "Integer"}
 
@@ -65,31 +64,27 @@ def read_variables():
 
 
 def read_units():
-    with open(HERE / "plant_units.csv", newline="") as f:
+    with open(HERE / "units.csv", newline="") as f:
         return list(csv.DictReader(f))
 
 
 def instantiation_token() -> str:
     """Changes whenever a table changes, so the FMU never runs with a foreign XML."""
-    digest = hashlib.sha256((HERE / "plant.csv").read_bytes() + (HERE / "plant_units.csv").read_bytes())
+    digest = hashlib.sha256((HERE / "plant.csv").read_bytes() + (HERE / "units.csv").read_bytes())
     return "{" + str(uuid.UUID(bytes=digest.digest()[:16])) + "}"
+
+
+def chip_cycle_time() -> str:
+    """The DefaultExperiment's stepSize: the chip's cycle (variables.csv's cycleTime start), the
+    servo loop's sample time the plant is stepped at beside the chip; internalStep stays the
+    integration step inside (FMI 3's fixedInternalStepSize)."""
+    with open(HERE / "variables.csv", newline="") as f:
+        return next(r["start"] for r in csv.DictReader(f) if r["name"] == "cycleTime")
 
 
 def internal_step(variables) -> str:
     """internalStep's start value: also FMI 3's fixedInternalStepSize."""
     return next(v["start"] for v in variables if v["name"] == "internalStep")
-
-
-def unit_definitions(units):
-    lines = ["  <UnitDefinitions>"]
-    for u in units:
-        base = " ".join(f'{b}="{u[b]}"' for b in BASE_UNITS if u[b])
-        lines.append(f'    <Unit name="{u["name"]}">')
-        lines.append(f"      <BaseUnit {base}/>")
-        if u["displayUnit"]:
-            lines.append(f'      <DisplayUnit name="{u["displayUnit"]}" factor="{u["displayFactor"]}"/>')
-        lines.append("    </Unit>")
-    return lines + ["  </UnitDefinitions>"]
 
 
 def log_categories():
@@ -125,9 +120,9 @@ def fmi2_xml(variables, units, token: str, sources) -> str:
         *(f'      <File name="{name}"/>' for name in sources),
         "    </SourceFiles>",
         "  </CoSimulation>",
-        *unit_definitions(units),
+        *unit_definitions({v["unit"] for v in variables if v["unit"]}),
         *log_categories(),
-        '  <DefaultExperiment startTime="0" stopTime="0.2"/>',
+        f'  <DefaultExperiment startTime="0" stopTime="0.2" stepSize="{chip_cycle_time()}"/>',
         "  <ModelVariables>",
     ]
     for v in variables:
@@ -170,9 +165,9 @@ def fmi3_xml(variables, units, token: str) -> str:
         f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" canHandleVariableCommunicationStepSize="true"'
         f' fixedInternalStepSize="{internal_step(variables)}" canGetAndSetFMUState="true"'
         ' canSerializeFMUState="true" hasEventMode="false" providesIntermediateUpdate="false"/>',
-        *unit_definitions(units),
+        *unit_definitions({v["unit"] for v in variables if v["unit"]}),
         *log_categories(),
-        '  <DefaultExperiment startTime="0" stopTime="0.2"/>',
+        f'  <DefaultExperiment startTime="0" stopTime="0.2" stepSize="{chip_cycle_time()}"/>',
         "  <ModelVariables>",
     ]
     for v in variables:
@@ -289,7 +284,7 @@ def main(outdir: Path, sources) -> None:
     used = {v["unit"] for v in variables if v["unit"]}
     missing = used - {u["name"] for u in units}
     if missing:
-        sys.exit(f"plant.csv: units not defined in plant_units.csv: {sorted(missing)}")
+        sys.exit(f"plant.csv: units not defined in units.csv: {sorted(missing)}")
     token = instantiation_token()
     files = {
         "fmi2/modelDescription.xml": fmi2_xml(variables, units, token, [n for n in sources if n not in FMI3_ONLY]),

@@ -479,8 +479,9 @@ def test_both_fmi_versions_declare_the_same_dependencies():
 @pytest.mark.parametrize("fmi_version", FMI_VERSIONS, ids=["fmi2", "fmi3"])
 def test_the_model_descriptions_are_valid_and_list_knowns_only(fmi_version):
     """FMPy's validation (the schema, the model structure, dependencies against dependenciesKind);
-    every dependency "dependent" (FMI allows the other kinds only for floating-point unknowns as a
-    linear factor, and not "fixed", "tunable" or "discrete" in Initialization Mode); Outputs list
+    every dependency "dependent", dependenciesKind's default, so left out (FMI allows the other kinds
+    only for floating-point unknowns as a linear factor, and not "fixed", "tunable" or "discrete" in
+    Initialization Mode); Outputs list
     inputs, InitialUnknowns inputs, parameters and time; FMI 2's indices ascend."""
     path = pmdfmu.chip.default_fmu(fmi_version)
     assert validate_fmu(str(path)) == []
@@ -488,7 +489,7 @@ def test_the_model_descriptions_are_valid_and_list_knowns_only(fmi_version):
     for mode, unknowns in (("step", md.outputs), ("init", md.initialUnknowns)):
         allowed = {"input"} if mode == "step" else {"input", "parameter", "independent"}
         for u in unknowns:
-            assert u.dependenciesKind == ["dependent"] * len(u.dependencies) or not u.dependencies
+            assert u.dependenciesKind is None
             assert {d.causality for d in u.dependencies} <= allowed, (mode, u.variable.name)
             if fmi_version == 2:
                 indices = [md.modelVariables.index(d) for d in u.dependencies]
@@ -524,7 +525,7 @@ def test_fmi2_declares_time_as_the_standard_says_which_fmi_library_misreads():
     text = (Path(pmdfmu.chip.extract(str(pmdfmu.chip.default_fmu(2)))) / "modelDescription.xml").read_text()
     assert re.search(
         r'<ScalarVariable name="time" valueReference="0" causality="independent" '
-        r'variability="continuous" description="[^"]*">\s*<Real/>',
+        r'variability="continuous" description="[^"]*">\s*<Real declaredType="Time" unit="s"/>',
         text,
     )
 

@@ -237,3 +237,44 @@ def test_fmpy_simulate_fmu_drives_a_move_through_the_host_port():
     assert result["host.ack"][-1] == 1
     assert result["axis1.commandedPosition"][-1] == 1000
     assert not result["axis1.activityStatus"][-1] & pmdfmu.PMDActivityInMotionMask
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_every_real_has_a_unit_and_the_ranges_and_metadata_are_declared(fmi_version):
+    """units.csv and types.csv through variables.csv: every Real a unit defined in UnitDefinitions,
+    the parameters and bounded inputs their min/max, the metadata of LICENSE and the one version;
+    FMPy's validation stays clean, and every name is one of FMI's structured convention."""
+    path = pmdfmu.default_fmu(fmi_version)
+    assert validate_fmu(str(path)) == []
+    md = read_model_description(str(path))
+    units = {u.name for u in md.unitDefinitions}
+    reals = [v for v in md.modelVariables if v.type in ("Real", "Float64")]
+    assert reals and all(v.unit in units for v in reals), [v.name for v in reals if v.unit not in units]
+    ranges = {v.name: (v.min, v.max) for v in md.modelVariables}
+    assert ranges["cycleTime"] == ("1e-06", "0.065535")
+    assert ranges["memorySize"] == ("1", "67108864")
+    assert ranges["record.capacity"] == ("0", "16777216")
+    assert ranges["host.wordCount"] == ("0", "64")
+    if fmi_version == 2:  # FMPy reads no min or max of an FMI 3 array
+        assert ranges["analog[1]"] == ("0", "65535")
+    assert {v.name: v.declaredType.name for v in md.modelVariables if v.declaredType}["axis1.motorOutput"] == (
+        "MotorOutput"
+    )
+    assert (md.author, md.license, md.version, md.generationTool) == (
+        "pmdfmu authors",
+        "BSD-2-Clause",
+        pmdfmu.__version__,
+        f"pmdfmu {pmdfmu.__version__}",
+    )
+    assert md.copyright and md.description
+
+
+def test_the_names_are_structured_though_declared_flat():
+    """FMPy's grammar of FMI 2's structured names accepts every name (docs/performance.md: declared
+    flat, FMPy's validation would parse each one with an Earley parser)."""
+    from fmpy.validation import _validate_variable_names
+
+    md = read_model_description(str(pmdfmu.default_fmu(2)))
+    assert md.variableNamingConvention == "flat"
+    md.variableNamingConvention = "structured"
+    assert _validate_variable_names(md) == []

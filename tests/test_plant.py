@@ -548,3 +548,35 @@ def test_the_docs_counts_and_cycles_follow_from_the_start_values():
         f"4 Kd a_full / 32768 = {4 * 4000 * acceleration * counts_per_rad * cycle**2 / 32768:.2f}",
     ):
         assert fact in text, fact
+
+
+def test_the_real_motor_output_drives_as_the_integer_command_does(plants, fmi_version):
+    """motorOutput (a fraction of full scale, the chip's axisN.motorOutput) and motorCommand / 32767
+    are one input: the same fraction gives the same shaft, bit for bit; the sum saturates at 1."""
+    by_word = plants(fmi_version, {"motorCommand": FULL_SCALE // 2}).step(1e-4, 50)
+    by_fraction = plants(fmi_version, {"motorOutput": (FULL_SCALE // 2) / FULL_SCALE}).step(1e-4, 50)
+    assert by_fraction.outputs() == by_word.outputs()
+    both = plants(fmi_version, {"motorOutput": 1.0, "motorCommand": FULL_SCALE}).step(1e-4, 1)
+    assert both.get("voltage") == START["supplyVoltage"]
+
+
+def test_the_plant_declares_the_chips_cycle_as_its_step_and_default_fmu_finds_it(fmi_version):
+    assert pmdfmu.default_fmu(fmi_version, "plant") == plant_fmu(fmi_version)
+    md = read_model_description(str(pmdfmu.default_fmu(fmi_version, "plant")))
+    assert md.defaultExperiment.stepSize == "0.0001"
+    assert {v.name: (v.type, v.unit, v.min, v.max) for v in md.modelVariables}["motorOutput"] == (
+        "Real" if fmi_version == 2 else "Float64",
+        "1",
+        "-1",
+        "1",
+    )
+    if fmi_version == 3:
+        assert float(md.coSimulation.fixedInternalStepSize) == START["internalStep"]
+
+
+def test_the_cli_prints_the_plants_path(capsys):
+    from pmdfmu.cli import main
+
+    assert main(["path", "plant", "--fmi", "3"]) == 0
+    assert capsys.readouterr().out.strip() == str(pmdfmu.default_fmu(3, "plant"))
+    assert pmdfmu.default_fmu("plant") == pmdfmu.default_fmu(2, "plant")

@@ -25,12 +25,17 @@ int32_t plant_encoder_count(const PlantModel *m)
     return (int32_t)counts;
 }
 
-/* The amplifier: a voltage source proportional to the command. The chip's
- * -32768 is one count beyond full scale; the amplifier saturates there. */
+/* The amplifier: a voltage source proportional to the command, the sum of the
+ * two inputs (a model wires one of them), saturating at full scale: the
+ * chip's -32768 is one count beyond it. */
 static double amplifier_voltage(const PlantModel *m)
 {
-    double command = m->motorCommand < -32767 ? -32767.0 : (double)m->motorCommand;
-    return m->supplyVoltage * command / FULL_SCALE;
+    double command = (double)m->motorCommand / FULL_SCALE + m->motorOutput;
+    if (command > 1.0)
+        command = 1.0;
+    else if (command < -1.0)
+        command = -1.0;
+    return m->supplyVoltage * command;
 }
 
 void plant_start(PlantModel *m)

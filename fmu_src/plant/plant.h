@@ -3,7 +3,7 @@
  * viscous and Coulomb friction, read by a quadrature encoder. Plain data and
  * plain functions, nothing of FMI (plant_fmu.c is the FMU around it).
  *
- *   V  = supplyVoltage * m / 32767              m: motorCommand, clamped to -32767..32767
+ *   V  = supplyVoltage * u                     u: motorCommand / 32767 + motorOutput, clamped to -1..1
  *   i  = (V - k w) / R                         k: torqueConstant (= back-EMF constant), R: armatureResistance
  *   J dw/dt = k i - b w - Tc sgn(w) + loadTorque   J = rotorInertia + loadInertia,
  *                                              b: viscousFriction, Tc: coulombFriction
@@ -44,6 +44,7 @@ typedef struct {
     /* inputs */
     int32_t motorCommand;        /* -32768..32767, full scale 32767 */
     double loadTorque;           /* N.m */
+    double motorOutput;          /* fraction of full scale, -1..1 */
 
     /* the state (angle, speed) and what the last step leaves in the outputs */
     int32_t encoderCount;

@@ -62,9 +62,15 @@ from .calls import PACKAGE, REPO
 STATUS_NAMES = ["OK", "Warning", "Discard", "Error", "Fatal"]
 
 
-def default_fmu(fmi_version: int = 2) -> Path:
-    """The built FMU: $PMDFMU_FMU_DIR, the installed package's, or the source tree's build/."""
-    name = f"PMDMotionProcessor-fmi{fmi_version}.fmu"
+def default_fmu(fmi_version: Union[int, str] = 2, model: str = "chip") -> Path:
+    """The built FMU: $PMDFMU_FMU_DIR, the installed package's, or the source tree's build/. model is
+    "chip" (PMDMotionProcessor) or "plant" (pmdplant, the DC motor of docs/systems.md);
+    default_fmu("plant") is the FMI 2 plant, default_fmu(3, "plant") the FMI 3 one."""
+    if fmi_version in ("chip", "plant"):
+        fmi_version, model = 2, str(fmi_version)
+    if model not in ("chip", "plant"):
+        raise ValueError(f"model = {model!r}: the FMUs are 'chip' and 'plant'")
+    name = f"{'PMDMotionProcessor' if model == 'chip' else 'pmdplant'}-fmi{fmi_version}.fmu"
     candidates = [Path(os.environ["PMDFMU_FMU_DIR"]) / name] if "PMDFMU_FMU_DIR" in os.environ else []
     candidates += [PACKAGE / "fmus" / name, REPO / "build" / name]
     for path in candidates:

@@ -521,6 +521,11 @@ def cmd_validate(args) -> int:
     return 1 if failed else 0
 
 
+def cmd_path(args) -> int:
+    print(default_fmu(args.fmi, args.model))
+    return 0
+
+
 def cmd_info(args) -> int:
     from fmpy import read_model_description
 
@@ -845,6 +850,11 @@ def _parser() -> argparse.ArgumentParser:
             help="the FMU" + (" (default: both built ones)" if name == "validate" else " (default: the built one)"),
         )
         p.set_defaults(func=func)
+
+    p = command("path", "print the path of a built FMU: the chip's or the plant's (pmdfmu path plant --fmi 3)")
+    p.add_argument("model", nargs="?", choices=("chip", "plant"), default="chip", help="which FMU (default: chip)")
+    p.add_argument("--fmi", type=int, choices=(2, 3), default=2, help="the FMI version (default: 2)")
+    p.set_defaults(func=cmd_path)
 
     return parser
 
