@@ -488,7 +488,7 @@ def malformed_case_table(draw):
     elif defect == "name twice":
         rows.append(list(rows[row]))
     elif defect == "name with a slash":
-        rows[row][0] = draw(st.sampled_from(["../x", "a/b", "..\\x", "/abs"]))
+        rows[row][0] = draw(st.sampled_from(["../x", "a/b", "..\\x", "/abs", "summary", "Summary"]))
     elif defect in ("name ..", "no name"):
         rows[row][0] = ".." if defect == "name .." else " "
     elif defect == "fmi_version 7":

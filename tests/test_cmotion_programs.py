@@ -263,6 +263,40 @@ int main(void)
     assert out.splitlines() == ["0 1", "0 1", "0 64", "2 0", "aa bbbb cccc 1"]
 
 
+def test_a_dual_port_word_wider_than_32_bits_is_refused_and_nothing_is_written(generated, tmp_path):
+    """PMDuint32 is a long here: PMDFMU_WriteDPRAM refuses a block holding a word past 32 bits
+    (PMD_ERR_ParameterOutOfRange) before writing any of it; -1 as a long is the word 0xFFFFFFFF."""
+    source = tmp_path / "dpram.c"
+    source.write_text(
+        r"""#include <stdio.h>
+#include "c-motion.h"
+int main(void)
+{
+    PMDAxisHandle h;
+    PMDuint32 bad[2] = {7, 0x100000005UL}, good[2] = {(PMDuint32)-1L, 9};
+    PMDint32 word = 0;
+    PMDresult r;
+    if (PMDSetupAxisInterface_Serial(&h, PMDAxis1, 1) != PMD_ERR_OK)
+        return 1;
+    PMDSetBufferStart(&h, 0, 0x200);
+    PMDSetBufferLength(&h, 0, 2);
+    r = PMDFMU_WriteDPRAM(&h.transport_data, 0x200, 2, bad);
+    PMDReadBuffer(&h, 0, &word);
+    printf("%x %ld
+", r, word);
+    r = PMDFMU_WriteDPRAM(&h.transport_data, 0x200, 2, good);
+    PMDReadBuffer(&h, 0, &word);
+    printf("%x %ld
+", r, word);
+    return PMDCloseAxisInterface(&h);
+}
+"""
+    )
+    status, out, err = run(compile_program(source, tmp_path / "dpram", generated, warnings=True))
+    assert status == 0, err
+    assert out.splitlines() == ["110a 0", "0 -1"]
+
+
 def test_every_magellan_only_call_is_sent_and_answered_as_a_navigator_answers(generated, tmp_path):
     """Each call of cmotion_calls.csv whose opcode is out_of_scope.csv's goes to the chip: invalid
     instruction (0x02), the instruction-error event bit set on the instruction's axis (the handle's,

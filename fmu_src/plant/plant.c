@@ -30,7 +30,11 @@ int32_t plant_encoder_count(const PlantModel *m)
  * chip's -32768 is one count beyond it. */
 static double amplifier_voltage(const PlantModel *m)
 {
-    double command = (double)m->motorCommand / FULL_SCALE + m->motorOutput;
+    double command;
+    if (m->motorOutput == 0.0)      /* the Integer wire alone: supply * command / full scale, as ever */
+        return m->supplyVoltage * (m->motorCommand < -FULL_SCALE ? -FULL_SCALE : (double)m->motorCommand) /
+               FULL_SCALE;
+    command = (double)m->motorCommand / FULL_SCALE + m->motorOutput;
     if (command > 1.0)
         command = 1.0;
     else if (command < -1.0)

@@ -813,6 +813,10 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
         return fmi_failed(d, PMD_ERR_Driver, "fmi2GetInteger of memorySize");
     if (offset > (PMDuint32)size || count > (PMDuint32)size - offset || (count && !data))
         return PMD_ERR_InvalidAddress;
+    /* a PMDuint32 is a long here (the vendor's type): a word wider than 32 bits is refused, none written */
+    for (done = 0; done < count; done++)
+        if (!PMDFMU_FitsU32((unsigned long long)data[done]))
+            return PMD_ERR_ParameterOutOfRange;
     for (done = 0; done < count;) {
         PMDuint32 i, n = count - done < PMD_FMU_MEMORY_WORDS ? count - done : PMD_FMU_MEMORY_WORDS;
         for (i = 0; i < n; i++) {

@@ -148,7 +148,9 @@ static inline int PMDFMU_FitsS32(long long x)
 }
 static inline int PMDFMU_FitsU32(unsigned long long x)
 {
-    return x <= 0xFFFFFFFFull || x >= 0xFFFFFFFF80000000ull;
+    /* 0 .. 2^32-1, or a negative int32 as it arrives from a long: -2^31 .. -1 wrapped; shifted by 2^31,
+       the two runs are the one 0 .. 2^32 + 2^31 - 1 */
+    return x + 0x80000000ull <= 0x17FFFFFFFull;
 }
 
 #ifdef __cplusplus

@@ -76,12 +76,13 @@ class Case:
     record: Tuple[str, ...] = ()
 
 
-NOT_A_FILE_NAME = "not a file name (the case's files are named after it in the output folder)"
+NOT_A_FILE_NAME = "not a file name for its files in the output folder (NAME.csv; summary.csv is the sweep's own)"
 
 
 def is_file_name(name: str) -> bool:
-    """Whether a case's name can name its files (NAME.csv, verify's NAME.actual.npz) inside a folder."""
-    return name not in ("", ".", "..") and not any(c in name for c in "/\\\0")
+    """Whether a case's name can name its files (NAME.csv, verify's NAME.actual.npz) inside a folder, beside
+    the sweep's own summary.csv (compared as a case-insensitive file system would)."""
+    return name not in ("", ".", "..") and name.lower() != "summary" and not any(c in name for c in "/\\\0")
 
 
 def read_cases(path: Union[str, Path]) -> List[Case]:
