@@ -9,9 +9,14 @@
 #include "log_categories.h"     /* generated from modelDescription/log_categories.csv */
 #include "pmd_constants.h"
 
+#ifdef __MINGW32__
+#include <stdio.h> /* __MINGW_PRINTF_FORMAT */
+#endif
 /* Logging: pmd_log formats only when the category is enabled. */
 void pmd_log(const PmdChip *chip, PmdLogCategory category, const char *format, ...)
-#if defined(__GNUC__)
+#if defined(__MINGW32__) /* mingw-w64: the printf the build links (C99's with __USE_MINGW_ANSI_STDIO) */
+    __attribute__((format(__MINGW_PRINTF_FORMAT, 3, 4)))
+#elif defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;

@@ -47,9 +47,14 @@ void pmd_model_reset(PmdModel *m);
 /* nCategories = 0: all categories; an unknown category is an error and changes nothing. */
 PmdStatus pmd_model_set_debug_logging(PmdModel *m, const char *fn, int loggingOn, size_t nCategories,
                                       const char *const categories[]);
+#ifdef __MINGW32__
+#include <stdio.h> /* __MINGW_PRINTF_FORMAT */
+#endif
 /* An error of a call, logged whatever the debug logging (the shell's refusals). */
 void pmd_model_error(const PmdModel *m, const char *format, ...)
-#if defined(__GNUC__)
+#if defined(__MINGW32__) /* mingw-w64: the printf the build links (C99's with __USE_MINGW_ANSI_STDIO) */
+    __attribute__((format(__MINGW_PRINTF_FORMAT, 2, 3)))
+#elif defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;

@@ -201,10 +201,35 @@ def _run_table(
     return 0
 
 
+# the platforms `pmdfmu build --platforms` cross-builds (CMakeLists.txt's PMD_PLATFORMS)
+CROSS_PLATFORMS = ("x86_64-windows", "aarch64-linux")
+
+
+def _platforms(value: str) -> list[str]:
+    names = [name.strip() for name in value.split(",") if name.strip()]
+    if names == ["all"]:
+        return list(CROSS_PLATFORMS)
+    unknown = [name for name in names if name not in CROSS_PLATFORMS]
+    if unknown or not names:
+        raise argparse.ArgumentTypeError(
+            f"{value!r}: not all or a comma-separated list of {', '.join(CROSS_PLATFORMS)}"
+        )
+    return names
+
+
 def cmd_build(args) -> int:
     source, build = args.source, args.build_dir
+    platforms = ";".join(args.platforms)  # CMake's list; empty: this host's binaries only
     for command in (
-        ["cmake", "-S", str(source), "-B", str(build), f"-DPython3_EXECUTABLE={sys.executable}"],
+        [
+            "cmake",
+            "-S",
+            str(source),
+            "-B",
+            str(build),
+            f"-DPython3_EXECUTABLE={sys.executable}",
+            f"-DPMD_PLATFORMS={platforms}",
+        ],
         ["cmake", "--build", str(build)],
     ):
         status = subprocess.run(command).returncode
@@ -676,6 +701,14 @@ def _parser() -> argparse.ArgumentParser:
     p = command("build", "build the FMU with CMake")
     p.add_argument("--source", type=Path, default=REPO, help="the source folder (default: this checkout)")
     p.add_argument("--build-dir", type=Path, default=REPO / "build", help="the build folder (default build/)")
+    p.add_argument(
+        "--platforms",
+        type=_platforms,
+        default=[],
+        metavar="LIST",
+        help="also cross-build these platforms' binaries into the FMUs: all, or a comma-separated list of "
+        f"{', '.join(CROSS_PLATFORMS)} (default: this host's only; docs/tools.md)",
+    )
     p.set_defaults(func=cmd_build)
 
     for name, func, help_ in (
