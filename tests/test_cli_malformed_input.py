@@ -534,12 +534,13 @@ def test_verify_and_sweep_of_a_malformed_case_table_exit_2(tmp_path_factory, cap
     assert not (folder / "out").exists()
 
 
-@pytest.mark.parametrize("how", ["the table's folder, a case named summary", "a case named after its table"])
+@pytest.mark.parametrize("how", ["the table's folder, the table named summary.csv", "a case named after its table"])
 def test_sweep_refuses_an_output_that_is_one_of_its_inputs(tmp_path, capsys, how):
     """`--out .` beside the case table: summary.csv or NAME.csv must not replace an input."""
     shutil.copy(SQUARE, tmp_path / "square.csv")
-    name = "summary" if how.startswith("the table") else "square"
-    cases = tmp_path / ("summary.csv" if name == "summary" else "cases.csv")
+    # the table named summary.csv, or a case named after the table it runs
+    name = "a" if how.startswith("the table") else "square"
+    cases = tmp_path / ("summary.csv" if name == "a" else "cases.csv")
     cases.write_text(f"name,table\n{name},square.csv\n")
     before = {p: p.read_bytes() for p in tmp_path.iterdir()}
     result = cli(capsys, "sweep", cases, "--scheduler", "serial", "--out", tmp_path)

@@ -282,12 +282,11 @@ int main(void)
     PMDSetBufferLength(&h, 0, 2);
     r = PMDFMU_WriteDPRAM(&h.transport_data, 0x200, 2, bad);
     PMDReadBuffer(&h, 0, &word);
-    printf("%x %ld
-", r, word);
+    printf("%x %ld\n", r, word);
     r = PMDFMU_WriteDPRAM(&h.transport_data, 0x200, 2, good);
+    PMDSetBufferReadIndex(&h, 0, 0);
     PMDReadBuffer(&h, 0, &word);
-    printf("%x %ld
-", r, word);
+    printf("%x %ld\n", r, word);
     return PMDCloseAxisInterface(&h);
 }
 """
