@@ -146,3 +146,27 @@ def test_an_interrupt_is_answered_with_one_line_and_130(tmp_path, command):
             break
     assert status == 130
     assert not (tmp_path / "p.fmu").exists() and not partial_files(tmp_path)
+
+
+def test_an_interrupt_inside_a_zip_members_write_reaches_the_caller_as_itself(tmp_path, monkeypatch):
+    """Ctrl-C inside zipfile's write of a member (where the random signals of the test above landed once):
+    pack raises KeyboardInterrupt, not the ValueError ("seek of closed file") that closing the half-written
+    zip raises; no output and no partial file are left."""
+    import zipfile
+
+    from pmdfmu.pack import pack
+
+    shutil.copy(EXAMPLES / "two_axis.script", tmp_path / "s.script")
+    shutil.copy(EXAMPLES / "two_axis_table.csv", tmp_path)
+    real, calls = zipfile._ZipWriteFile.write, []
+
+    def write(self, data):
+        calls.append(len(data))
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return real(self, data)
+
+    monkeypatch.setattr(zipfile._ZipWriteFile, "write", write)
+    with pytest.raises(KeyboardInterrupt):
+        pack(tmp_path / "s.script", out=tmp_path / "p.fmu")
+    assert not (tmp_path / "p.fmu").exists() and not partial_files(tmp_path)

@@ -22,7 +22,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 import xml.parsers.expat
 import zipfile
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import Iterator, List, Optional, Tuple, Union
@@ -264,7 +264,7 @@ def pack(
 
         out.parent.mkdir(parents=True, exist_ok=True)
         with replaced(out) as partial:
-            with zipfile.ZipFile(base) as zin, zipfile.ZipFile(partial, "w") as zout:
+            with zipfile.ZipFile(base) as zin, _archive(partial) as zout:
                 for info in zin.infolist():
                     data = zin.read(info)
                     if info.filename == MODEL_DESCRIPTION:
@@ -284,6 +284,21 @@ def pack(
             partial.flush()
             _verify(Path(partial.name), fmi_version, start, read)
     return Packed(out, start, added)
+
+
+@contextmanager
+def _archive(partial) -> Iterator[zipfile.ZipFile]:
+    """The packed FMU's zip, written into the partial file. On an exception the partial file is removed
+    (files.replaced), so the archive is closed only to let go of it: a Ctrl-C inside a member's write
+    leaves the zip where closing it fails ("seek of closed file"), which must not replace the interrupt."""
+    archive = zipfile.ZipFile(partial, "w")
+    try:
+        yield archive
+    except BaseException:
+        with suppress(Exception):
+            archive.close()
+        raise
+    archive.close()
 
 
 def _verify(packed: Path, fmi_version: int, start: str, original: _Read) -> None:
