@@ -22,7 +22,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 import xml.parsers.expat
 import zipfile
-from contextlib import contextmanager, suppress
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import Iterator, List, Optional, Tuple, Union
@@ -289,14 +289,14 @@ def pack(
 @contextmanager
 def _archive(partial) -> Iterator[zipfile.ZipFile]:
     """The packed FMU's zip, written into the partial file. On an exception the partial file is removed
-    (files.replaced), so the archive is closed only to let go of it: a Ctrl-C inside a member's write
-    leaves the zip where closing it fails ("seek of closed file"), which must not replace the interrupt."""
+    (files.replaced), so the archive is let go of, not closed: after a Ctrl-C inside a member's write,
+    closing it raises ("Can't close the ZIP file while there is an open writing handle", then "seek of
+    closed file" from its finalizer), which must not replace the interrupt."""
     archive = zipfile.ZipFile(partial, "w")
     try:
         yield archive
     except BaseException:
-        with suppress(Exception):
-            archive.close()
+        archive.fp = None  # closed as a file only: nor will the archive's finalizer try its end record
         raise
     archive.close()
 
