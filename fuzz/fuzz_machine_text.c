@@ -123,8 +123,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const PmdMachineAxis *m = &machine.axis[n];
         int32_t at[64];
         int count = 0;
-        if (((machine.axes >> n) & 1u) != (m->signals != 0))
+        /* an axis the machine drives: a switch or index input, or its loop closed through the plant */
+        if (((machine.axes >> n) & 1u) != (m->signals != 0 || m->servo == PMD_MACHINE_SERVO_PLANT))
             violated("axis %d: axes bit and signals disagree", n + 1);
+        if (((machine.plantAxes >> n) & 1u) != (m->servo == PMD_MACHINE_SERVO_PLANT))
+            violated("axis %d: plantAxes bit and servo disagree", n + 1);
         if ((m->signals & PMD_MACHINE_HOME) && m->homeLow > m->homeHigh)
             violated("axis %d: home lo above hi", n + 1);
         if ((m->signals & PMD_MACHINE_POSITIVE_LIMIT) && (m->signals & PMD_MACHINE_NEGATIVE_LIMIT) &&
