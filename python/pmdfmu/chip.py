@@ -976,6 +976,17 @@ class Chip:
         values = decode(command.reply, reply)
         return None if not values else values[0] if len(values) == 1 else tuple(values)
 
+    # ---- the trace ----
+
+    def trace(self):
+        """The trace buffer as a scope reads it (pmdfmu.trace.Trace): one column per trace variable
+        configured (SetTraceVariable), named like the FMU's outputs, with its unit; the samples oldest
+        first (a rolling trace that wrapped too), their chip time, period, mode and trigger.
+        chip.trace().plot() draws it. The chip is left as it was: the read runs on a saved FMU state."""
+        from .trace import read
+
+        return read(self)
+
     # ---- dual-port memory ----
 
     @_refusals

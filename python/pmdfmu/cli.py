@@ -275,6 +275,41 @@ def cmd_run(args) -> int:
     return _write_run(run, csv_path, plot_path, title)
 
 
+def cmd_trace(args) -> int:
+    """Runs the script as `pmdfmu run` does, then reads the chip's trace (buffer 0) and shows it as a
+    scope: --plot an image or an interactive .html page, --csv the samples."""
+    path, fmu = args.file, _fmu_file(args.fmu)
+    _refuse_overwriting([("--plot", args.plot), ("--csv", args.csv)], [path, fmu])
+    got = []
+    run = profile.run_profile(
+        _script_file(path),
+        fmu,
+        args.fmi_version,
+        args.cycle_time,
+        max_cycles=args.cycles or args.max_cycles,
+        parameters={"machine": _machine_file(args.machine)} if args.machine is not None else None,
+        inspect=lambda chip: got.append(chip.trace()),
+    )
+    for m in run.messages:
+        print(f"{m.status}: {m.message}", file=sys.stderr)
+    trace = got[0]
+    if not len(trace):
+        print(f"pmdfmu trace: {path}: the trace holds no sample (SetTraceVariable, SetTraceStart?)", file=sys.stderr)
+        return 1
+    at = f", trigger at {'chip time' if trace.chip_time else 'cycle'} {trace.samples['cycle'][trace.trigger]}"
+    _say(
+        f"{path}: {len(trace)} samples of {', '.join(trace.variables)}, every {trace.period} cycles "
+        f"({trace.mode}{', wrapped' if trace.wrapped else ''}){at if trace.trigger is not None else ''}"
+    )
+    if args.csv is not None:
+        from .verify import write_recording
+
+        write_recording(args.csv, trace.samples)
+    if args.plot is not None:
+        trace.plot(args.plot, title=f"pmdfmu trace {path}")
+    return 0
+
+
 def _machine_file(path: Optional[Path]) -> Optional[str]:
     """--machine FILE: a regular file, for the FMU's `machine` parameter (never text)."""
     if path is None:
@@ -571,6 +606,19 @@ def _plot_path(value: str) -> Path:
 _plot_path.__name__ = "plot file"
 
 
+def _trace_plot_path(value: str) -> Path:
+    """--plot of pmdfmu trace: an image, or an interactive page."""
+    path = Path(value)
+    if path.suffix.lower() not in PLOT_SUFFIXES + (".html",):
+        raise argparse.ArgumentTypeError(
+            f"{value}: the scope is written as its suffix says: {', '.join(PLOT_SUFFIXES + ('.html',))}"
+        )
+    return path
+
+
+_trace_plot_path.__name__ = "plot file"
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, its errors on one line as every other input error's: `pmdfmu CMD: reason`."""
 
@@ -712,6 +760,30 @@ def _parser() -> argparse.ArgumentParser:
             p.add_argument(
                 "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
             )
+
+    p = command(
+        "trace",
+        "run a script and show the chip's trace buffer as a scope",
+        description="Runs the script as `pmdfmu run` does, then reads the trace the script configured "
+        "(SetTraceVariable, Period, Mode, Start, Stop) from buffer 0: one panel per variable over chip "
+        'time, the trigger marked. docs/chip.md, "Reading the trace".',
+    )
+    p.add_argument("file", type=Path, help="the script")
+    p.add_argument("--plot", type=_trace_plot_path, help="write the scope here: an image (PNG, SVG, PDF) or .html")
+    p.add_argument("--csv", type=Path, help="write the samples here (a .npz name writes compressed numpy)")
+    p.add_argument("--fmu", type=Path, help=FMU_HELP)
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
+    p.add_argument(
+        "--cycle-time",
+        type=_cycle_time,
+        default=DEFAULT_CYCLE_TIME,
+        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
+    )
+    _run_limits(p)
+    p.add_argument(
+        "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
+    )
+    p.set_defaults(func=cmd_trace)
 
     p = command("machine", "check a machine file and say what it means")
     p.add_argument("--check", dest="file", type=Path, required=True, metavar="FILE", help="the machine file")
