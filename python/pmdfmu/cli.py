@@ -150,7 +150,12 @@ def _not_ended(run: profile.ProfileRun) -> str:
 
 
 def _write_run(
-    run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Optional[Path], title: str, command: str = "run"
+    run: profile.ProfileRun,
+    csv_path: Optional[Path],
+    plot_path: Optional[Path],
+    title: str,
+    command: str = "run",
+    html_path: Optional[Path] = None,
 ) -> int:
     """`pmdfmu run`'s outputs: the recording (CSV, or compressed numpy for a .npz name: either is a golden
     trace for `pmdfmu verify --against`; a window says so) and the plot. Exit status 1 and nothing written
@@ -168,6 +173,11 @@ def _write_run(
     if plot_path:
         profile.plot(plot_path, rec, run.cycle_time, title=title)
         _say(f"wrote {plot_path}")
+    if html_path:
+        from .html_report import write_run
+
+        write_run(html_path, rec, title, run.cycle_time)
+        _say(f"wrote {html_path}")
     return 0
 
 
@@ -183,11 +193,12 @@ def _run_table(
     fmi_version: int = 2,
     window: bool = False,
     command: str = "run",
+    html_path: Optional[Path] = None,
 ) -> int:
     """source: a segment table's file, or its tables read already (profile.run_profile)."""
     run = profile.run_profile(source, fmu, fmi_version, cycle_time, upload, max_cycles)
     run.window = window
-    status = _write_run(run, csv_path, plot_path, title, command)
+    status = _write_run(run, csv_path, plot_path, title, command, html_path)
     if status:
         return status
     rec = run.recording
@@ -241,8 +252,8 @@ def cmd_run(args) -> int:
     runs either, as `pmdfmu verify` does. Exit status 1 when --max-cycles stopped the run before the
     profile ended, unless --cycles asked for a window."""
     path, fmu = args.file, _fmu_file(args.fmu)
-    csv_path, plot_path = args.csv, args.plot
-    _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path)], [path, fmu])
+    csv_path, plot_path, html_path = args.csv, args.plot, args.html
+    _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path), ("--html", html_path)], [path, fmu])
     title = f"pmdfmu run {path}"
     machine = _machine_file(args.machine)
     limit = args.cycles or args.max_cycles
@@ -259,6 +270,7 @@ def cmd_run(args) -> int:
             title,
             args.fmi_version,
             bool(args.cycles),
+            html_path=html_path,
         )
     run = profile.run_profile(
         path if table else _script_file(path),
@@ -272,7 +284,7 @@ def cmd_run(args) -> int:
     run.window = bool(args.cycles)
     for m in run.messages:
         print(f"{m.status}: {m.message}", file=sys.stderr)
-    return _write_run(run, csv_path, plot_path, title)
+    return _write_run(run, csv_path, plot_path, title, html_path=html_path)
 
 
 def cmd_trace(args) -> int:
@@ -429,7 +441,11 @@ def cmd_verify(args) -> int:
     if args.cases and args.cycles:
         raise InputError("command line: --cycles checks a window of one profile; a case table's runs are whole")
     _refuse_overwriting(
-        [("--junit", args.junit), ("--summary", args.summary if args.summary != Path("-") else None)],
+        [
+            ("--junit", args.junit),
+            ("--summary", args.summary if args.summary != Path("-") else None),
+            ("--html", args.html),
+        ],
         [args.file, args.cases, args.against, args.assertions, _fmu_file(args.fmu)],
     )
     if args.cases:
@@ -469,6 +485,9 @@ def cmd_verify(args) -> int:
         with files.replaced(args.junit, text=True) as f:
             f.write(result.to_junit())
         _say(f"wrote {args.junit}")
+    if args.html:
+        result.to_html(args.html, title=f"pmdfmu verify {args.file or args.cases}")
+        _say(f"wrote {args.html}")
     if args.summary == Path("-"):
         print(result.to_markdown(), end="")
     elif args.summary:
@@ -604,6 +623,16 @@ def _plot_path(value: str) -> Path:
 
 
 _plot_path.__name__ = "plot file"
+
+
+def _html_path(value: str) -> Path:
+    path = Path(value)
+    if path.suffix.lower() not in (".html", ".htm"):
+        raise argparse.ArgumentTypeError(f"{value}: the page is written to a .html name")
+    return path
+
+
+_html_path.__name__ = "HTML file"
 
 
 def _trace_plot_path(value: str) -> Path:
@@ -751,6 +780,12 @@ def _parser() -> argparse.ArgumentParser:
             )
             p.add_argument("--plot", type=_plot_path, help="write the plot here (PNG, or PDF, SVG ... by its suffix)")
             p.add_argument(
+                "--html",
+                type=_html_path,
+                metavar="FILE",
+                help="write an interactive page here (zoom, pan, every column; opens offline): the 'html' extra",
+            )
+            p.add_argument(
                 "--upload",
                 choices=("memory", "command"),
                 default="memory",
@@ -844,6 +879,12 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=_positive_int, default=2, help="with --cases: local cluster processes (default 2)")
     p.add_argument("--junit", type=Path, metavar="FILE", help="write JUnit XML here")
     p.add_argument(
+        "--html",
+        type=_html_path,
+        metavar="FILE",
+        help="write an interactive page here: each check, expected vs actual vs difference (the 'html' extra)",
+    )
+    p.add_argument(
         "--summary",
         type=Path,
         metavar="FILE",
@@ -890,7 +931,7 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--tcp", type=_tcp_endpoint, metavar="HOST:PORT", help="listen on TCP (port 0: any free)")
     p.add_argument("--chips", type=_chip_count, default=1, help="chips on the line, multi-drop addresses 0..N-1")
     p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
-    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2)
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
     p.add_argument(
         "--cycle-time",
         type=_cycle_time,

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The optional parts of pmdfmu's dependencies, imported when a call needs them: matplotlib for plots
-(`pip install 'pmdfmu[plot]'`), Dask for sweeps on a cluster (`pip install 'pmdfmu[sweep]'`). A call
+(`pip install 'pmdfmu[plot]'`), Dask for sweeps on a cluster (`pip install 'pmdfmu[sweep]'`), Plotly for the
+HTML reports (`pip install 'pmdfmu[html]'`). A call
 that needs a missing one raises ImportError saying which extra installs it."""
 
 from __future__ import annotations

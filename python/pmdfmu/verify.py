@@ -1048,6 +1048,7 @@ def verify(
         ended=run.ended,
         window=cycles,
     )
+    result.recording, result.expected = run.recording, golden
     return VerifyResult([result])
 
 
