@@ -31,7 +31,7 @@ from typing import Iterable, List, Optional, Tuple
 # module initializes, and the command would run on to its end: it is imported with the program instead
 import lxml.etree  # noqa: F401,E402
 
-from . import __version__, files, profile
+from . import __version__, files, profile, progress
 from .chip import COMMANDS, DEFAULT_CYCLE_TIME, REPO, FMUError, PMDError, default_fmu
 from .pack import PackError
 from .verify import EXIT_INPUT, InputError
@@ -664,6 +664,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         args = _parser().parse_args(argv)
         command = f"pmdfmu {args.command}"
         _verbosity = args.verbosity
+        progress.show(True if args.progress else False if _verbosity < 0 else None)
         return args.func(args)
     except INPUT_ERRORS as e:
         print(f"{command}: {one_line(e)}", file=sys.stderr)
@@ -674,6 +675,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         return EXIT_INTERRUPTED
     finally:
         _verbosity = 0
+        progress.show(None)
 
 
 def console() -> None:
@@ -722,6 +724,13 @@ def _verbosity_options(parser: argparse.ArgumentParser, default) -> None:
         const=1,
         default=default,
         help="print more: every check of verify, every case of a sweep",
+    )
+    parser.add_argument(
+        "--progress",
+        action="store_true",
+        default=False if default == 0 else default,
+        help="show progress bars also when standard error is no terminal (a CI log); "
+        "by default only on a terminal, never with -q",
     )
 
 

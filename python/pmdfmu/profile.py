@@ -12,7 +12,7 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Un
 
 import numpy as np
 
-from . import extras, files
+from . import extras, files, progress
 from .chip import AXIS_MASKS, CONSTANTS, DEFAULT_CYCLE_TIME, Chip, FMUError, PMDError, field_ex
 
 FUNCTIONS = ("position", "velocity", "acceleration", "jerk", "time")
@@ -190,11 +190,17 @@ def _names(axes: Iterable[int], record: Sequence[str]) -> List[str]:
 
 
 def run_until_halted(
-    chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_000, chunk: int = 1000, record: Sequence[str] = ()
+    chip: Chip,
+    axes: Sequence[int],
+    max_cycles: int = 1_000_000,
+    chunk: int = 1000,
+    record: Sequence[str] = (),
+    on_cycles: Optional[Callable[[int], object]] = None,
 ) -> np.ndarray:
     """Runs and records every cycle until every axis's profile segment number
     is 0 (seed 000, 1.6), or max_cycles. record: outputs recorded besides
-    record_outputs(axes) (pmdfmu verify's event status)."""
+    record_outputs(axes) (pmdfmu verify's event status); on_cycles(n): told of every n cycles run (a
+    progress bar's update)."""
     names = _names(axes, record)
     parts = []
     total = 0
@@ -202,6 +208,8 @@ def run_until_halted(
         part = chip.run(min(chunk, max_cycles - total), record=names)
         parts.append(part)
         total += len(part)
+        if on_cycles is not None:
+            on_cycles(len(part))
         last = part[-1]
         if all(field_ex(last[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0 for a in axes):
             break
@@ -226,6 +234,7 @@ def run_script(
     max_cycles: int = 1_000_000,
     chunk: int = 1000,
     record: Sequence[str] = (),
+    on_cycles: Optional[Callable[[int], object]] = None,
 ) -> np.ndarray:
     """Records a script's run (the chip was made with script=...): until the time
     of its last @ line has passed (script.lastCycle) and every axis is at rest, or
@@ -239,6 +248,8 @@ def run_script(
         part = chip.run(min(chunk, max_cycles - total), record=names)
         parts.append(part)
         total += len(part)
+        if on_cycles is not None:
+            on_cycles(len(part))
         at_rest = all(not part[-1][f"axis{a + 1}.activityStatus"] & CONSTANTS["PMDActivityInMotionMask"] for a in axes)
         if part["cycle"][-1] >= last and at_rest:
             break
@@ -253,6 +264,7 @@ def run_segment_table(
     upload: str = "memory",
     max_cycles: int = 1_000_000,
     record: Sequence[str] = (),
+    on_cycles: Optional[Callable[[int], object]] = None,
 ) -> np.ndarray:
     """The whole of seed 000 for a table: load, move each axis to its first
     position, start all axes together, run to completion. Returns the recorded
@@ -261,7 +273,7 @@ def run_segment_table(
     load_external_profile(chip, tables, upload=upload)
     move_to(chip, {a: tables[a][0][0] for a in axes}, velocity, acceleration)
     start_external_profile(chip, axes)
-    return run_until_halted(chip, axes, max_cycles=max_cycles, record=record)
+    return run_until_halted(chip, axes, max_cycles=max_cycles, record=record, on_cycles=on_cycles)
 
 
 def write_csv(path: Path, recorded: np.ndarray, comment: Optional[str] = None) -> None:
@@ -368,11 +380,16 @@ def run_profile(
     table = path is None or is_segment_table(path)
     tables = (source if path is None else read_segment_table(path)) if table else None
     params["script"] = "" if table else path  # a file, never a script's text (README, "Scripts")
-    with Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip:
+    with (
+        Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip,
+        progress.bar(f"run {path.name if path is not None else 'segment tables'}") as bar,
+    ):
         if table:
             axes = sorted(tables)
             try:
-                rec = run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles, record=record)
+                rec = run_segment_table(
+                    chip, tables, upload=upload, max_cycles=max_cycles, record=record, on_cycles=bar.update
+                )
             except (PMDError, FMUError) as e:  # the chip refused the table's set-up (it does not fit, ...)
                 raise TableError(f"{path or 'segment tables'}: {e}") from None
             except TimeoutError as e:  # a first row's position too far away
@@ -382,7 +399,7 @@ def run_profile(
             ended = profile_ended(rec, axes)
         else:
             axes = script_axes(chip)
-            rec = run_script(chip, axes, max_cycles=max_cycles, record=record)
+            rec = run_script(chip, axes, max_cycles=max_cycles, record=record, on_cycles=bar.update)
             ended = profile_ended(rec, axes, chip.get("script.lastCycle"))
         if inspect is not None:
             inspect(chip)

@@ -48,7 +48,7 @@ from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import extras, files, profile
+from . import extras, files, profile, progress
 from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
@@ -371,9 +371,12 @@ def run_cases(cases: Sequence[Case], handoff: Optional[Tuple[str, str]] = None) 
     token) for large recordings (_hand)."""
     folder = _handoff_folder(handoff)
     results = []
-    for case in cases:
-        row, rec = run_case(case)
-        results.append((row, _hand(folder, rec)))
+    # a bar in this process only (scheduler="serial", no handoff): never a worker's
+    with progress.bar("cases", total=len(cases), unit="cases", enabled=handoff is None) as bar:
+        for case in cases:
+            row, rec = run_case(case)
+            results.append((row, _hand(folder, rec)))
+            bar.update(1)
     return results
 
 
@@ -399,8 +402,10 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
         futures = client.map(run_cases, _batches(cases, threads), handoff=(folder, token), pure=False)
         where = {future.key: i for i, future in enumerate(futures)}
         batches: List[list] = [[] for _ in futures]
-        for future, batch in as_completed(futures, loop=client.loop, with_results=True):
-            batches[where[future.key]] = [_received(result, folder) for result in batch]
+        with progress.bar("cases", total=len(cases), unit="cases") as bar:
+            for future, batch in as_completed(futures, loop=client.loop, with_results=True):
+                batches[where[future.key]] = [_received(result, folder) for result in batch]
+                bar.update(len(batch))
         return [result for batch in batches for result in batch]
     except BaseException:
         client.cancel(futures)  # no worker goes on writing into the folder removed below
