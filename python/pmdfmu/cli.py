@@ -778,7 +778,7 @@ def _parser() -> argparse.ArgumentParser:
             p.add_argument(
                 "file",
                 type=Path,
-                help="a script, or a CSV segment table (axis,position,velocity,acceleration,jerk,time in raw units)",
+                help="a script, or a CSV segment table (position and optional axis, velocity, acceleration, jerk, time: docs/scripts.md)",
             )
             p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
             p.add_argument(
