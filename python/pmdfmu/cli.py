@@ -33,6 +33,7 @@ import lxml.etree  # noqa: F401,E402
 
 from . import __version__, files, profile, progress
 from .chip import COMMANDS, DEFAULT_CYCLE_TIME, REPO, FMUError, PMDError, default_fmu
+from .units import unit
 from .pack import PackError
 from .verify import EXIT_INPUT, InputError
 
@@ -197,16 +198,25 @@ def _run_table(
 ) -> int:
     """source: a segment table's file, or its tables read already (profile.run_profile)."""
     run = profile.run_profile(source, fmu, fmi_version, cycle_time, upload, max_cycles)
+    tables = source if isinstance(source, dict) else profile.read_segment_table(source)  # read whole before
     run.window = window
+    rec = run.recording
+    if len(rec):  # the move to the first rows' positions runs before the recording starts: the plot says so
+        title += (
+            f"\nrecorded from chip cycle {int(rec['cycle'][0])}, when the profile starts "
+            "(the move to the first rows' positions comes before)"
+        )
     status = _write_run(run, csv_path, plot_path, title, command, html_path)
     if status:
         return status
-    rec = run.recording
     for axis in run.axes:
         n = axis + 1
-        position = int(rec[f"axis{n}.commandedPosition"][-1])
+        position, last = int(rec[f"axis{n}.commandedPosition"][-1]), tables[axis][-1][0]
         if run.ended:
-            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
+            _say(
+                f"axis {n}: ended at position {position} after {len(rec)} cycles "
+                f"({'as' if position == last else 'NOT as'} the table's last row, {last})"
+            )
         else:
             _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
     return 0
@@ -227,11 +237,12 @@ def cmd_build(args) -> int:
 
 
 def cmd_demo(args) -> int:
-    from .demo import circle_table
+    from .demo import circle_table, describe_demo
 
     out = args.out
     out.mkdir(parents=True, exist_ok=True)
     tables = circle_table()
+    _say(describe_demo(tables))
     profile.write_segment_table(out / "demo_table.csv", tables)
     _say(f"wrote {out / 'demo_table.csv'}")
     return _run_table(
@@ -581,10 +592,14 @@ def cmd_info(args) -> int:
     path = _fmu_file(args.fmu) or default_fmu()
     md = read_model_description(str(path))
     print(f"{path}\n  FMI {md.fmiVersion}, modelIdentifier {md.coSimulation.modelIdentifier}, guid {md.guid}\n")
-    print("Variables:")
+    print("Variables (value reference, name, causality, type, start, unit, description):")
     for v in md.modelVariables:
-        start = f" = {v.start}" if v.start is not None else ""
-        print(f"  {v.valueReference:5d} {v.name:32s} {v.causality:9s} {v.type:8s}{start}")
+        start = "" if v.start is None else str(v.start)
+        declared = v.unit or (v.declaredType.unit if v.declaredType is not None else None) or ""
+        print(
+            f"  {v.valueReference:5d} {v.name:32s} {v.causality:11s} {v.type:8s} {start:>10s}  "
+            f"{unit(v.name, declared) or '-':24s} {' '.join((v.description or '').split())}"
+        )
     print("\nCommands (opcode, name, arguments -> reply):")
     for c in sorted(COMMANDS.values(), key=lambda c: c.opcode):
         args_ = ", ".join(f.name for f in c.args)

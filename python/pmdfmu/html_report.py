@@ -16,26 +16,12 @@ import numpy as np
 
 from . import extras, files
 from .chip import CONSTANTS, FIELDS
+from .units import UNITS, unit
 
 # points per drawn line: a long run shows as its min and max per bucket (every peak, every step)
 DISPLAY_POINTS = 4000
 MAX_MARKS = 200  # segment marks drawn; a table of thousands of rows marks its first ones
 
-# the recorded columns' units (variables.csv's descriptions, for the page's axis titles)
-UNITS = {
-    "commandedPosition": "counts",
-    "commandedVelocity": "raw 16.16 counts/cycle",
-    "commandedAcceleration": "raw 16.16 counts/cycle^2",
-    "position": "counts",
-    "velocity": "counts/s",
-    "acceleration": "counts/s^2",
-    "activityStatus": "bits",
-    "eventStatus": "bits",
-    "motorCommand": "100/2^15 % of full scale",
-    "motorOutput": "fraction of full scale",
-    "actualPosition": "counts",
-    "cycle": "cycles",
-}
 # the activity status's fields whose change marks a segment: the profile mode and the profile segment
 SEGMENT_FIELDS = CONSTANTS["PMDActivityProfileModeMask"] | CONSTANTS["PMDActivityProfileSegmentMask"]
 SEGMENT_SHIFT = FIELDS["PMDActivityProfileSegment"].shift
@@ -56,11 +42,6 @@ def _plotly(what: str):
     go = extras.require("plotly.graph_objects", "html", what)
     subplots = extras.require("plotly.subplots", "html", what)
     return go, subplots
-
-
-def unit(column: str) -> str:
-    """A recorded column's unit, by its name after `axisN.`."""
-    return UNITS.get(column.rpartition(".")[2], "")
 
 
 def decimate(n: int, values: Sequence[np.ndarray], points: int = DISPLAY_POINTS) -> np.ndarray:
