@@ -85,3 +85,19 @@ def test_html_wants_an_html_name_with_one_line(tmp_path, capsys):
         main(["run", str(EXAMPLES / "square.csv"), "--html", str(tmp_path / "r.png")])
     err = capsys.readouterr().err.strip()
     assert e.value.code == 2 and len(err.splitlines()) == 1 and ".html" in err
+
+
+def test_html_without_plotly_names_the_extra_in_one_line(tmp_path, capsys, monkeypatch):
+    import importlib
+
+    real = importlib.import_module
+
+    def without_plotly(name, *args, **kwargs):
+        if name.startswith("plotly"):
+            raise ImportError(f"No module named {name!r}")
+        return real(name, *args, **kwargs)
+
+    monkeypatch.setattr(importlib, "import_module", without_plotly)
+    assert main(["run", str(EXAMPLES / "square.csv"), "--html", str(tmp_path / "r.html")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "pip install 'pmdfmu[html]'" in err and not (tmp_path / "r.html").exists()

@@ -31,7 +31,7 @@ from typing import Iterable, List, Optional, Tuple
 # module initializes, and the command would run on to its end: it is imported with the program instead
 import lxml.etree  # noqa: F401,E402
 
-from . import __version__, files, profile, progress
+from . import __version__, extras, files, profile, progress
 from .chip import COMMANDS, DEFAULT_CYCLE_TIME, REPO, FMUError, PMDError, default_fmu
 from .units import unit
 from .pack import PackError
@@ -55,6 +55,7 @@ INPUT_ERRORS = (
     PMDError,
     OSError,
     zipfile.BadZipFile,
+    extras.MissingExtra,  # --html without the 'html' extra, --plot without 'plot': which one installs it
 )
 EXIT_INTERRUPTED = 130  # 128 + SIGINT: what a shell reports for a command ended by Ctrl-C
 # what the FMU's initialization error says after the FMI function's name (fmu_src/fmi/instance.c); its

@@ -10,12 +10,16 @@ import importlib
 from types import ModuleType
 
 
+class MissingExtra(ImportError):
+    """An optional dependency is not installed: the message names the extra (the CLI says it in one line)."""
+
+
 def require(module: str, extra: str, what: str) -> ModuleType:
-    """The module, or ImportError naming the extra that installs it and what needed it."""
+    """The module, or MissingExtra (an ImportError) naming the extra that installs it and what needed it."""
     try:
         return importlib.import_module(module)
     except ImportError as e:
-        raise ImportError(
+        raise MissingExtra(
             f"{what} needs {module.split('.')[0]}, which comes with pmdfmu's {extra!r} extra: "
             f"pip install 'pmdfmu[{extra}]'"
         ) from e
