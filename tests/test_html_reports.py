@@ -63,6 +63,14 @@ def test_a_passed_verify_report_and_a_trace_page_open(tmp_path):
     assert "trigger" in check_page(trace_path, tmp_path, plots=1).text
 
 
+def test_a_case_tables_report_plots_every_case(tmp_path):
+    page_path = tmp_path / "cases.html"
+    args = ["verify", "--cases", str(EXAMPLES / "ci" / "cases.csv"), "--scheduler", "serial"]
+    assert main(args + ["--html", str(page_path), "--out", str(tmp_path)]) == 0
+    page = check_page(page_path, tmp_path, plots=4)
+    assert page.text.count("PASS") >= 4
+
+
 def test_a_long_run_is_decimated_for_display_only_and_keeps_every_peak():
     rng = np.random.default_rng(1)
     values = np.cumsum(rng.integers(-5, 6, 1_000_000))

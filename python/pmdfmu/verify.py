@@ -1231,4 +1231,5 @@ def verify_cases(
             out=out,
             ended=row.get("ended") == "yes",
         )
+        result.recording, result.expected = rec, golden
     return VerifyResult(results)
