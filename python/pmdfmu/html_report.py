@@ -286,7 +286,7 @@ def write_verify(path: Path, result, title: str = "pmdfmu verify") -> None:
             else:
                 figures.append(run_figure(case.recording, f"{case.name}: the run"))
         else:
-            parts.append("<p class=\"note\">The profile did not run: nothing recorded.</p>")
+            parts.append('<p class="note">The profile did not run: nothing recorded.</p>')
     divs = _figures(figures)
     text = "\n".join(parts)
     for i, div in enumerate(divs):
