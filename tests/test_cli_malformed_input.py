@@ -163,7 +163,7 @@ def test_verify_answers_a_malformed_golden_or_assertion_file_with_status_2(tmp_p
         ("a misspelt command", "s.script:2: 'SetPositon' is not a command of this chip"),
         ("Axis7", "s.script:2: 'Axis7' is not an axis"),
         ("a golden .npz as the script", "g.npz:1: NUL byte in the line"),
-        ("a misspelt header", "t.csv:1: column 3: 'velocty' is not one of axis, position, velocity"),
+        ("a misspelt header", "t.csv:1: column 3: 'velocty' is not a segment column (axis, position, velocity"),
         ("a decimal in a raw table", "t.csv:3: column position: '1.5' is not an integer"),
         ("a first position out of reach", "t.csv: the initial move (axis 1 to 2147483647) is not complete after"),
         ("a missing FMU", "nope.fmu: No such file or directory"),

@@ -311,3 +311,4 @@ def test_the_sample_ci_jobs_parse_and_their_commands_pass(tmp_path):
         finally:
             os.chdir(cwd)
     assert (tmp_path / "reports" / "verify.xml").exists() and "4 of 4 cases passed" in summary.read_text()
+    assert (tmp_path / "reports" / "verify.html").stat().st_size > 1_000_000  # plotly.js inline: opens offline

@@ -439,6 +439,42 @@ static int split_csv(char *line, char **cells, int max)
     }
 }
 
+/* The column a misspelt header cell was meant to be: the nearest by edit
+ * distance (at most a third of its letters wrong), or NULL. */
+static const char *nearest_column(const char *cell)
+{
+    const char *best = NULL;
+    size_t n = strlen(cell), bestDistance = n / 3 + 1, row[16], i, j;
+    int f;
+    if (n >= sizeof row / sizeof row[0])
+        return NULL;
+    for (f = 0; f < PMD_FUNCTIONS; f++) {
+        const char *c = columns[f];
+        size_t m = strlen(c), diagonal;
+        for (i = 0; i <= n; i++)
+            row[i] = i;
+        for (j = 1; j <= m; j++) {           /* Levenshtein, one row kept */
+            diagonal = row[0];
+            row[0] = j;
+            for (i = 1; i <= n; i++) {
+                size_t up = row[i], cost = tolower((unsigned char)cell[i - 1]) != c[j - 1];
+                size_t best3 = diagonal + cost;
+                if (up + 1 < best3)
+                    best3 = up + 1;
+                if (row[i - 1] + 1 < best3)
+                    best3 = row[i - 1] + 1;
+                diagonal = up;
+                row[i] = best3;
+            }
+        }
+        if (row[n] < bestDistance) {
+            bestDistance = row[n];
+            best = c;
+        }
+    }
+    return best;
+}
+
 /* The header names the columns: each a trajectory variable, each at most
  * once. Returns the number of columns, or -1. */
 static int read_header(const Where *w, char *text, int *columnOf)
@@ -451,8 +487,11 @@ static int read_header(const Where *w, char *text, int *columnOf)
     for (k = 0; k < n; k++) {
         for (f = 0; f < PMD_FUNCTIONS && strcmp(cells[k], columns[f]) != 0; f++)
             ;
-        if (f == PMD_FUNCTIONS)
-            return fail(w, "unknown column '%s' (position, velocity, acceleration, jerk, time)", cells[k]);
+        if (f == PMD_FUNCTIONS) {
+            const char *near = nearest_column(cells[k]);
+            return fail(w, "column '%s' is not a segment column (position, velocity, acceleration, jerk, time)%s%s%s",
+                        cells[k], near ? ": did you mean '" : "", near ? near : "", near ? "'?" : "");
+        }
         if (columnOf[f] >= 0)
             return fail(w, "column '%s' named twice", cells[k]);
         columnOf[f] = k;

@@ -31,7 +31,7 @@ from fmpy.fmi2 import (
 )
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3FMUState, fmi3True, fmi3ValueReference
 
-from . import hosttime, memory_port, recording, tables
+from . import hosttime, memory_port, progress, recording, tables
 
 # the calls' layer, re-exported here where users and docs have named it (pmdfmu.chip.COMMANDS ...)
 from .calls import (  # noqa: F401
@@ -773,6 +773,17 @@ class Chip:
         values = decode(command.reply, reply)
         return None if not values else values[0] if len(values) == 1 else tuple(values)
 
+    # ---- the trace ----
+
+    def trace(self):
+        """The trace buffer as a scope reads it (pmdfmu.trace.Trace): one column per trace variable
+        configured (SetTraceVariable), named like the FMU's outputs, with its unit; the samples oldest
+        first (a rolling trace that wrapped too), their chip time, period, mode and trigger.
+        chip.trace().plot() draws it. The chip is left as it was: the read runs on a saved FMU state."""
+        from .trace import read
+
+        return read(self)
+
     # ---- dual-port memory ----
 
     @_refusals
@@ -982,16 +993,40 @@ class Chip:
         same `record`, or np.empty(cycles, dtype=its dtype)): a long recording that
         reuses its array spares the page faults of a fresh one (docs/performance.md,
         "Recording"). Its rows are overwritten whole; one of another type or length,
-        or read-only, raises ValueError before any cycle runs."""
+        or read-only, raises ValueError before any cycle runs.
+
+        A run of 200 000 cycles or more shows a progress bar on standard error when it
+        lasts over a second and standard error is a terminal (pmdfmu.progress.show:
+        always or never); it then runs in parts, which record the same rows."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         if out is not None and not record:
             raise ValueError("run: out= needs record=: the array receives the recorded rows")
         try:
+            if cycles >= progress.CHIP_RUN_CYCLES and progress.wanted():
+                return self._run_in_parts(cycles, record, out)
             return self._run(cycles, record, out)
         finally:
             if cycles:  # the host clock moves up to the last cycle run
                 self._host_ns = max(self._host_ns, self._last_cycle_ns())
+
+    def _run_in_parts(self, cycles: int, record: Sequence[str], out: Optional[np.ndarray]) -> np.ndarray:
+        """run() with a progress bar: about a hundred runs into one array (a run split anywhere records
+        what one run does: docs/performance.md)."""
+        if record:
+            _where, dtype = self._columns(list(record))
+            if out is not None:
+                _check_out(out, cycles, dtype)
+            else:
+                out = np.empty(cycles, dtype=dtype)
+        part, done = max(cycles // 100, 50_000), 0
+        with progress.bar("chip.run", total=cycles) as bar:
+            while done < cycles:
+                n = min(part, cycles - done)
+                self._run(n, record, out[done : done + n] if record else None)
+                done += n
+                bar.update(n)
+        return out if record else np.zeros(0, dtype=[CYCLE])
 
     def _run(self, cycles: int, record: Sequence[str], out: Optional[np.ndarray]) -> np.ndarray:
         if not record:

@@ -31,8 +31,9 @@ from typing import Iterable, List, Optional, Tuple
 # module initializes, and the command would run on to its end: it is imported with the program instead
 import lxml.etree  # noqa: F401,E402
 
-from . import __version__, files, profile
+from . import __version__, extras, files, profile, progress
 from .chip import COMMANDS, DEFAULT_CYCLE_TIME, REPO, FMUError, PMDError, default_fmu
+from .units import unit
 from .pack import PackError
 from .verify import EXIT_INPUT, InputError
 
@@ -54,6 +55,7 @@ INPUT_ERRORS = (
     PMDError,
     OSError,
     zipfile.BadZipFile,
+    extras.MissingExtra,  # --html without the 'html' extra, --plot without 'plot': which one installs it
 )
 EXIT_INTERRUPTED = 130  # 128 + SIGINT: what a shell reports for a command ended by Ctrl-C
 # what the FMU's initialization error says after the FMI function's name (fmu_src/fmi/instance.c); its
@@ -150,7 +152,12 @@ def _not_ended(run: profile.ProfileRun) -> str:
 
 
 def _write_run(
-    run: profile.ProfileRun, csv_path: Optional[Path], plot_path: Optional[Path], title: str, command: str = "run"
+    run: profile.ProfileRun,
+    csv_path: Optional[Path],
+    plot_path: Optional[Path],
+    title: str,
+    command: str = "run",
+    html_path: Optional[Path] = None,
 ) -> int:
     """`pmdfmu run`'s outputs: the recording (CSV, or compressed numpy for a .npz name: either is a golden
     trace for `pmdfmu verify --against`; a window says so) and the plot. Exit status 1 and nothing written
@@ -168,6 +175,11 @@ def _write_run(
     if plot_path:
         profile.plot(plot_path, rec, run.cycle_time, title=title)
         _say(f"wrote {plot_path}")
+    if html_path:
+        from .html_report import write_run
+
+        write_run(html_path, rec, title, run.cycle_time)
+        _say(f"wrote {html_path}")
     return 0
 
 
@@ -183,19 +195,29 @@ def _run_table(
     fmi_version: int = 2,
     window: bool = False,
     command: str = "run",
+    html_path: Optional[Path] = None,
 ) -> int:
     """source: a segment table's file, or its tables read already (profile.run_profile)."""
     run = profile.run_profile(source, fmu, fmi_version, cycle_time, upload, max_cycles)
+    tables = source if isinstance(source, dict) else profile.read_segment_table(source)  # read whole before
     run.window = window
-    status = _write_run(run, csv_path, plot_path, title, command)
+    rec = run.recording
+    if len(rec):  # the move to the first rows' positions runs before the recording starts: the plot says so
+        title += (
+            f"\nrecorded from chip cycle {int(rec['cycle'][0])}, when the profile starts "
+            "(the move to the first rows' positions comes before)"
+        )
+    status = _write_run(run, csv_path, plot_path, title, command, html_path)
     if status:
         return status
-    rec = run.recording
     for axis in run.axes:
         n = axis + 1
-        position = int(rec[f"axis{n}.commandedPosition"][-1])
+        position, last = int(rec[f"axis{n}.commandedPosition"][-1]), tables[axis][-1][0]
         if run.ended:
-            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
+            _say(
+                f"axis {n}: ended at position {position} after {len(rec)} cycles "
+                f"({'as' if position == last else 'NOT as'} the table's last row, {last})"
+            )
         else:
             _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
     return 0
@@ -241,11 +263,12 @@ def cmd_build(args) -> int:
 
 
 def cmd_demo(args) -> int:
-    from .demo import circle_table
+    from .demo import circle_table, describe_demo
 
     out = args.out
     out.mkdir(parents=True, exist_ok=True)
     tables = circle_table()
+    _say(describe_demo(tables))
     profile.write_segment_table(out / "demo_table.csv", tables)
     _say(f"wrote {out / 'demo_table.csv'}")
     return _run_table(
@@ -266,8 +289,8 @@ def cmd_run(args) -> int:
     runs either, as `pmdfmu verify` does. Exit status 1 when --max-cycles stopped the run before the
     profile ended, unless --cycles asked for a window."""
     path, fmu = args.file, _fmu_file(args.fmu)
-    csv_path, plot_path = args.csv, args.plot
-    _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path)], [path, fmu])
+    csv_path, plot_path, html_path = args.csv, args.plot, args.html
+    _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path), ("--html", html_path)], [path, fmu])
     title = f"pmdfmu run {path}"
     machine = _machine_file(args.machine)
     limit = args.cycles or args.max_cycles
@@ -284,6 +307,7 @@ def cmd_run(args) -> int:
             title,
             args.fmi_version,
             bool(args.cycles),
+            html_path=html_path,
         )
     run = profile.run_profile(
         path if table else _script_file(path),
@@ -297,7 +321,42 @@ def cmd_run(args) -> int:
     run.window = bool(args.cycles)
     for m in run.messages:
         print(f"{m.status}: {m.message}", file=sys.stderr)
-    return _write_run(run, csv_path, plot_path, title)
+    return _write_run(run, csv_path, plot_path, title, html_path=html_path)
+
+
+def cmd_trace(args) -> int:
+    """Runs the script as `pmdfmu run` does, then reads the chip's trace (buffer 0) and shows it as a
+    scope: --plot an image or an interactive .html page, --csv the samples."""
+    path, fmu = args.file, _fmu_file(args.fmu)
+    _refuse_overwriting([("--plot", args.plot), ("--csv", args.csv)], [path, fmu])
+    got = []
+    run = profile.run_profile(
+        _script_file(path),
+        fmu,
+        args.fmi_version,
+        args.cycle_time,
+        max_cycles=args.cycles or args.max_cycles,
+        parameters={"machine": _machine_file(args.machine)} if args.machine is not None else None,
+        inspect=lambda chip: got.append(chip.trace()),
+    )
+    for m in run.messages:
+        print(f"{m.status}: {m.message}", file=sys.stderr)
+    trace = got[0]
+    if not len(trace):
+        print(f"pmdfmu trace: {path}: the trace holds no sample (SetTraceVariable, SetTraceStart?)", file=sys.stderr)
+        return 1
+    at = f", trigger at {'chip time' if trace.chip_time else 'cycle'} {trace.samples['cycle'][trace.trigger]}"
+    _say(
+        f"{path}: {len(trace)} samples of {', '.join(trace.variables)}, every {trace.period} cycles "
+        f"({trace.mode}{', wrapped' if trace.wrapped else ''}){at if trace.trigger is not None else ''}"
+    )
+    if args.csv is not None:
+        from .verify import write_recording
+
+        write_recording(args.csv, trace.samples)
+    if args.plot is not None:
+        trace.plot(args.plot, title=f"pmdfmu trace {path}")
+    return 0
 
 
 def _machine_file(path: Optional[Path]) -> Optional[str]:
@@ -419,7 +478,11 @@ def cmd_verify(args) -> int:
     if args.cases and args.cycles:
         raise InputError("command line: --cycles checks a window of one profile; a case table's runs are whole")
     _refuse_overwriting(
-        [("--junit", args.junit), ("--summary", args.summary if args.summary != Path("-") else None)],
+        [
+            ("--junit", args.junit),
+            ("--summary", args.summary if args.summary != Path("-") else None),
+            ("--html", args.html),
+        ],
         [args.file, args.cases, args.against, args.assertions, _fmu_file(args.fmu)],
     )
     if args.cases:
@@ -459,6 +522,9 @@ def cmd_verify(args) -> int:
         with files.replaced(args.junit, text=True) as f:
             f.write(result.to_junit())
         _say(f"wrote {args.junit}")
+    if args.html:
+        result.to_html(args.html, title=f"pmdfmu verify {args.file or args.cases}")
+        _say(f"wrote {args.html}")
     if args.summary == Path("-"):
         print(result.to_markdown(), end="")
     elif args.summary:
@@ -557,10 +623,14 @@ def cmd_info(args) -> int:
     path = _fmu_file(args.fmu) or default_fmu()
     md = read_model_description(str(path))
     print(f"{path}\n  FMI {md.fmiVersion}, modelIdentifier {md.coSimulation.modelIdentifier}, guid {md.guid}\n")
-    print("Variables:")
+    print("Variables (value reference, name, causality, type, start, unit, description):")
     for v in md.modelVariables:
-        start = f" = {v.start}" if v.start is not None else ""
-        print(f"  {v.valueReference:5d} {v.name:32s} {v.causality:9s} {v.type:8s}{start}")
+        start = "" if v.start is None else str(v.start)
+        declared = v.unit or (v.declaredType.unit if v.declaredType is not None else None) or ""
+        print(
+            f"  {v.valueReference:5d} {v.name:32s} {v.causality:11s} {v.type:8s} {start:>10s}  "
+            f"{unit(v.name, declared) or '-':24s} {' '.join((v.description or '').split())}"
+        )
     print("\nCommands (opcode, name, arguments -> reply):")
     for c in sorted(COMMANDS.values(), key=lambda c: c.opcode):
         args_ = ", ".join(f.name for f in c.args)
@@ -601,6 +671,29 @@ def _plot_path(value: str) -> Path:
 _plot_path.__name__ = "plot file"
 
 
+def _html_path(value: str) -> Path:
+    path = Path(value)
+    if path.suffix.lower() not in (".html", ".htm"):
+        raise argparse.ArgumentTypeError(f"{value}: the page is written to a .html name")
+    return path
+
+
+_html_path.__name__ = "HTML file"
+
+
+def _trace_plot_path(value: str) -> Path:
+    """--plot of pmdfmu trace: an image, or an interactive page."""
+    path = Path(value)
+    if path.suffix.lower() not in PLOT_SUFFIXES + (".html",):
+        raise argparse.ArgumentTypeError(
+            f"{value}: the scope is written as its suffix says: {', '.join(PLOT_SUFFIXES + ('.html',))}"
+        )
+    return path
+
+
+_trace_plot_path.__name__ = "plot file"
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse, its errors on one line as every other input error's: `pmdfmu CMD: reason`."""
 
@@ -617,6 +710,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         args = _parser().parse_args(argv)
         command = f"pmdfmu {args.command}"
         _verbosity = args.verbosity
+        progress.show(True if args.progress else False if _verbosity < 0 else None)
         return args.func(args)
     except INPUT_ERRORS as e:
         print(f"{command}: {one_line(e)}", file=sys.stderr)
@@ -627,6 +721,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         return EXIT_INTERRUPTED
     finally:
         _verbosity = 0
+        progress.show(None)
 
 
 def console() -> None:
@@ -675,6 +770,13 @@ def _verbosity_options(parser: argparse.ArgumentParser, default) -> None:
         const=1,
         default=default,
         help="print more: every check of verify, every case of a sweep",
+    )
+    parser.add_argument(
+        "--progress",
+        action="store_true",
+        default=False if default == 0 else default,
+        help="show progress bars also when standard error is no terminal (a CI log); "
+        "by default only on a terminal, never with -q",
     )
 
 
@@ -730,7 +832,7 @@ def _parser() -> argparse.ArgumentParser:
             p.add_argument(
                 "file",
                 type=Path,
-                help="a script, or a CSV segment table (axis,position,velocity,acceleration,jerk,time in raw units)",
+                help="a script, or a CSV segment table (position and optional axis, velocity, acceleration, jerk, time: docs/scripts.md)",
             )
             p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
             p.add_argument(
@@ -741,6 +843,12 @@ def _parser() -> argparse.ArgumentParser:
             )
             p.add_argument("--plot", type=_plot_path, help="write the plot here (PNG, or PDF, SVG ... by its suffix)")
             p.add_argument(
+                "--html",
+                type=_html_path,
+                metavar="FILE",
+                help="write an interactive page here (zoom, pan, every column; opens offline): the 'html' extra",
+            )
+            p.add_argument(
                 "--upload",
                 choices=("memory", "command"),
                 default="memory",
@@ -750,6 +858,30 @@ def _parser() -> argparse.ArgumentParser:
             p.add_argument(
                 "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
             )
+
+    p = command(
+        "trace",
+        "run a script and show the chip's trace buffer as a scope",
+        description="Runs the script as `pmdfmu run` does, then reads the trace the script configured "
+        "(SetTraceVariable, Period, Mode, Start, Stop) from buffer 0: one panel per variable over chip "
+        'time, the trigger marked. docs/chip.md, "Reading the trace".',
+    )
+    p.add_argument("file", type=Path, help="the script")
+    p.add_argument("--plot", type=_trace_plot_path, help="write the scope here: an image (PNG, SVG, PDF) or .html")
+    p.add_argument("--csv", type=Path, help="write the samples here (a .npz name writes compressed numpy)")
+    p.add_argument("--fmu", type=Path, help=FMU_HELP)
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
+    p.add_argument(
+        "--cycle-time",
+        type=_cycle_time,
+        default=DEFAULT_CYCLE_TIME,
+        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
+    )
+    _run_limits(p)
+    p.add_argument(
+        "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
+    )
+    p.set_defaults(func=cmd_trace)
 
     p = command("machine", "check a machine file and say what it means")
     p.add_argument("--check", dest="file", type=Path, required=True, metavar="FILE", help="the machine file")
@@ -809,6 +941,12 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", help="with --cases: a Dask scheduler address, or 'serial'")
     p.add_argument("--workers", type=_positive_int, default=2, help="with --cases: local cluster processes (default 2)")
     p.add_argument("--junit", type=Path, metavar="FILE", help="write JUnit XML here")
+    p.add_argument(
+        "--html",
+        type=_html_path,
+        metavar="FILE",
+        help="write an interactive page here: each check, expected vs actual vs difference (the 'html' extra)",
+    )
     p.add_argument(
         "--summary",
         type=Path,

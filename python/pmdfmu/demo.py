@@ -19,6 +19,18 @@ SEGMENT_CYCLES = 256
 QUANTUM = 512
 
 
+def describe_demo(tables: Dict[int, List[Row]]) -> str:
+    """What the demo shows, printed before it runs."""
+    (x0, *_), (y0, *_) = tables[0][0], tables[1][0]
+    segments = len(tables[0]) - 1
+    return (
+        f"pmdfmu demo: axes 1 and 2 trace a circle from a segment table written as a host planner would "
+        f"({segments} segments of {SEGMENT_CYCLES} cycles per axis, velocities in 16.16, accelerations chosen "
+        f"so each segment lands exactly on the next row). The axes first move to the first row ({x0}, {y0}) "
+        "with a trapezoidal move; the recording starts when the external profile starts."
+    )
+
+
 def circle_table(radius: int = 20_000, segments: int = 64) -> Dict[int, List[Row]]:
     """Axis 1 traces x = R cos(theta), axis 2 y = R sin(theta), theta going once
     around with zero speed at both ends, then a time-0 row stops each axis."""

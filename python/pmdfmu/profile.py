@@ -6,13 +6,14 @@ the run until every axis's profile segment number drops to 0 (1.6)."""
 from __future__ import annotations
 
 import csv
+from fractions import Fraction
 from pathlib import Path
 from dataclasses import dataclass
 from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import extras, files
+from . import extras, files, fixed, progress
 from .chip import AXIS_MASKS, CONSTANTS, DEFAULT_CYCLE_TIME, Chip, FMUError, PMDError, field_ex
 
 FUNCTIONS = ("position", "velocity", "acceleration", "jerk", "time")
@@ -26,17 +27,48 @@ class TableError(ValueError):
 WORD = (-(2**31), 2**32 - 1)  # a buffer word: a signed or an unsigned 32-bit value (encode's rule)
 
 
+# One segment-table format (docs/scripts.md, "Segment tables"): `pmdfmu run`'s tables and a script's
+# LoadSegmentTable read the same columns, optional columns, `# units:` line and decimals; a run's table
+# has an `axis` column besides (absent: axis 1). What an absent column holds is what the chip reads
+# without its buffer (seed 000): velocity, acceleration and jerk 0, time 1.
+ABSENT = {"velocity": 0, "acceleration": 0, "jerk": 0, "time": 1}
+# the fraction bits of each column's decimals under `# units: counts/cycle` (16.16 and 0.32); 0: whole
+FRACTION_BITS = {"axis": 0, "position": 0, "velocity": 16, "acceleration": 16, "jerk": 32, "time": 0}
+UNITS = ("raw", "counts/cycle")
+
+
+def nearest_column(name: str, columns: Sequence[str]) -> str:
+    """`: did you mean 'velocity'?` for a near miss, else the empty string."""
+    import difflib
+
+    close = difflib.get_close_matches(name.strip().lower(), columns, n=1, cutoff=0.6)
+    return f": did you mean {close[0]!r}?" if close else ""
+
+
 def read_segment_table(path: Path) -> Dict[int, List[Row]]:
-    """Reads a CSV segment table: columns axis (1..4), position, velocity,
-    acceleration, jerk, time, raw chip units (32.0, 16.16, 16.16, 0.32, cycles),
-    decimal or 0x-hex, each a buffer word; lines starting with # are comments.
-    Raises TableError naming the file and line of what it cannot take."""
+    """Reads a CSV segment table: a header naming its columns -- position (required), velocity,
+    acceleration, jerk, time (optional: 0, 0, 0 and 1 when absent, as the chip reads a missing buffer)
+    and axis (1..4; absent: every row is axis 1) -- in any order, then a row per segment. Values are raw
+    chip words (32.0, 16.16, 16.16, 0.32, cycles), decimal or 0x-hex; after a `# units: counts/cycle`
+    line, velocity, acceleration and jerk are counts/cycle (decimals converted exactly, rounded to
+    nearest; hex stays a raw word), as LoadSegmentTable reads them. Other lines starting with # are
+    comments. Raises TableError naming the file and line of what it cannot take."""
     try:
         text = files.read_text(path)
     except (OSError, UnicodeDecodeError) as e:
         raise TableError(f"{path}: cannot read the segment table: {e}") from None
-    # the table's lines with their numbers in the file, comments and blank lines left out
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    units = None
+    for n, line in enumerate(lines, start=1):
+        stripped = line.strip()
+        if stripped.startswith("#") and "units:" in stripped:
+            said = stripped.split("units:", 1)[1].strip()
+            if said not in UNITS:
+                raise TableError(f"{path}:{n}: units {files.shown(said)}: say raw or counts/cycle")
+            if units is not None and said != units:
+                raise TableError(f"{path}:{n}: units {files.shown(said)} contradict the units stated before")
+            units = said
+    # the table's lines with their numbers in the file, comments and blank lines left out
     kept = [(n, line) for n, line in enumerate(lines, start=1) if line.strip() and not line.lstrip().startswith("#")]
     reader = csv.reader([line for _, line in kept])
     columns = ("axis",) + FUNCTIONS
@@ -50,20 +82,24 @@ def read_segment_table(path: Path) -> Dict[int, List[Row]]:
                 for i, name in enumerate(header):
                     if name not in columns:
                         raise TableError(
-                            f"{path}:{line}: column {i + 1}: {files.shown(name)} is not one of {', '.join(columns)}"
+                            f"{path}:{line}: column {i + 1}: {files.shown(name)} is not a segment column "
+                            f"({', '.join(columns)}){nearest_column(name, columns)}"
                         )
                     if name in header[:i]:
                         raise TableError(f"{path}:{line}: column {files.shown(name)} named twice")
-                missing = [c for c in columns if c not in header]
-                if missing:
+                if "position" not in header:
                     raise TableError(
-                        f"{path}:{line}: no column {', '.join(map(repr, missing))} (the header "
-                        f"names {', '.join(header)}; a table has {', '.join(columns)})"
+                        f"{path}:{line}: no position column (the header names {', '.join(header)}; a table has "
+                        f"position and any of {', '.join(c for c in columns if c != 'position')})"
                     )
                 continue
             if len(row) != len(header):
                 raise TableError(f"{path}:{line}: expected {len(header)} values (one per column), found {len(row)}")
-            values = dict(zip(header, (_word(path, line, name, cell) for name, cell in zip(header, row))))
+            values = {**ABSENT, "axis": 1}
+            values.update(
+                (name, _word(path, line, name, cell, FRACTION_BITS[name] if units == "counts/cycle" else 0))
+                for name, cell in zip(header, row)
+            )
             if not 1 <= values["axis"] <= 4:
                 raise TableError(f"{path}:{line}: axis {values['axis']} is not 1..4")
             tables.setdefault(values["axis"] - 1, []).append(tuple(values[name] for name in FUNCTIONS))
@@ -76,14 +112,27 @@ def read_segment_table(path: Path) -> Dict[int, List[Row]]:
     return tables
 
 
-def _word(path: Path, line: int, column: str, cell: str) -> int:
-    """A table cell as a buffer word (decimal or 0x hex, in WORD)."""
+def _word(path: Path, line: int, column: str, cell: str, fraction_bits: int = 0) -> int:
+    """A table cell as a buffer word: decimal or 0x hex, in WORD; with fraction_bits (16.16, 0.32 under
+    `# units: counts/cycle`) a decimal in counts/cycle, converted exactly, rounded to nearest (halves away
+    from zero), into a signed word -- as the FMU's LoadSegmentTable does (fmu_src/script/script.c)."""
+    text = cell.strip()
     try:
-        value = int(cell.strip(), 0)
-    except ValueError:
+        if fraction_bits and not text.lstrip("+-").lower().startswith("0x"):
+            if not text or not all(c.isdigit() or c in "+-." for c in text):
+                raise ValueError(text)
+            value = fixed.to_fixed(Fraction(text), "16.16" if fraction_bits == 16 else "0.32")
+            return fixed.signed(value)
+        value = int(text, 0)
+    except (ValueError, ZeroDivisionError) as e:
+        if "does not fit" in str(e):
+            raise TableError(f"{path}:{line}: column {column}: {e}") from None
         raise TableError(
-            f"{path}:{line}: column {column}: {files.shown(cell)} is not an integer: a table "
-            "holds raw chip words (32.0, 16.16, 16.16, 0.32, cycles), decimal or 0x hex"
+            f"{path}:{line}: column {column}: {files.shown(cell)} is not an integer: a table holds raw chip words "
+            "(32.0, 16.16, 16.16, 0.32, cycles), decimal or 0x hex; `# units: counts/cycle` takes decimals for "
+            "velocity, acceleration and jerk"
+            if not fraction_bits
+            else f"{path}:{line}: column {column}: {files.shown(cell)} is not a number"
         ) from None
     if not WORD[0] <= value <= WORD[1]:
         raise TableError(
@@ -190,11 +239,17 @@ def _names(axes: Iterable[int], record: Sequence[str]) -> List[str]:
 
 
 def run_until_halted(
-    chip: Chip, axes: Sequence[int], max_cycles: int = 1_000_000, chunk: int = 1000, record: Sequence[str] = ()
+    chip: Chip,
+    axes: Sequence[int],
+    max_cycles: int = 1_000_000,
+    chunk: int = 1000,
+    record: Sequence[str] = (),
+    on_cycles: Optional[Callable[[int], object]] = None,
 ) -> np.ndarray:
     """Runs and records every cycle until every axis's profile segment number
     is 0 (seed 000, 1.6), or max_cycles. record: outputs recorded besides
-    record_outputs(axes) (pmdfmu verify's event status)."""
+    record_outputs(axes) (pmdfmu verify's event status); on_cycles(n): told of every n cycles run (a
+    progress bar's update)."""
     names = _names(axes, record)
     parts = []
     total = 0
@@ -202,6 +257,8 @@ def run_until_halted(
         part = chip.run(min(chunk, max_cycles - total), record=names)
         parts.append(part)
         total += len(part)
+        if on_cycles is not None:
+            on_cycles(len(part))
         last = part[-1]
         if all(field_ex(last[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0 for a in axes):
             break
@@ -226,6 +283,7 @@ def run_script(
     max_cycles: int = 1_000_000,
     chunk: int = 1000,
     record: Sequence[str] = (),
+    on_cycles: Optional[Callable[[int], object]] = None,
 ) -> np.ndarray:
     """Records a script's run (the chip was made with script=...): until the time
     of its last @ line has passed (script.lastCycle) and every axis is at rest, or
@@ -239,6 +297,8 @@ def run_script(
         part = chip.run(min(chunk, max_cycles - total), record=names)
         parts.append(part)
         total += len(part)
+        if on_cycles is not None:
+            on_cycles(len(part))
         at_rest = all(not part[-1][f"axis{a + 1}.activityStatus"] & CONSTANTS["PMDActivityInMotionMask"] for a in axes)
         if part["cycle"][-1] >= last and at_rest:
             break
@@ -253,6 +313,7 @@ def run_segment_table(
     upload: str = "memory",
     max_cycles: int = 1_000_000,
     record: Sequence[str] = (),
+    on_cycles: Optional[Callable[[int], object]] = None,
 ) -> np.ndarray:
     """The whole of seed 000 for a table: load, move each axis to its first
     position, start all axes together, run to completion. Returns the recorded
@@ -261,7 +322,7 @@ def run_segment_table(
     load_external_profile(chip, tables, upload=upload)
     move_to(chip, {a: tables[a][0][0] for a in axes}, velocity, acceleration)
     start_external_profile(chip, axes)
-    return run_until_halted(chip, axes, max_cycles=max_cycles, record=record)
+    return run_until_halted(chip, axes, max_cycles=max_cycles, record=record, on_cycles=on_cycles)
 
 
 def write_csv(path: Path, recorded: np.ndarray, comment: Optional[str] = None) -> None:
@@ -368,11 +429,16 @@ def run_profile(
     table = path is None or is_segment_table(path)
     tables = (source if path is None else read_segment_table(path)) if table else None
     params["script"] = "" if table else path  # a file, never a script's text (README, "Scripts")
-    with Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip:
+    with (
+        Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip,
+        progress.bar(f"run {path.name if path is not None else 'segment tables'}") as bar,
+    ):
         if table:
             axes = sorted(tables)
             try:
-                rec = run_segment_table(chip, tables, upload=upload, max_cycles=max_cycles, record=record)
+                rec = run_segment_table(
+                    chip, tables, upload=upload, max_cycles=max_cycles, record=record, on_cycles=bar.update
+                )
             except (PMDError, FMUError) as e:  # the chip refused the table's set-up (it does not fit, ...)
                 raise TableError(f"{path or 'segment tables'}: {e}") from None
             except TimeoutError as e:  # a first row's position too far away
@@ -382,7 +448,7 @@ def run_profile(
             ended = profile_ended(rec, axes)
         else:
             axes = script_axes(chip)
-            rec = run_script(chip, axes, max_cycles=max_cycles, record=record)
+            rec = run_script(chip, axes, max_cycles=max_cycles, record=record, on_cycles=bar.update)
             ended = profile_ended(rec, axes, chip.get("script.lastCycle"))
         if inspect is not None:
             inspect(chip)

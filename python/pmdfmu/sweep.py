@@ -48,7 +48,7 @@ from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import extras, files, profile
+from . import extras, files, profile, progress
 from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
@@ -277,6 +277,7 @@ def refuse_writing_over_inputs(cases: Sequence[Case], out: Union[str, Path], inp
 class SweepResult:
     rows: List[dict]
     recordings: Dict[str, np.ndarray] = field(default_factory=dict)
+    cycle_times: Dict[str, float] = field(default_factory=dict)  # each case's chip cycle (s), for the plot
 
     def write(self, out: Union[str, Path]) -> None:
         """summary.csv, CASE.csv per successful case, summary.png."""
@@ -294,11 +295,31 @@ class SweepResult:
         plt = extras.pyplot("SweepResult.plot")
         ok = [r for r in self.rows if r["status"] == "ok"]
         fig, (top, bottom) = plt.subplots(2, 1, figsize=(10, 8))
-        for r in ok:
+        # cases that coincide stay apart: each its own dash and marker, drawn wider first, so a line on
+        # top of another leaves the one below visible at its edges
+        styles = [(d, m) for m in ("o", "s", "^", "v", "D", "x") for d in ("-", "--", "-.", ":")]
+        # seconds when the cases' cycle times differ (the same cycle is not the same time), else cycles
+        times = {self.cycle_times.get(r["name"]) for r in ok}
+        seconds = len(times) > 1 and None not in times
+        for k, r in enumerate(ok):
             rec = self.recordings[r["name"]]
             first = next(n for n in rec.dtype.names if n.endswith(".position"))  # the case's first axis
-            top.plot(rec["cycle"] - rec["cycle"][0], rec[first], label=f"{r['name']} ({first.split('.')[0]})")
-        top.set_xlabel("cycles")
+            x = rec["cycle"] - rec["cycle"][0]
+            if seconds:
+                x = x * self.cycle_times[r["name"]]
+            dash, marker = styles[k % len(styles)]
+            top.plot(
+                x,
+                rec[first],
+                linestyle=dash,
+                marker=marker,
+                markevery=max(len(x) // 12, 1),
+                markersize=5,
+                linewidth=max(3.0 - 0.4 * k, 1.0),
+                alpha=0.85,
+                label=f"{r['name']} ({first.split('.')[0]})",
+            )
+        top.set_xlabel("time [s]" if seconds else "cycles")
         top.set_ylabel("position [counts]")
         top.legend(fontsize="small")
         names = [r["name"] for r in self.rows]
@@ -372,9 +393,12 @@ def run_cases(cases: Sequence[Case], handoff: Optional[Tuple[str, str]] = None) 
     token) for large recordings (_hand)."""
     folder = _handoff_folder(handoff)
     results = []
-    for case in cases:
-        row, rec = run_case(case)
-        results.append((row, _hand(folder, rec)))
+    # a bar in this process only (scheduler="serial", no handoff): never a worker's
+    with progress.bar("cases", total=len(cases), unit="cases", enabled=handoff is None) as bar:
+        for case in cases:
+            row, rec = run_case(case)
+            results.append((row, _hand(folder, rec)))
+            bar.update(1)
     return results
 
 
@@ -400,8 +424,10 @@ def _on(client, cases: Sequence[Case]) -> List[Tuple[dict, Optional[np.ndarray]]
         futures = client.map(run_cases, _batches(cases, threads), handoff=(folder, token), pure=False)
         where = {future.key: i for i, future in enumerate(futures)}
         batches: List[list] = [[] for _ in futures]
-        for future, batch in as_completed(futures, loop=client.loop, with_results=True):
-            batches[where[future.key]] = [_received(result, folder) for result in batch]
+        with progress.bar("cases", total=len(cases), unit="cases") as bar:
+            for future, batch in as_completed(futures, loop=client.loop, with_results=True):
+                batches[where[future.key]] = [_received(result, folder) for result in batch]
+                bar.update(len(batch))
         return [result for batch in batches for result in batch]
     except BaseException:
         client.cancel(futures)  # no worker goes on writing into the folder removed below
@@ -552,4 +578,8 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
                 results = _on(client, cases)
     else:
         results = _on(scheduler, cases)
-    return SweepResult([row for row, _ in results], {row["name"]: rec for row, rec in results if rec is not None})
+    return SweepResult(
+        [row for row, _ in results],
+        {row["name"]: rec for row, rec in results if rec is not None},
+        {c.name: float(dict(c.parameters).get("cycleTime", profile.DEFAULT_CYCLE_TIME)) for c in cases},
+    )

@@ -1048,6 +1048,7 @@ def verify(
         ended=run.ended,
         window=cycles,
     )
+    result.recording, result.expected = run.recording, golden
     return VerifyResult([result])
 
 
@@ -1230,4 +1231,5 @@ def verify_cases(
             out=out,
             ended=row.get("ended") == "yes",
         )
+        result.recording, result.expected = rec, golden
     return VerifyResult(results)

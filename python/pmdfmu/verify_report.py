@@ -9,7 +9,7 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence
+from typing import List, Optional, Sequence, Union
 
 import numpy as np
 
@@ -71,6 +71,9 @@ class CaseResult:
     plot: Optional[Path] = None
     actual: Optional[Path] = None
     seconds: float = 0.0
+    # the run's recording and the golden, for the HTML report (verify() keeps them; a case table does not)
+    recording: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
+    expected: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
 
     @property
     def passed(self) -> bool:
@@ -108,6 +111,13 @@ class VerifyResult:
 
     def to_markdown(self) -> str:
         return markdown(self)
+
+    def to_html(self, path: Union[str, Path], title: str = "pmdfmu verify") -> None:
+        """Writes the interactive page (the 'html' extra): every check with its result, the first
+        divergence highlighted, expected vs actual vs difference (pmdfmu.html_report)."""
+        from .html_report import write_verify
+
+        write_verify(Path(path), self, title)
 
     def __bool__(self) -> bool:
         return self.passed
