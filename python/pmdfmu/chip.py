@@ -33,7 +33,7 @@ from fmpy.fmi2 import (
 )
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3FMUState, fmi3True, fmi3ValueReference
 
-from . import hosttime, memory_port, recording, tables
+from . import host_port, hosttime, memory_port, native, recording, tables
 from .recording import RECORDED  # noqa: F401  (chip.RECORDED, as users and docs name it)
 from .fixed import integer, to_word
 from .hosttime import HostInterface
@@ -359,20 +359,101 @@ def _method_doc(command: Command) -> str:
     return "\n".join(lines)
 
 
-def _c_motion_method(command: Command):
-    """The Axis method of one command: a real function with the command's
-    signature, name and docstring (inspect, help(), dir() and tab completion
-    see it as written by hand)."""
-    parameters = [inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD) for f in command.args]
-    public = inspect.Signature(parameters)
-    signature = inspect.Signature([inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)] + parameters)
+def _slow_method(command: Command, signature: inspect.Signature, public: inspect.Signature):
+    """A call the native path leaves (keywords, a wrong number of arguments, an argument not a plain int
+    in range, a chip without it): Chip.command's checks, encoding and errors."""
 
-    def method(self, *args, **kwargs):
+    def slow(self, *args, **kwargs):
         try:
             bound = signature.bind(self, *args, **kwargs)
         except TypeError as e:
             raise TypeError(f"{command.name}{public}: {e}") from None
         return self.chip.command(self.number, command, bound.args[1:])
+
+    return slow
+
+
+def _fast_source(command: Command) -> str:
+    """The source of an Axis method's native path (host_port.py): the arguments checked and packed into
+    one 64-bit word as encode() packs them (the instruction word in the low 16 bits), one native call,
+    the reply decoded from the result word as decode() reads it. Whatever it does not take goes to the
+    slow path, which raises as Chip.command does."""
+    names = [f.name for f in command.args]
+    lines = [
+        f"def {command.name}(self, *args, **keywords):",
+        "    chip = self.chip",
+        "    port = chip._fast",
+        f"    if port is None or keywords or len(args) != {len(names)} or chip._recording:",
+        "        return _slow(self, *args, **keywords)",
+    ]
+    if names:
+        lines.append(f"    {', '.join(names)}, = args")
+    lines.append("    words = _INSTRUCTION[self.number]")
+    for f in command.args:
+        place = 16 * (1 + f.word)
+        if f.kind == "bits":
+            lo, hi = 0, (1 << f.width) - 1
+            pack = f"{f.name} << {place + f.shift}"
+        elif f.width == 32:
+            lo, hi = -(1 << 31), (1 << 32) - 1
+            pack = f"((({f.name} & 0xFFFFFFFF) >> 16) << {place}) | (({f.name} & 0xFFFF) << {place + 16})"
+        else:
+            lo, hi = -(1 << (f.width - 1)), (1 << f.width) - 1
+            pack = f"(({f.name} & 0xFFFF) << {place})"
+        lines += [
+            f"    if type({f.name}) is not int or not {lo} <= {f.name} <= {hi}:",
+            "        return _slow(self, *args)",
+            f"    words |= {pack}",
+        ]
+    expect = command.reply_words
+    lines += [
+        "    logged = len(chip.messages)",
+        f"    r = _COMMAND(port, {1 + command.arg_words}, words, {expect})",
+        f"    if r >> 32 != {expect << 16}:",
+        "        return chip._fast_trouble(r, _COMMAND_OBJECT, logged)",
+    ]
+    values = []
+    for f in command.reply:
+        if expect > 2:
+            values.append(f"_decode_one(_COMMAND_OBJECT.reply[{len(values)}], port.out)")
+            continue
+        if f.kind == "bits":
+            word = "(r >> 16)" if f.word == 0 else "r"
+            values.append(f"(({word} >> {f.shift}) & {(1 << f.width) - 1})")
+            continue
+        v = "(r & 0xFFFFFFFF)" if f.width == 32 else "((r >> 16) & 0xFFFF)" if f.word == 0 else "(r & 0xFFFF)"
+        if f.signed:
+            v = f"(({v} ^ {1 << (f.width - 1)}) - {1 << (f.width - 1)})"
+        values.append(v)
+    if not values:
+        lines.append("    return None")
+    elif len(values) == 1:
+        lines.append(f"    return {values[0]}")
+    else:
+        lines.append(f"    return ({', '.join(values)})")
+    return "\n".join(lines) + "\n"
+
+
+def _decode_one(f: Field, words) -> int:
+    return decode((f,), list(words))[0]
+
+
+def _c_motion_method(command: Command):
+    """The Axis method of one command: a real function with the command's
+    signature, name and docstring (inspect, help(), dir() and tab completion
+    see it as written by hand), through the native host port (_fast_source)."""
+    parameters = [inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD) for f in command.args]
+    public = inspect.Signature(parameters)
+    signature = inspect.Signature([inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)] + parameters)
+    scope = {
+        "_slow": _slow_method(command, signature, public),
+        "_INSTRUCTION": tuple(instruction_word(command.opcode, 0 if command.scope == "chip" else a) for a in range(4)),
+        "_COMMAND": host_port.functions()[1],
+        "_COMMAND_OBJECT": command,
+        "_decode_one": _decode_one,
+    }
+    exec(compile(_fast_source(command), f"<pmdfmu Axis.{command.name}>", "exec"), scope)
+    method = scope[command.name]
 
     method.__name__ = command.name
     method.__qualname__ = f"Axis.{command.name}"
@@ -553,6 +634,10 @@ class Chip:
     ):
         if fmi_version not in (2, 3):
             raise ValueError(f"fmi_version is 2 or 3, not {fmi_version}")
+        # the host port of the native commands (host_port.py): the FMU's functions once instantiated; _fast is
+        # it when the Axis methods may use it (an FMU that is open, a class whose _step is Chip's)
+        self._port = native.HostPort()
+        self._fast = None
         self.host_interface = hosttime.host_interface(host_interface)
         self._recording = False  # a recording run has turned record.enabled on (recording.close)
         self._host_ns = 0  # the host clock, whole ns since the chip's time 0
@@ -619,7 +704,9 @@ class Chip:
         self._grid_vrs = (c_uint32 * 3)(*[self._vr[n] for n in ("time", "nextCycleTime", "activeCycleTime")])
         self._grid = (c_double * 3)()
         self._memory_vrs: Dict[int, Array] = {}  # write_memory (FMI 2): value references per word count
-        self._host_port: Dict[int, tuple] = {}  # _send: value references and buffers per word count
+        host_port.fill(self._port, self)
+        if type(self)._step is Chip._step and type(self)._send is Chip._send:
+            self._fast = self._port
         # fmi3DoStep's outputs (_step): event handling needed, terminate, early return, last successful time
         self._step_out = (byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Float64()))
 
@@ -680,6 +767,8 @@ class Chip:
         self._initialize(parameters)
 
     def close(self) -> None:
+        self._fast = None
+        self._port.instance = None
         if self.fmu is not None:
             self.fmu.terminate()
             self.fmu.freeInstance()
@@ -894,73 +983,57 @@ class Chip:
         return self._send(words)
 
     def _send(self, words: List[int]) -> Tuple[int, List[int]]:
-        """One batch through the host port, executed now (checked words). A host
-        program sends thousands (a streamed profile polls a read index): the value
-        references and buffers of a batch of n words are made once, and each FMI
-        call takes them as they are (FMPy's checked calls, no list conversions)."""
-        n, fmu, c = len(words), self.fmu, self.fmu.component
-        port = self._host_port.get(n)
-        if port is None:
-            port = self._host_port[n] = self._host_port_arrays(n)
-        strobe_vr, strobe, set_vrs, values, get_vrs, out = port
-        if self.fmi_version == 2:
-            fmu.fmi2GetInteger(c, strobe_vr, 1, strobe)
-            new = (strobe[0] + 1) & 0x7FFFFFFF  # a new strobe value, whoever set the last one
-            values[n:] = [n, new]
-            values[:n] = words
-            fmu.fmi2SetInteger(c, set_vrs, n + 2, values)
-            fmu.fmi2GetInteger(c, get_vrs, 3 + BATCH_WORDS, out)
-            ack, error, count = out[0], out[1], out[2]
-            reply = out[3 : 3 + count]
-        else:
-            words16, counts, reply16 = values
-            fmu.fmi3GetInt32(c, strobe_vr, 1, strobe, 1)
-            new = (strobe[0] + 1) & 0x7FFFFFFF
-            words16[:n] = words
-            counts[:] = [n, new]
-            fmu.fmi3SetUInt16(c, set_vrs[0], 1, words16, BATCH_WORDS)  # the array is set whole
-            fmu.fmi3SetInt32(c, set_vrs[1], 2, counts, 2)
-            fmu.fmi3GetInt32(c, get_vrs[0], 2, out, 2)
-            fmu.fmi3GetUInt16(c, get_vrs[1], 2, reply16, 1 + BATCH_WORDS)  # host.error, then host.reply
-            ack, count, error = out[0], out[1], reply16[0]
-            reply = reply16[1 : 1 + count]
-        if ack != new:
-            raise FMUError(f"host.ack is {ack}, not the strobe {new}: the FMU did not execute the batch")
-        return error, reply
+        """One batch through the host port, executed now (checked words): the FMI calls of a get of
+        host.strobe, a set of the words, host.wordCount and a new strobe, and a get of the ack, error
+        and reply, in one native call (native/host_port.c; tests/stepwise.py send_stepwise is the
+        Python path it replaces)."""
+        port = self._port
+        port.in_[: len(words)] = words
+        logged = len(self.messages)
+        r = host_port.functions()[0](port, len(words), BATCH_WORDS)
+        if r & host_port.FAILED:
+            self._fast_trouble(r, None, logged)
+        return (r >> 32) & 0xFFFF, port.out[: (r >> 48) & 0xFF]
 
-    def _host_port_arrays(self, n: int) -> tuple:
-        """_send's value references and buffers for a batch of n words."""
-        vr = self._vr
-        if self.fmi_version == 2:
-            return (
-                (fmi2ValueReference * 1)(vr["host.strobe"]),
-                (c_int32 * 1)(),
-                (fmi2ValueReference * (n + 2))(
-                    *[vr[f"host.word[{i + 1}]"] for i in range(n)], vr["host.wordCount"], vr["host.strobe"]
-                ),
-                (c_int32 * (n + 2))(),
-                (fmi2ValueReference * (3 + BATCH_WORDS))(
-                    vr["host.ack"],
-                    vr["host.error"],
-                    vr["host.replyCount"],
-                    *[vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)],
-                ),
-                (c_int32 * (3 + BATCH_WORDS))(),
+    def _fast_trouble(self, r: int, command: Optional[Command], logged: int):
+        """A native command's result word that is not the plain reply the caller expected: raises as the
+        Python path did (FMURefusal for a refused FMI call, FMUError for an unexecuted batch, PMDError
+        for host.error), else returns the reply decoded from all its words."""
+        port = self._port
+        if r & host_port.FAILED:
+            if port.stop.call == native.HOST_ACK:
+                raise FMUError(
+                    f"host.ack is {port.ack_word}, not the strobe {port.strobe_sent}: the FMU did not execute the batch"
+                )
+            raise FMURefusal(
+                host_port.CALLS[self.fmi_version][port.stop.call],
+                port.stop.status,
+                [m.message for m in self.messages[logged:] if m.status not in ("OK", "Pending")],
             )
-        return (
-            (fmi3ValueReference * 1)(vr["host.strobe"]),
-            (c_int32 * 1)(),
-            (
-                (fmi3ValueReference * 1)(vr["host.word"]),
-                (fmi3ValueReference * 2)(vr["host.wordCount"], vr["host.strobe"]),
-            ),
-            ((c_uint16 * BATCH_WORDS)(), (c_int32 * 2)(), (c_uint16 * (1 + BATCH_WORDS))()),
-            (
-                (fmi3ValueReference * 2)(vr["host.ack"], vr["host.replyCount"]),
-                (fmi3ValueReference * 2)(vr["host.error"], vr["host.reply"]),
-            ),
-            (c_int32 * 2)(),
-        )
+        error = (r >> 32) & 0xFFFF
+        if error:
+            raise PMDError(error, command.name)
+        values = decode(command.reply, port.out[: (r >> 48) & 0xFF])
+        return None if not values else values[0] if len(values) == 1 else tuple(values)
+
+    @property
+    def host_interface(self) -> HostInterface:
+        """The host interface (docs/host-time.md); assigning one takes effect from the next command."""
+        return self._host_interface
+
+    @host_interface.setter
+    def host_interface(self, value) -> None:
+        self._host_interface = hosttime.host_interface(value)
+        host_port.time_port(self._port, self._host_interface)
+
+    @property
+    def _host_ns(self) -> int:
+        """The host clock: its one copy is the native port's (host_port.py), which native commands move."""
+        return self._port.host_ns
+
+    @_host_ns.setter
+    def _host_ns(self, ns: int) -> None:
+        self._port.host_ns = ns
 
     @_refusals
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
@@ -1156,6 +1229,34 @@ class Chip:
             self._step(1)
             self._host_ns = max(self._host_ns, next_ns)
         return True
+
+    @_refusals
+    def wait_for(self, mask: int, axis: int = 0, timeout=None) -> Optional[int]:
+        """Polls GetEventStatus on `axis` until a bit of `mask` is set, as a C-Motion host loop does
+        (while not (status & mask): status = GetEventStatus), natively (host_port.c): each poll a
+        command with its host time, so a polled move costs about its chip cycles. With the host
+        interface none, commands take no chip time: one cycle runs after each unsatisfied poll (as
+        chip.run(1)). Returns the event status that had a bit of mask; None if `timeout` s (None: no
+        limit) of host time passed first. A refused poll raises PMDError."""
+        mask = integer(mask, "wait_for: mask")
+        if not 0 < mask <= 0xFFFF:
+            raise ValueError(f"wait_for: mask {mask} is not a 16-bit event mask")
+        axis = axis_number(axis)
+        limit = -1 if timeout is None else self._host_ns + round(Fraction(timeout) * hosttime.NS_PER_S)
+        if self._recording:
+            recording.close(self)
+        get = COMMANDS["GetEventStatus"]
+        logged = len(self.messages)
+        r = host_port.functions()[2](self._port, 1, instruction_word(get.opcode, axis), mask, limit)
+        if r & host_port.TIMEOUT and not r & host_port.FAILED:
+            return None
+        if r >> 32 != 1 << 16:
+            return self._fast_trouble(r, get, logged)
+        return (r >> 16) & 0xFFFF
+
+    def wait_for_motion_complete(self, axis: int = 0, timeout=None) -> Optional[int]:
+        """wait_for(PMDEventMotionCompleteMask, axis, timeout): polls until the axis's motion is complete."""
+        return self.wait_for(CONSTANTS["PMDEventMotionCompleteMask"], axis, timeout)
 
     # ---- time ----
 
