@@ -92,7 +92,9 @@ def send_stepwise(chip: pmdfmu.Chip, words) -> tuple:
         strobe = (c_int32 * 1)()
         fmu.fmi2GetInteger(c, (u32 * 1)(vr["host.strobe"]), 1, strobe)
         new = (strobe[0] + 1) & 0x7FFFFFFF  # a new strobe value, whoever set the last one
-        set_vrs = (u32 * (n + 2))(*[vr[f"host.word[{i + 1}]"] for i in range(n)], vr["host.wordCount"], vr["host.strobe"])
+        set_vrs = (u32 * (n + 2))(
+            *[vr[f"host.word[{i + 1}]"] for i in range(n)], vr["host.wordCount"], vr["host.strobe"]
+        )
         fmu.fmi2SetInteger(c, set_vrs, n + 2, (c_int32 * (n + 2))(*words, n, new))
         get_vrs = [vr["host.ack"], vr["host.error"], vr["host.replyCount"]]
         get_vrs += [vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)]

@@ -14,7 +14,7 @@ import shutil
 import tempfile
 import textwrap
 import threading
-from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint16, c_uint32
+from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint32
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path

@@ -8,7 +8,7 @@ tests/stepwise.py keeps the Python path these replace (send_stepwise), and the t
 
 from __future__ import annotations
 
-from ctypes import POINTER, c_int64, c_size_t, c_uint32, c_uint64, c_void_p
+from ctypes import POINTER, c_int64, c_size_t, c_uint32, c_uint64
 from functools import lru_cache
 
 from . import native
@@ -17,10 +17,24 @@ WORDS = native.HOST_WORDS
 TIMEOUT, FAILED = 1 << 62, 1 << 63
 # the FMI function each call of host_port.h names (PmdStop.call), per FMI version
 CALLS = {
-    2: ("fmi2GetInteger", "fmi2SetInteger", "fmi2SetInteger", "fmi2GetInteger", "fmi2GetInteger",
-        "fmi2GetReal", "fmi2DoStep"),
-    3: ("fmi3GetInt32", "fmi3SetUInt16", "fmi3SetInt32", "fmi3GetInt32", "fmi3GetUInt16",
-        "fmi3GetFloat64", "fmi3DoStep"),
+    2: (
+        "fmi2GetInteger",
+        "fmi2SetInteger",
+        "fmi2SetInteger",
+        "fmi2GetInteger",
+        "fmi2GetInteger",
+        "fmi2GetReal",
+        "fmi2DoStep",
+    ),
+    3: (
+        "fmi3GetInt32",
+        "fmi3SetUInt16",
+        "fmi3SetInt32",
+        "fmi3GetInt32",
+        "fmi3GetUInt16",
+        "fmi3GetFloat64",
+        "fmi3DoStep",
+    ),
 }
 FUNCTIONS = {
     2: ("fmi2GetInteger", "fmi2SetInteger", None, None, "fmi2GetReal", "fmi2DoStep"),
@@ -54,8 +68,9 @@ def fill(port: native.HostPort, chip) -> None:
     port.error, port.reply_count = vr["host.error"], vr["host.replyCount"]
     port.grid[:] = [vr[n] for n in ("time", "nextCycleTime", "activeCycleTime")]
     functions = chip.fmu._functions
-    for field, name in zip(("get_int", "set_int", "set_words", "get_words", "get_real", "do_step"),
-                           FUNCTIONS[chip.fmi_version]):
+    for field, name in zip(
+        ("get_int", "set_int", "set_words", "get_words", "get_real", "do_step"), FUNCTIONS[chip.fmi_version]
+    ):
         if name:
             setattr(port, field, native.address(functions[name]))
     port.instance = chip.fmu.component

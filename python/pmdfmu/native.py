@@ -28,7 +28,9 @@ MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET = range(3)
 STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN = range(4)
 HOST_WORDS = 64  # host.word[64], host.reply[64]
 # host_port.h's calls (PmdStop.call of a host command), in their order
-HOST_GET_STROBE, HOST_SET_WORDS, HOST_SET_INT, HOST_GET_ACK, HOST_GET_REPLY, HOST_GRID, HOST_DO_STEP, HOST_ACK = range(8)
+HOST_GET_STROBE, HOST_SET_WORDS, HOST_SET_INT, HOST_GET_ACK, HOST_GET_REPLY, HOST_GRID, HOST_DO_STEP, HOST_ACK = range(
+    8
+)
 LOOP_FIELD_SIZE = -2  # the call record_loop.h's loops name for a column of another size than 1, 2, 4, 8
 
 
