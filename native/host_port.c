@@ -88,11 +88,13 @@ static uint64_t send_fmi3(PmdHostPort *p, size_t n)
     status = ((fmi3GetInt32TYPE *)p->get_int)(p->instance, got, 2, acked, 2);
     if (PMD_FAILED(status))
         return failed(p, PMD_HOST_GET_ACK, status);
-    status = ((fmi3GetUInt16TYPE *)p->get_words)(p->instance, reply, 2, replies, 1 + PMD_HOST_WORDS);
-    if (PMD_FAILED(status))
-        return failed(p, PMD_HOST_GET_REPLY, status);
     p->ack_word = acked[0];
     p->count = acked[1] < 0 ? 0 : acked[1] > PMD_HOST_WORDS ? PMD_HOST_WORDS : acked[1];
+    /* host.error, then the reply array (read whole) if there is a reply: a set reads host.error alone */
+    status = ((fmi3GetUInt16TYPE *)p->get_words)(p->instance, reply, p->count ? 2 : 1, replies,
+                                                 p->count ? 1 + PMD_HOST_WORDS : 1);
+    if (PMD_FAILED(status))
+        return failed(p, PMD_HOST_GET_REPLY, status);
     p->error_word = replies[0];
     memcpy(p->out, replies + 1, (size_t)p->count * sizeof *p->out);
     return 0;
@@ -194,11 +196,12 @@ static uint64_t command(PmdHostPort *p, size_t n, uint64_t words, size_t expect)
     return r;
 }
 
-uint64_t pmd_host_command(PmdHostPort *p, size_t n, uint64_t words, size_t expect)
+uint64_t pmd_host_command(PmdHostPort *p, unsigned int shape, unsigned int lo, unsigned int hi)
 {
+    size_t n = shape & 0xFF;
     if (n > 4)
         return failed(p, PMD_HOST_SET_INT, fmi2Error);
-    return command(p, n, words, expect);
+    return command(p, n, (uint64_t)(uint32_t)lo | (uint64_t)(uint32_t)hi << 32, (shape >> 8) & 0xFF);
 }
 
 uint64_t pmd_host_wait_for(PmdHostPort *p, size_t n, uint64_t words, uint32_t mask, int64_t limit_ns)

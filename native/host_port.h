@@ -59,8 +59,11 @@ enum { PMD_HOST_GET_STROBE, PMD_HOST_SET_WORDS, PMD_HOST_SET_INT, PMD_HOST_GET_A
  * (FMI 2: more only if the FMU returns more). */
 PMD_NATIVE_EXPORT uint64_t pmd_host_batch(PmdHostPort *port, size_t n, size_t expect);
 
-/* One command of n <= 4 words packed 16 bits each (word 0 in the low bits), timed if port->timed. */
-PMD_NATIVE_EXPORT uint64_t pmd_host_command(PmdHostPort *port, size_t n, uint64_t words, size_t expect);
+/* One command of n <= 4 words (shape: n | expect << 8), 16 bits each, words 0 and 1 in lo (word 0 in the
+ * low bits), 2 and 3 in hi, timed if port->timed. Its arguments are all C ints and a pointer, which
+ * ctypes passes without argtypes (a Python int masked to an int), at a third of the cost. */
+PMD_NATIVE_EXPORT uint64_t pmd_host_command(PmdHostPort *port, unsigned int shape, unsigned int lo,
+                                            unsigned int hi);
 
 /* Polls: the command (n words packed, one reply word) until its reply has a bit of mask, it fails or
  * host.error is set; after an unsatisfied poll, a time-out if limit_ns >= 0 and the host clock is past

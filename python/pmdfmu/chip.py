@@ -408,7 +408,7 @@ def _fast_source(command: Command) -> str:
     expect = command.reply_words
     lines += [
         "    logged = len(chip.messages)",
-        f"    r = _COMMAND(port, {1 + command.arg_words}, words, {expect})",
+        f"    r = _COMMAND(port, {(1 + command.arg_words) | expect << 8}, words, words >> 32)",
         f"    if r >> 32 != {expect << 16}:",
         "        return chip._fast_trouble(r, _COMMAND_OBJECT, logged)",
     ]
@@ -706,7 +706,7 @@ class Chip:
         self._memory_vrs: Dict[int, Array] = {}  # write_memory (FMI 2): value references per word count
         host_port.fill(self._port, self)
         if type(self)._step is Chip._step and type(self)._send is Chip._send:
-            self._fast = self._port
+            self._fast = byref(self._port)  # as the Axis methods pass it (host_port.h: no argtypes)
         # fmi3DoStep's outputs (_step): event handling needed, terminate, early return, last successful time
         self._step_out = (byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Float64()))
 

@@ -49,7 +49,7 @@ def functions():
     batch, command, wait = lib.pmd_host_batch, lib.pmd_host_command, lib.pmd_host_wait_for
     port = POINTER(native.HostPort)
     batch.argtypes = [port, c_size_t, c_size_t]
-    command.argtypes = [port, c_size_t, c_uint64, c_size_t]
+    # command without argtypes: a pointer and three ints, each a Python int masked to a C int (host_port.h)
     wait.argtypes = [port, c_size_t, c_uint64, c_uint32, c_int64]
     batch.restype = command.restype = wait.restype = c_uint64
     return batch, command, wait
