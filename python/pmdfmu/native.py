@@ -9,7 +9,7 @@ library's own layout of them (pmd_native_layout) is checked at load."""
 from __future__ import annotations
 
 import ctypes
-from ctypes import POINTER, Structure, c_int, c_int32, c_int64, c_size_t, c_uint16, c_uint32, c_void_p
+from ctypes import POINTER, Structure, c_double, c_int, c_int32, c_int64, c_size_t, c_uint16, c_uint32, c_void_p
 import os
 import sys
 from functools import lru_cache
@@ -17,7 +17,7 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 REPO = PACKAGE.parent.parent
-ABI = 5  # native/native.h PMD_NATIVE_ABI
+ABI = 6  # native/native.h PMD_NATIVE_ABI
 NAME = {"win32": "pmdnative.dll", "darwin": "libpmdnative.dylib"}.get(sys.platform, "libpmdnative.so")
 BLOCK_WORDS = 64  # memory.data[64]: the words one strobe writes
 
@@ -106,10 +106,38 @@ class HostPort(Structure):
     ]
 
 
+class SystemValue(Structure):
+    """system.h's PmdSystemValue: a value between a get and its sets, both readings."""
+
+    _fields_ = [("integer", c_int64), ("real", c_double)]
+
+
+class SystemOp(Structure):
+    """system.h's PmdSystemOp: a get, a set or a doStep of a system's step."""
+
+    _fields_ = [
+        ("kind", c_int),
+        ("type", c_int),
+        ("fn", c_void_p),
+        ("instance", c_void_p),
+        ("vr", c_uint32),
+        ("value", c_size_t),
+    ]
+
+
+class SystemColumn(Structure):
+    """system.h's PmdSystemColumn: one field of a system's row."""
+
+    _fields_ = [("value", c_size_t), ("offset", c_size_t), ("size", c_size_t), ("real", c_int)]
+
+
+SYSTEM_GET, SYSTEM_SET, SYSTEM_STEP = range(3)
+
+
 def layout() -> list:
     """What pmd_native_layout returns for a library built with this harness: abi.c's order."""
     out = []
-    for struct in (Stop, Group, Column, Port, HostPort):
+    for struct in (Stop, Group, Column, Port, HostPort, SystemValue, SystemOp, SystemColumn):
         out += [ctypes.sizeof(struct)] + [getattr(struct, name).offset for name, _type in struct._fields_]
     return (
         out
@@ -119,6 +147,7 @@ def layout() -> list:
         + [-LOOP_FIELD_SIZE]
         + [HOST_GET_STROBE, HOST_SET_WORDS, HOST_SET_INT, HOST_GET_ACK, HOST_GET_REPLY, HOST_GRID, HOST_DO_STEP]
         + [HOST_ACK, HOST_WORDS]
+        + [SYSTEM_GET, SYSTEM_SET, SYSTEM_STEP]
     )
 
 
