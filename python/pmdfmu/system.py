@@ -218,7 +218,7 @@ class System:
         dtype = self.dtype(names)
         ops: List[native.SystemOp] = []
         transfers = list(self.wiring.items())
-        for i, (a, b) in enumerate(transfers):
+        for a, b in transfers:
             self._variable(a), self._variable(b)
         if self.algorithm == "jacobi":
             for i, (a, b) in enumerate(transfers):
