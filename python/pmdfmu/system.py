@@ -141,6 +141,7 @@ class System:
         path = Path(plant) if plant else chip.path.with_name(f"pmdplant-fmi{version}.fmu")
         self.start, self.step = chip.get("time"), chip.cycle_time
         self._steps = 0
+        self._plans: Dict[tuple, tuple] = {}  # run()'s operations per set of recorded names (_plan)
         for a, b in self.wiring.items():
             for end in (a, b):
                 if end.split(".", 1)[0] not in ("chip", "plant") or "." not in end:
@@ -204,17 +205,9 @@ class System:
             )
         return np.dtype(fields)
 
-    def run(self, cycles: int, record: Sequence[str] = ()) -> np.ndarray:
-        """Runs `cycles` steps (chip cycles); returns a row per step with the recorded outputs as the step
-        left them (an empty array without record). A failed FMI call raises FMPy's FMICallException naming
-        it, the steps before it run."""
-        from fmpy.fmi1 import FMICallException
-
-        from . import recording
-
-        if cycles < 0:
-            raise ValueError("cycles must be >= 0")
-        names = list(record)
+    def _plan(self, names: tuple) -> tuple:
+        """run(record=names)'s operations and columns, made once per set of names: (the rows' type, the ops and
+        their count, the columns and their count, the values' count)."""
         dtype = self.dtype(names)
         ops: List[native.SystemOp] = []
         transfers = list(self.wiring.items())
@@ -235,17 +228,41 @@ class System:
             ops.append(self._op(native.SYSTEM_GET, path, slot))
             field = dtype.fields[path]
             columns.append(native.SystemColumn(slot, field[1], field[0].itemsize, int(field[0].kind == "f")))
+        return (
+            dtype,
+            (native.SystemOp * len(ops))(*ops),
+            len(ops),
+            (native.SystemColumn * max(len(columns), 1))(*columns),
+            len(columns),
+            len(transfers) + len(names),
+        )
+
+    def run(self, cycles: int, record: Sequence[str] = ()) -> np.ndarray:
+        """Runs `cycles` steps (chip cycles); returns a row per step with the recorded outputs as the step
+        left them (an empty array without record). A failed FMI call raises FMPy's FMICallException naming
+        it, the steps before it run."""
+        from fmpy.fmi1 import FMICallException
+
+        from . import recording
+
+        if cycles < 0:
+            raise ValueError("cycles must be >= 0")
+        names = tuple(record)
+        plan = self._plans.get(names)
+        if plan is None:
+            plan = self._plans[names] = self._plan(names)
+        dtype, ops, n_ops, columns, n_columns, n_values = plan
         out = np.zeros(cycles if names else 0, dtype=dtype)
         if self.chip._recording:
             recording.close(self.chip)
-        values = (native.SystemValue * (len(transfers) + len(names)))()
+        values = (native.SystemValue * n_values)()
         stop = native.Stop()
         failed = _runner()(
-            (native.SystemOp * len(ops))(*ops),
-            len(ops),
+            ops,
+            n_ops,
             values,
-            (native.SystemColumn * max(len(columns), 1))(*columns),
-            len(columns),
+            columns,
+            n_columns,
             self.start,
             self.step,
             self._steps,
@@ -257,7 +274,7 @@ class System:
         self._steps += stop.done if failed else cycles
         self.chip._host_ns = max(self.chip._host_ns, self.chip._last_cycle_ns())
         if failed:
-            op = ops[stop.call] if 0 <= stop.call < len(ops) else None
+            op = ops[stop.call] if 0 <= stop.call < n_ops else None
             raise FMICallException(function=_op_name(op, self.chip.fmi_version), status=stop.status)
         return out
 
