@@ -22,7 +22,18 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import common  # noqa: E402  (this folder's modules import it by name)
 
-TOPICS = ["engine", "host_command", "system", "recording", "instances", "upload", "streaming", "sweep", "footprint", "serve"]
+TOPICS = [
+    "engine",
+    "host_command",
+    "system",
+    "recording",
+    "instances",
+    "upload",
+    "streaming",
+    "sweep",
+    "footprint",
+    "serve",
+]
 HEAD = ("benchmark", "figure (best / median)", "baseline, same run (best / median)", "ratio", "target", "met")
 
 
