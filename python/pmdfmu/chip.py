@@ -1261,7 +1261,14 @@ class Chip:
     # ---- time ----
 
     @_refusals
-    def run(self, cycles: int, record: Sequence[str] = (), out: Optional[np.ndarray] = None) -> np.ndarray:
+    def run(
+        self,
+        cycles: int,
+        record: Sequence[str] = (),
+        out: Optional[np.ndarray] = None,
+        to: Union[str, Path, None] = None,
+        chunk: int = 1 << 16,
+    ) -> Optional[np.ndarray]:
         """Advances the chip by `cycles` cycles. With record, returns a structured
         array: row i holds the outputs as the i-th cycle left them, in a `cycle`
         column (chip time) and one field per requested FMU variable, of its width
@@ -1286,16 +1293,50 @@ class Chip:
         same `record`, or np.empty(cycles, dtype=its dtype)): a long recording that
         reuses its array spares the page faults of a fresh one (docs/performance.md,
         "Recording"). Its rows are overwritten whole; one of another type or length,
-        or read-only, raises ValueError before any cycle runs."""
+        or read-only, raises ValueError before any cycle runs.
+
+        to: a .npy file's path to write the rows to as they come, `chunk` rows at a time through one
+        array of chunk rows, so that memory stays that chunk whatever `cycles` (docs/performance.md,
+        "Recording to disk"); returns None, and np.load(to) (mmap_mode="r" for a long run) gives what
+        run(cycles, record) would have returned. The file appears whole when the run ends (it is
+        written beside it, "<to>.part", and renamed); a run that fails or is interrupted leaves none."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         if out is not None and not record:
             raise ValueError("run: out= needs record=: the array receives the recorded rows")
+        if to is not None and (out is not None or not record or chunk < 1):
+            raise ValueError("run: to= needs record=, no out=, and a chunk of at least 1 row")
         try:
+            if to is not None:
+                return self._run_to(cycles, list(record), Path(to), int(chunk))
             return self._run(cycles, record, out)
         finally:
             if cycles:  # the host clock moves up to the last cycle run
                 self._host_ns = max(self._host_ns, self._last_cycle_ns())
+
+    def _run_to(self, cycles: int, names: List[str], path: Path, chunk: int) -> None:
+        """run(to=path): the .npy header for `cycles` rows, then the rows a chunk at a time, recorded into one
+        array of `chunk` rows (the recorder's out=) and written from it."""
+        where, dtype = self._columns(names)
+        buffer = np.empty(min(chunk, max(cycles, 1)), dtype=dtype)
+        part = path.with_name(path.name + ".part")
+        header = {"descr": np.lib.format.dtype_to_descr(dtype), "fortran_order": False, "shape": (cycles,)}
+        try:
+            with open(part, "wb") as f:
+                try:
+                    np.lib.format.write_array_header_1_0(f, header)
+                except ValueError:  # a header of more than 64 KiB: many columns
+                    np.lib.format.write_array_header_2_0(f, header)
+                done = 0
+                while done < cycles:
+                    n = min(chunk, cycles - done)
+                    rows = self.recorder(self, names, where, dtype).run(n, buffer[:n])
+                    rows.tofile(f)
+                    done += n
+            os.replace(part, path)
+        except BaseException:
+            part.unlink(missing_ok=True)
+            raise
 
     def _run(self, cycles: int, record: Sequence[str], out: Optional[np.ndarray]) -> np.ndarray:
         if not record:
