@@ -83,3 +83,30 @@ def test_memory_stays_a_chunk_whatever_the_length(tmp_path):
     in_memory = np.load(tmp_path / "1000000.npy", mmap_mode="r").nbytes
     assert in_memory > 40 << 20
     assert long - short < 8 << 20, (short, long, in_memory)
+
+
+@pytest.mark.parametrize("source", ["two_axis.script", "square.csv"])
+def test_pmdfmu_run_out_writes_what_csv_writes(tmp_path, source):
+    from pmdfmu.cli import main
+
+    given = str(ROOT / "examples" / source)
+    assert main(["run", given, "--csv", str(tmp_path / "memory.npz")]) == 0
+    assert main(["run", given, "--out", str(tmp_path / "streamed.npz")]) == 0
+    assert main(["run", given, "--out", str(tmp_path / "streamed.npy")]) == 0
+    with np.load(tmp_path / "memory.npz") as memory, np.load(tmp_path / "streamed.npz") as streamed:
+        assert sorted(memory.keys()) == sorted(streamed.keys())
+        for key in memory.keys():
+            assert memory[key].dtype == streamed[key].dtype and np.array_equal(memory[key], streamed[key])
+        assert np.array_equal(np.load(tmp_path / "streamed.npy"), memory["recording"])
+
+
+def test_pmdfmu_run_out_writes_nothing_for_a_run_cut_short_but_a_window(tmp_path, capsys):
+    from pmdfmu.cli import main
+
+    script = str(SCRIPT)
+    assert main(["run", script, "--out", str(tmp_path / "cut.npy"), "--max-cycles", "100"]) == 1
+    assert "had not ended" in capsys.readouterr().err and not list(tmp_path.iterdir())
+    assert main(["run", script, "--out", str(tmp_path / "window.npz"), "--cycles", "100"]) == 0
+    assert main(["run", script, "--csv", str(tmp_path / "window-memory.npz"), "--cycles", "100"]) == 0
+    with np.load(tmp_path / "window.npz") as a, np.load(tmp_path / "window-memory.npz") as b:
+        assert np.array_equal(a["recording"], b["recording"]) and not a["ended"] and not b["ended"]

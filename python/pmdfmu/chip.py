@@ -1298,8 +1298,8 @@ class Chip:
         to: a .npy file's path to write the rows to as they come, `chunk` rows at a time through one
         array of chunk rows, so that memory stays that chunk whatever `cycles` (docs/performance.md,
         "Recording to disk"); returns None, and np.load(to) (mmap_mode="r" for a long run) gives what
-        run(cycles, record) would have returned. The file appears whole when the run ends (it is
-        written beside it, "<to>.part", and renamed); a run that fails or is interrupted leaves none."""
+        run(cycles, record) would have returned. The file appears whole when the run ends (written
+        beside it and renamed, files.replaced); a run that fails or is interrupted leaves none."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         if out is not None and not record:
@@ -1317,26 +1317,16 @@ class Chip:
     def _run_to(self, cycles: int, names: List[str], path: Path, chunk: int) -> None:
         """run(to=path): the .npy header for `cycles` rows, then the rows a chunk at a time, recorded into one
         array of `chunk` rows (the recorder's out=) and written from it."""
+        from .files import replaced
+
         where, dtype = self._columns(names)
         buffer = np.empty(min(chunk, max(cycles, 1)), dtype=dtype)
-        part = path.with_name(path.name + ".part")
-        header = {"descr": np.lib.format.dtype_to_descr(dtype), "fortran_order": False, "shape": (cycles,)}
-        try:
-            with open(part, "wb") as f:
-                try:
-                    np.lib.format.write_array_header_1_0(f, header)
-                except ValueError:  # a header of more than 64 KiB: many columns
-                    np.lib.format.write_array_header_2_0(f, header)
-                done = 0
-                while done < cycles:
-                    n = min(chunk, cycles - done)
-                    rows = self.recorder(self, names, where, dtype).run(n, buffer[:n])
-                    rows.tofile(f)
-                    done += n
-            os.replace(part, path)
-        except BaseException:
-            part.unlink(missing_ok=True)
-            raise
+        with replaced(path) as f:  # the file appears whole, or not at all
+            rows = recording.NpyFile(f, dtype, cycles)
+            while rows.count < cycles:
+                n = min(chunk, cycles - rows.count)
+                rows.write(self.recorder(self, names, where, dtype).run(n, buffer[:n]))
+            rows.close()
 
     def _run(self, cycles: int, record: Sequence[str], out: Optional[np.ndarray]) -> np.ndarray:
         if not record:
