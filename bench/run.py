@@ -39,6 +39,7 @@ HEAD = ("benchmark", "figure (best / median)", "baseline, same run (best / media
 
 def main(argv) -> int:
     topics = argv or TOPICS
+    print(f"machine {common.load()} at the start (os.getloadavg: 1, 5, 15 min); figures need an idle machine")
     with tempfile.TemporaryDirectory() as d:
         for topic in topics:
             tmp = Path(d) / topic
@@ -48,6 +49,7 @@ def main(argv) -> int:
             except Exception as e:  # one failing benchmark does not hide the others
                 traceback.print_exc()
                 common.rows.append((topic, f"failed: {e}", "", "", "", "NO"))
+    print(f"machine {common.load()} at the end")
     rows = [HEAD] + common.rows
     widths = [max(len(str(r[i])) for r in rows) for i in range(len(HEAD))]
     for r in rows:
