@@ -378,17 +378,20 @@ def _fast_source(command: Command) -> str:
     one 64-bit word as encode() packs them (the instruction word in the low 16 bits), one native call,
     the reply decoded from the result word as decode() reads it. Whatever it does not take goes to the
     slow path, which raises as Chip.command does."""
+    # the arguments by name (a missing one _MISSING), the rest caught for the slow path's messages: a call with
+    # positional arguments past the named ones gave them all positionally, else the named ones go by name
     names = [f.name for f in command.args]
+    given = "".join(f" or {n} is _MISSING" for n in names)
     lines = [
-        f"def {command.name}(self, *args, **keywords):",
+        f"def {command.name}(self{''.join(f', {n}=_MISSING' for n in names)}, *rest, **keywords):",
         "    chip = self.chip",
         "    port = chip._fast",
-        f"    if port is None or keywords or len(args) != {len(names)} or chip._recording:",
-        "        return _slow(self, *args, **keywords)",
+        f"    if port is None or rest or keywords or chip._recording{given}:",
+        f"        if rest:\n            return _slow_{command.name}(self, {''.join(f'{n}, ' for n in names)}*rest, **keywords)",
+        f"        named = {{{', '.join(f'{n!r}: {n}' for n in names)}}}",
+        f"        return _slow_{command.name}(self, **{{k: v for k, v in named.items() if v is not _MISSING}}, **keywords)",
+        f"    words = _INSTRUCTION_{command.name}[self.number]",
     ]
-    if names:
-        lines.append(f"    {', '.join(names)}, = args")
-    lines.append("    words = _INSTRUCTION[self.number]")
     for f in command.args:
         place = 16 * (1 + f.word)
         if f.kind == "bits":
@@ -402,7 +405,7 @@ def _fast_source(command: Command) -> str:
             pack = f"(({f.name} & 0xFFFF) << {place})"
         lines += [
             f"    if type({f.name}) is not int or not {lo} <= {f.name} <= {hi}:",
-            "        return _slow(self, *args)",
+            f"        return _slow_{command.name}(self, {', '.join(names)})",
             f"    words |= {pack}",
         ]
     expect = command.reply_words
@@ -410,12 +413,12 @@ def _fast_source(command: Command) -> str:
         "    logged = len(chip.messages)",
         f"    r = _COMMAND(port, {(1 + command.arg_words) | expect << 8}, words, words >> 32)",
         f"    if r >> 32 != {expect << 16}:",
-        "        return chip._fast_trouble(r, _COMMAND_OBJECT, logged)",
+        f"        return chip._fast_trouble(r, _COMMANDS[{command.name!r}], logged)",
     ]
     values = []
     for f in command.reply:
         if expect > 2:
-            values.append(f"_decode_one(_COMMAND_OBJECT.reply[{len(values)}], port.out)")
+            values.append(f"_decode_one(_COMMANDS[{command.name!r}].reply[{len(values)}], port.out)")
             continue
         if f.kind == "bits":
             word = "(r >> 16)" if f.word == 0 else "r"
@@ -434,8 +437,17 @@ def _fast_source(command: Command) -> str:
     return "\n".join(lines) + "\n"
 
 
+_MISSING = object()  # an Axis method's argument not given (_fast_source)
+
+
 def _decode_one(f: Field, words) -> int:
     return decode((f,), list(words))[0]
+
+
+# the generated Axis methods' globals, shared: each command's slow path and instruction words by name,
+# and _COMMAND, the native call, set when the first Chip makes its host port (Chip.__init__): importing
+# pmdfmu loads no library, and no method reaches _COMMAND before a Chip has a port (chip._fast)
+_FAST_GLOBALS: dict = {"_MISSING": _MISSING, "_decode_one": _decode_one, "_COMMANDS": COMMANDS, "_COMMAND": None}
 
 
 def _c_motion_method(command: Command):
@@ -445,15 +457,13 @@ def _c_motion_method(command: Command):
     parameters = [inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD) for f in command.args]
     public = inspect.Signature(parameters)
     signature = inspect.Signature([inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)] + parameters)
-    scope = {
-        "_slow": _slow_method(command, signature, public),
-        "_INSTRUCTION": tuple(instruction_word(command.opcode, 0 if command.scope == "chip" else a) for a in range(4)),
-        "_COMMAND": host_port.functions()[1],
-        "_COMMAND_OBJECT": command,
-        "_decode_one": _decode_one,
-    }
+    scope = _FAST_GLOBALS
+    scope[f"_slow_{command.name}"] = _slow_method(command, signature, public)
+    scope[f"_INSTRUCTION_{command.name}"] = tuple(
+        instruction_word(command.opcode, 0 if command.scope == "chip" else a) for a in range(4)
+    )
     exec(compile(_fast_source(command), f"<pmdfmu Axis.{command.name}>", "exec"), scope)
-    method = scope[command.name]
+    method = scope.pop(command.name)
 
     method.__name__ = command.name
     method.__qualname__ = f"Axis.{command.name}"
@@ -705,6 +715,7 @@ class Chip:
         self._grid = (c_double * 3)()
         self._memory_vrs: Dict[int, Array] = {}  # write_memory (FMI 2): value references per word count
         host_port.fill(self._port, self)
+        _FAST_GLOBALS["_COMMAND"] = host_port.functions()[1]
         if type(self)._step is Chip._step and type(self)._send is Chip._send:
             self._fast = byref(self._port)  # as the Axis methods pass it (host_port.h: no argtypes)
         # fmi3DoStep's outputs (_step): event handling needed, terminate, early return, last successful time
