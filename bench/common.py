@@ -59,3 +59,32 @@ def timed(f: Callable[[], object]) -> float:
 def report(name: str, figure: str, baseline: str, ratio: float, target: str, met: bool) -> None:
     """One row of the table; ratio from medians (figure / baseline unless the row says otherwise)."""
     rows.append((name, figure, baseline, f"{ratio:.2f}", target, "yes" if met else "NO"))
+
+
+@dataclass(frozen=True)
+class Spread:
+    """A time measured in interleaved runs (A B A B ...): least, median, greatest."""
+
+    min: float
+    median: float
+    max: float
+
+    def text(self, scale: float, unit: str, fmt: str = ".2f") -> str:
+        return f"{self.min * scale:{fmt}} / {self.median * scale:{fmt}} / {self.max * scale:{fmt}} {unit}"
+
+
+def interleave(contenders, runs: int = RUNS):
+    """Each contender (a callable returning a time in s) run `runs` times, taking turns A B A B ..., so that
+    the machine's load falls on all alike: {name: Spread}."""
+    times = {name: [] for name in contenders}
+    for _ in range(runs):
+        for name, f in contenders.items():
+            times[name].append(f())
+    return {n: Spread(min(t), statistics.median(t), max(t)) for n, t in times.items()}
+
+
+def load() -> str:
+    """The machine's load (os.getloadavg), printed beside the figures it affects."""
+    import os
+
+    return "load %.1f %.1f %.1f" % os.getloadavg()

@@ -22,12 +22,25 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import common  # noqa: E402  (this folder's modules import it by name)
 
-TOPICS = ["engine", "recording", "instances", "upload", "streaming", "sweep", "footprint", "serve", "model_description"]
+TOPICS = [
+    "engine",
+    "host_command",
+    "system",
+    "recording",
+    "instances",
+    "upload",
+    "streaming",
+    "sweep",
+    "footprint",
+    "serve",
+    "model_description",
+]
 HEAD = ("benchmark", "figure (best / median)", "baseline, same run (best / median)", "ratio", "target", "met")
 
 
 def main(argv) -> int:
     topics = argv or TOPICS
+    print(f"machine {common.load()} at the start (os.getloadavg: 1, 5, 15 min); figures need an idle machine")
     with tempfile.TemporaryDirectory() as d:
         for topic in topics:
             tmp = Path(d) / topic
@@ -37,6 +50,7 @@ def main(argv) -> int:
             except Exception as e:  # one failing benchmark does not hide the others
                 traceback.print_exc()
                 common.rows.append((topic, f"failed: {e}", "", "", "", "NO"))
+    print(f"machine {common.load()} at the end")
     rows = [HEAD] + common.rows
     widths = [max(len(str(r[i])) for r in rows) for i in range(len(HEAD))]
     for r in rows:

@@ -2,11 +2,11 @@
 #ifndef PMD_NATIVE_H
 #define PMD_NATIVE_H
 
-/* What the harness's native loops share (record_loop.h, memory_port.h, abi.h). */
+/* What the harness's native loops share (record_loop.h, memory_port.h, host_port.h, system.h, abi.h). */
 
 /* Raised whenever a function's signature changes: python/pmdfmu/native.py
  * refuses a library of another ABI (a stale build). */
-#define PMD_NATIVE_ABI 4
+#define PMD_NATIVE_ABI 6
 
 #if defined(_WIN32)
 #define PMD_NATIVE_EXPORT __declspec(dllexport)

@@ -32,6 +32,7 @@ from .chip import (
 )
 from .hosttime import HostInterface
 from .sweep import Case, SweepResult, read_cases, sweep
+from .system import System
 from .verify import VerifyResult, verify, verify_cases
 from .fixed import fixed_0_32, fixed_16_16, fixed_32_0, from_fixed, signed, to_fixed
 
@@ -42,6 +43,7 @@ __all__ = [
     "Chip",
     "Axis",
     "HostInterface",
+    "System",
     "PMDError",
     "FMUError",
     "FMURefusal",

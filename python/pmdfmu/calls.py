@@ -219,20 +219,113 @@ def _method_doc(command: Command) -> str:
     return "\n".join(lines)
 
 
-def _c_motion_method(command: Command):
-    """The Axis method of one command: a real function with the command's
-    signature, name and docstring (inspect, help(), dir() and tab completion
-    see it as written by hand)."""
-    parameters = [inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD) for f in command.args]
-    public = inspect.Signature(parameters)
-    signature = inspect.Signature([inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)] + parameters)
+def _slow_method(command: Command, signature: inspect.Signature, public: inspect.Signature):
+    """A call the native path leaves (keywords, a wrong number of arguments, an argument not a plain int
+    in range, a chip without it): Chip.command's checks, encoding and errors."""
 
-    def method(self, *args, **kwargs):
+    def slow(self, *args, **kwargs):
         try:
             bound = signature.bind(self, *args, **kwargs)
         except TypeError as e:
             raise TypeError(f"{command.name}{public}: {e}") from None
         return self.chip.command(self.number, command, bound.args[1:])
+
+    return slow
+
+
+def _fast_source(command: Command) -> str:
+    """The source of an Axis method's native path (host_port.py): the arguments checked and packed into
+    one 64-bit word as encode() packs them (the instruction word in the low 16 bits), one native call,
+    the reply decoded from the result word as decode() reads it. Whatever it does not take goes to the
+    slow path, which raises as Chip.command does."""
+    # the arguments by name (a missing one _MISSING), the rest caught for the slow path's messages: a call with
+    # positional arguments past the named ones gave them all positionally, else the named ones go by name
+    names = [f.name for f in command.args]
+    given = "".join(f" or {n} is _MISSING" for n in names)
+    lines = [
+        f"def {command.name}(self{''.join(f', {n}=_MISSING' for n in names)}, *rest, **keywords):",
+        "    chip = self.chip",
+        "    port = chip._fast",
+        f"    if port is None or rest or keywords or chip._recording{given}:",
+        f"        if rest:\n            return _slow_{command.name}(self, {''.join(f'{n}, ' for n in names)}*rest, **keywords)",
+        f"        named = {{{', '.join(f'{n!r}: {n}' for n in names)}}}",
+        f"        return _slow_{command.name}(self, **{{k: v for k, v in named.items() if v is not _MISSING}}, **keywords)",
+        f"    words = _INSTRUCTION_{command.name}[self.number]",
+    ]
+    for f in command.args:
+        place = 16 * (1 + f.word)
+        if f.kind == "bits":
+            lo, hi = 0, (1 << f.width) - 1
+            pack = f"{f.name} << {place + f.shift}"
+        elif f.width == 32:
+            lo, hi = -(1 << 31), (1 << 32) - 1
+            pack = f"((({f.name} & 0xFFFFFFFF) >> 16) << {place}) | (({f.name} & 0xFFFF) << {place + 16})"
+        else:
+            lo, hi = -(1 << (f.width - 1)), (1 << f.width) - 1
+            pack = f"(({f.name} & 0xFFFF) << {place})"
+        lines += [
+            f"    if type({f.name}) is not int or not {lo} <= {f.name} <= {hi}:",
+            f"        return _slow_{command.name}(self, {', '.join(names)})",
+            f"    words |= {pack}",
+        ]
+    expect = command.reply_words
+    lines += [
+        "    logged = len(chip.messages)",
+        f"    r = _COMMAND(port, {(1 + command.arg_words) | expect << 8}, words, words >> 32)",
+        f"    if r >> 32 != {expect << 16}:",
+        f"        return chip._fast_trouble(r, _COMMANDS[{command.name!r}], logged)",
+    ]
+    values = []
+    for f in command.reply:
+        if expect > 2:
+            values.append(f"_decode_one(_COMMANDS[{command.name!r}].reply[{len(values)}], port.out)")
+            continue
+        if f.kind == "bits":
+            word = "(r >> 16)" if f.word == 0 else "r"
+            values.append(f"(({word} >> {f.shift}) & {(1 << f.width) - 1})")
+            continue
+        v = "(r & 0xFFFFFFFF)" if f.width == 32 else "((r >> 16) & 0xFFFF)" if f.word == 0 else "(r & 0xFFFF)"
+        if f.signed:
+            v = f"(({v} ^ {1 << (f.width - 1)}) - {1 << (f.width - 1)})"
+        values.append(v)
+    if not values:
+        lines.append("    return None")
+    elif len(values) == 1:
+        lines.append(f"    return {values[0]}")
+    else:
+        lines.append(f"    return ({', '.join(values)})")
+    return "\n".join(lines) + "\n"
+
+
+_MISSING = object()  # an Axis method's argument not given (_fast_source)
+
+
+def _decode_one(f: Field, words) -> int:
+    return decode((f,), list(words))[0]
+
+
+# the generated Axis methods' globals, shared: each command's slow path and instruction words by name,
+# and _COMMAND, the native call, set when the first Chip makes its host port (Chip.__init__, chip.py):
+# importing pmdfmu loads no library, and no method reaches _COMMAND before a Chip has a port (chip._fast);
+# a chip over a line (line.py) has none
+_FAST_GLOBALS: dict = {"_MISSING": _MISSING, "_decode_one": _decode_one, "_COMMANDS": COMMANDS, "_COMMAND": None}
+
+
+def _c_motion_method(command: Command):
+    """The Axis method of one command: a real function with the command's
+    signature, name and docstring (inspect, help(), dir() and tab completion
+    see it as written by hand), through the native host port (_fast_source)
+    where the chip has one."""
+    parameters = [inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD) for f in command.args]
+    public = inspect.Signature(parameters)
+    signature = inspect.Signature([inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)] + parameters)
+    scope = _FAST_GLOBALS
+    scope[f"_slow_{command.name}"] = _slow_method(command, signature, public)
+    scope[f"_INSTRUCTION_{command.name}"] = tuple(
+        instruction_word(command.opcode, 0 if command.scope == "chip" else a) for a in range(4)
+    )
+    exec(compile(_fast_source(command), f"<pmdfmu Axis.{command.name}>", "exec"), scope)
+    method = scope.pop(command.name)
 
     method.__name__ = command.name
     method.__qualname__ = f"Axis.{command.name}"

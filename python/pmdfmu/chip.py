@@ -12,7 +12,7 @@ import re
 import shutil
 import tempfile
 import threading
-from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint16, c_uint32
+from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint32
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -31,7 +31,7 @@ from fmpy.fmi2 import (
 )
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3FMUState, fmi3True, fmi3ValueReference
 
-from . import hosttime, memory_port, progress, recording, tables
+from . import calls, host_port, hosttime, memory_port, native, progress, recording, tables
 
 # the calls' layer, re-exported here where users and docs have named it (pmdfmu.chip.COMMANDS ...)
 from .calls import (  # noqa: F401
@@ -350,6 +350,10 @@ class Chip:
     ):
         if fmi_version not in (2, 3):
             raise ValueError(f"fmi_version is 2 or 3, not {fmi_version}")
+        # the host port of the native commands (host_port.py): the FMU's functions once instantiated; _fast is
+        # it when the Axis methods may use it (an FMU that is open, a class whose _step is Chip's)
+        self._port = native.HostPort()
+        self._fast = None
         self.host_interface = hosttime.host_interface(host_interface)
         self._recording = False  # a recording run has turned record.enabled on (recording.close)
         self._host_ns = 0  # the host clock, whole ns since the chip's time 0
@@ -416,7 +420,10 @@ class Chip:
         self._grid_vrs = (c_uint32 * 3)(*[self._vr[n] for n in ("time", "nextCycleTime", "activeCycleTime")])
         self._grid = (c_double * 3)()
         self._memory_vrs: Dict[int, Array] = {}  # write_memory (FMI 2): value references per word count
-        self._host_port: Dict[int, tuple] = {}  # _send: value references and buffers per word count
+        host_port.fill(self._port, self)
+        calls._FAST_GLOBALS["_COMMAND"] = host_port.functions()[1]
+        if type(self)._step is Chip._step and type(self)._send is Chip._send:
+            self._fast = byref(self._port)  # as the Axis methods pass it (host_port.h: no argtypes)
         # fmi3DoStep's outputs (_step): event handling needed, terminate, early return, last successful time
         self._step_out = (byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Boolean()), byref(fmi3Float64()))
 
@@ -477,6 +484,8 @@ class Chip:
         self._initialize(parameters)
 
     def close(self) -> None:
+        self._fast = None
+        self._port.instance = None
         if self.fmu is not None:
             self.fmu.terminate()
             self.fmu.freeInstance()
@@ -691,73 +700,57 @@ class Chip:
         return self._send(words)
 
     def _send(self, words: List[int]) -> Tuple[int, List[int]]:
-        """One batch through the host port, executed now (checked words). A host
-        program sends thousands (a streamed profile polls a read index): the value
-        references and buffers of a batch of n words are made once, and each FMI
-        call takes them as they are (FMPy's checked calls, no list conversions)."""
-        n, fmu, c = len(words), self.fmu, self.fmu.component
-        port = self._host_port.get(n)
-        if port is None:
-            port = self._host_port[n] = self._host_port_arrays(n)
-        strobe_vr, strobe, set_vrs, values, get_vrs, out = port
-        if self.fmi_version == 2:
-            fmu.fmi2GetInteger(c, strobe_vr, 1, strobe)
-            new = (strobe[0] + 1) & 0x7FFFFFFF  # a new strobe value, whoever set the last one
-            values[n:] = [n, new]
-            values[:n] = words
-            fmu.fmi2SetInteger(c, set_vrs, n + 2, values)
-            fmu.fmi2GetInteger(c, get_vrs, 3 + BATCH_WORDS, out)
-            ack, error, count = out[0], out[1], out[2]
-            reply = out[3 : 3 + count]
-        else:
-            words16, counts, reply16 = values
-            fmu.fmi3GetInt32(c, strobe_vr, 1, strobe, 1)
-            new = (strobe[0] + 1) & 0x7FFFFFFF
-            words16[:n] = words
-            counts[:] = [n, new]
-            fmu.fmi3SetUInt16(c, set_vrs[0], 1, words16, BATCH_WORDS)  # the array is set whole
-            fmu.fmi3SetInt32(c, set_vrs[1], 2, counts, 2)
-            fmu.fmi3GetInt32(c, get_vrs[0], 2, out, 2)
-            fmu.fmi3GetUInt16(c, get_vrs[1], 2, reply16, 1 + BATCH_WORDS)  # host.error, then host.reply
-            ack, count, error = out[0], out[1], reply16[0]
-            reply = reply16[1 : 1 + count]
-        if ack != new:
-            raise FMUError(f"host.ack is {ack}, not the strobe {new}: the FMU did not execute the batch")
-        return error, reply
+        """One batch through the host port, executed now (checked words): the FMI calls of a get of
+        host.strobe, a set of the words, host.wordCount and a new strobe, and a get of the ack, error
+        and reply, in one native call (native/host_port.c; tests/stepwise.py send_stepwise is the
+        Python path it replaces)."""
+        port = self._port
+        port.in_[: len(words)] = words
+        logged = len(self.messages)
+        r = host_port.functions()[0](port, len(words), BATCH_WORDS)
+        if r & host_port.FAILED:
+            self._fast_trouble(r, None, logged)
+        return (r >> 32) & 0xFFFF, port.out[: (r >> 48) & 0xFF]
 
-    def _host_port_arrays(self, n: int) -> tuple:
-        """_send's value references and buffers for a batch of n words."""
-        vr = self._vr
-        if self.fmi_version == 2:
-            return (
-                (fmi2ValueReference * 1)(vr["host.strobe"]),
-                (c_int32 * 1)(),
-                (fmi2ValueReference * (n + 2))(
-                    *[vr[f"host.word[{i + 1}]"] for i in range(n)], vr["host.wordCount"], vr["host.strobe"]
-                ),
-                (c_int32 * (n + 2))(),
-                (fmi2ValueReference * (3 + BATCH_WORDS))(
-                    vr["host.ack"],
-                    vr["host.error"],
-                    vr["host.replyCount"],
-                    *[vr[f"host.reply[{i + 1}]"] for i in range(BATCH_WORDS)],
-                ),
-                (c_int32 * (3 + BATCH_WORDS))(),
+    def _fast_trouble(self, r: int, command: Optional[Command], logged: int):
+        """A native command's result word that is not the plain reply the caller expected: raises as the
+        Python path did (FMURefusal for a refused FMI call, FMUError for an unexecuted batch, PMDError
+        for host.error), else returns the reply decoded from all its words."""
+        port = self._port
+        if r & host_port.FAILED:
+            if port.stop.call == native.HOST_ACK:
+                raise FMUError(
+                    f"host.ack is {port.ack_word}, not the strobe {port.strobe_sent}: the FMU did not execute the batch"
+                )
+            raise FMURefusal(
+                host_port.CALLS[self.fmi_version][port.stop.call],
+                port.stop.status,
+                [m.message for m in self.messages[logged:] if m.status not in ("OK", "Pending")],
             )
-        return (
-            (fmi3ValueReference * 1)(vr["host.strobe"]),
-            (c_int32 * 1)(),
-            (
-                (fmi3ValueReference * 1)(vr["host.word"]),
-                (fmi3ValueReference * 2)(vr["host.wordCount"], vr["host.strobe"]),
-            ),
-            ((c_uint16 * BATCH_WORDS)(), (c_int32 * 2)(), (c_uint16 * (1 + BATCH_WORDS))()),
-            (
-                (fmi3ValueReference * 2)(vr["host.ack"], vr["host.replyCount"]),
-                (fmi3ValueReference * 2)(vr["host.error"], vr["host.reply"]),
-            ),
-            (c_int32 * 2)(),
-        )
+        error = (r >> 32) & 0xFFFF
+        if error:
+            raise PMDError(error, command.name)
+        values = decode(command.reply, port.out[: (r >> 48) & 0xFF])
+        return None if not values else values[0] if len(values) == 1 else tuple(values)
+
+    @property
+    def host_interface(self) -> HostInterface:
+        """The host interface (docs/host-time.md); assigning one takes effect from the next command."""
+        return self._host_interface
+
+    @host_interface.setter
+    def host_interface(self, value) -> None:
+        self._host_interface = hosttime.host_interface(value)
+        host_port.time_port(self._port, self._host_interface)
+
+    @property
+    def _host_ns(self) -> int:
+        """The host clock: its one copy is the native port's (host_port.py), which native commands move."""
+        return self._port.host_ns
+
+    @_host_ns.setter
+    def _host_ns(self, ns: int) -> None:
+        self._port.host_ns = ns
 
     @_refusals
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
@@ -965,10 +958,45 @@ class Chip:
             self._host_ns = max(self._host_ns, next_ns)
         return True
 
+    @_refusals
+    def wait_for(self, mask: int, axis: int = 0, timeout=None) -> Optional[int]:
+        """Polls GetEventStatus on `axis` until a bit of `mask` is set, as a C-Motion host loop does
+        (while not (status & mask): status = GetEventStatus), natively (host_port.c): each poll a
+        command with its host time, so a polled move costs about its chip cycles. With the host
+        interface none, commands take no chip time: one cycle runs after each unsatisfied poll (as
+        chip.run(1)). Returns the event status that had a bit of mask; None if `timeout` s (None: no
+        limit) of host time passed first. A refused poll raises PMDError."""
+        mask = integer(mask, "wait_for: mask")
+        if not 0 < mask <= 0xFFFF:
+            raise ValueError(f"wait_for: mask {mask} is not a 16-bit event mask")
+        axis = axis_number(axis)
+        limit = -1 if timeout is None else self._host_ns + round(Fraction(timeout) * hosttime.NS_PER_S)
+        if self._recording:
+            recording.close(self)
+        get = COMMANDS["GetEventStatus"]
+        logged = len(self.messages)
+        r = host_port.functions()[2](self._port, 1, instruction_word(get.opcode, axis), mask, limit)
+        if r & host_port.TIMEOUT and not r & host_port.FAILED:
+            return None
+        if r >> 32 != 1 << 16:
+            return self._fast_trouble(r, get, logged)
+        return (r >> 16) & 0xFFFF
+
+    def wait_for_motion_complete(self, axis: int = 0, timeout=None) -> Optional[int]:
+        """wait_for(PMDEventMotionCompleteMask, axis, timeout): polls until the axis's motion is complete."""
+        return self.wait_for(CONSTANTS["PMDEventMotionCompleteMask"], axis, timeout)
+
     # ---- time ----
 
     @_refusals
-    def run(self, cycles: int, record: Sequence[str] = (), out: Optional[np.ndarray] = None) -> np.ndarray:
+    def run(
+        self,
+        cycles: int,
+        record: Sequence[str] = (),
+        out: Optional[np.ndarray] = None,
+        to: Union[str, Path, None] = None,
+        chunk: int = 1 << 16,
+    ) -> Optional[np.ndarray]:
         """Advances the chip by `cycles` cycles. With record, returns a structured
         array: row i holds the outputs as the i-th cycle left them, in a `cycle`
         column (chip time) and one field per requested FMU variable, of its width
@@ -997,12 +1025,22 @@ class Chip:
 
         A run of 200 000 cycles or more shows a progress bar on standard error when it
         lasts over a second and standard error is a terminal (pmdfmu.progress.show:
-        always or never); it then runs in parts, which record the same rows."""
+        always or never); it then runs in parts, which record the same rows.
+
+        to: a .npy file's path to write the rows to as they come, `chunk` rows at a time through one
+        array of chunk rows, so that memory stays that chunk whatever `cycles` (docs/performance.md,
+        "Recording to disk"); returns None, and np.load(to) (mmap_mode="r" for a long run) gives what
+        run(cycles, record) would have returned. The file appears whole when the run ends (written
+        beside it and renamed, files.replaced); a run that fails or is interrupted leaves none."""
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         if out is not None and not record:
             raise ValueError("run: out= needs record=: the array receives the recorded rows")
+        if to is not None and (out is not None or not record or chunk < 1):
+            raise ValueError("run: to= needs record=, no out=, and a chunk of at least 1 row")
         try:
+            if to is not None:
+                return self._run_to(cycles, list(record), Path(to), int(chunk))
             if cycles >= progress.CHIP_RUN_CYCLES and progress.wanted():
                 return self._run_in_parts(cycles, record, out)
             return self._run(cycles, record, out)
@@ -1027,6 +1065,20 @@ class Chip:
                 done += n
                 bar.update(n)
         return out if record else np.zeros(0, dtype=[CYCLE])
+
+    def _run_to(self, cycles: int, names: List[str], path: Path, chunk: int) -> None:
+        """run(to=path): the .npy header for `cycles` rows, then the rows a chunk at a time, recorded into one
+        array of `chunk` rows (the recorder's out=) and written from it."""
+        from .files import replaced
+
+        where, dtype = self._columns(names)
+        buffer = np.empty(min(chunk, max(cycles, 1)), dtype=dtype)
+        with replaced(path) as f:  # the file appears whole, or not at all
+            rows = recording.NpyFile(f, dtype, cycles)
+            while rows.count < cycles:
+                n = min(chunk, cycles - rows.count)
+                rows.write(self.recorder(self, names, where, dtype).run(n, buffer[:n]))
+            rows.close()
 
     def _run(self, cycles: int, record: Sequence[str], out: Optional[np.ndarray]) -> np.ndarray:
         if not record:

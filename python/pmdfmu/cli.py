@@ -295,6 +295,9 @@ def cmd_run(args) -> int:
     machine = _machine_file(args.machine)
     limit = args.cycles or args.max_cycles
     table = profile.is_segment_table(path)
+    if args.out is not None:
+        _refuse_overwriting([("--out", args.out)], [path, fmu])
+        return _stream_run(args, path if table else _script_file(path), fmu, machine, limit)
     if table and machine is None:
         return _run_table(
             path,
@@ -356,6 +359,76 @@ def cmd_trace(args) -> int:
         write_recording(args.csv, trace.samples)
     if args.plot is not None:
         trace.plot(args.plot, title=f"pmdfmu trace {path}")
+    return 0
+
+
+class _NotEnded(Exception):
+    """A streamed run that --max-cycles cut short: its file is not written (_stream_run)."""
+
+
+def _stream_run(args, source, fmu: Optional[Path], machine: Optional[str], limit: int) -> int:
+    """`pmdfmu run --out FILE`: the rows written as they come (recording.NpyFile: memory holds a chunk,
+    whatever the run's length), a .npy, or a .npz as `--csv run.npz` writes it (the recording and
+    `ended`), copied from a .npy beside it a block at a time. Nothing is written when the profile had not
+    ended and no window was asked for (exit status 1), as for --csv."""
+    import io
+    import shutil
+    import tempfile
+
+    import numpy as np
+
+    from .recording import NpyFile
+    from .verify import NPZ_ENDED, NPZ_KEY
+
+    out = args.out
+    if args.csv is not None or args.plot is not None:
+        raise CommandLineError("--out writes the rows as they come; --csv and --plot need them in memory: give one")
+    if out.suffix.lower() not in (".npy", ".npz"):
+        raise CommandLineError(f"--out {out}: a .npy or .npz name")
+    window = bool(args.cycles)
+
+    def run_into(f):
+        sink = NpyFile(f, None, limit)
+        run = profile.run_profile(
+            source,
+            fmu,
+            args.fmi_version,
+            args.cycle_time,
+            args.upload,
+            limit,
+            parameters={"machine": machine} if machine is not None else None,
+            sink=sink,
+        )
+        for m in run.messages:
+            print(f"{m.status}: {m.message}", file=sys.stderr)
+        if not run.ended and not window:
+            rec = run.recording
+            end = int(rec["cycle"][-1]) if len(rec) else 0
+            raise _NotEnded(
+                f"the profile had not ended at cycle {end}: {sink.count} cycles recorded, the --max-cycles "
+                f"limit; nothing written: give a larger --max-cycles, or --cycles {sink.count} to record a window"
+            )
+        sink.close()
+        return run, sink.count
+
+    try:
+        if out.suffix.lower() == ".npy":
+            with files.replaced(out) as f:
+                run, count = run_into(f)
+        else:
+            with tempfile.TemporaryFile(dir=out.parent if out.parent.is_dir() else None) as rows:
+                run, count = run_into(rows)
+                rows.seek(0)
+                ended = io.BytesIO()
+                np.save(ended, np.array(bool(run.ended)))
+                with files.replaced(out) as f, zipfile.ZipFile(f, "w", zipfile.ZIP_DEFLATED, allowZip64=True) as z:
+                    with z.open(f"{NPZ_KEY}.npy", "w", force_zip64=True) as entry:
+                        shutil.copyfileobj(rows, entry, 1 << 20)
+                    z.writestr(f"{NPZ_ENDED}.npy", ended.getvalue())
+    except _NotEnded as e:
+        print(f"pmdfmu run: {e}", file=sys.stderr)
+        return 1
+    _say(f"wrote {out} ({count} cycles{'' if run.ended else ', a window: the profile goes on'})")
     return 0
 
 
@@ -842,6 +915,13 @@ def _parser() -> argparse.ArgumentParser:
                 "a .npz name writes compressed numpy)",
             )
             p.add_argument("--plot", type=_plot_path, help="write the plot here (PNG, or PDF, SVG ... by its suffix)")
+            if name == "run":
+                p.add_argument(
+                    "--out",
+                    type=Path,
+                    help="write the recorded outputs here as they come, in constant memory (.npy, or .npz as "
+                    "--csv writes it): for long runs",
+                )
             p.add_argument(
                 "--html",
                 type=_html_path,

@@ -74,6 +74,11 @@ class LineChip:
     """A chip over a serial line or TCP: Chip(device=...). address: its multi-drop address (the
     packets' first byte; 0 point-to-point)."""
 
+    # the Axis methods' native host port (calls.py _fast_source) is the FMU's: over a line they take the
+    # path through command()
+    _fast = None
+    _recording = False
+
     def __init__(self, device: str, address: int = 0, baud: int = 57600):
         self.device = device
         self.address = address

@@ -9,7 +9,7 @@ library's own layout of them (pmd_native_layout) is checked at load."""
 from __future__ import annotations
 
 import ctypes
-from ctypes import POINTER, Structure, c_int, c_size_t, c_uint32, c_void_p
+from ctypes import POINTER, Structure, c_double, c_int, c_int32, c_int64, c_size_t, c_uint16, c_uint32, c_void_p
 import os
 import sys
 from functools import lru_cache
@@ -17,7 +17,7 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
 REPO = PACKAGE.parent.parent
-ABI = 4  # native/native.h PMD_NATIVE_ABI
+ABI = 6  # native/native.h PMD_NATIVE_ABI
 NAME = {"win32": "pmdnative.dll", "darwin": "libpmdnative.dylib"}.get(sys.platform, "libpmdnative.so")
 BLOCK_WORDS = 64  # memory.data[64]: the words one strobe writes
 
@@ -26,6 +26,11 @@ DOUBLE, INT32, UINT32, UINT16, INT16, INT, BOOL = range(7)
 # memory_port.h's calls, record_loop.h's calls of pmd_record_step_lent, in their order
 MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET = range(3)
 STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN = range(4)
+HOST_WORDS = 64  # host.word[64], host.reply[64]
+# host_port.h's calls (PmdStop.call of a host command), in their order
+HOST_GET_STROBE, HOST_SET_WORDS, HOST_SET_INT, HOST_GET_ACK, HOST_GET_REPLY, HOST_GRID, HOST_DO_STEP, HOST_ACK = range(
+    8
+)
 LOOP_FIELD_SIZE = -2  # the call record_loop.h's loops name for a column of another size than 1, 2, 4, 8
 
 
@@ -66,10 +71,73 @@ class Port(Structure):
     ]
 
 
+class HostPort(Structure):
+    """host_port.h's PmdHostPort: a Chip's host port, its FMI functions and host time (host_port.py)."""
+
+    _fields_ = [
+        ("get_int", c_void_p),
+        ("set_int", c_void_p),
+        ("set_words", c_void_p),
+        ("get_words", c_void_p),
+        ("get_real", c_void_p),
+        ("do_step", c_void_p),
+        ("instance", c_void_p),
+        ("fmi3", c_int),
+        ("word", c_uint32 * HOST_WORDS),
+        ("reply", c_uint32 * HOST_WORDS),
+        ("word_count", c_uint32),
+        ("strobe", c_uint32),
+        ("ack", c_uint32),
+        ("error", c_uint32),
+        ("reply_count", c_uint32),
+        ("grid", c_uint32 * 3),
+        ("timed", c_int),
+        ("host_ns", c_int64),
+        ("request_ns", c_int64 * (HOST_WORDS + 1)),
+        ("reply_ns", c_int64 * (HOST_WORDS + 1)),
+        ("failed_ns", c_int64),
+        ("in_", c_uint16 * HOST_WORDS),
+        ("out", c_uint16 * HOST_WORDS),
+        ("count", c_int32),
+        ("error_word", c_int32),
+        ("ack_word", c_int32),
+        ("strobe_sent", c_int32),
+        ("stop", Stop),
+    ]
+
+
+class SystemValue(Structure):
+    """system.h's PmdSystemValue: a value between a get and its sets, both readings."""
+
+    _fields_ = [("integer", c_int64), ("real", c_double)]
+
+
+class SystemOp(Structure):
+    """system.h's PmdSystemOp: a get, a set or a doStep of a system's step."""
+
+    _fields_ = [
+        ("kind", c_int),
+        ("type", c_int),
+        ("fn", c_void_p),
+        ("instance", c_void_p),
+        ("vr", c_uint32),
+        ("value", c_size_t),
+    ]
+
+
+class SystemColumn(Structure):
+    """system.h's PmdSystemColumn: one field of a system's row."""
+
+    _fields_ = [("value", c_size_t), ("offset", c_size_t), ("size", c_size_t), ("real", c_int)]
+
+
+SYSTEM_GET, SYSTEM_SET, SYSTEM_STEP = range(3)
+
+
 def layout() -> list:
     """What pmd_native_layout returns for a library built with this harness: abi.c's order."""
     out = []
-    for struct in (Stop, Group, Column, Port):
+    for struct in (Stop, Group, Column, Port, HostPort, SystemValue, SystemOp, SystemColumn):
         out += [ctypes.sizeof(struct)] + [getattr(struct, name).offset for name, _type in struct._fields_]
     return (
         out
@@ -77,6 +145,9 @@ def layout() -> list:
         + [MEMORY_SET, MEMORY_SET_INT32, MEMORY_GET]
         + [STEP_LEND, STEP_DO_STEP, STEP_GET_DATA, STEP_END_LOAN]
         + [-LOOP_FIELD_SIZE]
+        + [HOST_GET_STROBE, HOST_SET_WORDS, HOST_SET_INT, HOST_GET_ACK, HOST_GET_REPLY, HOST_GRID, HOST_DO_STEP]
+        + [HOST_ACK, HOST_WORDS]
+        + [SYSTEM_GET, SYSTEM_SET, SYSTEM_STEP]
     )
 
 

@@ -238,6 +238,14 @@ def _names(axes: Iterable[int], record: Sequence[str]) -> List[str]:
     return names + [n for n in dict.fromkeys(record) if n not in names]
 
 
+def _halted(rows: np.ndarray, axes: Sequence[int]) -> np.ndarray:
+    """Per row: every axis's profile segment number is 0."""
+    done = np.ones(len(rows), dtype=bool)
+    for a in axes:
+        done &= field_ex(rows[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0
+    return done
+
+
 def run_until_halted(
     chip: Chip,
     axes: Sequence[int],
@@ -245,23 +253,33 @@ def run_until_halted(
     chunk: int = 1000,
     record: Sequence[str] = (),
     on_cycles: Optional[Callable[[int], object]] = None,
+    sink=None,
 ) -> np.ndarray:
     """Runs and records every cycle until every axis's profile segment number
     is 0 (seed 000, 1.6), or max_cycles. record: outputs recorded besides
     record_outputs(axes) (pmdfmu verify's event status); on_cycles(n): told of every n cycles run (a
-    progress bar's update)."""
+    progress bar's update). sink: a recording.NpyFile that takes the rows as they come, up to the first
+    halted cycle (what this returns otherwise); then only the last rows written are returned."""
     names = _names(axes, record)
     parts = []
-    total = 0
+    total, written = 0, False
     while total < max_cycles:
         part = chip.run(min(chunk, max_cycles - total), record=names)
-        parts.append(part)
         total += len(part)
+        if sink is None:
+            parts.append(part)
+        elif not written:  # the rows up to the first halted one, as the concatenation is cut below
+            done = _halted(part, axes)
+            written = bool(done.any())
+            parts = [part[: int(np.argmax(done)) + 1] if written else part]
+            sink.write(parts[0])
         if on_cycles is not None:
             on_cycles(len(part))
         last = part[-1]
         if all(field_ex(last[f"axis{a + 1}.activityStatus"], "PMDActivityProfileSegment") == 0 for a in axes):
             break
+    if sink is not None:
+        return parts[0]
     out = np.concatenate(parts)
     done = np.ones(len(out), dtype=bool)
     for a in axes:
@@ -284,18 +302,24 @@ def run_script(
     chunk: int = 1000,
     record: Sequence[str] = (),
     on_cycles: Optional[Callable[[int], object]] = None,
+    sink=None,
 ) -> np.ndarray:
     """Records a script's run (the chip was made with script=...): until the time
     of its last @ line has passed (script.lastCycle) and every axis is at rest, or
     max_cycles. axes: those to record, by default script_axes(chip); record:
-    outputs recorded besides record_outputs(axes)."""
+    outputs recorded besides record_outputs(axes); sink: a recording.NpyFile that takes the rows as they
+    come (then only the last rows are returned)."""
     axes = script_axes(chip) if axes is None else axes
     last = chip.get("script.lastCycle")
     names = _names(axes, record)
     parts, total = [], 0
     while total < max_cycles:
         part = chip.run(min(chunk, max_cycles - total), record=names)
-        parts.append(part)
+        if sink is None:
+            parts.append(part)
+        else:  # written as it comes: only the last part is kept (returned)
+            sink.write(part)
+            parts = [part]
         total += len(part)
         if on_cycles is not None:
             on_cycles(len(part))
@@ -314,6 +338,7 @@ def run_segment_table(
     max_cycles: int = 1_000_000,
     record: Sequence[str] = (),
     on_cycles: Optional[Callable[[int], object]] = None,
+    sink=None,
 ) -> np.ndarray:
     """The whole of seed 000 for a table: load, move each axis to its first
     position, start all axes together, run to completion. Returns the recorded
@@ -322,7 +347,7 @@ def run_segment_table(
     load_external_profile(chip, tables, upload=upload)
     move_to(chip, {a: tables[a][0][0] for a in axes}, velocity, acceleration)
     start_external_profile(chip, axes)
-    return run_until_halted(chip, axes, max_cycles=max_cycles, record=record, on_cycles=on_cycles)
+    return run_until_halted(chip, axes, max_cycles=max_cycles, record=record, on_cycles=on_cycles, sink=sink)
 
 
 def write_csv(path: Path, recorded: np.ndarray, comment: Optional[str] = None) -> None:
@@ -416,13 +441,15 @@ def run_profile(
     record: Sequence[str] = (),
     parameters: Optional[dict] = None,
     inspect: Optional[Callable[[Chip], None]] = None,
+    sink=None,
 ) -> ProfileRun:
     """Runs a script file, a segment table file (is_segment_table) or tables
     read already, as `pmdfmu run` does: a table on a chip with no script
     (run_segment_table), a script with script=... (run_script); the FMU's
     warnings are logged. parameters: further FMU parameters (memorySize, ...);
     inspect(chip) is called after the run, before the chip closes. The first n
-    rows of a run with max_cycles=n are those of any longer run."""
+    rows of a run with max_cycles=n are those of any longer run. sink: a recording.NpyFile taking the rows
+    as they come (`pmdfmu run --out`); the run's recording is then its last rows only."""
     params = dict(parameters or {})
     params.setdefault("cycleTime", cycle_time)
     path = Path(source) if isinstance(source, (str, Path)) else None
@@ -437,7 +464,7 @@ def run_profile(
             axes = sorted(tables)
             try:
                 rec = run_segment_table(
-                    chip, tables, upload=upload, max_cycles=max_cycles, record=record, on_cycles=bar.update
+                    chip, tables, upload=upload, max_cycles=max_cycles, record=record, on_cycles=bar.update, sink=sink
                 )
             except (PMDError, FMUError) as e:  # the chip refused the table's set-up (it does not fit, ...)
                 raise TableError(f"{path or 'segment tables'}: {e}") from None
@@ -448,7 +475,7 @@ def run_profile(
             ended = profile_ended(rec, axes)
         else:
             axes = script_axes(chip)
-            rec = run_script(chip, axes, max_cycles=max_cycles, record=record, on_cycles=bar.update)
+            rec = run_script(chip, axes, max_cycles=max_cycles, record=record, on_cycles=bar.update, sink=sink)
             ended = profile_ended(rec, axes, chip.get("script.lastCycle"))
         if inspect is not None:
             inspect(chip)

@@ -17,6 +17,7 @@ over FMPy passes (tests/stepwise.py, the reference)."""
 
 from __future__ import annotations
 
+import struct
 from ctypes import POINTER, byref, c_char, c_double, c_int, c_size_t, c_uint32, c_void_p
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -430,3 +431,46 @@ def close(chip, quiet: bool = False) -> None:
             break
     if interrupted is not None:
         raise interrupted
+
+
+class NpyFile:
+    """Rows written to an open binary file as a .npy array as they come (Chip.run(to=...), `pmdfmu run
+    --out`): a header for `room` rows first, the rows after it, then close() writes the header again for
+    the rows written (spaces pad it to its first length: the numpy format allows them), so that memory
+    holds one chunk of rows, never the run."""
+
+    def __init__(self, f, dtype: Optional[np.dtype], room: int):
+        """dtype None: the first rows' (the header is written with them)."""
+        self.f, self.dtype, self.room, self.count, self.length = f, dtype, room, 0, 0
+        if dtype is not None:
+            self._start(dtype)
+
+    def _start(self, dtype: np.dtype) -> None:
+        self.dtype = dtype
+        self.length = len(self._header(self.room))
+        self.f.write(self._header(self.room))
+
+    def _header(self, rows: int, length: int = 0) -> bytes:
+        text = "{'descr': %r, 'fortran_order': False, 'shape': (%d,), }" % (
+            np.lib.format.dtype_to_descr(self.dtype),
+            rows,
+        )
+        version, size = ((1, 0), "<H") if len(text) + 12 < 65535 else ((2, 0), "<I")
+        prefix = len(b"\x93NUMPY") + 2 + struct.calcsize(size)
+        total = length or -(-(prefix + len(text) + 1) // 64) * 64  # aligned to 64 bytes, as numpy's own
+        text = text + " " * (total - prefix - len(text) - 1) + "\n"
+        return b"\x93NUMPY" + bytes(version) + struct.pack(size, len(text)) + text.encode("latin1")
+
+    def write(self, rows: np.ndarray) -> None:
+        if self.dtype is None:
+            self._start(rows.dtype)
+        rows.tofile(self.f)
+        self.count += len(rows)
+
+    def close(self) -> None:
+        """The header says how many rows were written."""
+        if self.dtype is None:
+            self._start(np.dtype([("cycle", np.uint32)]))
+        self.f.seek(0)
+        self.f.write(self._header(self.count, self.length))
+        self.f.seek(0, 2)
