@@ -14,7 +14,7 @@ import numpy as np
 
 from . import extras, files
 from .fixed import signed
-from .chip import CONSTANTS
+from .calls import CONSTANTS
 
 # Trace variable IDs (reference 2.6, fmu_src/chip/trace.c's trace_value): the column's name (per axis,
 # `axisN.` before it, except the chip-wide ones), the raw unit, and the factor and unit a plot shows.
