@@ -15,7 +15,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from . import extras, files
-from .chip import CONSTANTS, FIELDS
+from .calls import CONSTANTS, FIELDS
 from .units import UNITS, unit
 
 # points per drawn line: a long run shows as its min and max per bucket (every peak, every step)
