@@ -21,26 +21,11 @@ from cmotion_build import HOST_C, ROOT, compile_program, generate
 
 sys.path.insert(0, str(ROOT / "modelDescription"))
 from generating import harness_tables  # noqa: E402
+from generate_cmotion import VENDOR_HEADERS  # noqa: E402  (every vendor header name the generator writes)
 
-pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
+pytestmark = [pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler"), pytest.mark.slow]  # compiles programs
 
 PROGRAMS = ("cmotion5_host", "cmotion5_engine", "cmotion2_host", "cmotion5_machine")
-VENDOR_HEADERS = (
-    "c-motion.h",
-    "C-Motion.h",
-    "PMDtypes.h",
-    "PMDocode.h",
-    "PMDecode.h",
-    "PMDdevice.h",
-    "PMDperiph.h",
-    "PMDdiag.h",
-    "PMDsys.h",
-    "PMDutil.h",
-    "PMDRPtypes.h",
-    "PMDser.h",
-    "PMDpar.h",
-    "PMDW32Ser.h",
-)
 
 
 @pytest.fixture(scope="module")
