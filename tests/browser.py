@@ -70,6 +70,8 @@ def open_page(path: Path, screenshot: Path, timeout: float = 60) -> Page:
         ],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
+        # ./dev sanitize preloads ASan's runtimes for Python: not for the browser, which they keep from starting
+        env={k: v for k, v in os.environ.items() if k != "LD_PRELOAD"},
     )
     try:
         port_file, end = Path(profile) / "DevToolsActivePort", time.monotonic() + timeout
