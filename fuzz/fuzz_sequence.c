@@ -1386,14 +1386,30 @@ static void op_script(Fuzz *f, Reader *r)
 }
 
 /* The plant's inputs: an encoder position, or a limit or home switch. */
+/* Whether the machine drives this input of the axis every cycle: then setting it is refused. */
+static int driven(Fuzz *f, unsigned axis, unsigned signal)
+{
+    const PmdMachine *machine = instance(f)->chip.machine;
+    return machine && (machine->axis[axis].signals & signal);
+}
+
 static void op_input(Fuzz *f, Reader *r)
 {
     unsigned axis = below(r, PMD_AXES), kind = below(r, 4);
     switch (kind) {
     case 0: CALL(f, MUST_SUCCEED, set_int(f, VR.actualPosition + 100 * axis, I32(f, r))); break;
-    case 1: CALL(f, MUST_SUCCEED, set_bool(f, VR.positiveLimit + 100 * axis, byte(r) & 1)); break;
-    case 2: CALL(f, MUST_SUCCEED, set_bool(f, VR.negativeLimit + 100 * axis, byte(r) & 1)); break;
-    default: CALL(f, MUST_SUCCEED, set_bool(f, VR.home + 100 * axis, byte(r) & 1)); break;
+    case 1:
+        CALL(f, driven(f, axis, PMD_MACHINE_POSITIVE_LIMIT) ? MUST_FAIL : MUST_SUCCEED,
+             set_bool(f, VR.positiveLimit + 100 * axis, byte(r) & 1));
+        break;
+    case 2:
+        CALL(f, driven(f, axis, PMD_MACHINE_NEGATIVE_LIMIT) ? MUST_FAIL : MUST_SUCCEED,
+             set_bool(f, VR.negativeLimit + 100 * axis, byte(r) & 1));
+        break;
+    default:
+        CALL(f, driven(f, axis, PMD_MACHINE_HOME) ? MUST_FAIL : MUST_SUCCEED,
+             set_bool(f, VR.home + 100 * axis, byte(r) & 1));
+        break;
     }
 }
 

@@ -1072,6 +1072,17 @@ def regressions():
             .step(10)
             .record_data()
         )
+    # 14. (found by this fuzzer) Under a machine with a home switch and limits on axis 1, setting axis1.home
+    #    or a limit is refused (the machine drives them every cycle); axis 2's, which it leaves alone, is set.
+    out["machine-driven-inputs-are-refused"] = (
+        Seq()
+        .machine([{"home": (100, 100), "positive_limit": 5000, "negative_limit": -5000}])
+        .input(0, "home", True)
+        .input(0, "positiveLimit", True)
+        .input(0, "negativeLimit", True)
+        .input(1, "home", True)
+        .step(10)
+    )
     return out
 
 
