@@ -35,13 +35,13 @@ def long_table(path, cycles):
     return path
 
 
-def on_a_terminal(argv, cwd, interrupt_after=None):
+def on_a_terminal(argv, cwd, interrupt_after=None, driver=DRIVER):
     """Runs pmdfmu with standard error on a pty: (exit status, what the terminal showed, seconds from the
     SIGINT to the exit)."""
     master, slave = pty.openpty()
     fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))  # a terminal 100 columns wide
     child = subprocess.Popen(
-        [sys.executable, "-c", DRIVER, *map(str, argv)], cwd=cwd, stdout=subprocess.PIPE, stderr=slave
+        [sys.executable, "-c", driver, *map(str, argv)], cwd=cwd, stdout=subprocess.PIPE, stderr=slave
     )
     os.close(slave)
     shown, sent, end = b"", None, time.monotonic() + 120
@@ -64,10 +64,13 @@ def on_a_terminal(argv, cwd, interrupt_after=None):
 
 
 def test_a_long_run_shows_a_bar_on_a_terminal_and_none_with_quiet(tmp_path):
-    table = long_table(tmp_path / "long.csv", 10_000_000)  # about 2 s, 0.5 GB of recording
-    status, shown, _ = on_a_terminal(["run", table, "--max-cycles", "20000000"], tmp_path)
+    # the bar's delay (a second: no bar for short work) made short, so that the run is long enough on any
+    # machine: a quiet one recorded the former 10^7 cycles in under the second
+    driver = "import pmdfmu.progress as p; p.DELAY = 0.01; " + DRIVER
+    table = long_table(tmp_path / "long.csv", 2_000_000)
+    status, shown, _ = on_a_terminal(["run", table, "--max-cycles", "4000000"], tmp_path, driver=driver)
     assert status == 0 and "cycles/s" in shown and "run long.csv" in shown
-    status, shown, _ = on_a_terminal(["-q", "run", table, "--max-cycles", "20000000"], tmp_path)
+    status, shown, _ = on_a_terminal(["-q", "run", table, "--max-cycles", "4000000"], tmp_path, driver=driver)
     assert status == 0 and "cycles/s" not in shown
 
 
