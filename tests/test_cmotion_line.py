@@ -11,6 +11,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import pmdfmu
@@ -20,9 +21,25 @@ pytestmark = pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 
 PMDFMU = Path(sys.executable).parent / "pmdfmu"
 # the programs that open a serial port (so in-process they time their commands as a serial line)
-# and use commands only: the seed's programs read FMU variables through the library
-# (PMDFMU_GetInteger, a cycle callback), which only the twin in-process has
+# and use commands only
 PROGRAMS = ("cmotion5_host",)
+STAGE = ROOT / "examples" / "machine" / "stage.toml"
+# every program of the in-process tests (test_cmotion.py, test_cmotion_programs.py) with its arguments and
+# machine: over the line with the twin's monitor (PMDFMU_MONITOR) for what a chip has no packet for
+MONITORED = [
+    ("seed_1_1", ()),
+    ("seed_1_2", ()),
+    *[("seed_1_3", (mode,)) for mode in ("writebuffer", "dpram", "refill")],
+    *[("seed_1_4", (mode,)) for mode in ("update", "multiupdate")],
+    *[("seed_1_5", (mode,)) for mode in ("single", "multi")],
+    *[("seed_1_6", mode) for mode in ((), ("poll",), ("meant",), ("meant", "poll"))],
+    ("cmotion_example", ()),
+    ("cmotion5_host", ()),
+    ("cmotion5_engine", ()),
+    ("cmotion2_host", ()),
+    ("cmotion5_machine", (), STAGE),
+]
+CYCLE_LINE = re.compile(r"C \d")  # seed_support.h's line after every cycle, from the cycle callback
 
 
 @pytest.fixture(scope="module")
@@ -42,9 +59,11 @@ def run(exe, device=None):
 
 
 def serve(*args):
+    """The server started, its first line (the endpoint); p.monitor: --monitor's HOST:PORT if asked."""
     p = subprocess.Popen([str(PMDFMU), "serve", *map(str, args)], stdout=subprocess.PIPE, text=True)
     first = p.stdout.readline()
-    p.stdout.readline()
+    second = p.stdout.readline()
+    p.monitor = second.split(";")[0].split()[-1] if second.startswith("monitor") else None
     return p, first
 
 
@@ -113,3 +132,60 @@ def test_a_5x_program_addresses_each_chip_of_a_multi_drop_line(tmp_path):
         assert p.wait(timeout=60) == 0
     assert code == 0, err
     assert out.splitlines() == ["chip 0: 0x0 1000", "chip 1: 0x0 2000"]
+
+
+@pytest.fixture(scope="module")
+def monitored(tmp_path_factory):
+    out = tmp_path_factory.mktemp("cmotion-monitored")
+    generated = generate(out / "generated")
+    names = {m[0] for m in MONITORED}
+    return {
+        n: compile_program(
+            ROOT / ("examples" if n == "cmotion_example" else "tests") / "c" / f"{n}.c", out / n, generated
+        )
+        for n in names
+    }
+
+
+@pytest.mark.slow  # compiles and runs fourteen programs twice
+@pytest.mark.parametrize("run_", MONITORED, ids=lambda m: "-".join((m[0], *m[1])))
+def test_every_in_process_program_runs_over_the_line_with_the_monitor_as_in_process(monitored, tmp_path, run_):
+    """PMDFMU_MONITOR names `pmdfmu serve --monitor`: the program's cycles run (PMDFMU_RunCycles), sleeps
+    (PMDTaskWait) pass chip time, PMDFMU_GetHostTime is the line's clock, the dual-port upload and FMU
+    variables reach the chip; timed as a serial line in-process too (PMDFMU_HOST_INTERFACE=serial, whatever
+    the program opens), it prints the same lines. The cycle callback's lines come from the server's
+    recording instead: the same chip times and commanded values, cycle by cycle."""
+    name, args, *machine = run_
+    env = dict(os.environ, PMDFMU_FMU=str(pmdfmu.default_fmu(2)), PMDFMU_HOST_INTERFACE="serial")
+    for v in ("PMDFMU_DEVICE", "PMDFMU_MONITOR", "PMDFMU_MACHINE"):
+        env.pop(v, None)
+    if machine:
+        env["PMDFMU_MACHINE"] = str(machine[0])
+    exe = [str(monitored[name]), *args]
+    here = subprocess.run(exe, capture_output=True, text=True, timeout=300, env=env)
+    assert here.returncode == 0, here.stderr
+    printed = here.stdout.splitlines()
+    cycles = [[int(x) for x in c.split()[1:]] for c in printed if CYCLE_LINE.match(c)]
+    # the cycles compared where they are few enough: the server records a part after every packet, and 1.3's
+    # refill (80 000 WriteBuffer packets, 1.7 million cycles) would take a minute
+    record = tmp_path / "line.csv" if 0 < len(cycles) <= 200_000 else None
+    p, first = serve(
+        "--serial",
+        tmp_path / "pmd",
+        "--monitor",
+        "127.0.0.1:0",
+        *(["--record", record] if record else []),
+        *(["--machine", machine[0]] if machine else []),
+    )
+    try:
+        env.update(PMDFMU_DEVICE=f"serial:{tmp_path / 'pmd'}", PMDFMU_MONITOR="tcp:" + p.monitor)
+        line = subprocess.run(exe, capture_output=True, text=True, timeout=300, env=env)
+    finally:
+        p.send_signal(signal.SIGINT)
+        assert p.wait(timeout=60) == 0
+    assert line.returncode == 0, line.stderr
+    assert line.stdout.splitlines() == [c for c in printed if not CYCLE_LINE.match(c)]
+    if record:  # chip time, then each axis's commanded position, velocity, acceleration
+        rows = np.loadtxt(record, delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
+        expected = [[c[0], *[c[1 + 5 * a + q] for a in range(4) for q in range(3)]] for c in cycles]
+        assert rows.tolist() == expected

@@ -134,6 +134,17 @@ static PMDresult open_twin_at(PMDAxisHandle *handle, PMDAxis axis, const char *h
         return PMDFMU_SetupAxisInterface_LineAt(handle, axis, device, baud ? baud : 57600, address, &options);
 #ifdef PMD_HAVE_HOSTTIME
     if (!options.hostInterface) {
+        /* PMDFMU_HOST_INTERFACE: every opening's commands timed as that kind (a program opening a parallel
+           bus compared with its run over a serial line); else the link the opening names */
+        const char *kind = getenv("PMDFMU_HOST_INTERFACE");
+        if (kind && *kind) {
+            if (PMDHostInterfaceKind(kind) < 0) {
+                transport_line(&options, "PMDFMU_HOST_INTERFACE=%s: not a kind of host interface "
+                               "(docs/host-time.md lists the kinds)", kind);
+                return PMD_ERR_OpeningPort;
+            }
+            host = kind;
+        }
         interface = PMDHostInterfaceOf(PMDHostInterfaceKind(host));
         if (baud)
             interface.baud = baud;

@@ -35,6 +35,8 @@
 /* The longest message the FMU formats (fmu_src/fmi/instance.c: a refused script names the places
    it was looked for) */
 #define PMD_FMU_MESSAGE 8192
+/* the longest reply of the twin's monitor taken (a value, or its reason: PMDline.c's MONITOR_REPLY) */
+#define MONITOR_VALUE 2048
 
 extern char **environ;     /* unzip's environment: the caller's */
 
@@ -678,14 +680,28 @@ static void sleep_ns(uint64_t ns)
         ;
 }
 
-/* What only the twin in-process has (its FMU's variables, cycles, the dual-port memory) */
+/* What only the twin has (its FMU's variables, cycles, the dual-port memory): over a line without
+   the twin's monitor (PMDFMU_MONITOR) the chip takes commands only */
 static PMDresult not_over_a_line(PMDFMUDevice *d, const char *what)
 {
     char text[256];
-    snprintf(text, sizeof text, "%s needs the twin in-process: over PMDFMU_DEVICE's line the chip takes "
-             "commands only", what);
+    snprintf(text, sizeof text, "%s needs the twin in-process, or its monitor (PMDFMU_MONITOR): over "
+             "PMDFMU_DEVICE's line the chip takes commands only", what);
     log_text(d, text);
     return PMD_ERR_NotSupported;
+}
+
+/* One request to the twin's monitor (PMDline.h); a refusal's reason goes to the transport's log. */
+static PMDresult monitor(PMDFMUDevice *d, const char *request, char *value, size_t size)
+{
+    char text[2300];
+    PMDresult r = PMDLineMonitor(d->line, request, value, size);
+    if (r != PMD_ERR_OK) {
+        snprintf(text, sizeof text, "PMDFMU_MONITOR: %.40s: %s", request,
+                 r == PMD_ERR_Driver ? value : "the monitor went or answered no line");
+        log_text(d, text);
+    }
+    return r;
 }
 
 PMDresult PMDFMU_SetupAxisInterface_Line(PMDAxisHandle *axis_handle, PMDAxis axisNumber, const char *device,
@@ -719,6 +735,20 @@ PMDresult PMDFMU_SetupAxisInterface_LineAt(PMDAxisHandle *axis_handle, PMDAxis a
         free(d);
         return r;
     }
+    {
+        const char *watch = getenv("PMDFMU_MONITOR");      /* pmdfmu serve --monitor's endpoint */
+        if (watch && *watch && (r = PMDLineMonitorOpen(d->line, watch, why, sizeof why)) != PMD_ERR_OK) {
+            char text[600];
+            snprintf(text, sizeof text, "PMDFMU_MONITOR=%s: %s", watch, why);
+            log_text(d, text);
+            PMDLineClose(d->line);
+            free(d);
+            return r;
+        }
+    }
+    if (d->options.cycle)
+        log_text(d, "the options' cycle callback is not called over a line: the chip's cycles run in the "
+                    "server (pmdfmu serve --record records them)");
     d->openedNs = monotonic_ns();
     d->handles = 1;
     d->opener = pthread_self();
@@ -807,17 +837,36 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
     if (!transport || !*transport)
         return PMD_ERR_InterfaceNotInitialized;
     d = *transport;
-    if (d->line)
+    if (d->line && !PMDLineHasMonitor(d->line))
         return not_over_a_line(d, "the dual-port memory");
-    if (d->getInteger(d->instance, &sizeVr, 1, &size) > fmi2Warning)
+    if (d->line) {
+        PMDint32 words;
+        PMDresult r = PMDFMU_GetInteger(&d->self, "memorySize", &words);
+        if (r != PMD_ERR_OK)
+            return r;
+        size = (fmi2Integer)words;
+    } else if (d->getInteger(d->instance, &sizeVr, 1, &size) > fmi2Warning) {
         return fmi_failed(d, PMD_ERR_Driver, "fmi2GetInteger of memorySize");
+    }
     if (offset > (PMDuint32)size || count > (PMDuint32)size - offset || (count && !data))
         return PMD_ERR_InvalidAddress;
     /* a PMDuint32 is a long here (the vendor's type): a word wider than 32 bits is refused, none written */
     for (done = 0; done < count; done++)
         if (!PMDFMU_FitsU32((unsigned long long)data[done]))
             return PMD_ERR_ParameterOutOfRange;
-    for (done = 0; done < count;) {
+    for (done = 0; d->line && done < count;) {     /* over the monitor: a write request per block */
+        char request[32 + 11 * PMD_FMU_MEMORY_WORDS], value[MONITOR_VALUE];
+        PMDuint32 i, n = count - done < PMD_FMU_MEMORY_WORDS ? count - done : PMD_FMU_MEMORY_WORDS;
+        size_t at = (size_t)snprintf(request, sizeof request, "write %lu", (unsigned long)(offset + done));
+        PMDresult r;
+        for (i = 0; i < n; i++)
+            at += (size_t)snprintf(request + at, sizeof request - at, " %lu",
+                                   (unsigned long)(PMDuint32)PMDFMU_Int32(data[done + i]));
+        if ((r = monitor(d, request, value, sizeof value)) != PMD_ERR_OK)
+            return r;
+        done += n;
+    }
+    for (done = 0; !d->line && done < count;) {
         PMDuint32 i, n = count - done < PMD_FMU_MEMORY_WORDS ? count - done : PMD_FMU_MEMORY_WORDS;
         for (i = 0; i < n; i++) {
             vrs[i] = PMD_FMU_VR_MEMORY_DATA + i;
@@ -837,14 +886,24 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
 
 /* ---- time ---- */
 
+/* The host's sleep over a line: the line's time passes in the server (its monitor's wait); without a
+   monitor, or under --realtime (its monitor refuses), the host's own clock, the chip keeping its time. */
+static void line_wait(PMDFMUDevice *d, uint64_t ns)
+{
+    char request[40], value[MONITOR_VALUE];
+    snprintf(request, sizeof request, "wait %llu", (unsigned long long)ns);
+    if (!PMDLineHasMonitor(d->line) || PMDLineMonitor(d->line, request, value, sizeof value) != PMD_ERR_OK)
+        sleep_ns(ns);
+}
+
 PMDresult PMDFMU_Wait(PMDAxisInterface axis_intf, PMDuint32 microseconds)
 {
     PMDFMUDevice *d;
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
-    if (d->line) {      /* the host's own sleep: a chip over a line keeps its own time */
-        sleep_ns((uint64_t)microseconds * 1000u);
+    if (d->line) {
+        line_wait(d, (uint64_t)microseconds * 1000u);
         return PMD_ERR_OK;
     }
     d->hostNs += (uint64_t)microseconds * 1000u;
@@ -870,8 +929,8 @@ void PMDTaskWait(PMDuint32 milliseconds)
     d = opened_here(open_devices);
     pthread_mutex_unlock(&open_devices_lock);
     while (d) {
-        if (d->line && !slept) {       /* chips over a line keep their own time: the host sleeps once */
-            sleep_ns((uint64_t)milliseconds * 1000000u);
+        if (d->line && !slept) {       /* the chips on a line share its time: the host sleeps once */
+            line_wait(d, (uint64_t)milliseconds * 1000000u);
             slept = 1;
         } else if (!d->line) {
             d->hostNs += (uint64_t)milliseconds * 1000000u;
@@ -891,6 +950,11 @@ PMDresult PMDFMU_RunCycles(PMDAxisInterface axis_intf, PMDuint32 cycles)
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
+    if (d->line && PMDLineHasMonitor(d->line)) {
+        char request[32], value[MONITOR_VALUE];
+        snprintf(request, sizeof request, "run %lu", (unsigned long)cycles);
+        return monitor(d, request, value, sizeof value);
+    }
     if (d->line)
         return not_over_a_line(d, "PMDFMU_RunCycles");
     for (i = 0; i < cycles; i += d->options.cycle ? 1 : cycles) {
@@ -911,8 +975,13 @@ PMDresult PMDFMU_GetHostTime(PMDAxisInterface axis_intf, uint64_t *nanoseconds)
 {
     PMDFMUDevice *d;
     PMDresult r = device_of(axis_intf, &d);
-    if (r == PMD_ERR_OK && nanoseconds)
+    if (r == PMD_ERR_OK && d->line && PMDLineHasMonitor(d->line)) {     /* the line's clock */
+        char value[MONITOR_VALUE];
+        if ((r = monitor(d, "time", value, sizeof value)) == PMD_ERR_OK && nanoseconds)
+            *nanoseconds = strtoull(value, NULL, 10);
+    } else if (r == PMD_ERR_OK && nanoseconds) {
         *nanoseconds = d->line ? monotonic_ns() - d->openedNs : d->hostNs;
+    }
     return r;
 }
 
@@ -933,10 +1002,17 @@ PMDresult PMDFMU_GetInteger(PMDAxisInterface axis_intf, const char *name, PMDint
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
-    if (d->line)
+    if (d->line && !PMDLineHasMonitor(d->line))
         return not_over_a_line(d, "PMDFMU_GetInteger");
     if (!v || (v->type != 'I' && v->type != 'B'))
         return PMD_ERR_InvalidAddress;
+    if (d->line) {
+        char request[96], text[MONITOR_VALUE];
+        snprintf(request, sizeof request, "get %s", v->name);
+        if ((r = monitor(d, request, text, sizeof text)) == PMD_ERR_OK && value)
+            *value = (PMDint32)strtol(text, NULL, 10);
+        return r;
+    }
     if (v->type == 'B') {
         fmi2Boolean b;
         if (!d->getBoolean || d->getBoolean(d->instance, &v->vr, 1, &b) > fmi2Warning)
@@ -958,10 +1034,17 @@ PMDresult PMDFMU_GetReal(PMDAxisInterface axis_intf, const char *name, double *v
     PMDresult r = device_of(axis_intf, &d);
     if (r != PMD_ERR_OK)
         return r;
-    if (d->line)
+    if (d->line && !PMDLineHasMonitor(d->line))
         return not_over_a_line(d, "PMDFMU_GetReal");
     if (!v || v->type != 'R')
         return PMD_ERR_InvalidAddress;
+    if (d->line) {
+        char request[96], text[MONITOR_VALUE];
+        snprintf(request, sizeof request, "get %s", v->name);
+        if ((r = monitor(d, request, text, sizeof text)) == PMD_ERR_OK && value)
+            *value = strtod(text, NULL);
+        return r;
+    }
     if (d->getReal(d->instance, &v->vr, 1, &x) > fmi2Warning)
         return fmi_failed(d, PMD_ERR_Driver, "fmi2GetReal");
     if (value)

@@ -25,8 +25,12 @@
 #define RESYNC_WAIT_MS 50
 #define RESYNC_TRIES 8
 
+/* The longest monitor reply read (a value, or a reason) */
+#define MONITOR_REPLY 2048
+
 struct PMDLine {
     int fd;
+    int monitor;        /* the twin's monitor's socket, or -1 */
     uint8_t address;
 };
 
@@ -127,6 +131,7 @@ PMDresult PMDLineOpen(PMDLine **line, const char *device, PMDuint32 baud, unsign
         return PMD_ERR_OpeningPort;
     }
     (*line)->fd = fd;
+    (*line)->monitor = -1;
     (*line)->address = (uint8_t)address;
     return PMD_ERR_OK;
 }
@@ -135,6 +140,8 @@ void PMDLineClose(PMDLine *line)
 {
     if (line) {
         close(line->fd);
+        if (line->monitor >= 0)
+            close(line->monitor);
         free(line);
     }
 }
@@ -179,6 +186,63 @@ static size_t read_some(int fd, uint8_t *data, size_t n, int timeout_ms)
         got += (size_t)r;
     }
     return got;
+}
+
+int PMDLineHasMonitor(const PMDLine *line)
+{
+    return line && line->monitor >= 0;
+}
+
+PMDresult PMDLineMonitorOpen(PMDLine *line, const char *monitor, char *why, size_t size)
+{
+    char request[32], value[MONITOR_REPLY];
+    PMDresult r;
+    if (strncmp(monitor, "tcp:", 4) != 0) {
+        snprintf(why, size, "expected tcp:HOST:PORT");
+        return PMD_ERR_OpeningPort;
+    }
+    line->monitor = open_tcp(monitor + 4, why, size);
+    if (line->monitor < 0)
+        return PMD_ERR_OpeningPort;
+    snprintf(request, sizeof request, "chip %u", (unsigned)line->address);
+    r = PMDLineMonitor(line, request, value, sizeof value);
+    if (r != PMD_ERR_OK) {
+        snprintf(why, size, "%s: %s", request, r == PMD_ERR_Driver ? value : "no answer");
+        close(line->monitor);
+        line->monitor = -1;
+        return PMD_ERR_OpeningPort;
+    }
+    return PMD_ERR_OK;
+}
+
+PMDresult PMDLineMonitor(PMDLine *line, const char *request, char *value, size_t size)
+{
+    char in[MONITOR_REPLY];
+    size_t got = 0;
+    const char *text;
+    if (write_all(line->monitor, (const uint8_t *)request, strlen(request)) != 0 ||
+        write_all(line->monitor, (const uint8_t *)"\n", 1) != 0)
+        return PMD_ERR_NotResponding;
+    /* the reply's line: as long as the request takes (a run of many cycles), until the server goes */
+    while (got < sizeof in - 1 && (got == 0 || in[got - 1] != '\n')) {
+        ssize_t r = read(line->monitor, in + got, 1);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            return PMD_ERR_NotResponding;
+        got++;
+    }
+    if (got == 0 || in[got - 1] != '\n')
+        return PMD_ERR_NotResponding;
+    in[got - 1] = '\0';
+    if (strcmp(in, "ok") == 0 || strncmp(in, "ok ", 3) == 0)
+        text = in[2] ? in + 3 : "";
+    else if (strncmp(in, "error ", 6) == 0)
+        text = in + 6;
+    else
+        return PMD_ERR_NotResponding;
+    snprintf(value, size, "%s", text);
+    return in[0] == 'o' ? PMD_ERR_OK : PMD_ERR_Driver;
 }
 
 static void drain(int fd)

@@ -19,6 +19,19 @@ PMDresult PMDLineOpen(PMDLine **line, const char *device, PMDuint32 baud, unsign
 PMDresult PMDLineCommand(PMDLine *line, PMDuint16 instruction, const PMDuint16 *args, int nargs, PMDuint16 *reply,
                          int nreply);
 
+/* The twin's monitor beside the line (`pmdfmu serve --monitor HOST:PORT`, PMDFMU_MONITOR=tcp:HOST:PORT;
+   docs/device.md): what a chip has no packet for (cycles run, host time, FMU variables, the dual-port
+   memory), one text request a line. Open connects and selects the line's chip (its address). */
+PMDresult PMDLineMonitorOpen(PMDLine *line, const char *monitor, char *why, size_t size);
+
+/* Whether the line has a monitor. */
+int PMDLineHasMonitor(const PMDLine *line);
+
+/* One request (without its line feed): PMD_ERR_OK with the value after "ok " in value (empty if none);
+   PMD_ERR_Driver with the server's reason in value for an "error" reply; PMD_ERR_NotResponding if
+   the monitor went or answered no line. */
+PMDresult PMDLineMonitor(PMDLine *line, const char *request, char *value, size_t size);
+
 void PMDLineClose(PMDLine *line);
 
 #endif

@@ -667,6 +667,7 @@ def cmd_serve(args) -> int:
         reset_on_connect=args.reset_on_connect,
         record=args.record,
         log=args.log,
+        monitor=args.monitor,
         **parameters,
     )
 
@@ -1087,6 +1088,12 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--reset-on-connect", action="store_true", help="a new client gets chips as after power-up")
     p.add_argument("--record", type=Path, help="write the chips' cycles here when the server stops (CSV or .npz)")
     p.add_argument("--log", type=Path, help="write every packet in and out, with chip time, here")
+    p.add_argument(
+        "--monitor",
+        type=_tcp_endpoint,
+        metavar="HOST:PORT",
+        help="also listen here for the twin's monitor: cycles, host time, FMU variables, dual-port memory",
+    )
     p.set_defaults(func=cmd_serve)
 
     for name, func, help_ in (

@@ -6,7 +6,12 @@ A Line holds the chips on one serial line (--chips N: multi-drop addresses 0..N-
 clock. Time is virtual by default: each packet costs its transfer time at the line's baud (the host
 timing model, hosttime.py, through each chip's host_interface "serial"), so a host polling over the
 line sees the chip times it would see in-process with Chip(host_interface="serial"). --realtime
-paces the chips to the wall clock as well."""
+paces the chips to the wall clock as well.
+
+A Monitor (--monitor HOST:PORT, as QEMU's monitor beside its serial port) takes what a real chip has
+no packet for: cycles run, host time passing, the FMU's variables read, the dual-port memory written,
+so that a program written for the twin in-process (the C library's PMDFMU_RunCycles, PMDFMU_Wait,
+PMDFMU_GetInteger, PMDWriteDPRAM with PMDFMU_MONITOR set) runs over the line unchanged."""
 
 from __future__ import annotations
 
@@ -26,12 +31,15 @@ import numpy as np
 
 from . import hosttime
 from . import serial_protocol as sp
-from .chip import Chip
+from .chip import Chip, FMUError
 from .recording import RECORDED
 
 # how often an idle server looks at the wall clock (--realtime) and for a pty's next client, s
 IDLE_TICK = 0.005
 RECONNECT_POLL = 0.02
+# a monitor request's longest line (a write of ~6000 words), and the cycles a run goes between looks at Ctrl-C
+MONITOR_LINE = 1 << 16
+MONITOR_RUN_PART = 100_000
 
 
 class ServedChip(Chip):
@@ -122,6 +130,17 @@ class Line:
             c.start(address, record)
         self.line_ns, self.t0 = 0, time.monotonic_ns()
 
+    def catch_up(self, chip: ServedChip) -> None:
+        """The chip runs the cycles the line's time (its other traffic, a monitor's wait) has reached."""
+        if chip.host_time_ns < self.line_ns:
+            chip.wait_ns(self.line_ns - chip.host_time_ns)
+
+    def wait_ns(self, ns: int) -> None:
+        """Host time passes on the line without traffic (a monitor's wait: the host's sleep)."""
+        self.line_ns += ns
+        for c in self.chips:
+            self.catch_up(c)
+
     def packet(self, p: sp.Packet) -> bytes:
         self.packets += 1
         self.tick()
@@ -133,8 +152,7 @@ class Line:
             self._line(f"{self.line_ns} ns: in {p.data.hex(' ')}: no chip at address {p.address}")
             return b""
         for c in targets:
-            if c.host_time_ns < self.line_ns:  # the line's time its other traffic took
-                c.wait_ns(self.line_ns - c.host_time_ns)
+            self.catch_up(c)
             address = c.mode.reply_address()
             if not p.checksum_ok:  # received whole, answered with the checksum error, not executed
                 c.wait_ns(c.host_interface.request_ns(words))
@@ -231,12 +249,26 @@ class PtyEndpoint:
         os.close(self.master)
 
 
-def _serve_pty(end: PtyEndpoint, line: Line, stop: _Stop, reset_on_connect: bool) -> None:
+def _monitor_ready(monitor: Optional[Monitor], readable: list) -> list:
+    """The monitor's readable sockets served; the rest of readable."""
+    if monitor is None:
+        return readable
+    for sock in [r for r in readable if r in monitor.sockets()]:
+        monitor.ready(sock)
+    return [r for r in readable if r not in monitor.sockets()]
+
+
+def _serve_pty(end: PtyEndpoint, line: Line, stop: _Stop, reset_on_connect: bool, monitor: Optional[Monitor]) -> None:
     while not stop.signal:
-        readable, _, _ = select.select([end.master, stop.r], [], [], IDLE_TICK if line.realtime else None)
+        waiting = [end.master, stop.r, *(monitor.sockets() if monitor else [])]
+        readable, _, _ = select.select(waiting, [], [], IDLE_TICK if line.realtime else None)
         if stop.r in readable:
             os.read(stop.r, 64)
             continue
+        rest = _monitor_ready(monitor, readable)
+        if readable and not rest:
+            continue  # the monitor's turn only
+        readable = rest
         if end.master not in readable:
             line.tick()
             continue
@@ -285,15 +317,132 @@ class TcpEndpoint:
         self.listener.close()
 
 
-def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool) -> None:
+class Monitor:
+    """The twin's monitor: one request a line, one reply a line, `ok [VALUE]` or `error REASON`
+    (docs/device.md, "The monitor"). Requests go to the selected chip (`chip K`, K its multi-drop
+    address; 0 at first), each client its own; several clients may be connected.
+
+        chip K              select chip K
+        run N               the chip runs N cycles; the line's clock moves up to its last cycle
+        wait NS             the line's clock moves on NS ns; every chip runs the cycles due
+        time                the line's clock, ns (the host time PMDFMU_GetHostTime gives in-process)
+        get NAME            an FMU variable of the chip (PMDFMU_GetInteger, PMDFMU_GetReal)
+        write ADDRESS W...  32-bit words into the chip's dual-port memory (PMDWriteDPRAM)
+
+    Under --realtime the chips follow the wall clock: run and wait are refused."""
+
+    def __init__(self, host: str, port: int, line: Line, stop: "_Stop"):
+        self.endpoint = TcpEndpoint(host, port)
+        self.line = line
+        self.stop = stop
+        self.clients: dict = {}  # socket -> [bytes received, selected chip]
+
+    def describe(self) -> str:
+        return "monitor " + self.endpoint.describe()
+
+    def sockets(self) -> list:
+        return [self.endpoint.listener, *self.clients]
+
+    def ready(self, sock) -> None:
+        """A readable socket of the monitor's: a new client, or a client's bytes (or its going)."""
+        if sock is self.endpoint.listener:
+            client, _peer = sock.accept()
+            client.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            self.clients[client] = [b"", 0]
+            return
+        state = self.clients[sock]
+        try:
+            data = sock.recv(65536)
+        except OSError:
+            data = b""
+        if not data:
+            self._drop(sock)
+            return
+        state[0] += data
+        while b"\n" in state[0]:
+            request, state[0] = state[0].split(b"\n", 1)
+            if not _write_all(sock.fileno(), (self.answer(request, state) + "\n").encode()):
+                self._drop(sock)
+                return
+        if len(state[0]) > MONITOR_LINE:  # no line feed in sight: refused, its bytes dropped
+            state[0] = b""
+            if not _write_all(sock.fileno(), f"error a request longer than {MONITOR_LINE} bytes\n".encode()):
+                self._drop(sock)
+
+    def _drop(self, sock) -> None:
+        del self.clients[sock]
+        sock.close()
+
+    def close(self) -> None:
+        for sock in list(self.clients):
+            self._drop(sock)
+        self.endpoint.close()
+
+    def answer(self, request: bytes, state: list) -> str:
+        text = request.decode("ascii", "replace").strip()
+        try:
+            reply = self._do(text.split(), state)
+        except (ValueError, KeyError, OverflowError, FMUError) as e:  # a bad request, or the FMU's refusal: one line
+            reply = "error " + " ".join(str(e).split())[:1000]
+        self.line._line(f"{self.line.line_ns} ns: monitor {text!r} -> {reply}")
+        return reply
+
+    def _do(self, words: List[str], state: list) -> str:
+        if not words:
+            raise ValueError("an empty request (chip, run, wait, time, get, write)")
+        verb, args = words[0], words[1:]
+        chips = self.line.chips
+        if verb == "chip" and len(args) == 1:
+            k = _count(args[0], "chip")
+            if k >= len(chips):
+                raise ValueError(f"chip {k}: the line has chips 0..{len(chips) - 1}")
+            state[1] = k
+            return "ok"
+        if verb == "time" and not args:
+            return f"ok {self.line.line_ns}"
+        chip = chips[state[1]]
+        if verb in ("run", "wait") and len(args) == 1:
+            n = _count(args[0], verb)
+            if self.line.realtime:
+                raise ValueError(f"{verb}: under --realtime the chips follow the wall clock")
+            if verb == "wait":
+                self.line.wait_ns(n)
+                return "ok"
+            self.line.catch_up(chip)
+            while n and not self.stop.signal:  # a long run still stops within a moment of Ctrl-C
+                part = min(n, MONITOR_RUN_PART)
+                chip.run(part)
+                n -= part
+            self.line.line_ns = max(self.line.line_ns, chip.host_time_ns)
+            return "ok" if not n else f"error stopped with {n} cycles not run: the server is stopping"
+        if verb == "get" and len(args) == 1:
+            return f"ok {chip.get(args[0])!r}".replace("True", "1").replace("False", "0")
+        if verb == "write" and len(args) >= 2:
+            chip.write_memory(_count(args[0], "write: address"), [int(w, 0) for w in args[1:]])
+            return "ok"
+        raise ValueError(
+            f"{' '.join(words)[:80]!r}: not a request (chip K, run N, wait NS, time, get NAME, write ADDRESS WORD...)"
+        )
+
+
+def _count(text: str, what: str) -> int:
+    """A whole number >= 0 of a monitor request."""
+    if not text.isdigit():
+        raise ValueError(f"{what} {text[:40]!r}: expected a whole number >= 0")
+    return int(text)
+
+
+def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool, monitor: Optional[Monitor]) -> None:
     client: Optional[socket.socket] = None
     try:
         while not stop.signal:
-            waiting = [stop.r, client if client else end.listener]
+            waiting = [stop.r, client if client else end.listener, *(monitor.sockets() if monitor else [])]
             readable, _, _ = select.select(waiting, [], [], IDLE_TICK if line.realtime else None)
             if stop.r in readable:
                 os.read(stop.r, 64)
                 continue
+            if readable and not _monitor_ready(monitor, readable):
+                continue  # the monitor's turn only
             if not readable:
                 line.tick()
                 continue
@@ -332,6 +481,7 @@ def serve(
     reset_on_connect: bool = False,
     record: Optional[Path] = None,
     log: Optional[Path] = None,
+    monitor: Optional[tuple] = None,
     out: IO[str] = sys.stdout,
     **parameters,
 ) -> int:
@@ -340,7 +490,7 @@ def serve(
     from .verify import write_recording
 
     served: List[ServedChip] = []
-    end = None
+    end = watcher = None
     log_file = open(log, "w") if log else None
     stop = _Stop()
     try:
@@ -351,6 +501,7 @@ def serve(
             c.start(k if chips > 1 else None, record is not None)
         end = PtyEndpoint(serial) if serial is not None else TcpEndpoint(*tcp)
         line = Line(served, realtime, log_file)
+        watcher = Monitor(*monitor, line, stop) if monitor is not None else None
         m = served[0].mode
         time_text = (
             "real time: chip cycles paced to the wall clock"
@@ -359,8 +510,8 @@ def serve(
         )
         drop = f", multi-drop addresses 0..{chips - 1}" if chips > 1 else ""
         print(f"pmdfmu serve: {end.describe()}, {chips} chip{'s' if chips > 1 else ''}{drop}, {time_text}", file=out)
-        print("Ctrl-C or SIGTERM stops it", file=out, flush=True)
-        (_serve_pty if serial is not None else _serve_tcp)(end, line, stop, reset_on_connect)
+        print(f"{watcher.describe()}; " if watcher else "", "Ctrl-C or SIGTERM stops it", sep="", file=out, flush=True)
+        (_serve_pty if serial is not None else _serve_tcp)(end, line, stop, reset_on_connect, watcher)
         print(f"pmdfmu serve: stopped after {line.packets} packets", file=out, flush=True)
         if record is not None:
             for k, c in enumerate(served):
@@ -372,6 +523,8 @@ def serve(
         stop.close()
         if end is not None:
             end.close()
+        if watcher is not None:
+            watcher.close()
         if log_file:
             log_file.close()
         for c in served:
