@@ -11,6 +11,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import pmdfmu
@@ -32,7 +33,7 @@ class Server:
         )
         self.first = self.process.stdout.readline()
         assert self.first.startswith("pmdfmu serve: "), self.first + self.process.stderr.read()
-        self.process.stdout.readline()  # how to stop it
+        self.second = self.process.stdout.readline()  # the monitor's endpoint (--monitor), how to stop it
 
     @property
     def tcp(self):
@@ -286,3 +287,123 @@ def test_bad_command_lines_exit_2_with_one_line(tmp_path, args, reason):
     assert len(out.stderr.splitlines()) == 1 and out.stderr.startswith("pmdfmu serve")
     assert reason in out.stderr
     assert os.path.exists(existing)
+
+
+# ---- the twin's monitor (--monitor) ----
+
+
+def monitor_of(server):
+    """--monitor's HOST:PORT, from the server's second line."""
+    return server.second.split(";")[0].split()[-1]
+
+
+def ask(sock, request: bytes) -> str:
+    sock.sendall(request + b"\n")
+    reply = b""
+    while not reply.endswith(b"\n"):
+        chunk = sock.recv(4096)
+        assert chunk, "the monitor closed the connection"
+        reply += chunk
+    return reply.decode().rstrip("\n")
+
+
+def test_the_monitor_gives_a_line_chip_what_the_twin_in_process_gives(tmp_path):
+    """Chip(device=..., monitor=...): commands over the line, cycles, waits, FMU variables, the dual-port
+    memory and the host clock through the monitor; every value equals the twin in-process timed as a
+    serial line, and the server's recording has every cycle."""
+    link, record = tmp_path / "pmd", tmp_path / "rec.csv"
+
+    def session(chip):
+        ax = chip.axis(pmdfmu.PMDAxis1)
+        ax.SetProfileMode(pmdfmu.PMDTrapezoidal)
+        ax.SetPosition(3000)
+        ax.SetVelocity(0x40000)
+        ax.SetAcceleration(0x1000)
+        ax.Update()
+        chip.run(150)
+        seen = [chip.cycles, chip.host_time_ns, chip.get("axis1.commandedPosition"), chip.get("axis1.position")]
+        chip.wait(0.0123)
+        chip.write_memory(0x300, [7, -1, 0xFFFFFFFF])
+        ax.SetBufferStart(0, 0x300)
+        ax.SetBufferLength(0, 3)
+        seen += [chip.cycles, chip.host_time_ns, ax.ReadBuffer(0), ax.ReadBuffer(0), ax.GetPosition()]
+        seen += [chip.get("host.interrupt"), chip.get("cycleTime"), ax.GetTime()]
+        return seen + [chip.cycles]
+
+    with pmdfmu.Chip(host_interface="serial") as twin:
+        expected = session(twin)
+    with Server("--serial", link, "--monitor", "127.0.0.1:0", "--record", record) as s:
+        assert s.second.startswith("monitor tcp 127.0.0.1:")
+        with pmdfmu.Chip(device=f"serial:{link}", monitor="tcp:" + monitor_of(s)) as chip:
+            assert session(chip) == expected
+            with pytest.raises(pmdfmu.line.MonitorRefusal, match="'nope' is not a variable of the FMU"):
+                chip.get("nope")
+            with pytest.raises(NeedsFMU, match="pmdfmu serve --record"):
+                chip.run(5, record=["axis1.commandedPosition"])
+            with pytest.raises(NeedsFMU, match="needs the twin in-process"):
+                chip.set("axis1.home", True)
+        assert s.stop()[0] == 0
+    rows = np.loadtxt(record, delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
+    assert rows[:, 0].tolist() == list(range(len(rows))) and len(rows) == expected[-1]
+
+
+def test_the_monitor_answers_every_request_with_one_line_and_refuses_bad_ones(tmp_path):
+    """Bad requests get `error REASON` and change nothing; a line too long is refused; `chip K` selects
+    a chip of a multi-drop line; a client killed mid-request leaves the server answering the next."""
+    with Server("--tcp", "127.0.0.1:0", "--chips", "2", "--monitor", "127.0.0.1:0") as s:
+        host, _, port = monitor_of(s).rpartition(":")
+        with socket.create_connection((host, int(port))) as m:
+            for request, reply in [
+                (b"", "error an empty request"),
+                (b"fly 3", "error 'fly 3': not a request"),
+                (b"run -5", "error run '-5': expected a whole number >= 0"),
+                (b"run 1 2", "error 'run 1 2': not a request"),
+                (b"chip 2", "error chip 2: the line has chips 0..1"),
+                (b"get axis1.nope", "error get: 'axis1.nope' is not a variable of the FMU"),
+                (b"write 16384 1", "error write_memory: 1 words at address 16384 leave the 16384-word memory"),
+                (b"write 0 4294967296", "error write_memory:"),
+                (b"\xff\xfe run", "error"),
+                (b"time", "ok 0"),
+                (b"get nextCycle", "ok 0"),
+                (b"chip 1", "ok"),
+                (b"run 10", "ok"),
+                (b"get nextCycle", "ok 10"),
+                (b"time", "ok 900000"),
+                (b"chip 0", "ok"),
+                (b"get nextCycle", "ok 0"),  # its cycles run when the line's traffic or a wait reaches it
+                (b"wait 1000000", "ok"),
+                (b"get nextCycle", "ok 20"),
+            ]:
+                assert ask(m, request).startswith(reply), request
+            assert ask(m, b"write 0 " + b"1 " * 40_000).startswith("error a request longer than 65536 bytes")
+            assert ask(m, b"time") == "ok 1900000"
+        killed = subprocess.run(
+            [
+                sys.executable,
+                "-c",
+                "import os, socket; c = socket.create_connection(('%s', %s)); c.sendall(b'run 10'); "
+                "os.kill(os.getpid(), 9)" % (host, port),
+            ]
+        )
+        assert killed.returncode == -9
+        with socket.create_connection((host, int(port))) as m:
+            assert ask(m, b"time") == "ok 1900000"  # the cut request never ran
+        assert s.stop()[0] == 0
+
+
+def test_under_realtime_the_monitor_refuses_to_run_or_wait_and_ctrl_c_ends_a_long_run(tmp_path):
+    with Server("--tcp", "127.0.0.1:0", "--realtime", "--monitor", "127.0.0.1:0") as s:
+        host, _, port = monitor_of(s).rpartition(":")
+        with socket.create_connection((host, int(port))) as m:
+            assert ask(m, b"run 10") == "error run: under --realtime the chips follow the wall clock"
+            assert ask(m, b"wait 10") == "error wait: under --realtime the chips follow the wall clock"
+            assert ask(m, b"get chipTime").startswith("ok ")
+        assert s.stop()[0] == 0
+    with Server("--tcp", "127.0.0.1:0", "--monitor", "127.0.0.1:0") as s:
+        host, _, port = monitor_of(s).rpartition(":")
+        with socket.create_connection((host, int(port))) as m:
+            m.sendall(b"run 1000000000\n")  # hours of cycles: Ctrl-C ends it within a moment
+            time.sleep(1)
+            start = time.monotonic()
+            code, _out, err = s.stop()
+            assert code == 0 and not err and time.monotonic() - start < 20

@@ -323,8 +323,9 @@ class Chip:
 
     device="serial:PATH" or "tcp:HOST:PORT" (keywords address=, baud=) returns a chip reached
     over its serial packet protocol instead (pmdfmu serve's twin or a real chip: line.LineChip,
-    docs/device.md): the same Axis methods, and batch and command; the calls that need the FMU
-    in-process (run, get, set, write_memory, wait, FMU states) raise line.NeedsFMU."""
+    docs/device.md): the same Axis methods, and batch and command; monitor="tcp:HOST:PORT" (pmdfmu
+    serve --monitor's) adds run, get, write_memory, wait and the host clock; the calls that need the
+    FMU in-process (recording, set, FMU states; without a monitor those too) raise line.NeedsFMU."""
 
     def __new__(cls, *args, device: Optional[str] = None, **kwargs):
         # device="serial:PATH" or "tcp:HOST:PORT": the chip over its serial packets (line.py), commands only

@@ -3,8 +3,10 @@
 protocol (serial_protocol.py) -- `pmdfmu serve`'s twin or a real chip -- with the same Axis methods
 as the twin in-process (docs/device.md).
 
-Only commands cross a serial line. What needs the FMU itself (run and its recording, FMU variables,
-the dual-port memory, host time, FMU states) raises NeedsFMU, naming the call."""
+Only commands cross a serial line. With the twin's monitor beside it (`pmdfmu serve --monitor`,
+Chip(device=..., monitor="tcp:HOST:PORT")) run, get, write_memory, wait and the host clock reach the
+twin too. What needs the FMU itself (recording, setting FMU variables, FMU states; without a monitor
+also the calls above) raises NeedsFMU, naming the call."""
 
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ import socket
 import termios
 import time
 import tty
+from fractions import Fraction
 from typing import List, Optional, Sequence, Tuple, Union
 
 from . import serial_protocol as sp
@@ -39,25 +42,19 @@ RESYNC_TRIES = 8
 RESYNC_WAIT = 0.05
 # the chip's calls that need the FMU in-process
 IN_PROCESS_ONLY = (
-    "run",
-    "get",
     "set",
-    "write_memory",
-    "wait",
-    "wait_ns",
     "wait_for_interrupt",
     "get_state",
     "set_state",
     "reinitialize",
-    "cycles",
     "time",
     "cycle_time",
-    "host_time_ns",
-    "host_time",
     "messages",
     "variables",
     "model_description",
 )
+# and those the twin's monitor answers over a line (monitor=)
+MONITORED = ("run", "get", "write_memory", "wait", "wait_ns", "cycles", "host_time_ns", "host_time")
 # the termios speeds of the Navigator's baud rates that a tty has
 _SPEEDS = {b: getattr(termios, f"B{b}") for b in sp.BAUD_RATES.values() if hasattr(termios, f"B{b}")}
 
@@ -67,7 +64,12 @@ class NeedsFMU(AttributeError):
 
 
 class LineError(OSError):
-    """The line gave no well-formed reply, even after resynchronising."""
+    """The line gave no well-formed reply, even after resynchronising (or the monitor went)."""
+
+
+class MonitorRefusal(ValueError):
+    """The twin's monitor refused a request: its reason (a variable it does not have, a write leaving the
+    memory, a run under --realtime)."""
 
 
 class LineChip:
@@ -79,9 +81,10 @@ class LineChip:
     _fast = None
     _recording = False
 
-    def __init__(self, device: str, address: int = 0, baud: int = 57600):
+    def __init__(self, device: str, address: int = 0, baud: int = 57600, monitor: Optional[str] = None):
         self.device = device
         self.address = address
+        self._monitor: Optional[socket.socket] = None
         kind, _, where = device.partition(":")
         self._sock: Optional[socket.socket] = None
         self._fd = -1
@@ -102,10 +105,24 @@ class LineChip:
             self._fd = self._sock.fileno()
         else:
             raise ValueError(f"device {device!r}: serial:PATH or tcp:HOST:PORT (or fmu for the twin in-process)")
+        if monitor is not None:
+            kind, _, where = monitor.partition(":")
+            host, colon, port = where.rpartition(":")
+            if kind != "tcp" or not colon or not port.isdigit():
+                self.close()
+                raise ValueError(f"monitor {monitor!r}: tcp:HOST:PORT (pmdfmu serve --monitor's)")
+            self._monitor = socket.create_connection((host.strip("[]"), int(port)))
+            self._monitor.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            self._replies = self._monitor.makefile("r", encoding="ascii", newline="\n")
+            self._ask("chip", f"chip {address}")
 
     # ---- life cycle ----
 
     def close(self) -> None:
+        if self._monitor is not None:
+            self._replies.close()
+            self._monitor.close()
+            self._monitor = None
         if self._sock is not None:
             self._sock.close()
         elif self._fd >= 0:
@@ -119,12 +136,70 @@ class LineChip:
         self.close()
 
     def __getattr__(self, name: str):
-        if name in IN_PROCESS_ONLY:
+        if name in IN_PROCESS_ONLY or name in MONITORED:
             raise NeedsFMU(
-                f"Chip(device={self.device!r}).{name}: needs the twin in-process (Chip() without device); "
-                "over a line the chip takes commands only"
+                f"Chip(device={self.device!r}).{name}: needs the twin in-process (Chip() without device)"
+                + (", or its monitor (monitor=)" if name in MONITORED else "")
+                + "; over a line the chip takes commands only"
             )
         raise AttributeError(name)
+
+    # ---- the twin's monitor ----
+
+    def _ask(self, name: str, request: str) -> str:
+        """One request to the twin's monitor: the value of its `ok` reply."""
+        if self._monitor is None:
+            return self.__getattr__(name)  # raises NeedsFMU
+        self._monitor.sendall(request.encode("ascii") + b"\n")
+        reply = self._replies.readline().rstrip("\n")
+        if reply == "ok" or reply.startswith("ok "):
+            return reply[3:]
+        if reply.startswith("error "):
+            raise MonitorRefusal(f"{request[:60]}: {reply[6:]}")
+        raise LineError(f"the monitor answered {reply[:80]!r} to {request[:60]!r}" if reply else "the monitor went")
+
+    def run(self, cycles: int, record: Sequence[str] = ()) -> None:
+        """The chip runs `cycles` cycles (the monitor's run); recording needs `pmdfmu serve --record`."""
+        if record:
+            raise NeedsFMU(f"Chip(device={self.device!r}).run(record=...): the server records (pmdfmu serve --record)")
+        if isinstance(cycles, bool) or not isinstance(cycles, int) or cycles < 0:
+            raise ValueError(f"run: cycles {cycles!r} is not a whole number >= 0")
+        self._ask("run", f"run {cycles}")
+
+    def get(self, name: str):
+        """An FMU variable of the chip (an int, or a float for a Real)."""
+        if not isinstance(name, str) or not name.isprintable() or " " in name:
+            raise ValueError(f"get: {name!r} is not a variable name")
+        text = self._ask("get", f"get {name}")
+        return int(text) if text.lstrip("-").isdigit() else float(text)
+
+    def write_memory(self, address: int, words: Sequence[int]) -> None:
+        """32-bit words into the chip's dual-port memory, as Chip.write_memory (the server checks them)."""
+        words = [int(w) for w in words]
+        self._ask("write_memory", "write " + " ".join(str(int(w)) for w in [address, *words]))
+
+    def wait(self, seconds) -> None:
+        """Host time passes without a command: the line's clock moves on, the chips run the cycles due."""
+        self.wait_ns(round(Fraction(seconds) * 1_000_000_000))
+
+    def wait_ns(self, nanoseconds: int) -> None:
+        if nanoseconds < 0:
+            raise ValueError(f"wait_ns: {nanoseconds} ns is negative")
+        self._ask("wait", f"wait {int(nanoseconds)}")
+
+    @property
+    def host_time_ns(self) -> int:
+        """The line's clock, ns: the host time the twin in-process would have."""
+        return int(self._ask("host_time_ns", "time"))
+
+    @property
+    def host_time(self) -> float:
+        return self.host_time_ns / 1e9
+
+    @property
+    def cycles(self) -> int:
+        """Chip cycles run (the FMU's nextCycle)."""
+        return int(self.get("nextCycle"))
 
     # ---- the line ----
 

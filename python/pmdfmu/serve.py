@@ -335,7 +335,7 @@ class Monitor:
         self.endpoint = TcpEndpoint(host, port)
         self.line = line
         self.stop = stop
-        self.clients: dict = {}  # socket -> [bytes received, selected chip]
+        self.clients: dict = {}  # socket -> [bytes received, the chip selected, inside a line refused]
 
     def describe(self) -> str:
         return "monitor " + self.endpoint.describe()
@@ -348,7 +348,7 @@ class Monitor:
         if sock is self.endpoint.listener:
             client, _peer = sock.accept()
             client.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-            self.clients[client] = [b"", 0]
+            self.clients[client] = [b"", 0, False]  # bytes received, the chip selected, inside a line refused
             return
         state = self.clients[sock]
         try:
@@ -359,15 +359,26 @@ class Monitor:
             self._drop(sock)
             return
         state[0] += data
-        while b"\n" in state[0]:
-            request, state[0] = state[0].split(b"\n", 1)
-            if not _write_all(sock.fileno(), (self.answer(request, state) + "\n").encode()):
+        too_long = f"error a request longer than {MONITOR_LINE} bytes"
+        while True:
+            request, newline, rest = state[0].partition(b"\n")
+            reply = None
+            if not newline:  # a line not yet whole: one too long is refused now, its bytes dropped to its end
+                if len(request) > MONITOR_LINE and not state[2]:
+                    state[2], reply = True, too_long
+                if state[2]:
+                    state[0] = b""
+            elif state[2]:  # the end of a line refused
+                state[0], state[2] = rest, False
+                continue
+            else:
+                state[0] = rest
+                reply = too_long if len(request) > MONITOR_LINE else self.answer(request, state)
+            if reply is not None and not _write_all(sock.fileno(), (reply + "\n").encode()):
                 self._drop(sock)
                 return
-        if len(state[0]) > MONITOR_LINE:  # no line feed in sight: refused, its bytes dropped
-            state[0] = b""
-            if not _write_all(sock.fileno(), f"error a request longer than {MONITOR_LINE} bytes\n".encode()):
-                self._drop(sock)
+            if not newline:
+                return
 
     def _drop(self, sock) -> None:
         del self.clients[sock]
@@ -416,7 +427,8 @@ class Monitor:
             self.line.line_ns = max(self.line.line_ns, chip.host_time_ns)
             return "ok" if not n else f"error stopped with {n} cycles not run: the server is stopping"
         if verb == "get" and len(args) == 1:
-            return f"ok {chip.get(args[0])!r}".replace("True", "1").replace("False", "0")
+            value = chip.get(args[0])  # a Boolean as 0 or 1, a Real in the digits that read back the same
+            return f"ok {int(value)}" if isinstance(value, (bool, int)) else f"ok {float(value)!r}"
         if verb == "write" and len(args) >= 2:
             chip.write_memory(_count(args[0], "write: address"), [int(w, 0) for w in args[1:]])
             return "ok"
