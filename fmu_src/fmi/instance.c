@@ -597,10 +597,14 @@ void pmd_commit_ports(PmdInstance *inst)
 }
 
 /* Gets see pending port writes executed first: a host reads its replies at the
- * time it wrote the batch (CONTRACT 2.2). */
+ * time it wrote the batch (CONTRACT 2.2). In Initialization Mode a get executes
+ * nothing: the ports' writes wait for the first get or doStep after it, at the
+ * start time before cycle 0, so that the initial values depend on the
+ * parameters and the start time alone (the InitialUnknowns say so, and FMI 2's
+ * stay small: docs/performance.md, "Model description"). */
 void pmd_model_commit(PmdInstance *inst)
 {
-    if (inst->s.state != PMD_TERMINATED)
+    if (inst->s.state == PMD_STEP_MODE)
         pmd_commit_ports(inst);
 }
 
