@@ -472,11 +472,10 @@ def test_a_batch_written_in_initialization_mode_executes_at_the_first_get_after_
         initialization_mode(chip, 0.0)
         strobe = chip.get("host.ack")
         set_port(chip, batch(strobe + 1, ("SetPosition", 1000, {"axis": 0}), ("Update",), ("GetTime",)))
-        assert (chip.get("host.ack"), chip.get("host.replyCount"), chip.get("axis1.commandedPosition")) == (strobe, 0, 0)
+        assert (chip.get("host.ack"), chip.get("host.replyCount")) == (strobe, 0)
         chip.fmu.exitInitializationMode()
         assert chip.get("host.ack") == strobe + 1
         assert (chip.get("host.replyCount"), chip.get("host.reply")[:2], chip.get("host.error")) == (2, [0, 0], 0)
-        assert chip.get("axis1.activityStatus") == chip.axis(0).GetActivityStatus()
 
 
 @pytest.mark.parametrize("fmi_version", FMI_VERSIONS, ids=["fmi2", "fmi3"])
