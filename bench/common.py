@@ -72,6 +72,19 @@ class Spread:
     def text(self, scale: float, unit: str, fmt: str = ".2f") -> str:
         return f"{self.min * scale:{fmt}} / {self.median * scale:{fmt}} / {self.max * scale:{fmt}} {unit}"
 
+    @staticmethod
+    def of(values) -> "Spread":
+        """The least, the median and the greatest of measured values."""
+        return Spread(min(values), statistics.median(values), max(values))
+
+    def per(self, n: float) -> "Spread":
+        """time per item"""
+        return Spread(self.min / n, self.median / n, self.max / n)
+
+    def rate(self, n: float) -> "Spread":
+        """n items over the time: items per second, least (the slowest run) to greatest"""
+        return Spread(n / self.max, n / self.median, n / self.min)
+
 
 def interleave(contenders, runs: int = RUNS):
     """Each contender (a callable returning a time in s) run `runs` times, taking turns A B A B ..., so that
@@ -80,7 +93,7 @@ def interleave(contenders, runs: int = RUNS):
     for _ in range(runs):
         for name, f in contenders.items():
             times[name].append(f())
-    return {n: Spread(min(t), statistics.median(t), max(t)) for n, t in times.items()}
+    return {n: Spread.of(t) for n, t in times.items()}
 
 
 def load() -> str:

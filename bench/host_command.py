@@ -18,7 +18,8 @@ from pmdfmu import native
 sys.path.insert(0, str(REPO / "tests"))
 from stepwise import StepwiseChip  # noqa: E402  (the Python path, kept as the tests' oracle)
 
-CALLS = 20_000
+CALLS = 5_000  # a run: short, so that another job's burst on the shared machine spoils few runs, not the median
+PAIRS = 21  # interleaved runs of each contender
 MOVE = [
     ("SetProfileMode", 0),
     ("SetPosition", 200_000),
@@ -49,6 +50,7 @@ def commands(version: int, noop) -> None:
                 "get": per_call(ax.GetPosition),
                 "python set": per_call(lambda: sx.SetVelocity(1000), CALLS // 10),
             },
+            PAIRS,
         )
     base = f"no-op ctypes call {t['noop'].text(1e9, 'ns', '.0f')}"
     for name in ("set", "get"):

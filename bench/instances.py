@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Instances: pmdfmu.Chip() after the first of an FMU file, against the
-first Chip of a file (what every Chip() cost before: extract the FMU, read its 480 KB model
-description, declare FMPy's FMI prototypes, instantiate, initialize). Part of ./dev bench."""
+first Chip of a file (what every Chip() cost before: extract the FMU, read its model
+description, declare FMPy's FMI prototypes, instantiate, initialize), interleaved run by run.
+Part of ./dev bench."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ import time
 from pathlib import Path
 
 import pmdfmu
-from common import repeat, report, timed
+from common import interleave, load, report, timed
 
 LATER = 50  # instances made per timed run of the later Chip()
 TARGET = 2e-3  # s: a later Chip()
@@ -34,24 +35,26 @@ def one_version(tmp: Path, fmi_version: int) -> None:
         chip.close()
         return took
 
-    fresh = repeat(first)
     path = Path(shutil.copy(source, tmp / f"later-{fmi_version}.fmu"))
     keeper = pmdfmu.Chip(fmi_version, path)  # the file's first instance
-    before = folders(keeper)
     chips = []
+    new_folders = 0
 
     def later() -> float:
+        nonlocal new_folders
+        before = folders(keeper)
         took = timed(lambda: chips.extend(pmdfmu.Chip(fmi_version, path) for _ in range(LATER)))
+        new_folders += folders(keeper) - before
         for chip in chips:
             chip.close()
         chips.clear()
         return took
 
-    ours = repeat(later).per(LATER)
-    new_folders = folders(keeper) - before
+    t = interleave({"first": first, "later": later})
+    fresh, ours = t["first"], t["later"].per(LATER)
     keeper.close()
     report(
-        f"Chip() after the first of an FMU file, FMI {fmi_version}",
+        f"Chip() after the first of an FMU file, FMI {fmi_version} ({load()})",
         ours.text(1e3, "ms", ".3f"),
         f"first Chip of the file {fresh.text(1e3, 'ms')}",
         fresh.median / ours.median,

@@ -74,14 +74,14 @@ def simulate(chip: pmdfmu.Chip, names, cycles: int):
     )
 
 
-def measure(version: int, table, action, runs: int = common.RUNS) -> common.Figure:
-    """action(chip) timed on a fresh prepared chip per run."""
+def measure(version: int, table, action):
+    """A run of action(chip), timed on a fresh prepared chip (for common.interleave)."""
 
     def once():
         with prepared(version, table) as chip:
             return common.timed(lambda: action(chip))
 
-    return common.repeat(once, runs)
+    return once
 
 
 def benchmarks(tmp: Path) -> None:
@@ -93,13 +93,21 @@ def benchmarks(tmp: Path) -> None:
                 ours, theirs = a.run(2000, record=names), simulate(b, names, 2000)
                 assert len(theirs) == 2001 and all((ours[n] == theirs[n][1:]).all() for n in names)
             for cycles in CYCLES:
-                run = measure(version, table, lambda chip, cycles=cycles, names=names: chip.run(cycles, record=names))
                 sim_runs = SIMULATE_RUNS.get(cycles, common.RUNS)
-                sim = measure(
-                    version, table, lambda chip, cycles=cycles, names=names: simulate(chip, names, cycles), sim_runs
+                t = common.interleave(
+                    {
+                        "run": measure(
+                            version, table, lambda chip, cycles=cycles, names=names: chip.run(cycles, record=names)
+                        ),
+                        "sim": measure(
+                            version, table, lambda chip, cycles=cycles, names=names: simulate(chip, names, cycles)
+                        ),
+                    },
+                    sim_runs,
                 )
+                run, sim = t["run"], t["sim"]
                 axis_cycles = AXES * cycles
-                name = f"chip.run(record) FMI {version}, {label}, {cycles:,} cycles"
+                name = f"chip.run(record) FMI {version}, {label}, {cycles:,} cycles ({common.load()})"
                 common.report(
                     name + ": rate",
                     run.rate(axis_cycles).text(1e-6, "M axis-cycles/s", ".1f"),
@@ -113,7 +121,7 @@ def benchmarks(tmp: Path) -> None:
                     name + ": vs simulate_fmu",
                     run.text(1e3, "ms"),
                     f"simulate_fmu {sim.text(1e3, 'ms', '.0f')}"
-                    + (f" ({sim_runs} runs)" if sim_runs != common.RUNS else ""),
+                    + (f" ({sim_runs} pairs)" if sim_runs != common.RUNS else ""),
                     ratio,
                     ">= 200x (simulate_fmu / run)",
                     ratio >= 200,
@@ -140,9 +148,9 @@ def reused(table) -> None:
                                 lambda chip=chip, into=into, names=names: chip.run(cycles, record=names, out=into)
                             )
                         )
-            fresh_f, reuse_f = common.Figure.of(fresh), common.Figure.of(reuse)
+            fresh_f, reuse_f = common.Spread.of(fresh), common.Spread.of(reuse)
             common.report(
-                f"run(out=) reused vs fresh result, FMI {version}, {label}, {cycles:,} cycles",
+                f"run(out=) reused vs fresh result, FMI {version}, {label}, {cycles:,} cycles ({common.load()})",
                 reuse_f.per(cycles).text(1e9, "ns/row"),
                 f"fresh {fresh_f.per(cycles).text(1e9, 'ns/row')}",
                 fresh_f.median / reuse_f.median,
@@ -167,10 +175,10 @@ def lending(table) -> None:
                         times.append(common.timed(lambda chip=chip, cycles=cycles: chip.run(cycles, record=names)))
                 finally:
                     recording.lent_stepper = real
-        lent_f, copied_f = common.Figure.of(lent), common.Figure.of(copied)
+        lent_f, copied_f = common.Spread.of(lent), common.Spread.of(copied)
         saved = (copied_f.median - lent_f.median) / lent_f.median
         common.report(
-            f"lent vs copied rows, FMI 2, status + Reals, {cycles:,} cycles",
+            f"lent vs copied rows, FMI 2, status + Reals, {cycles:,} cycles ({common.load()})",
             lent_f.per(cycles).text(1e9, "ns/row"),
             f"copied {copied_f.per(cycles).text(1e9, 'ns/row')}",
             copied_f.median / lent_f.median,

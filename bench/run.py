@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-2-Clause
-"""The performance suite: every figure the best and the
-median of at least 5 runs, next to a baseline measured in the same run, as a
-table; ratios are of medians. Benchmarks, not tests: nothing here asserts a
-time. Each topic is a module of this folder with benchmarks(tmp).
+"""The performance suite: every figure next to a baseline measured in the same
+run, the contenders taking turns (common.interleave: A B A B ..., min / median /
+max, at least 5 pairs where a run is short), as a table; ratios are of medians,
+the machine's load printed with them. Benchmarks, not tests: nothing here
+asserts a time. Each topic is a module of this folder with benchmarks(tmp).
 
     python bench/run.py [TOPIC ...]          (./dev bench)
 """

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 import pmdfmu
-from common import RUNS, Figure, repeat, report, timed
+from common import interleave, load, report, timed
 from pmdfmu.profile import record_outputs
 from pmdfmu.sweep import Case
 
@@ -60,13 +60,10 @@ def benchmarks(tmp: Path) -> None:
     empty = [Case(f"empty{k}", script=str(tmp / "empty.script"), fmu=fmu) for k in range(EMPTY)]
     heavy, case_seconds = heavy_cases(tmp, fmu)
 
-    with pmdfmu.Chip(fmu=fmu) as chip:  # what an empty case runs, bare
-        names = record_outputs([0])
-        bare = repeat(lambda: timed(lambda: chip.run(1000, record=names)))
     pmdfmu.sweep(empty[:2], scheduler="serial")  # this process's instance made
-    serial_empty = repeat(lambda: timed(lambda: pmdfmu.sweep(empty, scheduler="serial"))).per(EMPTY)
-
+    names = record_outputs([0])
     with (
+        pmdfmu.Chip(fmu=fmu) as chip,  # what an empty case runs, bare
         LocalCluster(
             n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, silence_logs=logging.ERROR
         ) as cluster,
@@ -75,16 +72,25 @@ def benchmarks(tmp: Path) -> None:
         start = time.perf_counter()
         pmdfmu.sweep(heavy[:2], scheduler=client)  # warm-up: each worker's first FMU instance
         warm_up = time.perf_counter() - start
-        cluster_empty = repeat(lambda: timed(lambda: pmdfmu.sweep(empty, scheduler=client))).per(EMPTY)
-        # serial and cluster runs alternate: a change of the machine's load touches both alike
-        serial_runs, cluster_runs = [], []
-        for _ in range(RUNS):
-            serial_runs.append(timed(lambda: pmdfmu.sweep(heavy, scheduler="serial")))
-            cluster_runs.append(timed(lambda: pmdfmu.sweep(heavy, scheduler=client)))
-        serial_heavy, cluster_heavy = Figure.of(serial_runs), Figure.of(cluster_runs)
+        # the contenders take turns: a change of the machine's load touches them alike
+        t = interleave(
+            {
+                "bare": lambda: timed(lambda: chip.run(1000, record=names)),
+                "serial": lambda: timed(lambda: pmdfmu.sweep(empty, scheduler="serial")),
+                "cluster": lambda: timed(lambda: pmdfmu.sweep(empty, scheduler=client)),
+            }
+        )
+        bare, serial_empty, cluster_empty = t["bare"], t["serial"].per(EMPTY), t["cluster"].per(EMPTY)
+        t = interleave(
+            {
+                "serial": lambda: timed(lambda: pmdfmu.sweep(heavy, scheduler="serial")),
+                "cluster": lambda: timed(lambda: pmdfmu.sweep(heavy, scheduler=client)),
+            }
+        )
+        serial_heavy, cluster_heavy = t["serial"], t["cluster"]
 
     report(
-        "sweep per-case overhead, 2-worker cluster (client reused), empty cases",
+        f"sweep per-case overhead, 2-worker cluster (client reused), empty cases ({load()})",
         cluster_empty.text(1e3, "ms", ".3f"),
         f"serial here {serial_empty.text(1e3, 'ms', '.3f')}",
         cluster_empty.median / serial_empty.median,
@@ -92,7 +98,7 @@ def benchmarks(tmp: Path) -> None:
         cluster_empty.median <= OVERHEAD,
     )
     report(
-        "sweep per-case overhead, serial, empty cases (1000 recorded cycles each)",
+        f"sweep per-case overhead, serial, empty cases (1000 recorded cycles each; {load()})",
         serial_empty.text(1e3, "ms", ".3f"),
         f"bare chip.run(1000) {bare.text(1e3, 'ms', '.3f')}",
         serial_empty.median / bare.median,
@@ -101,7 +107,7 @@ def benchmarks(tmp: Path) -> None:
     )
     report(
         f"sweep of {HEAVY} cases of {case_seconds:.2f} s, 2-worker cluster (client reused, "
-        f"warm-up {warm_up:.2f} s once)",
+        f"warm-up {warm_up:.2f} s once; {load()})",
         cluster_heavy.text(1, "s"),
         f"serial here {serial_heavy.text(1, 's')}",
         serial_heavy.median / cluster_heavy.median,

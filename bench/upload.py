@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 import pmdfmu
-from common import REPO, repeat, report, timed
+from common import REPO, interleave, load, report, timed
 
 sys.path.insert(0, str(REPO / "tests"))
 from stepwise import write_memory_stepwise  # noqa: E402  (the tests' oracle, the baseline here)
@@ -57,7 +57,7 @@ def script_loader(tmp: Path, rows: np.ndarray, version: int) -> None:
     script.write_text('@ 0\nLoadSegmentTable(Axis1, "segments.csv", 0, 2)\n')
     size = 5 * SEGMENTS
 
-    def load() -> float:
+    def loader() -> float:
         start = time.perf_counter()
         with pmdfmu.Chip(version, memorySize=size, script=script) as chip:
             chip.run(1)
@@ -67,10 +67,12 @@ def script_loader(tmp: Path, rows: np.ndarray, version: int) -> None:
         return took
 
     pmdfmu.Chip(version).close()  # the FMU file's first Chip (its unzip) is not the upload's
-    ours = repeat(load).rate(SEGMENTS)
-    numpy = repeat(lambda: timed(lambda: np.loadtxt(csv, delimiter=",", skiprows=1, dtype=np.int64))).rate(SEGMENTS)
+    t = interleave(
+        {"loader": loader, "numpy": lambda: timed(lambda: np.loadtxt(csv, delimiter=",", skiprows=1, dtype=np.int64))}
+    )
+    ours, numpy = t["loader"].rate(SEGMENTS), t["numpy"].rate(SEGMENTS)
     report(
-        f"upload {SEGMENTS} segments, script loader (LoadSegmentTable), FMI {version}",
+        f"upload {SEGMENTS} segments, script loader (LoadSegmentTable), FMI {version} ({load()})",
         ours.text(1e-6, "M segments/s"),
         f"numpy.loadtxt of the same CSV {numpy.text(1e-6, 'M/s')}",
         ours.median / numpy.median,
@@ -86,10 +88,15 @@ def memory_port(rows: np.ndarray, version: int) -> None:
         def upload(write) -> float:
             return timed(lambda: [write(f * SEGMENTS, columns[f]) for f in range(5)])
 
-        ours = repeat(lambda: upload(chip.write_memory)).rate(SEGMENTS)
-        python = repeat(lambda: upload(lambda a, w: write_memory_stepwise(chip, a, w))).rate(SEGMENTS)
+        t = interleave(
+            {
+                "native": lambda: upload(chip.write_memory),
+                "python": lambda: upload(lambda a, w: write_memory_stepwise(chip, a, w)),
+            }
+        )
+    ours, python = t["native"].rate(SEGMENTS), t["python"].rate(SEGMENTS)
     report(
-        f"upload {SEGMENTS} segments, memory port (write_memory), FMI {version}",
+        f"upload {SEGMENTS} segments, memory port (write_memory), FMI {version} ({load()})",
         ours.text(1e-6, "M segments/s"),
         f"the Python strobe loop {python.text(1e-6, 'M/s')}",
         ours.median / python.median,

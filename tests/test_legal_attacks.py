@@ -287,25 +287,28 @@ def test_a_refused_memory_size_in_initialization_keeps_size_memory_and_registers
 
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
-def test_memory_size_in_initialization_keeps_the_memory_and_the_registers(fmi_version):
+def test_memory_size_in_initialization_keeps_the_pending_port_writes(fmi_version):
+    """Initialization Mode's gets execute nothing: a batch and a memory write made there wait, through
+    memory size changes (one the write would leave is refused), for the first get after it."""
     chip = InitializationChip(fmi_version)
     try:
         pend_batch(
             chip, command("SetBufferStart", 2, 0x10) + command("SetBufferLength", 2, 8) + command("SetPosition", 1234)
         )
-        chip.get("host.ack")
         pend_memory_write(chip, 0x10, [5, 6, 7])
-        chip.get("host.ack")
         before = snapshot(chip)
+        assert chip.get("host.ack") == 0
         chip.set("memorySize", 0x4000)  # the same size: nothing happens
         assert snapshot(chip) == before
-        chip.set("memorySize", 0x18)  # smaller, still holding buffer 2
+        message = refused_changes_nothing(chip, lambda: chip.set("memorySize", 0x12))  # the write needs 0x13
+        assert "memory.strobe" in message
+        chip.set("memorySize", 0x13)
         chip.set("memorySize", 0x8000)
+        chip.fmu.exitInitializationMode()
+        assert chip.get("host.ack") == 1  # the batch, then the write
         pend_batch(chip, command("GetBufferStart", 2) + command("GetPosition") + command("ReadBuffer", 2) * 3)
         chip.get("host.ack")
         assert chip.reply() == [0, 0x10, 0, 1234, 0, 5, 0, 6, 0, 7]
-        message = refused_changes_nothing(chip, lambda: chip.set("memorySize", 0x17))
-        assert "buffer 2" in message
     finally:
         chip.free()
 

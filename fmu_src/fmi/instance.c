@@ -597,10 +597,14 @@ void pmd_commit_ports(PmdInstance *inst)
 }
 
 /* Gets see pending port writes executed first: a host reads its replies at the
- * time it wrote the batch (CONTRACT 2.2). */
+ * time it wrote the batch (CONTRACT 2.2). In Initialization Mode a get executes
+ * nothing: the ports' writes wait for the first get or doStep after it, at the
+ * start time before cycle 0, so that the initial values depend on the
+ * parameters and the start time alone (the InitialUnknowns say so, and FMI 2's
+ * stay small: docs/performance.md, "Model description"). */
 void pmd_model_commit(PmdInstance *inst)
 {
-    if (inst->s.state != PMD_TERMINATED)
+    if (inst->s.state == PMD_STEP_MODE)
         pmd_commit_ports(inst);
 }
 
@@ -784,6 +788,13 @@ static int memory_word_fits(int64_t value)
     return value >= INT32_MIN && value <= UINT32_MAX;     /* FMI 2 Integer or FMI 3 UInt32: the word's 32 bits */
 }
 
+/* host.word's range, one check for pmd_set_integer and pmd_set_host_words alike */
+#define HOST_WORD_RANGE "a 16-bit word, -32768 .. 65535"
+static int host_word_fits(int64_t value)
+{
+    return value >= -32768 && value <= 65535;             /* FMI 2 Integer or FMI 3 UInt16: the word's bits */
+}
+
 PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_t value, int apply)
 {
     const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
@@ -795,8 +806,8 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
             return out_of_range(inst, fn, v, (double)value, "1 .. 2^26 words");
         break;
     case VAR_host_word:
-        if (value < -32768 || value > 65535)
-            return out_of_range(inst, fn, v, (double)value, "a 16-bit word, -32768 .. 65535");
+        if (!host_word_fits(value))
+            return out_of_range(inst, fn, v, (double)value, HOST_WORD_RANGE);
         break;
     case VAR_host_wordCount:
     case VAR_memory_count:
@@ -896,6 +907,47 @@ PmdStatus pmd_set_memory_data(PmdInstance *inst, const char *fn, unsigned vr, co
         return PMD_OK;
     }
     memcpy(&inst->s.memoryData[v->index], words, n * sizeof *inst->s.memoryData);
+    return PMD_OK;
+}
+
+/* FMI 3's host.word array, set whole by every host command (native/host_port.c), as one block:
+ * what pmd_set_integer does for each of the n elements in turn, as pmd_set_memory_data does for
+ * memory.data (the first's type and causality are every one's, each word passes the same range
+ * check, which no UInt16 fails, and applying stores it), without a lookup and two switches per
+ * word and pass: most of the FMU's share of an FMI 3 command before. */
+PmdStatus pmd_set_host_words(PmdInstance *inst, const char *fn, unsigned vr, const uint16_t *words, size_t n,
+                             int apply)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
+    size_t k;
+    if (!v || !settable(inst, fn, v))
+        return PMD_ERROR;
+    if (v->family != VAR_host_word || n > (size_t)(PMD_BATCH_WORDS - v->index))
+        return unhandled(inst, fn, v, "block setter");
+    if (!apply) {
+        for (k = 0; k < n; k++)
+            if (!host_word_fits(words[k]))
+                return out_of_range(inst, fn, &pmd_variables[pmd_variable_of_vr[vr + k]], (double)words[k],
+                                    HOST_WORD_RANGE);
+        return PMD_OK;
+    }
+    for (k = 0; k < n; k++)
+        inst->s.hostWord[v->index + k] = words[k];
+    return PMD_OK;
+}
+
+/* FMI 3's host.reply array, read whole by every host command that has a reply: the n words from
+ * vr on as pmd_model2_get_integer reads them one by one (its 16 bits), with one lookup. */
+PmdStatus pmd_get_host_reply(PmdInstance *inst, const char *fn, unsigned vr, uint16_t *words, size_t n)
+{
+    const PmdVariable *v = lookup(inst, fn, vr, PMD_INTEGER);
+    size_t k;
+    if (!v)
+        return PMD_ERROR;
+    if (v->family != VAR_host_reply || n > (size_t)(PMD_BATCH_WORDS - v->index))
+        return unhandled(inst, fn, v, "block getter");
+    for (k = 0; k < n; k++)
+        words[k] = (uint16_t)((uint32_t)inst->s.hostReply[v->index + k] & 0xFFFFu);
     return PMD_OK;
 }
 

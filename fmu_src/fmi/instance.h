@@ -50,6 +50,12 @@ PmdStatus pmd_set_integer(PmdInstance *inst, const char *fn, unsigned vr, int64_
  * FMI 3's array and FMI 2's scalars alike, variables3.h). pmd_set_memory_data:
  * pmd_set_integer of each of those n elements in turn, the words 32-bit (FMI
  * 2 Integer: isSigned; FMI 3 UInt32: not). */
+/* FMI 3's host port arrays as blocks (model3.c): pmd_set_host_words is pmd_set_integer of n
+ * elements of host.word from vr on, pmd_get_host_reply pmd_model2_get_integer of n of host.reply
+ * (their 16 bits) */
+PmdStatus pmd_set_host_words(PmdInstance *inst, const char *fn, unsigned vr, const uint16_t *words, size_t n,
+                             int apply);
+PmdStatus pmd_get_host_reply(PmdInstance *inst, const char *fn, unsigned vr, uint16_t *words, size_t n);
 size_t pmd_memory_data_span(unsigned vr, size_t n);
 PmdStatus pmd_set_memory_data(PmdInstance *inst, const char *fn, unsigned vr, const void *words, int isSigned,
                               size_t n, int apply);

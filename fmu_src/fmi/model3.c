@@ -138,10 +138,21 @@ static PmdStatus set_element(PmdInstance *inst, const char *fn, PmdFmi3Type type
     return unhandled_type(inst, fn, type, vr);
 }
 
+/* The variables.csv row of an FMI 3 variable: its first element's FMI 2 scalar's */
+static int family_of(const PmdVariable3 *v)
+{
+    return pmd_variables[pmd_variable_of_vr[v->vr]].family;
+}
+
 PmdStatus pmd_model3_get(PmdInstance *inst, const char *fn, PmdFmi3Type type, unsigned vr, void *values, size_t *k)
 {
     const PmdVariable3 *v = &pmd_variables3[pmd_variable3_of_vr[vr]];      /* the shell checked vr */
     unsigned e;
+    if (type == PMD_FMI3_UINT16 && family_of(v) == VAR_host_reply) {    /* the whole reply of a command */
+        PmdStatus s = pmd_get_host_reply(inst, fn, v->vr, (fmi3UInt16 *)values + *k, v->count);
+        *k += v->count;
+        return s;
+    }
     for (e = 0; e < v->count; e++)
         if (get_element(inst, fn, type, v->vr + e, values, (*k)++) != PMD_OK)
             return PMD_ERROR;
@@ -158,6 +169,11 @@ PmdStatus pmd_model3_set(PmdInstance *inst, const char *fn, PmdFmi3Type type, un
     unsigned e;
     if (type == PMD_FMI3_UINT32 && v->count > 1 && pmd_memory_data_span(v->vr, v->count) == v->count) {
         PmdStatus s = pmd_set_memory_data(inst, fn, v->vr, (const fmi3UInt32 *)values + *k, 0, v->count, apply);
+        *k += v->count;
+        return s;
+    }
+    if (type == PMD_FMI3_UINT16 && family_of(v) == VAR_host_word) {     /* a command's words, set whole */
+        PmdStatus s = pmd_set_host_words(inst, fn, v->vr, (const fmi3UInt16 *)values + *k, v->count, apply);
         *k += v->count;
         return s;
     }
