@@ -81,9 +81,11 @@ def test_commands_equal_the_python_path_bit_for_bit(version, host):
 @pytest.mark.parametrize("version", [2, 3])
 def test_send_equals_the_axis_methods_and_the_python_path_bit_for_bit(version, host):
     """chip.send, a command's raw words: natively what the Axis method does, off it what batch does."""
-    with pmdfmu.Chip(version, host_interface=host) as methods, pmdfmu.Chip(
-        version, host_interface=host
-    ) as sent, StepwiseChip(version, host_interface=host) as slow:
+    with (
+        pmdfmu.Chip(version, host_interface=host) as methods,
+        pmdfmu.Chip(version, host_interface=host) as sent,
+        StepwiseChip(version, host_interface=host) as slow,
+    ):
         expected = script(methods)
         assert script(sent, sent=True) == expected and script(slow, sent=True) == expected
         for chip in (sent, slow):

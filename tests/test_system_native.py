@@ -66,7 +66,9 @@ def test_a_plant_with_its_parameters_equals_its_path_with_them_and_the_fmpy_mast
         for name in master.dtype.names:
             assert np.array_equal(rows[name], master[name]), name
     # the parameters took effect: the build's plant turns otherwise
-    assert not np.array_equal(native_run("gauss-seidel", version, len(master))["plant.encoderCount"], master["plant.encoderCount"])
+    assert not np.array_equal(
+        native_run("gauss-seidel", version, len(master))["plant.encoderCount"], master["plant.encoderCount"]
+    )
 
 
 def test_a_plants_parameters_go_in_the_plant_or_as_keywords_and_are_its_variables():

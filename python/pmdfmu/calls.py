@@ -74,8 +74,10 @@ def sent_words(instruction, data: Sequence) -> Tuple[List[int], Optional[Command
     sent as it is for the chip to refuse): each word 0 .. 0xFFFF, or -32768 .. -1 for its two's complement, and
     as many data words as the command takes. ValueError naming the word otherwise; nothing is sent."""
     try:
-        words = [to_word(w, 16, "send: " + (f"data word {i}" if i else "the instruction word"))
-                 for i, w in enumerate((instruction, *data))]
+        words = [
+            to_word(w, 16, "send: " + (f"data word {i}" if i else "the instruction word"))
+            for i, w in enumerate((instruction, *data))
+        ]
     except ValueError as e:
         raise ValueError(f"{e}; nothing was sent") from None
     command = OPCODES.get(FIELDS["PMDInstructionOpcode"].ex(words[0]))

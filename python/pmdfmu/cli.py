@@ -981,7 +981,11 @@ def _parser() -> argparse.ArgumentParser:
         "that fails is a row of the summary with its reason and does not change the exit status (0) unless "
         "--fail-on-error is given.",
     )
-    p.add_argument("cases", type=Path, help="CSV: name, script or table, fmi_version, max_cycles or cycles (a window), FMU parameters")
+    p.add_argument(
+        "cases",
+        type=Path,
+        help="CSV: name, script or table, fmi_version, max_cycles or cycles (a window), FMU parameters",
+    )
     p.add_argument("--out", type=Path, default=Path("sweep-out"), help="output folder (default sweep-out)")
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'serial' (default: a local cluster)")
     p.add_argument("--workers", type=_positive_int, default=2, help="local cluster processes (default 2)")
