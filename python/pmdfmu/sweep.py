@@ -585,8 +585,10 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
     elif scheduler is None:
         distributed = extras.require("distributed", "sweep", "a sweep on a local cluster (scheduler=None)")
         Client, LocalCluster = distributed.Client, distributed.LocalCluster
-        # Dask's dashboard, on a free port, when progress is shown (its link goes with the bar): where
-        # nobody sees the link (a pipe, --quiet) no web server is started
+        # Dask's dashboard when progress is shown (its link goes with the bar); where nobody sees the link (a
+        # pipe, --quiet) none, and no bokeh loaded. The scheduler's web server (the dashboard's, or its bare
+        # routes: Dask starts one either way, dashboard_address=None meaning port 8787) on a free port of
+        # this machine only: never "Port 8787 is already in use" beside another cluster
         dashboard = progress.wanted()
         with _interrupt_deferred():
             # the cluster's own warnings (a task cancelled by Ctrl-C, say) are not the user's: errors only
@@ -594,7 +596,8 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
                 n_workers=workers,
                 threads_per_worker=1,
                 processes=True,
-                dashboard_address=":0" if dashboard else None,
+                dashboard_address="127.0.0.1:0",
+                scheduler_kwargs={"dashboard": dashboard},
                 silence_logs=logging.ERROR,
             )
         with cluster, Client(cluster) as client:
