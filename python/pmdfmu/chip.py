@@ -326,7 +326,7 @@ class Chip:
 
     device="serial:PATH" or "tcp:HOST:PORT" (keywords address=, baud=) returns a chip reached
     over its serial packet protocol instead (pmdfmu serve's twin or a real chip: line.LineChip,
-    docs/device.md): the same Axis methods, and batch and command; the calls that need the FMU
+    docs/device.md): the same Axis methods, and command, send and batch; the calls that need the FMU
     in-process (run, get, set, write_memory, wait, FMU states) raise line.NeedsFMU."""
 
     def __new__(cls, *args, device: Optional[str] = None, **kwargs):
