@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Issue target 1: a host command from Python (a Set, a Get with its reply, through the Axis methods)
-against a no-op ctypes call into C in the same run, FMI 2 and FMI 3; the Python path it replaced
-(tests/stepwise.py's StepwiseChip: encoding in Python, the FMI calls through FMPy) for scale; and a
-polled move (wait_for_motion_complete with host time) against chip.run of the same cycles.
-Contenders interleaved (A B A B ...), min / median / max, the ratio of medians."""
+"""Issue target 1: a host command from Python (a Set, a Get with its reply, through the Axis methods
+and as raw words through chip.send) against a no-op ctypes call into C in the same run, FMI 2 and
+FMI 3; the Python path it replaced (tests/stepwise.py's StepwiseChip: encoding in Python, the FMI
+calls through FMPy) for scale; and a polled move (wait_for_motion_complete with host time) against
+chip.run of the same cycles. Contenders interleaved (A B A B ...), min / median / max, the ratio of medians."""
 
 from __future__ import annotations
 
@@ -41,6 +41,8 @@ def per_call(f, n=CALLS):
 
 
 def commands(version: int, noop) -> None:
+    set_velocity = pmdfmu.instruction_word(pmdfmu.COMMANDS["SetVelocity"].opcode, 0)
+    get_position = pmdfmu.instruction_word(pmdfmu.COMMANDS["GetPosition"].opcode, 0)
     with pmdfmu.Chip(version) as chip, StepwiseChip(version) as slow:
         ax, sx = chip.axis(0), slow.axis(0)
         t = interleave(
@@ -48,12 +50,14 @@ def commands(version: int, noop) -> None:
                 "noop": per_call(noop),
                 "set": per_call(lambda: ax.SetVelocity(1000)),
                 "get": per_call(ax.GetPosition),
+                "send set": per_call(lambda: chip.send(set_velocity, 0, 1000)),
+                "send get": per_call(lambda: chip.send(get_position)),
                 "python set": per_call(lambda: sx.SetVelocity(1000), CALLS // 10),
             },
             PAIRS,
         )
     base = f"no-op ctypes call {t['noop'].text(1e9, 'ns', '.0f')}"
-    for name in ("set", "get"):
+    for name in ("set", "get", "send set", "send get"):
         ratio = t[name].median / t["noop"].median
         report(
             f"host command FMI {version}: {name} ({load()})",

@@ -1,11 +1,13 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Progress bars (pmdfmu.progress): on a terminal once the work lasts about a second, never in a pipe or
 a CI log unless --progress, never with -q; Ctrl-C with a bar up ends at once with 130 and leaves no file;
-a Chip.run split for its bar records the same rows."""
+a Chip.run split for its bar records the same rows; a sweep's local cluster gives its Dask dashboard link
+with the bar, under the same rules."""
 
 import fcntl
 import os
 import pty
+import re
 import select
 import signal
 import struct
@@ -121,6 +123,32 @@ def test_a_serial_sweep_counts_its_cases(cases, capsys):
     finally:
         progress.show(None)
     assert f"cases:   0%|          | 0/{len(cases)}" in capsys.readouterr().err
+
+
+def one_case(tmp_path):
+    """A case table of one short case, for a local cluster's start."""
+    table = long_table(tmp_path / "still.csv", 2000)
+    (tmp_path / "cases.csv").write_text(f"name,table\nstill,{table}\n")
+    return tmp_path / "cases.csv"
+
+
+DASHBOARD = re.compile(r"sweep: Dask dashboard at (http://\S+/status)")
+
+
+def test_a_sweep_on_a_local_cluster_gives_its_dashboard_link_with_the_bar(tmp_path):
+    argv = ["sweep", one_case(tmp_path), "--workers", "1", "--out", tmp_path / "out"]
+    status, shown, _ = on_a_terminal(argv, tmp_path)
+    assert status == 0 and DASHBOARD.search(shown), shown
+    status, shown, _ = on_a_terminal(["-q", *argv], tmp_path)
+    assert status == 0 and "dashboard" not in shown
+
+
+def test_a_piped_sweep_gives_no_dashboard_link_unless_asked(tmp_path):
+    argv = [sys.executable, "-c", DRIVER, "sweep", str(one_case(tmp_path)), "--workers", "1", "--out", "out"]
+    plain = subprocess.run(argv, cwd=tmp_path, capture_output=True, text=True, check=True)
+    assert "dashboard" not in plain.stderr
+    asked = subprocess.run(argv + ["--progress"], cwd=tmp_path, capture_output=True, text=True, check=True)
+    assert DASHBOARD.search(asked.stderr) and "cases" in asked.stderr, asked.stderr
 
 
 def test_progress_is_documented_in_the_cli_page():

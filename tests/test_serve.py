@@ -218,6 +218,12 @@ def test_tcp_clients_one_after_another_and_one_killed_mid_packet(tmp_path):
                 chip.run(10)
             with pytest.raises(pmdfmu.PMDError):
                 ax.SetBufferFunction(99, 99)
+            # chip.send over the line: a command's raw words, its reply words; an opcode of no command
+            # (0x04: not a C-Motion call either, so its packet has no data words) refused as in-process
+            assert chip.send(instruction_word(COMMANDS["GetPosition"].opcode, 0)) == (0, 1234)
+            with pytest.raises(pmdfmu.PMDError, match="instruction word 0x0004") as refused:
+                chip.send(0x0004)
+            assert refused.value.code == pmdfmu.PMD_ERR_InvalidInstruction
         # a flood: 0xFF bytes frame as packets of an unknown opcode with a bad checksum, each answered
         # with the checksum error; the client goes without reading them, the server stays up
         with socket.create_connection(s.tcp) as c:

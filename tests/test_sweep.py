@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """Sweeps on Dask: a 2-worker local cluster gives exactly the serial
-run, row for row; failing cases are rows with their reasons."""
+run, row for row; failing cases are rows with their reasons; a local cluster takes a free port."""
 
+import socket
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -42,6 +44,24 @@ def test_any_scheduler_address(cases):
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         result = pmdfmu.sweep(cases[:2], scheduler=cluster.scheduler_address)
     assert [r["status"] for r in result.rows] == ["ok", "ok"]
+
+
+def test_a_local_cluster_takes_a_free_port_beside_another_clusters_8787(cases):
+    """Dask's web server listens on 8787 unless told otherwise, and warns when it is taken; a sweep's asks for a
+    free port."""
+    taken = socket.socket()
+    try:
+        taken.bind(("127.0.0.1", 8787))
+        taken.listen()
+    except OSError:  # another cluster has it: the case in point
+        pass
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            result = pmdfmu.sweep(cases[:1], workers=1)
+    finally:
+        taken.close()
+    assert result.rows[0]["status"] == "ok"
 
 
 def test_pmdfmu_sweep_writes_the_table_the_recordings_and_the_plot(tmp_path, capsys):

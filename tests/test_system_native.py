@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """pmdfmu.System (python/pmdfmu/system.py, native/system.c): the chip and the plant stepped together
 natively, pinned bit for bit to examples/systems' FMPy master (run_master), Gauss-Seidel and Jacobi,
-FMI 2 and FMI 3; a run in pieces equals one run."""
+FMI 2 and FMI 3; a run in pieces equals one run; a pmdfmu.Plant with its parameters equals the plant's
+path with them."""
 
 import sys
 from pathlib import Path
@@ -43,6 +44,40 @@ def test_a_run_in_pieces_equals_one_run():
         )
         assert chip.cycles == 600
     assert np.array_equal(parts, whole)
+
+
+# plant parameters other than the build's start values: a heavier load, a coarser encoder, less friction
+PLANT = {"loadInertia": 3e-5, "encoderLines": 1000, "coulombFriction": 0.002}
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_plant_with_its_parameters_equals_its_path_with_them_and_the_fmpy_master(version):
+    values = {**systems.parameters(), "plant": PLANT}
+    master = systems.run_master("gauss-seidel", version, log=lambda *a: None, values=values)
+    path = pmdfmu.default_fmu(version).with_name(f"pmdplant-fmi{version}.fmu")
+
+    def run(*plant, **parameters):
+        with pmdfmu.Chip(version, **systems.parameters()["chip"]) as chip:
+            with pmdfmu.System(chip, *plant, **parameters) as system:
+                return system.run(len(master), record=OUTPUTS)
+
+    runs = [run(pmdfmu.Plant(**PLANT)), run(pmdfmu.Plant(path, **PLANT)), run(path, **PLANT), run(None, **PLANT)]
+    for rows in runs:
+        for name in master.dtype.names:
+            assert np.array_equal(rows[name], master[name]), name
+    # the parameters took effect: the build's plant turns otherwise
+    assert not np.array_equal(
+        native_run("gauss-seidel", version, len(master))["plant.encoderCount"], master["plant.encoderCount"]
+    )
+
+
+def test_a_plants_parameters_go_in_the_plant_or_as_keywords_and_are_its_variables():
+    assert repr(pmdfmu.Plant("m.fmu", encoderLines=1000)) == "Plant('m.fmu', encoderLines=1000)"
+    with pmdfmu.Chip(2, loopback=False) as chip:
+        with pytest.raises(TypeError, match="not both"):
+            pmdfmu.System(chip, pmdfmu.Plant(loadInertia=1e-5), encoderLines=1000)
+        with pytest.raises(ValueError, match="'loadInertiaa' is no variable of pmdplant-fmi2.fmu"):
+            pmdfmu.System(chip, pmdfmu.Plant(loadInertiaa=1e-5))
 
 
 def test_bad_wiring_and_algorithm_are_refused():

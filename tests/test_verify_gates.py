@@ -110,7 +110,49 @@ def test_a_case_of_a_batch_cut_short_fails(tmp_path, capsys):
     assert [c.passed for c in result.cases] == [False, True]
     assert result.cases[0].failures[0].check == "ended"
     assert main(["verify", "--cases", str(cases), "--cycles", "1000"]) == 2
-    assert "a case table's runs are whole" in capsys.readouterr().err
+    assert "a case table asks for a case's window in its cycles column" in capsys.readouterr().err
+
+
+def test_a_case_asks_for_a_window_in_its_cycles_column(tmp_path, capsys):
+    """As `pmdfmu run --cycles N`: the first N cycles, the profile ended or not, and no failure."""
+    table = long_table(tmp_path, 3000)
+    golden = tmp_path / "w.npz"
+    assert main(["run", str(table), "--cycles", "1000", "--csv", str(golden)]) == 0
+    cases = tmp_path / "cases.csv"
+    cases.write_text(f"name,table,cycles,golden\nwindow,{table},1000,{golden}\nwhole,{table},,\n")
+    result = pmdfmu.verify_cases(cases, scheduler="serial")
+    window, whole = result.cases
+    assert result.passed and (window.cycles, whole.cycles) == (1000, 3001)
+    assert window.checks[0].name == "profile ended" and "a window of 1000 cycles" in window.checks[0].skipped
+    assert not whole.checks[0].skipped
+    swept = pmdfmu.sweep(pmdfmu.read_cases(cases), scheduler="serial")
+    assert [(r["cycles"], r["ended"]) for r in swept.rows] == [(1000, "no"), (3001, "yes")]
+    capsys.readouterr()
+    assert main(["-v", "sweep", str(cases), "--scheduler", "serial", "--out", str(tmp_path / "out")]) == 0
+    assert "ok: window: 1000 cycles, a window\n" in capsys.readouterr().out
+    # the window golden against a whole case: refused before anything runs, saying where to ask for the window
+    cases.write_text(f"name,table,golden\nwindow,{table},{golden}\n")
+    assert main(["verify", "--cases", str(cases), "--scheduler", "serial"]) == 2
+    assert "give --cycles 1000 in its cycles column" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "cell, reason",
+    [
+        ("0", "case 'w': cycles 0: a window records at least 1 cycle"),
+        ("-5", "case 'w': cycles -5: a window records at least 1 cycle"),
+        ("many", "cycles 'many' is not a whole number"),
+        ("1000,5000", "case 'w': max_cycles or cycles, not both"),
+    ],
+)
+def test_a_bad_cycles_cell_is_its_file_and_line_and_exit_2(tmp_path, capsys, cell, reason):
+    cases = tmp_path / "cases.csv"
+    max_cycles = cell.partition(",")[2]
+    cases.write_text(f"name,table,cycles,max_cycles\nok,{SQUARE},,\nw,{SQUARE},{cell.partition(',')[0]},{max_cycles}\n")
+    for command in (["verify", "--cases"], ["sweep"]):
+        assert main([*command, str(cases), "--scheduler", "serial", "--out", str(tmp_path / "out")]) == 2
+        assert capsys.readouterr().err == f"pmdfmu {command[0]}: {cases}:3: {reason}\n"
+    assert not (tmp_path / "out").exists()
 
 
 def test_a_position_jump_fails_the_velocity_limit_in_the_position_difference(tmp_path):

@@ -28,11 +28,12 @@ from .chip import (
     default_fmu,
     field_dp,
     field_ex,
+    instruction_word,
     tables_dir,
 )
 from .hosttime import HostInterface
 from .sweep import Case, SweepResult, read_cases, sweep
-from .system import System
+from .system import Plant, System
 from .verify import VerifyResult, verify, verify_cases
 from .fixed import fixed_0_32, fixed_16_16, fixed_32_0, from_fixed, signed, to_fixed
 
@@ -43,6 +44,7 @@ __all__ = [
     "Chip",
     "Axis",
     "HostInterface",
+    "Plant",
     "System",
     "PMDError",
     "FMUError",
@@ -60,6 +62,7 @@ __all__ = [
     "FIELDS",
     "field_ex",
     "field_dp",
+    "instruction_word",
     "default_fmu",
     "tables_dir",
     "to_fixed",

@@ -8,7 +8,7 @@ from __future__ import annotations
 import inspect
 import textwrap
 from pathlib import Path
-from typing import Dict, List, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -67,6 +67,44 @@ class PMDError(Exception):
         self.code = code
         self.command = command
         super().__init__(f"{command}: host I/O error 0x{code:02X} ({ERROR_NAMES.get(code, 'unknown')})")
+
+
+def sent_words(instruction, data: Sequence) -> Tuple[List[int], Optional[Command]]:
+    """chip.send's words checked, and the command its instruction word names (None: an opcode no command has,
+    sent as it is for the chip to refuse): each word 0 .. 0xFFFF, or -32768 .. -1 for its two's complement, and
+    as many data words as the command takes. ValueError naming the word otherwise; nothing is sent."""
+    try:
+        words = [
+            to_word(w, 16, "send: " + (f"data word {i}" if i else "the instruction word"))
+            for i, w in enumerate((instruction, *data))
+        ]
+    except ValueError as e:
+        raise ValueError(f"{e}; nothing was sent") from None
+    command = OPCODES.get(FIELDS["PMDInstructionOpcode"].ex(words[0]))
+    if command is not None and len(data) != command.arg_words:
+        raise ValueError(
+            f"send: {command.name} (opcode 0x{command.opcode:02X}) takes {command.arg_words} data words, "
+            f"not {len(data)}; nothing was sent"
+        )
+    if len(words) > BATCH_WORDS:
+        raise ValueError(f"send: a command holds at most {BATCH_WORDS} words, not {len(words)}; nothing was sent")
+    return words, command
+
+
+# chip.send's native path: the instruction word of a command on axis 0..3 -> (its data words, the native
+# call's shape (words | reply words << 8), the result's high bits when it succeeds (no error, its reply
+# words: host_port.h), the command); any other word goes the checked path (sent_words)
+SEND_SHAPES: Dict[int, Tuple[int, int, int, Command]] = {
+    instruction_word(c.opcode, a): (c.arg_words, (1 + c.arg_words) | c.reply_words << 8, c.reply_words << 16, c)
+    for c in COMMANDS.values()
+    if c.arg_words <= 3
+    for a in range(4)
+}
+
+
+def sent_name(command: Optional[Command], instruction: int) -> str:
+    """What a refused send names: its command, or the instruction word that names none."""
+    return command.name if command is not None else f"instruction word 0x{instruction:04X}"
 
 
 def encode(command: Command, values: Sequence[int]) -> List[int]:

@@ -49,7 +49,10 @@ from .calls import (  # noqa: F401
     encode,
     field_dp,
     field_ex,
+    SEND_SHAPES,
     instruction_word,
+    sent_name,
+    sent_words,
     tables_dir,
 )
 from .recording import RECORDED  # noqa: F401  (chip.RECORDED, as users and docs name it)
@@ -323,9 +326,10 @@ class Chip:
 
     device="serial:PATH" or "tcp:HOST:PORT" (keywords address=, baud=) returns a chip reached
     over its serial packet protocol instead (pmdfmu serve's twin or a real chip: line.LineChip,
-    docs/device.md): the same Axis methods, and batch and command; monitor="tcp:HOST:PORT" (pmdfmu
-    serve --monitor's) adds run, get, write_memory, wait and the host clock; the calls that need the
-    FMU in-process (recording, set, FMU states; without a monitor those too) raise line.NeedsFMU."""
+    docs/device.md): the same Axis methods, and command, send and batch; monitor="tcp:HOST:PORT"
+    (pmdfmu serve --monitor's) adds run, get, write_memory, wait and the host clock; the calls that
+    need the FMU in-process (recording, set, FMU states; without a monitor those too) raise
+    line.NeedsFMU."""
 
     def __new__(cls, *args, device: Optional[str] = None, **kwargs):
         # device="serial:PATH" or "tcp:HOST:PORT": the chip over its serial packets (line.py), commands only
@@ -422,7 +426,7 @@ class Chip:
         self._grid = (c_double * 3)()
         self._memory_vrs: Dict[int, Array] = {}  # write_memory (FMI 2): value references per word count
         host_port.fill(self._port, self)
-        calls._FAST_GLOBALS["_COMMAND"] = host_port.functions()[1]
+        calls._FAST_GLOBALS["_COMMAND"] = self._command = host_port.functions()[1]
         if type(self)._step is Chip._step and type(self)._send is Chip._send:
             self._fast = byref(self._port)  # as the Axis methods pass it (host_port.h: no argtypes)
         # fmi3DoStep's outputs (_step): event handling needed, terminate, early return, last successful time
@@ -766,6 +770,51 @@ class Chip:
             raise PMDError(error, command.name)
         values = decode(command.reply, reply)
         return None if not values else values[0] if len(values) == 1 else tuple(values)
+
+    def send(self, instruction: int, *data: int) -> Tuple[int, ...]:
+        """One command as a host writes it on the chip's port: the instruction word (the opcode and the
+        axis field, pmd-reference 2.1; pmdfmu.instruction_word(opcode, axis)) and the command's data
+        words; returns its reply words. The raw form of an Axis method, for host code written in words
+        (a port of C-Motion's transport, a recorded bus trace, a test of the chip's own checks):
+        chip.send(instruction_word(0x11, 0), 0x0001, 0x0000) is chip.axis(0).SetVelocity(0x10000).
+
+        A word is 0 .. 0xFFFF, or -32768 .. -1 for its two's complement; a known command takes its
+        own number of data words. Anything else raises ValueError before anything is sent. An
+        opcode no command has is sent as it is (the chip refuses it). Raises PMDError (.code: the
+        host I/O error) if the chip refuses the command. On the native path as the Axis methods are,
+        with the host interface's time."""
+        shape = SEND_SHAPES.get(instruction) if type(instruction) is int else None
+        port = self._fast
+        if shape is None or port is None or self._recording:
+            return self._send_words(instruction, data)
+        n, call, ok, command = shape
+        if len(data) != n:
+            return self._send_words(instruction, data)
+        for w in data:
+            if type(w) is not int or not 0 <= w <= 0xFFFF:
+                return self._send_words(instruction, data)
+        # the words packed as pmd_host_command takes them (host_port.h): word 0 in the low bits
+        lo = instruction | data[0] << 16 if n else instruction
+        hi = (data[1] | data[2] << 16 if n > 2 else data[1]) if n > 1 else 0
+        logged = len(self.messages)
+        r = self._command(port, call, lo, hi)
+        if r >> 32 == ok:  # done, the reply words the command returns: in the result word
+            count = ok >> 16
+            return () if not count else (r >> 16 & 0xFFFF,) if count == 1 else (r >> 16 & 0xFFFF, r & 0xFFFF)
+        if r & host_port.FAILED:
+            self._fast_trouble(r, command, logged)  # raises
+        if r >> 32 & 0xFFFF:
+            raise PMDError(r >> 32 & 0xFFFF, command.name)
+        return tuple(self._port.out[: r >> 48 & 0xFF])
+
+    @_refusals
+    def _send_words(self, instruction, data: Sequence) -> Tuple[int, ...]:
+        """send() off the native path: the words checked (calls.sent_words), then one batch."""
+        words, command = sent_words(instruction, data)
+        error, reply = self.batch(words)
+        if error:
+            raise PMDError(error, sent_name(command, words[0]))
+        return tuple(reply)
 
     # ---- the trace ----
 

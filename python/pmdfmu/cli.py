@@ -470,10 +470,13 @@ def cmd_sweep(args) -> int:
     result = sweep(cases, scheduler=args.scheduler, workers=args.workers)
     result.write(args.out)
     failed = [r for r in result.rows if r["status"] != "ok"]
+    windows = {c.name: c.cycles is not None for c in cases}
     for r in result.rows:
         if r["status"] == "ok":
             _say(
-                f"ok: {r['name']}: {r['cycles']} cycles{'' if r['ended'] == 'yes' else ', cut short by max_cycles'}", 1
+                f"ok: {r['name']}: {r['cycles']} cycles"
+                + ("" if r["ended"] == "yes" else ", a window" if windows[r["name"]] else ", cut short by max_cycles"),
+                1,
             )
     _say(
         f"{len(result.rows) - len(failed)} of {len(result.rows)} cases ran; wrote {args.out}/summary.csv, "
@@ -549,7 +552,10 @@ def cmd_verify(args) -> int:
     if bool(args.file) == bool(args.cases):
         raise InputError("command line: give a script or segment table, or --cases CASES.csv")
     if args.cases and args.cycles:
-        raise InputError("command line: --cycles checks a window of one profile; a case table's runs are whole")
+        raise InputError(
+            "command line: --cycles checks a window of one profile; a case table asks for a case's window in "
+            "its cycles column"
+        )
     _refuse_overwriting(
         [
             ("--junit", args.junit),
@@ -976,7 +982,11 @@ def _parser() -> argparse.ArgumentParser:
         "that fails is a row of the summary with its reason and does not change the exit status (0) unless "
         "--fail-on-error is given.",
     )
-    p.add_argument("cases", type=Path, help="CSV: name, script or table, fmi_version, max_cycles, FMU parameters")
+    p.add_argument(
+        "cases",
+        type=Path,
+        help="CSV: name, script or table, fmi_version, max_cycles or cycles (a window), FMU parameters",
+    )
     p.add_argument("--out", type=Path, default=Path("sweep-out"), help="output folder (default sweep-out)")
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'serial' (default: a local cluster)")
     p.add_argument("--workers", type=_positive_int, default=2, help="local cluster processes (default 2)")

@@ -3,7 +3,8 @@
 host.strobe, a set of the words, count and a new strobe, a get of the ack, error and reply that executes
 it), with host time the request's time, the cycles due and the reply's time, in one native call over
 the FMU's own FMI functions. The Axis methods encode their arguments into one 64-bit word and decode the
-result word (chip.py, _c_motion_method); Chip.batch sends raw words; Chip.wait_for polls natively.
+result word (chip.py, _c_motion_method); Chip.send takes the same call for one command's raw words;
+Chip.batch sends raw words; Chip.wait_for polls natively.
 tests/stepwise.py keeps the Python path these replace (send_stepwise), and the tests pin them to it."""
 
 from __future__ import annotations

@@ -31,6 +31,8 @@ from .calls import (
     encode,
     field_ex,
     instruction_word,
+    sent_name,
+    sent_words,
 )
 from .fixed import to_word
 from .tables import Command
@@ -280,6 +282,15 @@ class LineChip:
             replies += reply
             i += 1 + n
         return first, replies
+
+    def send(self, instruction: int, *data: int) -> Tuple[int, ...]:
+        """One command as raw words, its packet out and its reply words back (Chip.send); raises PMDError
+        if the chip refuses it."""
+        words, command = sent_words(instruction, data)
+        status, reply = self.exchange(words[0], words[1:], command.reply_words if command else 0)
+        if status:
+            raise PMDError(status, sent_name(command, words[0]))
+        return tuple(reply)
 
     def command(self, axis: int, command: Union[str, Command], args: Sequence[int] = ()):
         """Executes one C-Motion call; raises PMDError if the chip refuses it."""

@@ -2,7 +2,8 @@
 """Progress bars for long work (Chip.run, `pmdfmu run`, `verify --cases`, sweeps), with tqdm: shown on
 standard error once the work has lasted about a second, and only when standard error is a terminal, so a
 pipe or a CI log never holds one; `show(True)` (`--progress`) asks for it there too, `show(False)`
-(`--quiet`) silences it. A bar that closes (the work done, or Ctrl-C) clears its line."""
+(`--quiet`) silences it. A bar that closes (the work done, or Ctrl-C) clears its line. note() puts a
+line beside them under the same rule (a sweep's local cluster: its Dask dashboard link)."""
 
 from __future__ import annotations
 
@@ -29,6 +30,12 @@ def wanted() -> bool:
         return sys.stderr is not None and sys.stderr.isatty()
     except (AttributeError, ValueError):  # a closed or replaced stderr
         return False
+
+
+def note(text: str) -> None:
+    """A line on standard error with the bars (a sweep's Dask dashboard link), shown where a bar would be."""
+    if wanted():
+        print(text, file=sys.stderr, flush=True)
 
 
 class _Silent:

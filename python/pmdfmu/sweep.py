@@ -53,7 +53,7 @@ from .chip import Chip, _identity, default_fmu
 
 PARAMETERS = ("cycleTime", "memorySize", "loopback", "record.capacity")
 # a case table's columns: the case's own, the FMU parameters, and pmdfmu verify's (which a sweep leaves to it)
-COLUMNS = ("name", "script", "table", "fmi_version", "max_cycles", *PARAMETERS, "golden", "assertions")
+COLUMNS = ("name", "script", "table", "fmi_version", "max_cycles", "cycles", *PARAMETERS, "golden", "assertions")
 BATCHES_PER_THREAD = 4  # tasks per worker thread: enough to even out cases of unequal length
 HANDOFF_BYTES = 1 << 20  # a recording this large, or larger, is handed back through a file (when it can be)
 HANDOFF_PREFIX = "pmdfmu-sweep-"
@@ -74,6 +74,14 @@ class Case:
     # FMU outputs recorded after the profile's own columns (pmdfmu verify asks for what its golden and
     # assertions need, e.g. axisN.eventStatus)
     record: Tuple[str, ...] = ()
+    # a window: the first `cycles` cycles, whether or not the profile has ended by then (`pmdfmu run
+    # --cycles`), instead of the whole profile up to max_cycles
+    cycles: Optional[int] = None
+
+    @property
+    def limit(self) -> int:
+        """The cycles the case's run may record: its window's, else max_cycles."""
+        return self.cycles if self.cycles is not None else self.max_cycles
 
 
 NOT_A_FILE_NAME = "not a file name for its files in the output folder (NAME.csv; summary.csv is the sweep's own)"
@@ -87,14 +95,15 @@ def is_file_name(name: str) -> bool:
 
 def read_cases(path: Union[str, Path]) -> List[Case]:
     """A case table: columns name, script or table (paths relative to the
-    table's folder), optional fmi_version, max_cycles, and any of the FMU
-    parameters cycleTime, memorySize, loopback, record.capacity (blank: default),
-    and pmdfmu verify's golden and assertions. ValueError with `file:line: reason`
-    for a table that cannot be read or a case that cannot run as written: no case,
-    a column of no such name (a misspelt one would be left out silently), a case
-    with no script or table or both, a name given twice or one that is no file
-    name (its recording is NAME.csv in the output folder), an FMI version other
-    than 2 or 3, max_cycles below 1, a script path holding a line feed (the FMU
+    table's folder), optional fmi_version, max_cycles or cycles (a window: the
+    first N cycles, as `pmdfmu run --cycles N`), and any of the FMU parameters
+    cycleTime, memorySize, loopback, record.capacity (blank: default), and pmdfmu
+    verify's golden and assertions. ValueError with `file:line: reason` for a table
+    that cannot be read or a case that cannot run as written: no case, a column of
+    no such name (a misspelt one would be left out silently), a case with no script
+    or table or both, a name given twice or one that is no file name (its recording
+    is NAME.csv in the output folder), an FMI version other than 2 or 3, max_cycles
+    or cycles below 1, both in one case, a script path holding a line feed (the FMU
     reads a `script` value holding one as the script's text)."""
     path = Path(path)
     try:
@@ -117,6 +126,8 @@ def read_cases(path: Union[str, Path]) -> List[Case]:
             raise ValueError(f"{what}: fmi_version {case.fmi_version} is not 2 or 3")
         if case.max_cycles < 1:
             raise ValueError(f"{what}: max_cycles {case.max_cycles}: a run records at least 1 cycle")
+        if case.cycles is not None and case.cycles < 1:
+            raise ValueError(f"{what}: cycles {case.cycles}: a window records at least 1 cycle")
         if case.script and "\n" in case.script:
             raise ValueError(
                 f"{what}: the script's path holds a line feed; the FMU reads such a `script` value "
@@ -144,6 +155,10 @@ def _cases(path: Path, text: str) -> List[Case]:
 
         if not (row.get("name") or "").strip():
             raise ValueError(f"{path}:{n}: a case needs a name")
+        window = (row.get("cycles") or "").strip()
+        if window and (row.get("max_cycles") or "").strip():
+            # as --max-cycles and --cycles: a limit on a whole run, or a window, never both
+            raise ValueError(f"{path}:{n}: case {files.shown(row['name'].strip())}: max_cycles or cycles, not both")
         try:
             params = []
             for name in PARAMETERS:
@@ -165,13 +180,25 @@ def _cases(path: Path, text: str) -> List[Case]:
                     resolve("script"),
                     resolve("table"),
                     tuple(params),
-                    int(row.get("fmi_version") or 2),
-                    int(row.get("max_cycles") or 1_000_000),
+                    _whole(row, "fmi_version", 2),
+                    _whole(row, "max_cycles", 1_000_000),
+                    cycles=_whole(row, "cycles", None),
                 )
             )
         except ValueError as e:
             raise ValueError(f"{path}:{n}: {e}") from None
     return cases
+
+
+def _whole(row: dict, column: str, default: Optional[int]) -> Optional[int]:
+    """A column's whole number (default when blank); ValueError naming the column and the value."""
+    value = (row.get(column) or "").strip()
+    if not value:
+        return default
+    try:
+        return int(value)
+    except ValueError:
+        raise ValueError(f"{column} {files.shown(value)} is not a whole number") from None
 
 
 # ---- one case, in a worker -----------------------------------------------------
@@ -210,7 +237,7 @@ def _summary(case: Case, rec: np.ndarray, axes: Sequence[int], messages, ended: 
         "status": "ok",
         "reason": "",
         "cycles": len(rec),
-        "ended": "yes" if ended else "no",  # no: max_cycles cut the run short (profile.profile_ended)
+        "ended": "yes" if ended else "no",  # no: max_cycles cut the run short, or a window (profile.profile_ended)
         "warnings": sum(m.status == "Warning" for m in messages),
     }
     for a in range(4):
@@ -235,12 +262,12 @@ def run_case(case: Case) -> Tuple[dict, Optional[np.ndarray]]:
         try:
             if case.script:
                 axes = profile.script_axes(chip)
-                rec = profile.run_script(chip, axes, max_cycles=case.max_cycles, record=case.record)
+                rec = profile.run_script(chip, axes, max_cycles=case.limit, record=case.record)
                 ended = profile.profile_ended(rec, axes, chip.get("script.lastCycle"))
             else:
                 tables = profile.read_segment_table(Path(case.table))
                 axes = sorted(tables)
-                rec = profile.run_segment_table(chip, tables, max_cycles=case.max_cycles, record=case.record)
+                rec = profile.run_segment_table(chip, tables, max_cycles=case.limit, record=case.record)
                 ended = profile.profile_ended(rec, axes)
             return _summary(case, rec, axes, chip.messages, ended), rec
         finally:
@@ -537,7 +564,8 @@ def _interrupt_deferred():
 def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResult:
     """Runs the cases; scheduler says where:
 
-    - None: a local cluster of `workers` processes, started for this call and closed after it;
+    - None: a local cluster of `workers` processes, started for this call and closed after it (where
+      progress is shown, its Dask dashboard too, the link printed with the bar: pmdfmu.progress);
     - "serial": in this process;
     - a distributed.Client (of a LocalCluster, SLURMCluster, ...): its cluster, reused as it is
       (the client stays open; its workers keep their FMU instances from sweep to sweep);
@@ -557,16 +585,24 @@ def sweep(cases: Sequence[Case], scheduler=None, workers: int = 2) -> SweepResul
     elif scheduler is None:
         distributed = extras.require("distributed", "sweep", "a sweep on a local cluster (scheduler=None)")
         Client, LocalCluster = distributed.Client, distributed.LocalCluster
+        # Dask's dashboard when progress is shown (its link goes with the bar); where nobody sees the link (a
+        # pipe, --quiet) none, and no bokeh loaded. The scheduler's web server (the dashboard's, or its bare
+        # routes: Dask starts one either way, dashboard_address=None meaning port 8787) on a free port of
+        # this machine only: never "Port 8787 is already in use" beside another cluster
+        dashboard = progress.wanted()
         with _interrupt_deferred():
             # the cluster's own warnings (a task cancelled by Ctrl-C, say) are not the user's: errors only
             cluster = LocalCluster(
                 n_workers=workers,
                 threads_per_worker=1,
                 processes=True,
-                dashboard_address=None,
+                dashboard_address="127.0.0.1:0",
+                scheduler_kwargs={"dashboard": dashboard},
                 silence_logs=logging.ERROR,
             )
         with cluster, Client(cluster) as client:
+            if dashboard:
+                progress.note(f"sweep: Dask dashboard at {client.dashboard_link}")
             results = _on(client, cases)
     elif isinstance(scheduler, str):
         current = _current_client(scheduler)

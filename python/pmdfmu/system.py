@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The chip and a plant as one system, stepped cycle by cycle in the harness's native library
-(native/system.c): pmdfmu.System(chip, plant=None, wiring=None, algorithm="gauss-seidel").
+(native/system.c): pmdfmu.System(chip, plant=None, wiring=None, algorithm="gauss-seidel"), the plant a
+pmdfmu.Plant (its FMU and parameters) or the plant FMU's path.
 system.run(cycles, record=["chip.axis1.position", "plant.encoderCount"]) makes the calls that
 examples/systems' Python master makes through FMPy (run_master: per step the connections' gets and
 sets, each FMU's doStep from k * step, Gauss-Seidel or Jacobi), over both FMUs' own FMI functions, and
@@ -60,6 +61,25 @@ def _runner():
 
 
 class Plant:
+    """The plant of a System, as Chip names the chip: its FMU and its parameters by name.
+    pmdfmu.Plant(loadInertia=3e-5, encoderLines=1000) is the build's pmdplant (of the chip's FMI version,
+    beside the chip's FMU) with those parameters; pmdfmu.Plant("motor.fmu", ...) another plant FMU. The
+    System instantiates it, in the chip's FMI version (docs/systems.md)."""
+
+    def __init__(self, fmu: Union[str, Path, None] = None, **parameters):
+        self.fmu = Path(fmu) if fmu else None
+        self.parameters = dict(parameters)
+
+    def path(self, chip) -> Path:
+        """The plant FMU's file for this chip: its own, else the build's pmdplant beside the chip's FMU."""
+        return self.fmu or chip.path.with_name(f"pmdplant-fmi{chip.fmi_version}.fmu")
+
+    def __repr__(self) -> str:
+        given = [repr(str(self.fmu))] if self.fmu else []
+        return f"Plant({', '.join(given + [f'{k}={v!r}' for k, v in self.parameters.items()])})"
+
+
+class PlantInstance:
     """A plant FMU instance (pmdplant by default, docs/systems.md) at the chip's time, its parameters set
     and initialized, its inputs given by `inputs` before the end of initialization."""
 
@@ -102,7 +122,9 @@ class Plant:
         self.fmu.exitInitializationMode()
 
     def set(self, name: str, value) -> None:
-        v = self.variables[name]
+        v = self.variables.get(name)
+        if v is None:
+            raise ValueError(f"plant: {name!r} is no variable of {self.path.name}")
         getattr(self.fmu, "set" + v.type)([v.valueReference], [value])
 
     def get(self, name: str):
@@ -120,15 +142,16 @@ class System:
     """The chip and a plant, connected by `wiring` ({"chip.<output>": "plant.<input>", "plant.<output>":
     "chip.<input>"}: the axis-1 loop, WIRING, when None), stepped together one chip cycle a step:
     "gauss-seidel" steps the chip, then the plant with the chip's new outputs; "jacobi" sets every input
-    from the outputs of the step before, then steps both. plant: the plant FMU's path (None: the build's
-    pmdplant of the chip's FMI version, beside the chip's FMU); plant_parameters its parameters.
+    from the outputs of the step before, then steps both. plant: a pmdfmu.Plant (its FMU and parameters),
+    or the plant FMU's path (None: the build's pmdplant of the chip's FMI version, beside the chip's FMU)
+    with plant_parameters its parameters: System(chip, Plant(path, **p)) is System(chip, path, **p).
     The communication step is the chip's cycle time when the system is made, from the chip's time then:
     a chip made for a plant (loopback=False) and not run yet is what examples/systems' master steps."""
 
     def __init__(
         self,
         chip,
-        plant: Union[str, Path, None] = None,
+        plant: Union[str, Path, Plant, None] = None,
         wiring: Optional[Dict[str, str]] = None,
         algorithm: str = "gauss-seidel",
         **plant_parameters,
@@ -137,8 +160,10 @@ class System:
             raise ValueError(f"algorithm: gauss-seidel or jacobi, not {algorithm!r}")
         self.chip, self.algorithm = chip, algorithm
         self.wiring = dict(WIRING if wiring is None else wiring)
+        if isinstance(plant, Plant) and plant_parameters:
+            raise TypeError("System: the plant's parameters go in its Plant, or as keywords with a path, not both")
+        plant = plant if isinstance(plant, Plant) else Plant(plant, **plant_parameters)
         version = chip.fmi_version
-        path = Path(plant) if plant else chip.path.with_name(f"pmdplant-fmi{version}.fmu")
         self.start, self.step = chip.get("time"), chip.cycle_time
         self._steps = 0
         self._plans: Dict[tuple, tuple] = {}  # run()'s operations per set of recorded names (_plan)
@@ -147,11 +172,11 @@ class System:
                 if end.split(".", 1)[0] not in ("chip", "plant") or "." not in end:
                     raise ValueError(f"wiring: {end!r} is not chip.<variable> or plant.<variable>")
         into_plant = [(a, b) for a, b in self.wiring.items() if b.startswith("plant.")]
-        self.plant = Plant(
-            path,
+        self.plant = PlantInstance(
+            plant.path(chip),
             version,
             self.start,
-            plant_parameters,
+            plant.parameters,
             lambda p: [p.set(b[6:], chip.get(a[5:])) for a, b in into_plant],
         )
         self._fmus = {"chip": chip.fmu, "plant": self.plant.fmu}

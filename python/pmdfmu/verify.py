@@ -1052,12 +1052,13 @@ def verify(
     return VerifyResult([result])
 
 
-def _window_golden(path: PathLike, golden: np.ndarray) -> str:
+def _window_golden(path: PathLike, golden: np.ndarray, where: str = "") -> str:
+    """where: how the window is asked for, after `--cycles N` (a case table's: in its cycles column)."""
     return (
         f"{path}: the golden trace is a window: its profile had not ended at its last cycle "
         f"({len(golden)} cycles, recorded with --cycles or cut short); a whole run is not compared with it: "
-        f"record the golden again (a larger --max-cycles if need be), or give --cycles {len(golden)} to check "
-        "the same window"
+        f"record the golden again (a larger --max-cycles if need be), or give --cycles {len(golden)}"
+        f"{' ' + where if where else ''} to check the same window"
     )
 
 
@@ -1183,8 +1184,8 @@ def verify_cases(
         data, where, text = _assertion_data(vc.assertions)
         specs.append(parse_assertions(_merge(base, data), where, text))  # the case's file over the common
         read = read_golden(vc.golden) if vc.golden else None
-        if read is not None and not read.ended:
-            raise InputError(_window_golden(vc.golden, read.recording))
+        if read is not None and not read.ended and vc.case.cycles is None:
+            raise InputError(_window_golden(vc.golden, read.recording, "in its cycles column"))
         goldens.append(read.recording if read is not None else None)
         _refuse_writing_over_inputs(vc.case.name, out, [vc.golden, vc.assertions, vc.case.script or vc.case.table])
     run_cases = []
@@ -1230,6 +1231,7 @@ def verify_cases(
             locate_args=locate_args,
             out=out,
             ended=row.get("ended") == "yes",
+            window=case.cycles,
         )
         result.recording, result.expected = rec, golden
     return VerifyResult(results)
