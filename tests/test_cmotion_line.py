@@ -189,3 +189,35 @@ def test_every_in_process_program_runs_over_the_line_with_the_monitor_as_in_proc
         rows = np.loadtxt(record, delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
         expected = [[c[0], *[c[1 + 5 * a + q] for a in range(4) for q in range(3)]] for c in cycles]
         assert rows.tolist() == expected
+
+
+@pytest.mark.parametrize(
+    "env,line",
+    [
+        (
+            {"PMDFMU_DEVICE": "serial:/dev/null", "PMDFMU_MONITOR": "tcp:127.0.0.1:1"},
+            "PMDFMU_MONITOR=tcp:127.0.0.1:1: cannot connect: Connection refused",
+        ),
+        (
+            {"PMDFMU_DEVICE": "serial:/dev/null", "PMDFMU_MONITOR": "unix:/x"},
+            "PMDFMU_MONITOR=unix:/x: expected tcp:HOST:PORT",
+        ),
+        ({"PMDFMU_HOST_INTERFACE": "warp"}, "PMDFMU_HOST_INTERFACE=warp: not a kind of host interface"),
+    ],
+)
+def test_a_bad_monitor_or_host_interface_fails_the_opening_with_a_transport_line(programs, env, line):
+    """PMD_ERR_OpeningPort (the program's PMD_ABORTONERROR: exit status 5), the library's line on stderr."""
+    exe = programs["cmotion5_host"]
+    out = subprocess.run(
+        [str(exe)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env={
+            **{k: v for k, v in os.environ.items() if not k.startswith("PMDFMU_")},
+            "PMDFMU_FMU": str(pmdfmu.default_fmu(2)),
+            **env,
+        },
+    )
+    assert out.returncode == 0x1205 & 0xFF
+    assert out.stderr.startswith("pmdfmu: " + line)

@@ -383,6 +383,11 @@ def test_the_monitor_answers_every_request_with_one_line_and_refuses_bad_ones(tm
                 assert ask(m, request).startswith(reply), request
             assert ask(m, b"write 0 " + b"1 " * 40_000).startswith("error a request longer than 65536 bytes")
             assert ask(m, b"time") == "ok 1900000"
+            rng = np.random.default_rng(27)
+            for _ in range(300):  # noise: one line of reply each, nothing run
+                noise = rng.integers(0, 256, rng.integers(1, 200), dtype=np.uint8).tobytes().replace(b"\n", b" ")
+                assert ask(m, noise).startswith(("ok", "error ")), noise
+            assert ask(m, b"time") == "ok 1900000"
         killed = subprocess.run(
             [
                 sys.executable,

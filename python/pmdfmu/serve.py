@@ -253,9 +253,10 @@ def _monitor_ready(monitor: Optional[Monitor], readable: list) -> list:
     """The monitor's readable sockets served; the rest of readable."""
     if monitor is None:
         return readable
-    for sock in [r for r in readable if r in monitor.sockets()]:
+    mine = monitor.sockets()  # taken before serving them: a client served may go meanwhile
+    for sock in [r for r in readable if r in mine]:
         monitor.ready(sock)
-    return [r for r in readable if r not in monitor.sockets()]
+    return [r for r in readable if r not in mine]
 
 
 def _serve_pty(end: PtyEndpoint, line: Line, stop: _Stop, reset_on_connect: bool, monitor: Optional[Monitor]) -> None:
