@@ -301,4 +301,5 @@ FMI3_ONLY = {"fmi3.c", "fmi3_not_provided.c"}
 if __name__ == "__main__":
     if len(sys.argv) < 2:
         sys.exit(__doc__)
-    main(Path(sys.argv[1]), [Path(a).name for a in sys.argv[2:]])
+    # a file of both shells (token.c) is named once
+    main(Path(sys.argv[1]), list(dict.fromkeys(Path(a).name for a in sys.argv[2:])))

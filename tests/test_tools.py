@@ -203,6 +203,43 @@ def test_libcosim_refuses_the_fmi3_fmu_by_its_version():
     assert get_last_error_message().startswith("Unsupported feature: Unsupported FMI version")
 
 
+@pytest.fixture(scope="module")
+def two_profiles(tmp_path_factory, packed):
+    """Two packed FMI 2 FMUs of one binary: the example's profile and a move of axis 2 to 4321, each a
+    model of its own (docs/scripts.md), and FMPy's axis2.commandedPosition of the first after CYCLES."""
+    from pmdfmu.pack import pack
+
+    out = tmp_path_factory.mktemp("two")
+    (out / "move.script").write_text(
+        "SetProfileMode(Axis2, PMDTrapezoidalProfile)\nSetPosition(Axis2, 4321)\nSetVelocity(Axis2, 16.0)\n"
+        "SetAcceleration(Axis2, 1.0)\nSetDeceleration(Axis2, 1.0)\nUpdate(Axis2)\n"
+    )
+    move = pack(out / "move.script", out / "move.fmu", fmi_version=2).fmu
+    assert fmpy.read_model_description(str(move)).guid != fmpy.read_model_description(str(packed[2])).guid
+    return packed[2], move, fmpy_run(2, ("axis2.commandedPosition",))["axis2.commandedPosition"][-1]
+
+
+def test_libcosim_runs_two_packed_profiles_side_by_side(two_profiles):
+    tool("libcosimpy")
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    example, move, expected = two_profiles
+    execution = CosimExecution.from_step_size(round(CYCLE * 1e9))
+    slaves = [
+        execution.add_local_slave(CosimLocalSlave(fmu_path=str(f), instance_name=n))
+        for f, n in ((example, "example"), (move, "move"))
+    ]
+    assert min(slaves) >= 0  # both instantiated: each binary took its own packed FMU's token
+    vr = {v.name.decode(): v.reference for v in execution.slave_variables(slaves[0])}["axis2.commandedPosition"]
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    assert execution.step(CYCLES)
+    assert [observer.last_integer_values(s, [vr])[0] for s in slaves] == [expected, 4321]
+    execution.stop()
+
+
 # ---- ecos (ecospy) ---------------------------------------------------------------------------------
 
 
@@ -234,6 +271,20 @@ def test_ecos_runs_the_fmi2_fmu_with_the_script_as_fmpy_does(how, packed):
 def test_ecos_runs_the_fmi3_fmu_with_the_script_as_fmpy_does_reading_int32_and_float64(how, packed):
     times, values = ecos_run(*profile(how, 3, packed), INT32, REALS)
     assert_equals_fmpy(3, times, values, first_row=1)
+
+
+def test_ecos_runs_two_packed_profiles_side_by_side(two_profiles):
+    ecospy = tool("ecospy")
+    example, move, expected = two_profiles
+    with ecospy.EcosSimulationStructure() as structure:
+        structure.add_model("example", str(example))
+        structure.add_model("move", str(move))
+        with ecospy.EcosSimulation(structure=structure, step_size=CYCLE) as sim:
+            assert sim.init()
+            for _ in range(CYCLES):
+                sim.step()
+            assert [sim.get_integer(f"{n}::axis2.commandedPosition") for n in ("example", "move")] == [expected, 4321]
+            sim.terminate()
 
 
 def test_ecos_ignores_a_failed_initialization_and_nextCycle_tells(tmp_path):
