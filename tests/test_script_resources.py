@@ -37,6 +37,7 @@ from fmpy.fmi3 import (
 
 import pmdfmu
 from pmdfmu.cli import main
+from pmdfmu.documentation import documentation_html
 from pmdfmu.pack import PackError, pack, set_script_start
 
 REPO = Path(__file__).resolve().parent.parent
@@ -541,8 +542,9 @@ def test_pack_changes_only_the_start_value_and_the_identity_and_adds_the_profile
         old, new = {i.filename: a.read(i) for i in a.infolist()}, {i.filename: b.read(i) for i in b.infolist()}
     assert set(new) - set(old) == set(packed.files)
     for name in old:
-        if name != "modelDescription.xml":
+        if name not in ("modelDescription.xml", "documentation/index.html"):
             assert new[name] == old[name], name
+    assert new["documentation/index.html"].decode() == documentation_html(new["modelDescription.xml"].decode())
     empty, start = (
         ('<String start=""/>', '<String start="profile/two_axis.script"/>')
         if version == 2

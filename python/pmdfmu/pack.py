@@ -13,8 +13,9 @@ told apart: its `modelName` and `description` name the profile, and its GUID /
 instantiation token is the base FMU's, '+', and a fingerprint of its contents
 (the same inputs give the same token). resources/instantiation.token holds that
 token for the binary, which accepts it beside its own
-(fmu_src/fmi_common/token.h). The modelIdentifier, the variables and every
-other file are the base FMU's, byte for byte.
+(fmu_src/fmi_common/token.h); documentation/index.html is written again from
+the new model description. The modelIdentifier, the variables and every other
+file are the base FMU's, byte for byte.
 
 Which tables a script loads is the FMU's answer, not a second parser's: pack
 compiles the script in the FMU and reads the files it names in its log.
@@ -37,11 +38,13 @@ from typing import Dict, Iterator, List, Optional, Tuple, Union
 
 from .files import replaced, shown_path
 from .chip import Chip, FMUError, default_fmu
+from .documentation import documentation_html
 
 PROFILE = "profile"  # resources/profile/: the script and its tables
 START_FILE = "script.start"  # resources/script.start: PMD_SCRIPT_START in fmu_src/script/script.h
 TOKEN_FILE = "instantiation.token"  # resources/instantiation.token: PMD_TOKEN_FILE in fmu_src/fmi_common/token.h
 MODEL_DESCRIPTION = "modelDescription.xml"
+DOCUMENTATION = "documentation/index.html"  # written from the model description (documentation.py)
 
 # what the FMU logs (category "buffers") at the end of initialization about the files it read (instance.c)
 _SCRIPT_READ = re.compile(r"ExitInitializationMode: script read from (.*)$")
@@ -203,8 +206,9 @@ def profile_name(script: Path) -> str:
 
 def packed_token(base_token: str, members: Dict[str, bytes]) -> str:
     """The packed FMU's GUID / instantiation token: the base FMU's (which names the variables and so the
-    binary, fmu_src/fmi_common/token.h), '+', and a fingerprint of every file of the packed FMU but the
-    token's own two places (modelDescription.xml counts with the base token in it), as a braced UUID."""
+    binary, fmu_src/fmi_common/token.h), '+', and a fingerprint of the packed FMU's files, members (not the
+    token's file, nor documentation/index.html, which is written from the model description; the model
+    description counts with the base token in it), as a braced UUID."""
     digest = hashlib.sha256()
     for name in sorted(members):
         digest.update(b"%d:%s%d:" % (len(name.encode()), name.encode(), len(members[name])) + members[name])
@@ -334,8 +338,12 @@ def pack(
         )
         added = {f"resources/{PROFILE}/{relative}": path.read_bytes() for path, relative in files}
         added[f"resources/{START_FILE}"] = start.encode("utf-8")
-        token = packed_token(attributes[token_attribute], {**members, MODEL_DESCRIPTION: md, **added})
+        contents = {**members, MODEL_DESCRIPTION: md, **added}
+        contents.pop(DOCUMENTATION, None)  # the page says the token: it is the description's, written again
+        token = packed_token(attributes[token_attribute], contents)
         members[MODEL_DESCRIPTION] = set_identity(md, {token_attribute: token})
+        if DOCUMENTATION in members:
+            members[DOCUMENTATION] = documentation_html(members[MODEL_DESCRIPTION].decode("utf-8")).encode("utf-8")
         added[f"resources/{TOKEN_FILE}"] = token.encode("ascii")
 
         out.parent.mkdir(parents=True, exist_ok=True)
