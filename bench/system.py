@@ -23,8 +23,11 @@ sys.path.insert(0, str(REPO / "examples" / "systems"))
 import systems  # noqa: E402  examples/systems/systems.py
 
 FMI_HEADERS = Path(__import__("fmpy").__file__).parent / "c-code"
-OUTPUTS = [c.path for c in systems.read_system().outputs]
-STEPS = systems.read_system().steps
+# the Integer motor wire of a 16-bit bus (pmdfmu.System's default) and the .ssd's outputs but the Real motor
+# output: what the C loop gets and sets
+SYSTEM = systems.read_system(motor="motorCommand")
+OUTPUTS = [c.path for c in SYSTEM.outputs if c.name != "axis1.motorOutput"]
+STEPS = SYSTEM.steps
 
 
 class Loop(ctypes.Structure):
@@ -66,7 +69,7 @@ def bare_library(tmp: Path):
 
 
 def fresh():
-    chip = pmdfmu.Chip(2, **systems.parameters()["chip"])
+    chip = pmdfmu.Chip(2, script=systems.script_value(), **systems.parameters()["chip"])
     return chip, pmdfmu.System(chip)
 
 
@@ -110,7 +113,7 @@ def bare_run(bare) -> float:
 
 def master_run() -> float:
     start = time.perf_counter()
-    systems.run_master("gauss-seidel", 2, log=lambda *a: None)
+    systems.run_master("gauss-seidel", 2, log=lambda *a: None, motor="motorCommand")
     return time.perf_counter() - start
 
 

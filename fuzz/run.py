@@ -54,14 +54,16 @@ def sources(target: str, gen: Path):
     ] + [str(gen / "plant" / "plant_variables.c")]
     # fuzz_resource_uri.c includes fmi2.c itself (its URI decoder is static there)
     extra = {
+        "resource_uri": ["fmi_common/token.c"],
         "serial": ["../host/c/PMDserial.c"],
-        "fmi": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi/record_fmi2.c"],
+        "fmi": ["fmi_common/fmi2.c", "fmi_common/fmi2_not_provided.c", "fmi_common/token.c", "fmi/record_fmi2.c"],
         "sequence": [
             "fmi_common/fmi2.c",
             "fmi_common/fmi2_not_provided.c",
             "fmi/record_fmi2.c",
             "fmi_common/fmi3.c",
             "fmi_common/fmi3_not_provided.c",
+            "fmi_common/token.c",
             "fmi/model3.c",
         ],
     }.get(target, [])

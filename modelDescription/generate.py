@@ -14,6 +14,7 @@
                               with PMD_FIELD_EX / PMD_FIELD_DP
 
   fmi3/buildDescription.xml   the FMI 3.0 source-FMU build description
+  fmi2/documentation/index.html, fmi3/...   the FMUs' documentation: the variables, from the descriptions
 
 Usage: generate.py OUTDIR [C source file names of the FMUs' sources/ ...]
 """
@@ -29,7 +30,7 @@ from xml.sax.saxutils import quoteattr
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from generating import harness_tables, write_files  # noqa: E402  (this folder's helper)
+from generating import harness_module, harness_tables, write_files  # noqa: E402  (this folder's helper)
 
 tables = harness_tables()
 
@@ -805,6 +806,10 @@ def main(outdir: Path, sources) -> None:
         "pmd_constants.h": constants_h(constants, fields),
         "pmd_constants.c": constants_c(constants),
     }
+    for version in (2, 3):
+        files[f"fmi{version}/documentation/index.html"] = harness_module("documentation").documentation_html(
+            files[f"fmi{version}/modelDescription.xml"]
+        )
     files["variables.h"], files["variables.c"] = variables_c(variables, token)
     files["variables3.h"], files["variables3.c"] = variables3_c(variables3)
     files["command_table.h"], files["command_table.c"] = commands_c(commands, registers)
@@ -819,4 +824,5 @@ FMI3_ONLY = {"fmi3.c", "fmi3_not_provided.c", "model3.c", "variables3.c"}
 if __name__ == "__main__":
     if len(sys.argv) < 2:
         sys.exit(__doc__)
-    main(Path(sys.argv[1]), [Path(a).name for a in sys.argv[2:]])
+    # a file of both shells (token.c) is named once
+    main(Path(sys.argv[1]), list(dict.fromkeys(Path(a).name for a in sys.argv[2:])))

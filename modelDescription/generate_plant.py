@@ -7,6 +7,7 @@ that must agree with them:
   fmi2/modelDescription.xml   the FMI 2.0 Co-Simulation interface
   fmi3/modelDescription.xml   the FMI 3.0 Co-Simulation interface
   fmi3/buildDescription.xml   the FMI 3.0 source-FMU build description
+  fmi2/documentation/index.html, fmi3/...   the FMUs' documentation: the variables, from the descriptions
   plant_variables.h, .c       the variable table of the C code: value reference,
                               FMI 2 and 3 types, causality, the member of
                               PlantModel (fmu_src/plant/plant.h) it lives in,
@@ -29,7 +30,7 @@ from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from generate import METADATA, VERSION, build_description, unit_definitions  # the chip's generator, beside this one
-from generating import write_files
+from generating import harness_module, write_files
 
 HERE = Path(__file__).resolve().parent
 MODEL_IDENTIFIER = "pmdplant"
@@ -291,6 +292,10 @@ def main(outdir: Path, sources) -> None:
         "fmi3/modelDescription.xml": fmi3_xml(variables, units, token),
         "fmi3/buildDescription.xml": build_description([n for n in sources if n not in FMI2_ONLY], MODEL_IDENTIFIER),
     }
+    for version in (2, 3):
+        files[f"fmi{version}/documentation/index.html"] = harness_module("documentation").documentation_html(
+            files[f"fmi{version}/modelDescription.xml"]
+        )
     files["plant_variables.h"], files["plant_variables.c"] = variables_c(variables, token)
     write_files(outdir, files)
 
@@ -301,4 +306,5 @@ FMI3_ONLY = {"fmi3.c", "fmi3_not_provided.c"}
 if __name__ == "__main__":
     if len(sys.argv) < 2:
         sys.exit(__doc__)
-    main(Path(sys.argv[1]), [Path(a).name for a in sys.argv[2:]])
+    # a file of both shells (token.c) is named once
+    main(Path(sys.argv[1]), list(dict.fromkeys(Path(a).name for a in sys.argv[2:])))

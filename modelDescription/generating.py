@@ -15,12 +15,7 @@ HERE = Path(__file__).resolve().parent
 def harness_tables() -> ModuleType:
     """python/pmdfmu/tables.py, the one reader of the interface tables, loaded from the source tree: the
     generators run at build time, before the package is installed."""
-    if "tables" not in sys.modules:
-        spec = importlib.util.spec_from_file_location("tables", HERE.parent / "python" / "pmdfmu" / "tables.py")
-        module = importlib.util.module_from_spec(spec)
-        sys.modules["tables"] = module
-        spec.loader.exec_module(module)
-    return sys.modules["tables"]
+    return harness_module("tables")
 
 
 def write_files(outdir: Path, files: Dict[str, str]) -> None:
@@ -31,3 +26,14 @@ def write_files(outdir: Path, files: Dict[str, str]) -> None:
         path.parent.mkdir(parents=True, exist_ok=True)
         if not path.exists() or path.read_text() != text:
             path.write_text(text)
+
+
+def harness_module(name: str) -> ModuleType:
+    """python/pmdfmu/NAME.py, a module of the harness with no third-party imports, loaded from the source
+    tree: the generators run at build time, before the package is installed."""
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, HERE.parent / "python" / "pmdfmu" / f"{name}.py")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+    return sys.modules[name]

@@ -36,8 +36,8 @@ LIGHT_TOML = (
 
 
 def master(fmi_version, plant=None):
-    values = {**systems.parameters(), "plant": plant or {}}
-    return systems.run_master("gauss-seidel", fmi_version, log=lambda *a: None, values=values)
+    values = {**systems.parameters(), "plant": plant or {}}  # the machine's plant turns the Integer command
+    return systems.run_master("gauss-seidel", fmi_version, log=lambda *a: None, values=values, motor="motorCommand")
 
 
 def in_chip(fmi_version, machine, cycles, pieces=1):
@@ -69,7 +69,7 @@ def test_the_plant_tables_parameters_act_as_the_plant_fmus_and_steps_do_not_matt
 def test_the_jacobi_master_is_a_cycle_behind_and_differs():
     """The machine is Gauss-Seidel's order (the plant steps with the command of the cycle just run);
     a Jacobi master gives the plant the command one cycle older, another run."""
-    ref = systems.run_master("jacobi", 2, log=lambda *a: None)
+    ref = systems.run_master("jacobi", 2, log=lambda *a: None, motor="motorCommand")
     got = in_chip(2, PLANT, len(ref))
     assert not np.array_equal(got["axis1.actualPosition"], ref["plant.encoderCount"])
 

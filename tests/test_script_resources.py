@@ -37,6 +37,7 @@ from fmpy.fmi3 import (
 
 import pmdfmu
 from pmdfmu.cli import main
+from pmdfmu.documentation import documentation_html
 from pmdfmu.pack import PackError, pack, set_script_start
 
 REPO = Path(__file__).resolve().parent.parent
@@ -74,12 +75,14 @@ def final(result, name="axis2.commandedPosition"):
 
 
 def with_resources(fmu: Path, out: Path, files: dict) -> Path:
-    """A copy of fmu with files (name under resources/ -> bytes or str) added."""
+    """A copy of fmu with files (name under resources/ -> bytes or str) added, replaced or (None) removed."""
     with zipfile.ZipFile(fmu) as zin, zipfile.ZipFile(out, "w") as zout:
         for info in zin.infolist():
-            zout.writestr(info, zin.read(info))
+            if info.filename.removeprefix("resources/") not in files:
+                zout.writestr(info, zin.read(info))
         for name, data in files.items():
-            zout.writestr(f"resources/{name}", data.encode() if isinstance(data, str) else data)
+            if data is not None:
+                zout.writestr(f"resources/{name}", data.encode() if isinstance(data, str) else data)
     return out
 
 
@@ -90,9 +93,10 @@ class Raw:
     """An instance made below the Chip API, as a tool makes it: resource location as given
     (FMI 2: a URI string; FMI 3: a path or None), every log category on, messages kept."""
 
-    def __init__(self, fmu, version, location=DEFAULT, unzipdir=None):
+    def __init__(self, fmu, version, location=DEFAULT, unzipdir=None, guid=None):
         self.version = version
         self.md = fmpy.read_model_description(str(fmu))
+        self.guid = guid or self.md.guid
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
         self.unzipdir = fmpy.extract(str(fmu), unzipdir=str(unzipdir) if unzipdir else None)
         self.messages = []
@@ -113,7 +117,7 @@ class Raw:
             self.fmu.component = self.fmu.fmi2Instantiate(
                 b"raw",
                 fmi2CoSimulation,
-                self.md.guid.encode(),
+                self.guid.encode(),
                 uri.encode() if uri is not None else None,
                 byref(self.callbacks),
                 0,
@@ -128,7 +132,7 @@ class Raw:
             path = str(resources) + os.sep if location is DEFAULT else location
             self.fmu.component = self.fmu.fmi3InstantiateCoSimulation(
                 b"raw",
-                self.md.guid.encode(),
+                self.guid.encode(),
                 path.encode() if path is not None else None,
                 fmi3Boolean(False),
                 fmi3Boolean(True),
@@ -515,6 +519,7 @@ def test_a_packed_fmu_runs_its_profile_with_no_parameter_set_from_any_directory(
         "resources/profile/two_axis.script",
         "resources/profile/two_axis_table.csv",
         "resources/script.start",
+        "resources/instantiation.token",
     ]
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
@@ -531,14 +536,15 @@ def test_a_packed_fmu_runs_its_profile_with_no_parameter_set_from_any_directory(
 
 
 @VERSIONS
-def test_pack_changes_only_the_start_value_and_adds_the_profile(tmp_path, built, version):
+def test_pack_changes_only_the_start_value_and_the_identity_and_adds_the_profile(tmp_path, built, version):
     packed = pack(SCRIPT, tmp_path / "p.fmu", version)
     with zipfile.ZipFile(built[version]) as a, zipfile.ZipFile(packed.fmu) as b:
         old, new = {i.filename: a.read(i) for i in a.infolist()}, {i.filename: b.read(i) for i in b.infolist()}
     assert set(new) - set(old) == set(packed.files)
     for name in old:
-        if name != "modelDescription.xml":
+        if name not in ("modelDescription.xml", "documentation/index.html"):
             assert new[name] == old[name], name
+    assert new["documentation/index.html"].decode() == documentation_html(new["modelDescription.xml"].decode())
     empty, start = (
         ('<String start=""/>', '<String start="profile/two_axis.script"/>')
         if version == 2
@@ -548,12 +554,27 @@ def test_pack_changes_only_the_start_value_and_adds_the_profile(tmp_path, built,
     # the first empty String start is the script's (record.columns, an input, has one too)
     script = xml.index('name="script"')
     assert script < xml.index(empty) < xml.index("</ScalarVariable>" if version == 2 else "</String>", script)
-    assert new["modelDescription.xml"].decode() == xml.replace(empty, start, 1)
+    md_old, md_new = (fmpy.read_model_description(str(f)) for f in (built[version], packed.fmu))
+    token = "guid" if version == 2 else "instantiationToken"
+    expected = (
+        xml.replace(empty, start, 1)
+        .replace(f'{token}="{md_old.guid}"', f'{token}="{packed.token}"', 1)
+        .replace('modelName="PMDMotionProcessor"', 'modelName="PMDMotionProcessor.two_axis"', 1)
+        .replace(
+            f'description="{md_old.description}"',
+            f'description="{md_old.description}; runs the profile two_axis, packed in resources/profile/two_axis.script"',
+            1,
+        )
+    )
+    assert new["modelDescription.xml"].decode() == expected
     assert new["resources/script.start"] == b"profile/two_axis.script"
+    assert new["resources/instantiation.token"] == packed.token.encode()
     assert new["resources/profile/two_axis.script"] == SCRIPT.read_bytes()
     assert new["resources/profile/two_axis_table.csv"] == TABLE.read_bytes()
-    md_old, md_new = (fmpy.read_model_description(str(f)) for f in (built[version], packed.fmu))
-    assert md_new.guid == md_old.guid  # the variables are the same: the token check passes
+    # a model of its own over the same variables: the binary's token, '+' and a fingerprint
+    assert md_new.guid == packed.token and packed.token.startswith(md_old.guid + "+{")
+    assert md_new.modelName == packed.model_name == "PMDMotionProcessor.two_axis"
+    assert md_new.coSimulation.modelIdentifier == md_old.coSimulation.modelIdentifier
     raw = Raw(packed.fmu, version)
     try:
         assert raw.instantiated and raw.initialize() and raw.script() == "profile/two_axis.script"
@@ -596,6 +617,108 @@ def test_pack_refuses_what_would_not_travel(tmp_path, capsys):
     with pytest.raises(PackError, match="must not overwrite"):
         pack(SCRIPT, packed.fmu, fmu=packed.fmu)
     assert not list(tmp_path.glob("*.partial"))
+
+
+# ---- a packed FMU's identity (fmu_src/fmi_common/token.h) ----
+
+
+@VERSIONS
+def test_two_packed_profiles_are_two_models_that_run_side_by_side(tmp_path, built, version):
+    (tmp_path / "move.script").write_text(move(4321))
+    first = pack(SCRIPT, tmp_path / "a.fmu", version)
+    second = pack(tmp_path / "move.script", tmp_path / "b.fmu", version)
+    models = [fmpy.read_model_description(str(p.fmu)) for p in (first, second)]
+    assert [m.modelName for m in models] == ["PMDMotionProcessor.two_axis", "PMDMotionProcessor.move"]
+    assert models[0].guid != models[1].guid
+    assert all(
+        m.description.endswith(f"runs the profile {n}, packed in resources/profile/{n}.script")
+        for m, n in zip(models, ("two_axis", "move"))
+    )
+    assert {m.coSimulation.modelIdentifier for m in models} == {"PMDMotionProcessor"}
+    raws = [Raw(p.fmu, version) for p in (first, second)]  # both instantiated in one process at once
+    try:
+        assert all(r.instantiated and r.initialize() for r in raws), [r.errors() for r in raws]
+        assert [r.script() for r in raws] == ["profile/two_axis.script", "profile/move.script"]
+    finally:
+        for r in raws:
+            r.close()
+    assert final(simulate(second.fmu)) == 4321
+    for p in (first, second):
+        assert not fmpy.validation.validate_fmu(str(p.fmu))
+    assert pack(SCRIPT, tmp_path / "c.fmu", version, name="circle").model_name == "PMDMotionProcessor.circle"
+    with pytest.raises(PackError, match="a profile's name is letters, digits and '_'"):
+        pack(SCRIPT, tmp_path / "d.fmu", version, name="two axis")
+
+
+@VERSIONS
+def test_the_same_inputs_give_the_same_packed_fmu(tmp_path, version):
+    first = pack(SCRIPT, tmp_path / "a.fmu", version)
+    second = pack(SCRIPT, tmp_path / "b.fmu", version)
+    assert first.token == second.token
+    assert first.fmu.read_bytes() == second.fmu.read_bytes()
+    copy = tmp_path / "copy"  # one byte more in a table: another model
+    shutil.copytree(EXAMPLES, copy, ignore=lambda d, names: [n for n in names if not n.startswith("two_axis")])
+    (copy / "two_axis_table.csv").write_text(TABLE.read_text() + "\n")
+    assert pack(copy / "two_axis.script", tmp_path / "c.fmu", version).token != first.token
+
+
+def instantiation_refused(fmu, version, **kwargs) -> str:
+    raw = Raw(fmu, version, **kwargs)
+    try:
+        assert not raw.instantiated, "instantiated"
+        return raw.errors()
+    finally:
+        raw.close()
+
+
+@VERSIONS
+def test_a_packed_fmu_accepts_its_token_and_the_binarys_and_no_other(tmp_path, built, version):
+    packed = pack(SCRIPT, tmp_path / "p.fmu", version)
+    own = fmpy.read_model_description(str(built[version])).guid
+    fn, what = ("fmi2Instantiate", "GUID") if version == 2 else ("fmi3InstantiateCoSimulation", "instantiation token")
+    for guid in (packed.token, own):  # the base FMU's model description describes the same variables
+        raw = Raw(packed.fmu, version, guid=guid)
+        try:
+            assert raw.instantiated and raw.initialize(), raw.errors()
+        finally:
+            raw.close()
+    other = own + "+{00000000-0000-0000-0000-000000000000}"  # another packed FMU's model description
+    said = instantiation_refused(packed.fmu, version, guid=other)
+    assert f"{fn}: the {what} {other} matches neither this binary's {own} nor this packed FMU's {packed.token}" in said
+    # the file gone, the packed token is refused, as it is without a resources folder to read it from
+    gone = with_resources(packed.fmu, tmp_path / "gone.fmu", {"instantiation.token": None})
+    assert f"{fn}: the {what} {packed.token} does not match this binary's {own}" in instantiation_refused(gone, version)
+    said = instantiation_refused(packed.fmu, version, location=None)
+    assert f"does not match this binary's {own} (nor can a packed FMU's be read: the importer gave no" in said
+    # an editor's line end after the token is no part of it
+    edited = with_resources(packed.fmu, tmp_path / "lf.fmu", {"instantiation.token": packed.token + "\r\n"})
+    raw = Raw(edited, version)
+    try:
+        assert raw.instantiated, raw.errors()
+    finally:
+        raw.close()
+
+
+@VERSIONS
+def test_a_token_file_of_another_binary_refuses_every_token(tmp_path, built, version):
+    """A packed FMU whose binary was swapped for another build's, or whose token file names another
+    binary's token: the file cannot make the binary take a model description of other variables, and
+    it is never ignored, not even for the binary's own token."""
+    own = fmpy.read_model_description(str(built[version])).guid
+    plant = fmpy.read_model_description(str(built[version].with_name(f"pmdplant-fmi{version}.fmu"))).guid
+    packed = pack(SCRIPT, tmp_path / "p.fmu", version)
+    for i, forged in enumerate(
+        [plant + "+{1}", plant, own, own + "+", own + "+{x}\n+", own + "+" + "0" * 65, "", own + "+{\x00}", "%s%n"]
+    ):
+        fmu = with_resources(packed.fmu, tmp_path / f"f{i}.fmu", {"instantiation.token": forged})
+        for guid in {forged.strip() or own, own, packed.token}:
+            said = instantiation_refused(fmu, version, guid=guid)
+            assert (
+                f"instantiation.token holds no packed {'GUID' if version == 2 else 'instantiation token'} of "
+                f"this binary (one begins with its {own} and '+'): the FMU was packed onto another binary" in said
+            )
+    folder = with_resources(packed.fmu, tmp_path / "d.fmu", {"instantiation.token": None, "instantiation.token/x": ""})
+    assert "instantiation.token: not a regular file" in instantiation_refused(folder, version)
 
 
 @VERSIONS

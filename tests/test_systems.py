@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fmpy import read_model_description
 from fmpy.ssp.ssd import read_ssd
 from fmpy.validation import validate_fmu
 
@@ -87,30 +88,62 @@ def test_the_ssp_holds_the_ssd_the_fmus_and_the_chips_parameter_values(built):
     ssd = read_ssd(str(built["ssp"]))  # FMPy validates the .ssd and .ssv against the SSP schemas
     components = {c.name: c for c in ssd.system.elements}
     assert {n: c.source for n, c in components.items()} == {
-        "chip": "resources/PMDMotionProcessor.fmu",
+        "chip": "resources/move.fmu",
         "plant": "resources/pmdplant.fmu",
     }
+    # the obvious wiring: Real to Real, a fraction of full scale
     assert [(c.startElement, c.startConnector, c.endElement, c.endConnector) for c in ssd.system.connections] == [
-        ("chip", "axis1.motorCommand", "plant", "motorCommand"),
+        ("chip", "axis1.motorOutput", "plant", "motorOutput"),
         ("plant", "encoderCount", "chip", "axis1.actualPosition"),
     ]
     (values,) = components["chip"].parameterBindings[0].parameterValues
-    assert {p.name: (p.type, p.value) for p in values.parameters} == {
-        "loopback": ("Boolean", "false"),
-        "script": ("String", systems.script_value()),
-    }
+    assert {p.name: (p.type, p.value) for p in values.parameters} == {"loopback": ("Boolean", "false")}
     with zipfile.ZipFile(built["ssp"]) as z:
-        for name in ("PMDMotionProcessor", "pmdplant"):
-            assert z.read(f"resources/{name}.fmu") == systems.fmu_of(f"{name}.fmu", 2).read_bytes()
+        for source in ("resources/move.fmu", "resources/pmdplant.fmu"):
+            assert z.read(source) == systems.fmu_of(source, 2).read_bytes()
+    # the profile travels inside the chip's FMU: no String to set
+    chip = read_model_description(str(systems.fmu_of("resources/move.fmu", 2)))
+    assert chip.modelName == "PMDMotionProcessor.move"
+    assert next(v.start for v in chip.modelVariables if v.name == "script") == "profile/move.script"
+    with zipfile.ZipFile(systems.fmu_of("resources/move.fmu", 2)) as z:
+        assert z.read("resources/profile/move.script") == systems.SCRIPT.read_bytes()
+
+
+def test_the_integer_wire_of_a_16_bit_bus_is_the_other_motor_wire():
+    system = systems.read_system(motor="motorCommand")
+    assert [(a.path, b.path) for a, b in system.connections] == [
+        ("chip.axis1.motorCommand", "plant.motorCommand"),
+        ("plant.encoderCount", "chip.axis1.actualPosition"),
+    ]
+    assert [c.path for c in system.outputs] == [c.path for c in systems.read_system().outputs]
+    with pytest.raises(ValueError, match="motor: motorOutput or motorCommand"):
+        systems.read_system(motor="voltage")
+
+
+def test_fmpys_ssp_master_sets_a_false_boolean_true_so_run_fmpy_ssp_sets_booleans_itself():
+    """docs/tools.md, FMPy: fmpy.ssp.simulation.set_value compares the SSV's text with 0.0. This test
+    fails when FMPy sets "false" as false; then the workaround and its paragraph can go."""
+    from types import SimpleNamespace
+
+    from fmpy.ssp import simulation
+
+    set_to = []
+    component = SimpleNamespace(
+        variables={"loopback": SimpleNamespace(type="Boolean", valueReference=7)},
+        fmu=SimpleNamespace(setBoolean=lambda vrs, values: set_to.extend(values)),
+    )
+    simulation.set_value(component, "loopback", "false")
+    with systems._fmpy_ssp_parameters():
+        simulation.set_value(component, "loopback", "false")
+    assert set_to == [True, False]
 
 
 def test_the_container_fmu_validates_and_needs_no_parameter_set(built):
     assert validate_fmu(str(built["container"])) == []
-    from fmpy import read_model_description
 
     md = read_model_description(str(built["container"]))
     starts = {v.name: v.start for v in md.modelVariables if v.causality == "parameter"}
-    assert starts == {"chip.loopback": "false", "chip.script": systems.script_value()}
+    assert starts == {"chip.loopback": "false"}
     assert {v.name for v in md.modelVariables if v.causality == "output"} == {
         c.path for c in systems.read_system().outputs
     }
@@ -201,13 +234,14 @@ def test_gauss_seidel_is_the_same_in_both_fmi_versions_and_differs_from_jacobi(r
 
 @pytest.mark.parametrize("algorithm", ["gauss-seidel", "jacobi"])
 def test_which_command_the_plant_turns_in_each_step(runs, algorithm):
-    """The plant's voltage in a step is supplyVoltage * command / 32767 of the command it
-    had: Gauss-Seidel's the chip's of the same step, Jacobi's the one of the step before
-    (0 in the first step: the chip's command after initialization)."""
+    """The plant's voltage in a step is supplyVoltage times the chip's motorOutput it had
+    (motorCommand / 32768): Gauss-Seidel's the chip's of the same step, Jacobi's the one
+    of the step before (0 in the first step: the chip's command after initialization)."""
     result, _ = runs(algorithm)
-    command = result["chip.axis1.motorCommand"].astype(float)
-    applied = command if algorithm == "gauss-seidel" else np.concatenate([[0.0], command[:-1]])
-    assert np.array_equal(result["plant.voltage"], 24.0 * np.maximum(applied, -32767) / 32767)
+    output = result["chip.axis1.motorOutput"]
+    assert np.array_equal(output, result["chip.axis1.motorCommand"] / 32768)
+    applied = output if algorithm == "gauss-seidel" else np.concatenate([[0.0], output[:-1]])
+    assert np.array_equal(result["plant.voltage"], 24.0 * applied)
 
 
 @pytest.mark.parametrize("algorithm", ["gauss-seidel", "jacobi"])

@@ -2,9 +2,10 @@
 """The chip and the plant as one system (docs/systems.md), from one description,
 SystemStructure.ssd beside this file, in three forms and four masters:
 
-  (a) an SSP: the .ssd, the two FMI 2 FMUs and the chip's parameter values
-      (loopback false, the profile move.script) zipped into one .ssp, run by
-      FMPy's SSP support (fmpy.ssp) or by libcosim (libcosimpy);
+  (a) an SSP: the .ssd, the two FMI 2 FMUs (the chip's with the profile
+      move.script packed into it, so no tool has to set a String) and the chip's
+      parameter set (loopback false) zipped into one .ssp, run by FMPy's SSP
+      support (fmpy.ssp) or by libcosim (libcosimpy);
   (b) a container FMU (fmpy.container_fmu, FMI 3, the two FMI 3 FMUs inside)
       that any tool importing one FMU runs, here FMPy's simulate_fmu;
   (c) a plain master in Python on FMPy's FMU classes, FMI 2 or 3, stepping
@@ -18,9 +19,14 @@ that step, named `component.connector`.
     python examples/systems/systems.py ssp --out move.ssp
     python examples/systems/systems.py container --out move-container.fmu
     python examples/systems/systems.py run {gauss-seidel,jacobi,fmpy-ssp,libcosim,container} [--fmi 2|3]
+
+The .ssd wires the chip's Real axis1.motorOutput to the plant's Real
+motorOutput; motor="motorCommand" (run --motor motorCommand) wires the Integer
+motor command of a 16-bit bus instead, for the plain master.
 """
 
 import argparse
+import atexit
 import contextlib
 import shutil
 import tempfile
@@ -46,16 +52,37 @@ NS = {
 MASTERS = ("gauss-seidel", "jacobi", "fmpy-ssp", "libcosim", "container")
 
 
+MOTOR_WIRES = {  # the motor's connection: the .ssd's Real one, or the Integer one of a 16-bit bus
+    "motorOutput": ("axis1.motorOutput", "motorOutput"),
+    "motorCommand": ("axis1.motorCommand", "motorCommand"),
+}
+
+
 def script_value() -> str:
-    """The chip's `script` parameter for the profile: move.script's text (a value
-    holding a line feed is the script itself, docs/scripts.md), so the parameter
-    set carries the whole profile and no path has to exist where the system runs."""
+    """The chip's `script` parameter for the profile, for a chip FMU without it packed: move.script's
+    text (a value holding a line feed is the script itself, docs/scripts.md)."""
     return SCRIPT.read_text()
 
 
 def parameters() -> Dict[str, Dict[str, object]]:
-    """Component -> parameter -> value: what the .ssp's parameter values set."""
-    return {"chip": {"loopback": False, "script": script_value()}}
+    """Component -> parameter -> value: what the .ssp's parameter set sets (the profile is packed
+    into the chip's FMU)."""
+    return {"chip": {"loopback": False}}
+
+
+_PACKED: Dict[int, Path] = {}
+
+
+def profile_fmu(fmi_version: int) -> Path:
+    """The chip's FMU with move.script packed into it (pmdfmu pack, docs/scripts.md): the .ssd's
+    resources/move.fmu; made once per process, in a temporary folder removed at exit."""
+    if fmi_version not in _PACKED:
+        from pmdfmu.pack import pack
+
+        folder = Path(tempfile.mkdtemp(prefix="pmdfmu-systems-"))
+        atexit.register(shutil.rmtree, folder, True)
+        _PACKED[fmi_version] = pack(SCRIPT, folder / f"move-fmi{fmi_version}.fmu", fmi_version).fmu
+    return _PACKED[fmi_version]
 
 
 # ---- the system description -------------------------------------------------------
@@ -87,7 +114,11 @@ class System(NamedTuple):
         return round(self.stop_time / self.step_size)
 
 
-def read_system(ssd: Path = SSD) -> System:
+def read_system(ssd: Path = SSD, motor: str = "motorOutput") -> System:
+    """The system the .ssd describes; motor="motorCommand" wires the Integer motor command instead of
+    the Real motorOutput (MOTOR_WIRES)."""
+    if motor not in MOTOR_WIRES:
+        raise ValueError(f"motor: {' or '.join(MOTOR_WIRES)}, not {motor!r}")
     root = etree.parse(str(ssd)).getroot()
     components, connectors = {}, []
     for c in root.iterfind("ssd:System/ssd:Elements/ssd:Component", NS):
@@ -96,22 +127,26 @@ def read_system(ssd: Path = SSD) -> System:
             Connector(c.get("name"), k.get("name"), k.get("kind"))
             for k in c.iterfind("ssd:Connectors/ssd:Connector", NS)
         ]
+    wired, wire = MOTOR_WIRES["motorOutput"], MOTOR_WIRES[motor]
+    connectors = [Connector("plant", wire[1], k.kind) if k == ("plant", wired[1], "input") else k for k in connectors]
     by_path = {k.path: k for k in connectors}
-    connections = [
-        (
-            by_path[f"{c.get('startElement')}.{c.get('startConnector')}"],
-            by_path[f"{c.get('endElement')}.{c.get('endConnector')}"],
-        )
-        for c in root.iterfind("ssd:System/ssd:Connections/ssd:Connection", NS)
-    ]
+    connections = []
+    for c in root.iterfind("ssd:System/ssd:Connections/ssd:Connection", NS):
+        start, end = c.get("startConnector"), c.get("endConnector")
+        if (c.get("startElement"), start, c.get("endElement"), end) == ("chip", wired[0], "plant", wired[1]):
+            start, end = wire
+        connections.append((by_path[f"{c.get('startElement')}.{start}"], by_path[f"{c.get('endElement')}.{end}"]))
     experiment = root.find("ssd:DefaultExperiment", NS)
     step = experiment.find(".//osp:FixedStepAlgorithm", NS).get("baseStepSize")
     return System(components, connectors, connections, float(experiment.get("stopTime")), float(step))
 
 
 def fmu_of(source: str, fmi_version: int) -> Path:
-    """The built FMU a component's source names: resources/PMDMotionProcessor.fmu is
-    PMDMotionProcessor-fmi2.fmu beside pmdfmu.default_fmu(2), and so on."""
+    """The FMU a component's source names: resources/pmdplant.fmu is pmdplant-fmi2.fmu beside
+    pmdfmu.default_fmu(2), and so on; resources/move.fmu the chip's with move.script packed
+    (profile_fmu)."""
+    if Path(source).stem == SCRIPT.stem:
+        return profile_fmu(fmi_version)
     return pmdfmu.default_fmu(fmi_version).with_name(f"{Path(source).stem}-fmi{fmi_version}.fmu")
 
 
@@ -181,18 +216,16 @@ def build_ssp(out: Path) -> Path:
 @contextlib.contextmanager
 def _fmpy_ssp_parameters():
     """FMPy's SSP master (fmpy.ssp.simulation) applies the parameter set it is
-    given by `component.name` prefixes, compares a Boolean value with 0.0 (so
-    the text "false" sets true) and has no String: while the block runs, its
-    set_value takes the typed values this module passes and Strings."""
+    given by `component.name` prefixes and compares a Boolean value with 0.0, so
+    the text "false" sets true (docs/tools.md, FMPy): while the block runs, its
+    set_value sets Booleans from their text."""
     from fmpy.ssp import simulation
 
     original = simulation.set_value
 
     def set_value(component, name, value):
         variable = component.variables[name]
-        if variable.type == "String":
-            component.fmu.setString([variable.valueReference], [value])
-        elif variable.type == "Boolean":
+        if variable.type == "Boolean":
             component.fmu.setBoolean([variable.valueReference], [value in (True, "true", "1")])
         else:
             original(component, name, value)
@@ -441,7 +474,9 @@ class _Instance:
         shutil.rmtree(self.unzipdir, ignore_errors=True)
 
 
-def run_master(algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None, values=None) -> np.ndarray:
+def run_master(
+    algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None, values=None, motor: str = "motorOutput"
+) -> np.ndarray:
     """(c) a plain master: one communication step per chip cycle, communication
     points n * step. "gauss-seidel" steps the components in the .ssd's order
     and sets each one's inputs just before its step (the plant integrates the
@@ -449,10 +484,10 @@ def run_master(algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None, 
     does); "jacobi" sets every input from the outputs of the step before, then
     steps all (the plant's command is one cycle older). `log(instance, status,
     message)` receives the FMUs' log messages; `values` replaces parameters()
-    (component -> parameter -> value)."""
+    (component -> parameter -> value); motor: the motor's wire (read_system)."""
     if algorithm not in ("gauss-seidel", "jacobi"):
         raise ValueError(f"algorithm: gauss-seidel or jacobi, not {algorithm!r}")
-    system = read_system()
+    system = read_system(motor=motor)
     log = log or (lambda instance, status, message: print(f"[{instance}] {message}"))
     instances = {}
     try:
@@ -488,10 +523,10 @@ def run_master(algorithm: str = "gauss-seidel", fmi_version: int = 2, log=None, 
             instance.close()
 
 
-def run(master: str, fmi_version: int = 2, workdir: Path = None) -> np.ndarray:
-    """Any of the masters, building what it needs in workdir."""
+def run(master: str, fmi_version: int = 2, workdir: Path = None, motor: str = "motorOutput") -> np.ndarray:
+    """Any of the masters, building what it needs in workdir (motor: the plain master's motor wire)."""
     if master in ("gauss-seidel", "jacobi"):
-        return run_master(master, fmi_version)
+        return run_master(master, fmi_version, motor=motor)
     with tempfile.TemporaryDirectory() as tmp:
         workdir = Path(workdir or tmp)
         if master == "container":
@@ -511,13 +546,21 @@ def main(argv=None) -> None:
     r.add_argument("master", choices=MASTERS)
     r.add_argument("--fmi", type=int, choices=(2, 3), default=2, help="FMI version of the plain master's FMUs")
     r.add_argument("--csv", type=Path, help="also write every step to this CSV file")
+    r.add_argument(
+        "--motor",
+        choices=tuple(MOTOR_WIRES),
+        default="motorOutput",
+        help="the plain master's motor wire: the Real motorOutput (the .ssd's) or a 16-bit bus's Integer motorCommand",
+    )
     args = parser.parse_args(argv)
     if args.command == "ssp":
         print(build_ssp(args.out))
     elif args.command == "container":
         print(build_container(args.out))
     else:
-        result = run(args.master, args.fmi)
+        if args.motor != "motorOutput" and args.master not in ("gauss-seidel", "jacobi"):
+            parser.error("--motor: the .ssp and the container wire the .ssd's motorOutput")
+        result = run(args.master, args.fmi, motor=args.motor)
         print(
             f"{args.master}: {len(result)} cycles; motion complete after cycle {motion_complete(result)}; "
             f"encoder {result['plant.encoderCount'][-1]} counts (commanded "

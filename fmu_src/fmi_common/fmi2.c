@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "fmi2.h"
+#include "token.h"
 
 /* The environment's callbacks live beside the model (the fuzzers read inst, first). */
 typedef struct {
@@ -21,10 +22,9 @@ static const fmi2Status status_of[] = {fmi2OK, fmi2Warning, fmi2Discard, fmi2Err
 /* The logger's message is a printf format: a '%' goes out as "%%", and no
  * variadic arguments are passed (a logger written in another language often
  * cannot read them). */
-static void log_to_environment(void *environment, const char *instanceName, PmdStatus status, const char *category,
-                               const char *message)
+static void log_escaped(const fmi2CallbackFunctions *functions, const char *instanceName, fmi2Status status,
+                        const char *category, const char *message)
 {
-    const Component *comp = (const Component *)environment;
     char escaped[16384];
     size_t i = 0;
     for (; *message && i + 2 < sizeof escaped; message++) {
@@ -33,7 +33,13 @@ static void log_to_environment(void *environment, const char *instanceName, PmdS
         escaped[i++] = *message;
     }
     escaped[i] = '\0';
-    comp->functions.logger(comp->functions.componentEnvironment, instanceName, status_of[status], category, escaped);
+    functions->logger(functions->componentEnvironment, instanceName, status, category, escaped);
+}
+
+static void log_to_environment(void *environment, const char *instanceName, PmdStatus status, const char *category,
+                               const char *message)
+{
+    log_escaped(&((const Component *)environment)->functions, instanceName, status_of[status], category, message);
 }
 
 PmdModel *pmd_fmi2_begin(fmi2Component c, const char *fn, unsigned states)
@@ -144,7 +150,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
 {
     Component *comp;
     const char *noResources = NULL;
-    char *resources;
+    char *resources, message[1024];
     (void)visible;
     if (!functions || !functions->logger)
         return NULL;
@@ -158,23 +164,24 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                           "fmi2Instantiate: this FMU supports Co-Simulation only");
         return NULL;
     }
-    if (!fmuGUID || strcmp(fmuGUID, pmd_model_token) != 0) {
-        char message[256];
-        snprintf(message, sizeof message, "fmi2Instantiate: the GUID does not match this binary's %s", pmd_model_token);
-        functions->logger(functions->componentEnvironment, instanceName, fmi2Error, "errors", message);
+    /* the resources folder first: a packed FMU's token is there (token.h) */
+    resources = resources_of(fmuResourceLocation, &noResources);
+    if (!pmd_token_accepted("fmi2Instantiate", "GUID", fmuGUID, resources, noResources, message, sizeof message)) {
+        log_escaped(functions, instanceName, fmi2Error, "errors", message);  /* it quotes the importer's GUID */
+        free(resources);
         return NULL;
     }
-    comp = (Component *)calloc(1, sizeof *comp);
-    if (!comp)
+    if (!(comp = (Component *)calloc(1, sizeof *comp))) {
+        free(resources);
         return NULL;
+    }
     comp->functions = *functions;
-    comp->inst = pmd_model_new(instanceName, log_to_environment, comp);
-    if (!comp->inst) {
+    if (!(comp->inst = pmd_model_new(instanceName, log_to_environment, comp))) {
         free(comp);
+        free(resources);
         return NULL;
     }
     pmd_model_set_debug_logging(comp->inst, "fmi2Instantiate", loggingOn, 0, NULL);
-    resources = resources_of(fmuResourceLocation, &noResources);
     if (pmd_model_resources(comp->inst, "fmi2Instantiate", resources, noResources) != PMD_OK) {
         fmi2FreeInstance(comp);
         return NULL;

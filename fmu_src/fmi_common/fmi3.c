@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "fmi3.h"
+#include "token.h"
 
 /* The environment's callbacks live beside the model (the fuzzers read inst, first). */
 typedef struct {
@@ -104,6 +105,8 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                          fmi3IntermediateUpdateCallback intermediateUpdate)
 {
     Component *comp;
+    char *resources, message[1024];
+    const char *noResources;
     (void)visible; (void)earlyReturnAllowed; (void)requiredIntermediateVariables;
     (void)nRequiredIntermediateVariables; (void)intermediateUpdate;
     if (!instanceName) {
@@ -111,32 +114,33 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                  "fmi3InstantiateCoSimulation: instanceName is NULL");
         return NULL;
     }
-    if (!instantiationToken || strcmp(instantiationToken, pmd_model_token) != 0) {
-        char message[256];
-        snprintf(message, sizeof message, "fmi3InstantiateCoSimulation: the instantiation token does not match "
-                 "this binary's %s", pmd_model_token);
-        pmd_fmi3_refuse_instance(instanceEnvironment, logMessage, message);
-        return NULL;
-    }
     if (eventModeUsed) {
         pmd_fmi3_refuse_instance(instanceEnvironment, logMessage, "fmi3InstantiateCoSimulation: this FMU "
                                  "has no event mode (hasEventMode is false)");
         return NULL;
     }
-    comp = (Component *)calloc(1, sizeof *comp);
-    if (!comp)
+    /* the resources folder first: a packed FMU's token is there (token.h) */
+    resources = resources_of(resourcePath);
+    noResources = resourcePath ? "the importer gave an empty resourcePath" : "the importer gave no resourcePath (NULL)";
+    if (!pmd_token_accepted("fmi3InstantiateCoSimulation", "instantiation token", instantiationToken, resources,
+                            noResources, message, sizeof message)) {
+        pmd_fmi3_refuse_instance(instanceEnvironment, logMessage, message);
+        free(resources);
         return NULL;
+    }
+    if (!(comp = (Component *)calloc(1, sizeof *comp))) {
+        free(resources);
+        return NULL;
+    }
     comp->environment = instanceEnvironment;
     comp->logMessage = logMessage;
-    comp->inst = pmd_model_new(instanceName, log_to_environment, comp);
-    if (!comp->inst) {
+    if (!(comp->inst = pmd_model_new(instanceName, log_to_environment, comp))) {
         free(comp);
+        free(resources);
         return NULL;
     }
     pmd_model_set_debug_logging(comp->inst, "fmi3InstantiateCoSimulation", loggingOn, 0, NULL);
-    if (pmd_model_resources(comp->inst, "fmi3InstantiateCoSimulation", resources_of(resourcePath),
-                               resourcePath ? "the importer gave an empty resourcePath"
-                                            : "the importer gave no resourcePath (NULL)") != PMD_OK) {
+    if (pmd_model_resources(comp->inst, "fmi3InstantiateCoSimulation", resources, noResources) != PMD_OK) {
         fmi3FreeInstance(comp);
         return NULL;
     }

@@ -617,8 +617,11 @@ def cmd_pack(args) -> int:
     """The script and its tables inside a copy of the FMU, `script` starting at it (pack.py)."""
     from .pack import pack
 
-    packed = pack(args.script, args.out, args.fmi_version, _fmu_file(args.fmu))
+    packed = pack(args.script, args.out, args.fmi_version, _fmu_file(args.fmu), args.name)
     _say(f"wrote {packed.fmu} (FMI {args.fmi_version}): script starts at {packed.start!r}")
+    _say(
+        f"  modelName {packed.model_name}, {'GUID' if args.fmi_version == 2 else 'instantiation token'} {packed.token}"
+    )
     for name in packed.files:
         _say(f"  {name}")
     return 0
@@ -1072,6 +1075,10 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--out", type=Path, required=True, help="the FMU to write, e.g. my-profile.fmu")
     p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
     p.add_argument("--fmu", type=Path, help="the FMU to copy (default: the built one of that FMI version)")
+    p.add_argument(
+        "--name",
+        help="the profile's name in the FMU's modelName (MODEL.NAME; letters, digits, _), default: the script's file name",
+    )
     p.set_defaults(func=cmd_pack)
 
     p = sub.add_parser(

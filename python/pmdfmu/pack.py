@@ -6,9 +6,16 @@ resources/profile/, in their relative layout, and the `script` parameter starts
 at the script's path there (README, "Scripts"): modelDescription.xml's start
 value says so, and resources/script.start holds the same value for the binary,
 which reads it at instantiation (fmu_src/script/script.h, PMD_SCRIPT_START), so
-an importer that sets no start values runs the profile too. Everything else in
-the FMU is copied byte for byte; the variables, and so the instantiation token,
-are unchanged.
+an importer that sets no start values runs the profile too.
+
+The copy is a model of its own, so that two packed profiles in one system are
+told apart: its `modelName` and `description` name the profile, and its GUID /
+instantiation token is the base FMU's, '+', and a fingerprint of its contents
+(the same inputs give the same token). resources/instantiation.token holds that
+token for the binary, which accepts it beside its own
+(fmu_src/fmi_common/token.h); documentation/index.html is written again from
+the new model description. The modelIdentifier, the variables and every other
+file are the base FMU's, byte for byte.
 
 Which tables a script loads is the FMU's answer, not a second parser's: pack
 compiles the script in the FMU and reads the files it names in its log.
@@ -16,23 +23,28 @@ compiles the script in the FMU and reads the files it names in its log.
 
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import tempfile
+import uuid
 import xml.etree.ElementTree as ET
 import xml.parsers.expat
 import zipfile
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
-from typing import Iterator, List, Optional, Tuple, Union
+from typing import Dict, Iterator, List, Optional, Tuple, Union
 
 from .files import replaced, shown_path
 from .chip import Chip, FMUError, default_fmu
+from .documentation import documentation_html
 
 PROFILE = "profile"  # resources/profile/: the script and its tables
 START_FILE = "script.start"  # resources/script.start: PMD_SCRIPT_START in fmu_src/script/script.h
+TOKEN_FILE = "instantiation.token"  # resources/instantiation.token: PMD_TOKEN_FILE in fmu_src/fmi_common/token.h
 MODEL_DESCRIPTION = "modelDescription.xml"
+DOCUMENTATION = "documentation/index.html"  # written from the model description (documentation.py)
 
 # what the FMU logs (category "buffers") at the end of initialization about the files it read (instance.c)
 _SCRIPT_READ = re.compile(r"ExitInitializationMode: script read from (.*)$")
@@ -45,11 +57,13 @@ class PackError(ValueError):
 
 @dataclass
 class Packed:
-    """What pack wrote: the FMU, the `script` start value and the files under resources/."""
+    """What pack wrote: the FMU, the `script` start value, the files under resources/ and its identity."""
 
     fmu: Path
     start: str
     files: List[str]
+    model_name: str = ""
+    token: str = ""
 
 
 @dataclass
@@ -123,45 +137,82 @@ def _start_tag(xml_bytes: bytes) -> Tuple[int, str, str]:
 _ATTRIBUTE = r"""\s+([\w:.-]+)\s*=\s*("[^"]*"|'[^']*')"""
 
 
-def set_script_start(xml_bytes: bytes, value: str) -> bytes:
-    """modelDescription.xml (FMI 2 or 3) with the `script` variable's start value set to value,
-    every other byte as it was; checked by parsing both and comparing them element by element."""
-    offset, tag, name = _start_tag(xml_bytes)
+def _set_attributes(xml_bytes: bytes, offset: int, tag: str, values: Dict[str, str]) -> bytes:
+    """xml_bytes with the attributes of the <tag> element that begins at byte offset set to values (replaced
+    in place, or appended), every other byte as it was."""
     text = xml_bytes.decode("utf-8")
     at = len(xml_bytes[:offset].decode("utf-8"))
     element = re.compile(rf"<{tag}((?:{_ATTRIBUTE})*)\s*/?>").match(text, at)
     if not element:
         raise PackError(f"{MODEL_DESCRIPTION}: cannot read the <{tag}> element at byte {offset}")
-    new_attribute = f'{name}="{_escape_attribute(value)}"'
     attributes = element.group(1)
-    existing = [m for m in re.finditer(_ATTRIBUTE, attributes) if m.group(1) == name]
-    if existing:
-        m = existing[0]
-        attributes = (
-            attributes[: m.start()] + m.group(0)[: m.start(1) - m.start()] + new_attribute + attributes[m.end() :]
-        )
-    else:
-        attributes += " " + new_attribute
-    start = element.start(1)
-    result = (text[:start] + attributes + text[element.end(1) :]).encode("utf-8")
-    _check_only_the_start_changed(xml_bytes, result, tag, name, value)
+    for name, value in values.items():
+        new_attribute = f'{name}="{_escape_attribute(value)}"'
+        existing = [m for m in re.finditer(_ATTRIBUTE, attributes) if m.group(1) == name]
+        if existing:
+            m = existing[0]
+            attributes = (
+                attributes[: m.start()] + m.group(0)[: m.start(1) - m.start()] + new_attribute + attributes[m.end() :]
+            )
+        else:
+            attributes += " " + new_attribute
+    return (text[: element.start(1)] + attributes + text[element.end(1) :]).encode("utf-8")
+
+
+def set_script_start(xml_bytes: bytes, value: str) -> bytes:
+    """modelDescription.xml (FMI 2 or 3) with the `script` variable's start value set to value,
+    every other byte as it was; checked by parsing both and comparing them element by element."""
+    offset, tag, name = _start_tag(xml_bytes)
+    result = _set_attributes(xml_bytes, offset, tag, {name: value})
+    _check_only_changed(xml_bytes, result, lambda e: e.tag == tag and e.get(name) == value, {name})
     return result
 
 
-def _check_only_the_start_changed(before: bytes, after: bytes, tag: str, name: str, value: str) -> None:
+def set_identity(xml_bytes: bytes, values: Dict[str, str]) -> bytes:
+    """modelDescription.xml with the root element's attributes (modelName, description, guid or
+    instantiationToken) set to values, every other byte as it was; checked as set_script_start is."""
+    parser = xml.parsers.expat.ParserCreate()
+    roots: List[int] = []
+    parser.StartElementHandler = lambda tag, attributes: roots.append(parser.CurrentByteIndex) if not roots else None
+    parser.Parse(xml_bytes, True)
+    result = _set_attributes(xml_bytes, roots[0], "fmiModelDescription", values)
+    _check_only_changed(xml_bytes, result, lambda e: e.tag == "fmiModelDescription", set(values))
+    return result
+
+
+def _check_only_changed(before: bytes, after: bytes, is_edited, names) -> None:
+    """after is before but for the attributes names of one element, which is_edited(element) recognizes."""
     old, new = list(ET.fromstring(before).iter()), list(ET.fromstring(after).iter())
     if len(old) != len(new):
         raise PackError(f"{MODEL_DESCRIPTION}: the edit changed the elements")
     changed = 0
     for a, b in zip(old, new):
-        others = [{k: v for k, v in e.attrib.items() if k != name} for e in (a, b)]
+        others = [{k: v for k, v in e.attrib.items() if k not in names} for e in (a, b)]
         if (a.tag, a.text, a.tail) != (b.tag, b.text, b.tail) or (
-            a.attrib != b.attrib and (b.tag != tag or b.attrib.get(name) != value or others[0] != others[1])
+            a.attrib != b.attrib and (not is_edited(b) or others[0] != others[1])
         ):
             raise PackError(f"{MODEL_DESCRIPTION}: the edit changed <{a.tag}> {a.attrib}")
         changed += a.attrib != b.attrib
     if changed > 1:
         raise PackError(f"{MODEL_DESCRIPTION}: the edit changed {changed} elements")
+
+
+def profile_name(script: Path) -> str:
+    """The name a packed FMU gives its profile by default: the script's file name without its extension, as
+    a name of letters, digits and '_' (another character as '_')."""
+    name = re.sub(r"\W", "_", script.stem, flags=re.ASCII)
+    return name if re.match(r"[A-Za-z_]", name) else "_" + name
+
+
+def packed_token(base_token: str, members: Dict[str, bytes]) -> str:
+    """The packed FMU's GUID / instantiation token: the base FMU's (which names the variables and so the
+    binary, fmu_src/fmi_common/token.h), '+', and a fingerprint of the packed FMU's files, members (not the
+    token's file, nor documentation/index.html, which is written from the model description; the model
+    description counts with the base token in it), as a braced UUID."""
+    digest = hashlib.sha256()
+    for name in sorted(members):
+        digest.update(b"%d:%s%d:" % (len(name.encode()), name.encode(), len(members[name])) + members[name])
+    return f"{base_token}+{{{uuid.UUID(bytes=digest.digest()[:16])}}}"
 
 
 def _layout(read: _Read, unzipdir: Path) -> Tuple[Path, List[Tuple[Path, str]]]:
@@ -234,18 +285,26 @@ def _refuse_outside(script: Path, tables) -> None:
 
 
 def pack(
-    script: Union[str, Path], out: Union[str, Path], fmi_version: int = 2, fmu: Union[str, Path, None] = None
+    script: Union[str, Path],
+    out: Union[str, Path],
+    fmi_version: int = 2,
+    fmu: Union[str, Path, None] = None,
+    name: Optional[str] = None,
 ) -> Packed:
     """Writes out: a copy of fmu (default: the built FMU of fmi_version) with script and every
-    table it loads under resources/profile/ and `script` starting at it; then initializes the
-    copy without parameters and checks that it compiled the same script from inside itself.
+    table it loads under resources/profile/ and `script` starting at it, a model of its own named
+    after the profile (name, default: profile_name(script)); then initializes the copy without
+    parameters and checks that it compiled the same script from inside itself.
     out is never one of these inputs; it is written whole or not at all (files.replaced)."""
     script, out = Path(script).resolve(), Path(out)
+    name = profile_name(script) if name is None else name
+    if not re.fullmatch(r"[A-Za-z_]\w*", name, flags=re.ASCII):
+        raise PackError(f"{name!r}: a profile's name is letters, digits and '_', not beginning with a digit")
     base = Path(fmu) if fmu else default_fmu(fmi_version)
     _refuse_overwriting(out, [(base, "the FMU it copies"), (script, "the script")])
     with zipfile.ZipFile(base) as z:
         names = z.namelist()
-    if f"resources/{START_FILE}" in names:
+    if f"resources/{START_FILE}" in names or f"resources/{TOKEN_FILE}" in names:
         raise PackError(f"{base} is a packed FMU already: pack onto the built FMU")
     with _by_a_name_the_fmu_reads_as_a_path(script) as given:
         try:
@@ -257,33 +316,50 @@ def pack(
         if given != script:
             _refuse_outside(script, read.tables)
         _refuse_overwriting(
-            out, [(path, f"the table {name} the script loads (line {line})") for line, name, path in read.tables]
+            out, [(path, f"the table {table} the script loads (line {line})") for line, table, path in read.tables]
         )
         root, files = _layout(read, unzipdir)
         start = f"{PROFILE}/{files[0][1]}"
 
+        with zipfile.ZipFile(base) as zin:
+            infos = zin.infolist()
+            members = {info.filename: zin.read(info) for info in infos}
+        md = members[MODEL_DESCRIPTION]
+        attributes = ET.fromstring(md).attrib
+        token_attribute = "guid" if fmi_version == 2 else "instantiationToken"
+        model_name = f"{attributes['modelName']}.{name}"
+        md = set_identity(
+            set_script_start(md, start),
+            {
+                "modelName": model_name,
+                "description": f"{attributes.get('description', attributes['modelName'])}; runs the profile "
+                f"{name}, packed in resources/{start}",
+            },
+        )
+        added = {f"resources/{PROFILE}/{relative}": path.read_bytes() for path, relative in files}
+        added[f"resources/{START_FILE}"] = start.encode("utf-8")
+        contents = {**members, MODEL_DESCRIPTION: md, **added}
+        contents.pop(DOCUMENTATION, None)  # the page says the token: it is the description's, written again
+        token = packed_token(attributes[token_attribute], contents)
+        members[MODEL_DESCRIPTION] = set_identity(md, {token_attribute: token})
+        if DOCUMENTATION in members:
+            members[DOCUMENTATION] = documentation_html(members[MODEL_DESCRIPTION].decode("utf-8")).encode("utf-8")
+        added[f"resources/{TOKEN_FILE}"] = token.encode("ascii")
+
         out.parent.mkdir(parents=True, exist_ok=True)
         with replaced(out) as partial:
-            with zipfile.ZipFile(base) as zin, _archive(partial) as zout:
-                for info in zin.infolist():
-                    data = zin.read(info)
-                    if info.filename == MODEL_DESCRIPTION:
-                        data = set_script_start(data, start)
-                    zout.writestr(info, data)
-                added = []
-                for path, relative in files:
-                    name = f"resources/{PROFILE}/{relative}"
-                    zout.write(path, name, compress_type=zipfile.ZIP_DEFLATED)
-                    added.append(name)
-                zout.writestr(
-                    zipfile.ZipInfo(f"resources/{START_FILE}", date_time=(1980, 1, 1, 0, 0, 0)),
-                    start.encode("utf-8"),
-                    compress_type=zipfile.ZIP_DEFLATED,
-                )
-                added.append(f"resources/{START_FILE}")
+            with _archive(partial) as zout:
+                for info in infos:
+                    zout.writestr(info, members[info.filename])
+                for member, data in added.items():
+                    zout.writestr(
+                        zipfile.ZipInfo(member, date_time=(1980, 1, 1, 0, 0, 0)),
+                        data,
+                        compress_type=zipfile.ZIP_DEFLATED,
+                    )
             partial.flush()
-            _verify(Path(partial.name), fmi_version, start, read)
-    return Packed(out, start, added)
+            _verify(Path(partial.name), fmi_version, start, read, token)
+    return Packed(out, start, list(added), model_name, token)
 
 
 @contextmanager
@@ -301,9 +377,10 @@ def _archive(partial) -> Iterator[zipfile.ZipFile]:
     archive.close()
 
 
-def _verify(packed: Path, fmi_version: int, start: str, original: _Read) -> None:
+def _verify(packed: Path, fmi_version: int, start: str, original: _Read, token: str) -> None:
     """The packed FMU, initialized with no parameter: its script is the start value, read from
-    inside it, its tables too, and it compiled what the script by path compiles (same FMU state)."""
+    inside it, its tables too, and it compiled what the script by path compiles (same FMU state);
+    the binary took its token (the harness instantiates with the model description's)."""
     try:
         read, unzipdir = _compile(fmi_version, packed, None)
     except FMUError as e:
@@ -324,6 +401,19 @@ def _verify(packed: Path, fmi_version: int, start: str, original: _Read) -> None
     ]
     if starts != [start]:
         raise PackError(f"{MODEL_DESCRIPTION} gives the script the start value {starts}, not {start!r}")
+    if md.get("guid", md.get("instantiationToken")) != token:
+        raise PackError(f"{MODEL_DESCRIPTION} does not give the packed FMU's token {token}")
 
 
-__all__ = ["pack", "Packed", "PackError", "set_script_start", "PROFILE", "START_FILE"]
+__all__ = [
+    "pack",
+    "Packed",
+    "PackError",
+    "set_script_start",
+    "set_identity",
+    "packed_token",
+    "profile_name",
+    "PROFILE",
+    "START_FILE",
+    "TOKEN_FILE",
+]
