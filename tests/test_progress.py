@@ -45,7 +45,8 @@ def on_a_terminal(argv, cwd, interrupt_after=None, driver=DRIVER):
     child = subprocess.Popen(
         [sys.executable, "-c", driver, *map(str, argv)], cwd=cwd, stdout=subprocess.PIPE, stderr=slave
     )
-    os.close(slave)
+    # the slave stays open here until the child has exited and all it wrote is read: a pty whose slave
+    # closes can answer EIO with the child's last bytes unread (the run of a still table ends at once)
     shown, sent, end = b"", None, time.monotonic() + 120
     while time.monotonic() < end:
         if select.select([master], [], [], 0.05)[0]:
@@ -61,6 +62,7 @@ def on_a_terminal(argv, cwd, interrupt_after=None, driver=DRIVER):
             break  # exited, and all it wrote has been read
     child.wait(timeout=60)
     exited = time.monotonic()
+    os.close(slave)
     os.close(master)
     return child.returncode, shown.decode(errors="replace"), (exited - sent if sent else None)
 
