@@ -63,12 +63,13 @@ PLANT = {"loadInertia": 3e-5, "encoderLines": 1000, "coulombFriction": 0.002}
 @pytest.mark.parametrize("version", [2, 3])
 def test_a_plant_with_its_parameters_equals_its_path_with_them_and_the_fmpy_master(version):
     values = {**systems.parameters(), "plant": PLANT}
-    master = systems.run_master("gauss-seidel", version, log=lambda *a: None, values=values)
+    # pmdfmu.System wires the Integer motor command unless told otherwise
+    master = systems.run_master("gauss-seidel", version, log=lambda *a: None, values=values, motor="motorCommand")
     path = pmdfmu.default_fmu(version).with_name(f"pmdplant-fmi{version}.fmu")
 
     def run(*plant, **parameters):
-        with pmdfmu.Chip(version, **systems.parameters()["chip"]) as chip:
-            with pmdfmu.System(chip, *plant, **parameters) as system:
+        with chip(version) as c:
+            with pmdfmu.System(c, *plant, **parameters) as system:
                 return system.run(len(master), record=OUTPUTS)
 
     runs = [run(pmdfmu.Plant(**PLANT)), run(pmdfmu.Plant(path, **PLANT)), run(path, **PLANT), run(None, **PLANT)]
