@@ -13,7 +13,8 @@
   scenarios.py, chip set-ups several test files run (a busy chip, seed 000's
   worked example, random external profiles); stepwise.py, the oracles of the
   recording and upload paths; interrupted.py, runs to interrupt; cmotion_build.py,
-  the C library's build (tests/README.md maps every topic to its files).
+  the C library's build; reference_fmus.py, Reference-FMUs built to compare a tool's
+  defect with (tests/README.md maps every topic to its files).
 
 Fixtures for what a test receives ready-made, helper modules for what it calls or
 compares with: test_suite_layout.py checks the rule.
