@@ -413,7 +413,7 @@ def test_under_realtime_the_monitor_refuses_to_run_or_wait_and_ctrl_c_ends_a_lon
     with Server("--tcp", "127.0.0.1:0", "--monitor", "127.0.0.1:0") as s:
         host, _, port = monitor_of(s).rpartition(":")
         with socket.create_connection((host, int(port))) as m:
-            m.sendall(b"run 1000000000\n")  # hours of cycles: Ctrl-C ends it within a moment
+            m.sendall(b"run 1000000000\nwait 100000000000000\n")  # hours of cycles: Ctrl-C ends them at once
             time.sleep(1)
             start = time.monotonic()
             code, _out, err = s.stop()

@@ -417,11 +417,15 @@ class Monitor:
             n = _count(args[0], verb)
             if self.line.realtime:
                 raise ValueError(f"{verb}: under --realtime the chips follow the wall clock")
+            # a long run or wait goes in parts, and still stops within a moment of Ctrl-C
             if verb == "wait":
-                self.line.wait_ns(n)
-                return "ok"
+                part = max(1, round(MONITOR_RUN_PART * chip.cycle_time * 1e9))
+                while n and not self.stop.signal:
+                    self.line.wait_ns(min(n, part))
+                    n -= min(n, part)
+                return "ok" if not n else f"error stopped with {n} ns not waited: the server is stopping"
             self.line.catch_up(chip)
-            while n and not self.stop.signal:  # a long run still stops within a moment of Ctrl-C
+            while n and not self.stop.signal:
                 part = min(n, MONITOR_RUN_PART)
                 chip.run(part)
                 n -= part
