@@ -1111,11 +1111,14 @@ static void op_memory(Fuzz *f, Reader *r)
     int i;
     for (i = 0; i < PMD_BATCH_WORDS; i++)
         data[i] = (uint32_t)(seed + i);
+    /* a get executes a pending write, except in Initialization Mode, where a write waits for the first get
+       or doStep after it (docs/fmu.md): there a new address or count it would no longer fit is refused */
+    Expect placed = instance(f)->s.state & PMD_INITIALIZATION_MODE ? MAY_FAIL : MUST_SUCCEED;
     switch (kind % 4) {
     case 0:
         CALL(f, MUST_SUCCEED, get_ints(f, VR.memoryStrobe, 1, &strobe));   /* executes a pending write */
-        CALL(f, MUST_SUCCEED, set_int(f, VR.memoryAddress, address));       /* nothing pending: legal */
-        CALL(f, MUST_SUCCEED, set_int(f, VR.memoryCount, count));
+        CALL(f, placed, set_int(f, VR.memoryAddress, address));             /* nothing pending: legal */
+        CALL(f, placed, set_int(f, VR.memoryCount, count));
         CALL(f, MUST_SUCCEED, set_ints(f, VR.memoryData, PMD_BATCH_WORDS, data));
         CALL(f, MAY_FAIL, set_int(f, VR.memoryStrobe, strobe == INT32_MAX ? 0 : strobe + 1));
         if (!(kind & 4))
