@@ -346,7 +346,8 @@ def test_fmusim_crashes_printing_the_empty_binary_record_data(tmp_path):
     the FMI 3 FMU's record.data (empty unless record.enabled) crashes it; --output-variable avoids it (the
     test above). This test fails when fmusim prints Binaries right: docs/tools.md can then say so."""
     _, done = fmusim_run(pmdfmu.default_fmu(3), {"script": SCRIPT}, [], tmp_path, cycles=10)
-    assert done.returncode == -11  # SIGSEGV
+    # SIGSEGV; under ./dev sanitize, ASan's runtime (preloaded for the FMU) reports the same fault and exits 1
+    assert done.returncode == -11 or "AddressSanitizer: SEGV" in done.stderr and "print_value" in done.stderr
 
 
 # ---- INTO-CPS Maestro 3.1.1 (Java, Maven Central) -------------------------------------------------
