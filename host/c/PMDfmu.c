@@ -35,8 +35,6 @@
 /* The longest message the FMU formats (fmu_src/fmi/instance.c: a refused script names the places
    it was looked for) */
 #define PMD_FMU_MESSAGE 8192
-/* the longest reply of the twin's monitor taken (a value, or its reason: PMDline.c's MONITOR_REPLY) */
-#define MONITOR_VALUE 2048
 
 extern char **environ;     /* unzip's environment: the caller's */
 
@@ -855,7 +853,7 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
         if (!PMDFMU_FitsU32((unsigned long long)data[done]))
             return PMD_ERR_ParameterOutOfRange;
     for (done = 0; d->line && done < count;) {     /* over the monitor: a write request per block */
-        char request[32 + 11 * PMD_FMU_MEMORY_WORDS], value[MONITOR_VALUE];
+        char request[32 + 11 * PMD_FMU_MEMORY_WORDS], value[PMD_LINE_MONITOR_REPLY];
         PMDuint32 i, n = count - done < PMD_FMU_MEMORY_WORDS ? count - done : PMD_FMU_MEMORY_WORDS;
         size_t at = (size_t)snprintf(request, sizeof request, "write %lu", (unsigned long)(offset + done));
         PMDresult r;
@@ -890,7 +888,7 @@ PMDresult PMDFMU_WriteDPRAM(void *const *transport, PMDuint32 offset, PMDuint32 
    monitor, or under --realtime (its monitor refuses), the host's own clock, the chip keeping its time. */
 static void line_wait(PMDFMUDevice *d, uint64_t ns)
 {
-    char request[40], value[MONITOR_VALUE];
+    char request[40], value[PMD_LINE_MONITOR_REPLY];
     snprintf(request, sizeof request, "wait %llu", (unsigned long long)ns);
     if (!PMDLineHasMonitor(d->line) || PMDLineMonitor(d->line, request, value, sizeof value) != PMD_ERR_OK)
         sleep_ns(ns);
@@ -951,7 +949,7 @@ PMDresult PMDFMU_RunCycles(PMDAxisInterface axis_intf, PMDuint32 cycles)
     if (r != PMD_ERR_OK)
         return r;
     if (d->line && PMDLineHasMonitor(d->line)) {
-        char request[32], value[MONITOR_VALUE];
+        char request[32], value[PMD_LINE_MONITOR_REPLY];
         snprintf(request, sizeof request, "run %lu", (unsigned long)cycles);
         return monitor(d, request, value, sizeof value);
     }
@@ -976,7 +974,7 @@ PMDresult PMDFMU_GetHostTime(PMDAxisInterface axis_intf, uint64_t *nanoseconds)
     PMDFMUDevice *d;
     PMDresult r = device_of(axis_intf, &d);
     if (r == PMD_ERR_OK && d->line && PMDLineHasMonitor(d->line)) {     /* the line's clock */
-        char value[MONITOR_VALUE];
+        char value[PMD_LINE_MONITOR_REPLY];
         if ((r = monitor(d, "time", value, sizeof value)) == PMD_ERR_OK && nanoseconds)
             *nanoseconds = strtoull(value, NULL, 10);
     } else if (r == PMD_ERR_OK && nanoseconds) {
@@ -1007,7 +1005,7 @@ PMDresult PMDFMU_GetInteger(PMDAxisInterface axis_intf, const char *name, PMDint
     if (!v || (v->type != 'I' && v->type != 'B'))
         return PMD_ERR_InvalidAddress;
     if (d->line) {
-        char request[96], text[MONITOR_VALUE];
+        char request[96], text[PMD_LINE_MONITOR_REPLY];
         snprintf(request, sizeof request, "get %s", v->name);
         if ((r = monitor(d, request, text, sizeof text)) == PMD_ERR_OK && value)
             *value = (PMDint32)strtol(text, NULL, 10);
@@ -1039,7 +1037,7 @@ PMDresult PMDFMU_GetReal(PMDAxisInterface axis_intf, const char *name, double *v
     if (!v || v->type != 'R')
         return PMD_ERR_InvalidAddress;
     if (d->line) {
-        char request[96], text[MONITOR_VALUE];
+        char request[96], text[PMD_LINE_MONITOR_REPLY];
         snprintf(request, sizeof request, "get %s", v->name);
         if ((r = monitor(d, request, text, sizeof text)) == PMD_ERR_OK && value)
             *value = strtod(text, NULL);

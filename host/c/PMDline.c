@@ -25,9 +25,6 @@
 #define RESYNC_WAIT_MS 50
 #define RESYNC_TRIES 8
 
-/* The longest monitor reply read (a value, or a reason) */
-#define MONITOR_REPLY 2048
-
 struct PMDLine {
     int fd;
     int monitor;        /* the twin's monitor's socket, or -1 */
@@ -195,7 +192,7 @@ int PMDLineHasMonitor(const PMDLine *line)
 
 PMDresult PMDLineMonitorOpen(PMDLine *line, const char *monitor, char *why, size_t size)
 {
-    char request[32], value[MONITOR_REPLY];
+    char request[32], value[PMD_LINE_MONITOR_REPLY];
     PMDresult r;
     if (strncmp(monitor, "tcp:", 4) != 0) {
         snprintf(why, size, "expected tcp:HOST:PORT");
@@ -217,7 +214,7 @@ PMDresult PMDLineMonitorOpen(PMDLine *line, const char *monitor, char *why, size
 
 PMDresult PMDLineMonitor(PMDLine *line, const char *request, char *value, size_t size)
 {
-    char in[MONITOR_REPLY];
+    char in[PMD_LINE_MONITOR_REPLY];
     size_t got = 0;
     const char *text;
     if (write_all(line->monitor, (const uint8_t *)request, strlen(request)) != 0 ||

@@ -9,6 +9,9 @@
 
 typedef struct PMDLine PMDLine;
 
+/* The longest reply of the twin's monitor taken (a value, or its reason), terminating zero included */
+#define PMD_LINE_MONITOR_REPLY 2048
+
 /* Opens device ("serial:PATH" at baud bit/s, 8N1 raw; or "tcp:HOST:PORT"); address: the chip's
    multi-drop address (0 point-to-point). PMD_ERR_OpeningPort with why filled in on failure. */
 PMDresult PMDLineOpen(PMDLine **line, const char *device, PMDuint32 baud, unsigned address, char *why, size_t size);
