@@ -992,26 +992,38 @@ static const PMDFMUVariable *variable(const char *name)
     return NULL;
 }
 
+/* What PMDFMU_GetInteger and PMDFMU_GetReal share: the device, the variable, of one of TYPES; over a
+ * line, the monitor's reply to "get NAME" in text (PMD_LINE_MONITOR_REPLY bytes). */
+static PMDresult get_variable(PMDAxisInterface axis_intf, const char *name, const char *types, const char *function,
+                              PMDFMUDevice **d, const PMDFMUVariable **v, char *text)
+{
+    char request[96];
+    PMDresult r = device_of(axis_intf, d);
+    *v = variable(name);
+    if (r != PMD_ERR_OK)
+        return r;
+    if ((*d)->line && !PMDLineHasMonitor((*d)->line))
+        return not_over_a_line(*d, function);
+    if (!*v || !strchr(types, (*v)->type))
+        return PMD_ERR_InvalidAddress;
+    if (!(*d)->line)
+        return PMD_ERR_OK;
+    snprintf(request, sizeof request, "get %s", (*v)->name);
+    return monitor(*d, request, text, PMD_LINE_MONITOR_REPLY);
+}
+
 PMDresult PMDFMU_GetInteger(PMDAxisInterface axis_intf, const char *name, PMDint32 *value)
 {
     PMDFMUDevice *d;
-    const PMDFMUVariable *v = variable(name);
+    const PMDFMUVariable *v;
+    char text[PMD_LINE_MONITOR_REPLY];
     fmi2Integer x;
-    PMDresult r = device_of(axis_intf, &d);
+    PMDresult r = get_variable(axis_intf, name, "IB", "PMDFMU_GetInteger", &d, &v, text);
     if (r != PMD_ERR_OK)
         return r;
-    if (d->line && !PMDLineHasMonitor(d->line))
-        return not_over_a_line(d, "PMDFMU_GetInteger");
-    if (!v || (v->type != 'I' && v->type != 'B'))
-        return PMD_ERR_InvalidAddress;
     if (d->line) {
-        char request[96], text[PMD_LINE_MONITOR_REPLY];
-        snprintf(request, sizeof request, "get %s", v->name);
-        if ((r = monitor(d, request, text, sizeof text)) == PMD_ERR_OK && value)
-            *value = (PMDint32)strtol(text, NULL, 10);
-        return r;
-    }
-    if (v->type == 'B') {
+        x = (fmi2Integer)strtol(text, NULL, 10);
+    } else if (v->type == 'B') {
         fmi2Boolean b;
         if (!d->getBoolean || d->getBoolean(d->instance, &v->vr, 1, &b) > fmi2Warning)
             return fmi_failed(d, PMD_ERR_Driver, "fmi2GetBoolean");
@@ -1027,23 +1039,15 @@ PMDresult PMDFMU_GetInteger(PMDAxisInterface axis_intf, const char *name, PMDint
 PMDresult PMDFMU_GetReal(PMDAxisInterface axis_intf, const char *name, double *value)
 {
     PMDFMUDevice *d;
-    const PMDFMUVariable *v = variable(name);
+    const PMDFMUVariable *v;
+    char text[PMD_LINE_MONITOR_REPLY];
     fmi2Real x;
-    PMDresult r = device_of(axis_intf, &d);
+    PMDresult r = get_variable(axis_intf, name, "R", "PMDFMU_GetReal", &d, &v, text);
     if (r != PMD_ERR_OK)
         return r;
-    if (d->line && !PMDLineHasMonitor(d->line))
-        return not_over_a_line(d, "PMDFMU_GetReal");
-    if (!v || v->type != 'R')
-        return PMD_ERR_InvalidAddress;
-    if (d->line) {
-        char request[96], text[PMD_LINE_MONITOR_REPLY];
-        snprintf(request, sizeof request, "get %s", v->name);
-        if ((r = monitor(d, request, text, sizeof text)) == PMD_ERR_OK && value)
-            *value = strtod(text, NULL);
-        return r;
-    }
-    if (d->getReal(d->instance, &v->vr, 1, &x) > fmi2Warning)
+    if (d->line)
+        x = strtod(text, NULL);
+    else if (d->getReal(d->instance, &v->vr, 1, &x) > fmi2Warning)
         return fmi_failed(d, PMD_ERR_Driver, "fmi2GetReal");
     if (value)
         *value = x;

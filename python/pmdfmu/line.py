@@ -61,6 +61,17 @@ MONITORED = ("run", "get", "write_memory", "wait", "wait_ns", "cycles", "host_ti
 _SPEEDS = {b: getattr(termios, f"B{b}") for b in sp.BAUD_RATES.values() if hasattr(termios, f"B{b}")}
 
 
+
+def _connect(where: str) -> Optional[socket.socket]:
+    """A connection to HOST:PORT (a [v6] address too), Nagle off: every packet waits for its reply.
+    None where WHERE is no HOST:PORT."""
+    host, colon, port = where.rpartition(":")
+    if not colon or not port.isdigit():
+        return None
+    sock = socket.create_connection((host.strip("[]"), int(port)))
+    sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+    return sock
+
 class NeedsFMU(AttributeError):
     """A Chip call that needs the twin in-process, made on a chip over a line."""
 
@@ -100,21 +111,20 @@ class LineChip:
                     termios.tcsetattr(self._fd, termios.TCSANOW, attrs)
             except termios.error:
                 pass  # a file or a FIFO that is no tty: bytes all the same
-        elif kind == "tcp" and ":" in where:
-            host, _, port = where.rpartition(":")
-            self._sock = socket.create_connection((host.strip("[]"), int(port)))
-            self._sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-            self._fd = self._sock.fileno()
+        elif kind == "tcp" and (sock := _connect(where)) is not None:
+            self._sock, self._fd = sock, sock.fileno()
         else:
             raise ValueError(f"device {device!r}: serial:PATH or tcp:HOST:PORT (or fmu for the twin in-process)")
         if monitor is not None:
             kind, _, where = monitor.partition(":")
-            host, colon, port = where.rpartition(":")
-            if kind != "tcp" or not colon or not port.isdigit():
+            try:
+                self._monitor = _connect(where) if kind == "tcp" else None
+            except OSError:  # refused: the line opened above is closed, not left to the collector
+                self.close()
+                raise
+            if self._monitor is None:
                 self.close()
                 raise ValueError(f"monitor {monitor!r}: tcp:HOST:PORT (pmdfmu serve --monitor's)")
-            self._monitor = socket.create_connection((host.strip("[]"), int(port)))
-            self._monitor.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
             self._replies = self._monitor.makefile("r", encoding="ascii", newline="\n")
             self._ask("chip", f"chip {address}")
 
