@@ -61,7 +61,6 @@ MONITORED = ("run", "get", "write_memory", "wait", "wait_ns", "cycles", "host_ti
 _SPEEDS = {b: getattr(termios, f"B{b}") for b in sp.BAUD_RATES.values() if hasattr(termios, f"B{b}")}
 
 
-
 def _connect(where: str) -> Optional[socket.socket]:
     """A connection to HOST:PORT (a [v6] address too), Nagle off: every packet waits for its reply.
     None where WHERE is no HOST:PORT."""
@@ -71,6 +70,7 @@ def _connect(where: str) -> Optional[socket.socket]:
     sock = socket.create_connection((host.strip("[]"), int(port)))
     sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
     return sock
+
 
 class NeedsFMU(AttributeError):
     """A Chip call that needs the twin in-process, made on a chip over a line."""
