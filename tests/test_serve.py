@@ -17,7 +17,7 @@ import pytest
 import pmdfmu
 from pmdfmu import serial_protocol as sp
 from pmdfmu.chip import COMMANDS, encode, instruction_word
-from pmdfmu.line import NeedsFMU
+from pmdfmu.line import LineChip, NeedsFMU
 
 serial = pytest.importorskip("serial")  # pyserial: the test extra's
 
@@ -311,6 +311,23 @@ def ask(sock, request: bytes) -> str:
         assert chunk, "the monitor closed the connection"
         reply += chunk
     return reply.decode().rstrip("\n")
+
+
+@pytest.mark.parametrize("device", ["tcp:127.0.0.1:port", "tcp:4001", "ttyS0"])
+def test_a_device_that_is_no_line_is_refused_by_its_name(device):
+    with pytest.raises(ValueError, match=f"device '{device}': serial:PATH or tcp:HOST:PORT"):
+        LineChip(device)
+
+
+def test_a_refused_monitor_closes_the_line_it_opened():
+    with socket.create_server(("127.0.0.1", 0)) as line, socket.create_server(("127.0.0.1", 0)) as gone:
+        closed = "tcp:127.0.0.1:%d" % gone.getsockname()[1]
+        gone.close()  # nobody listens there now
+        fds = len(os.listdir("/proc/self/fd"))
+        with pytest.raises(ConnectionRefusedError) as refused:
+            LineChip("tcp:127.0.0.1:%d" % line.getsockname()[1], monitor=closed)
+        # closed at once, not when the collector frees the LineChip the traceback holds
+        assert refused.traceback and len(os.listdir("/proc/self/fd")) == fds
 
 
 def test_the_monitor_gives_a_line_chip_what_the_twin_in_process_gives(tmp_path):
