@@ -38,6 +38,40 @@ def sanitizers_available(tmp_path) -> bool:
     return built.returncode == 0 and subprocess.run([str(tmp_path / "probe")], capture_output=True).returncode == 0
 
 
+
+def fuzz_driver():
+    """fuzz/run.py, the fuzzers' own list of targets and how each is built"""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "fuzz"))
+    import run as fuzz
+
+    return fuzz
+
+
+def replayer(tmp_path, fuzz, gen, target, flags=()):
+    """TARGET built with the fuzz build's invariant checks and fuzz/replay.c as its main, with FLAGS."""
+    exe = tmp_path / f"replay_{target}"
+    subprocess.run(
+        [
+            "cc",
+            "-g",
+            "-O1",
+            "-std=c99",
+            "-D_DEFAULT_SOURCE",
+            *fuzz.CHECKS,
+            *flags,
+            *fuzz.include_flags(gen),
+            str(ROOT / "fuzz" / "replay.c"),
+            *fuzz.sources(target, gen),
+            "-lm",
+            "-o",
+            str(exe),
+        ],
+        check=True,
+    )
+    return exe
+
 @pytest.mark.slow
 @pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
 def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
@@ -46,11 +80,7 @@ def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
     the fuzz build's invariant checks and, where cc has them, ASan and UBSan
     (some regression inputs fail only under a sanitizer). Each input runs on its
     own, so that a failure names every input that fails."""
-    import sys
-
-    sys.path.insert(0, str(ROOT / "fuzz"))
-    import run as fuzz
-
+    fuzz = fuzz_driver()
     gen = fuzz.generated()
     sanitize = SANITIZERS if sanitizers_available(tmp_path) else []
     env = {**os.environ, "ASAN_OPTIONS": "detect_leaks=0", "UBSAN_OPTIONS": "print_stacktrace=1"}
@@ -61,25 +91,7 @@ def test_saved_fuzz_inputs_replay_without_failure(tmp_path):
         )
         if not inputs:
             continue
-        exe = tmp_path / f"replay_{target}"
-        subprocess.run(
-            [
-                "cc",
-                "-g",
-                "-O1",
-                "-std=c99",
-                "-D_DEFAULT_SOURCE",
-                *fuzz.CHECKS,
-                *sanitize,
-                *fuzz.include_flags(gen),
-                str(ROOT / "fuzz" / "replay.c"),
-                *fuzz.sources(target, gen),
-                "-lm",
-                "-o",
-                str(exe),
-            ],
-            check=True,
-        )
+        exe = replayer(tmp_path, fuzz, gen, target, sanitize)
         for path in inputs:
             out = subprocess.run([str(exe), str(path)], capture_output=True, text=True, timeout=300, env=env)
             if out.returncode != 0 or "replayed 1 inputs" not in out.stdout:
@@ -94,11 +106,7 @@ def test_regression_inputs_run_clean_under_valgrind(tmp_path):
     """Every regression input (the legal-call findings of the attacks and the fuzzers) once more under
     valgrind, with a build without sanitizers: no invalid access, no uninitialized
     value used, no leak."""
-    import sys
-
-    sys.path.insert(0, str(ROOT / "fuzz"))
-    import run as fuzz
-
+    fuzz = fuzz_driver()
     gen = fuzz.generated()
     env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}  # ./dev sanitize preloads ASan
     failed = []
@@ -106,24 +114,7 @@ def test_regression_inputs_run_clean_under_valgrind(tmp_path):
         inputs = sorted(p for p in (ROOT / "fuzz" / "regressions" / target).glob("*") if p.is_file())
         if not inputs:
             continue
-        exe = tmp_path / f"replay_{target}"
-        subprocess.run(
-            [
-                "cc",
-                "-g",
-                "-O1",
-                "-std=c99",
-                "-D_DEFAULT_SOURCE",
-                *fuzz.CHECKS,
-                *fuzz.include_flags(gen),
-                str(ROOT / "fuzz" / "replay.c"),
-                *fuzz.sources(target, gen),
-                "-lm",
-                "-o",
-                str(exe),
-            ],
-            check=True,
-        )
+        exe = replayer(tmp_path, fuzz, gen, target)
         for path in inputs:
             out = subprocess.run(
                 [
