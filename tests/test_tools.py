@@ -14,7 +14,8 @@ package downloads its binary at install time): docs/tools.md describes it from i
 published behaviour. A tool whose package is missing is skipped outside CI only; CI
 (.ci/run, pyproject.toml's test extra) installs every one of them. fmusim is in no
 package registry: its tests run where one is on PATH or $PMDFMU_FMUSIM (docs/tools.md
-builds it from Reference-FMUs' source) and are skipped where there is none, CI included.
+builds it from Reference-FMUs' source) and are skipped where there is none, CI included; so
+is fmuCheck (FMI Compliance Checker: fmuCheck.linux64 on PATH or $PMDFMU_FMUCHECK).
 """
 
 import csv
@@ -369,9 +370,7 @@ def fmucheck():
 def fmucheck_run(fmu, tmp_path, *options):
     """(its log, its summary counts, its CSV rows with the header first, its exit status)"""
     out = tmp_path / "fmucheck.csv"
-    done = subprocess.run(
-        [fmucheck(), "-o", str(out), *options, str(fmu)], capture_output=True, text=True, timeout=300
-    )
+    done = subprocess.run([fmucheck(), "-o", str(out), *options, str(fmu)], capture_output=True, text=True, timeout=300)
     log = done.stdout + done.stderr
     summary = re.search(  # absent where it stops before checking (an FMU it cannot read)
         r"FMU reported:\s+(\d+) warning\(s\) and error\(s\)\s+Checker reported:\s+(\d+) Warning\(s\)\s+(\d+) Error\(s\)",
@@ -410,7 +409,9 @@ def assert_rows_equal_fmpy(fmu, rows, step, stop):
     for j, name in enumerate(names, 1):
         column, expected = [row[j] for row in body], ref[name]
         if expected.dtype.kind == "f":
-            assert np.array(column, dtype=np.float64).view(np.uint64).tolist() == expected.view(np.uint64).tolist(), name
+            assert np.array(column, dtype=np.float64).view(np.uint64).tolist() == expected.view(np.uint64).tolist(), (
+                name
+            )
         elif expected.dtype.kind == "b":
             assert column == [str(int(x)) for x in expected], name
         elif expected.dtype.kind in "iu":
@@ -439,7 +440,9 @@ def test_fmucheck_simulates_the_fmu_as_fmpy_does(model, packed, tmp_path):
 
 
 def test_fmucheck_runs_one_chip_cycle_a_step_as_fmpy_does(packed, tmp_path):
-    _, counts, rows, status = fmucheck_run(packed[2], tmp_path, "-h", repr(CYCLE), "-s", repr(CYCLES * CYCLE), "-n", "0")
+    _, counts, rows, status = fmucheck_run(
+        packed[2], tmp_path, "-h", repr(CYCLE), "-s", repr(CYCLES * CYCLE), "-n", "0"
+    )
     assert status == 0 and counts["errors"] == counts["warnings"] == 0
     assert assert_rows_equal_fmpy(packed[2], rows, CYCLE, CYCLES * CYCLE) == list(range(CYCLES + 1))
     assert int(rows[-1][rows[0].index("axis1.commandedPosition")]) > 0  # the profile moved
@@ -478,7 +481,10 @@ def test_fmucheck_counts_the_independent_time_as_a_local_variable(fmu, tmp_path)
 
 BROKEN = {  # (the edit of the chip's modelDescription.xml, fmuCheck's message, its exit status)
     "a causality misspelt": (
-        ('name="chipTime" valueReference="10" causality="output"', 'name="chipTime" valueReference="10" causality="outptu"'),
+        (
+            'name="chipTime" valueReference="10" causality="output"',
+            'name="chipTime" valueReference="10" causality="outptu"',
+        ),
         "[ERROR][FMI2XML] XML element 'ScalarVariable': could not parse value for enumeration attribute 'causality'='outptu'",
         0,
     ),
