@@ -14,7 +14,8 @@ package downloads its binary at install time): docs/tools.md describes it from i
 published behaviour. A tool whose package is missing is skipped outside CI only; CI
 (.ci/run, pyproject.toml's test extra) installs every one of them. fmusim is in no
 package registry: its tests run where one is on PATH or $PMDFMU_FMUSIM (docs/tools.md
-builds it from Reference-FMUs' source) and are skipped where there is none, CI included.
+builds it from Reference-FMUs' source) and are skipped where there is none, CI included; so
+is fmuCheck (FMI Compliance Checker: fmuCheck.linux64 on PATH or $PMDFMU_FMUCHECK).
 """
 
 import csv
@@ -413,6 +414,174 @@ def test_fmusim_crashes_printing_the_empty_binary_record_data(tmp_path):
     _, done = fmusim_run(pmdfmu.default_fmu(3), {"script": SCRIPT}, [], tmp_path, cycles=10)
     # SIGSEGV; under ./dev sanitize, ASan's runtime (preloaded for the FMU) reports the same fault and exits 1
     assert done.returncode == -11 or "AddressSanitizer: SEGV" in done.stderr and "print_value" in done.stderr
+
+
+# ---- fmuCheck (FMI Compliance Checker 2.0.4, FMI Library 2.0.3): FMI 1 and 2 only -------------------
+#
+# It checks the model description, loads the binary and co-simulates with a fixed step, printing the
+# outputs as CSV ("%.16E": 17 digits, so the doubles read back exactly). A plain error leaves its exit
+# status 0 (only a fatal one makes it 1): the tests read its summary.
+
+
+def fmucheck():
+    """fmuCheck's path: $PMDFMU_FMUCHECK, else `fmuCheck.linux64` on PATH; skipped without one (its
+    binaries are GitHub releases, in no registry: docs/tools.md builds it from source)."""
+    path = os.environ.get("PMDFMU_FMUCHECK") or shutil.which("fmuCheck.linux64")
+    if not path:
+        pytest.skip("fmuCheck.linux64 not found: build it from its source (docs/tools.md, fmuCheck)")
+    return path
+
+
+def fmucheck_run(fmu, tmp_path, *options):
+    """(its log, its summary counts, its CSV rows with the header first, its exit status)"""
+    out = tmp_path / "fmucheck.csv"
+    done = subprocess.run([fmucheck(), "-o", str(out), *options, str(fmu)], capture_output=True, text=True, timeout=300)
+    log = done.stdout + done.stderr
+    summary = re.search(  # absent where it stops before checking (an FMU it cannot read)
+        r"FMU reported:\s+(\d+) warning\(s\) and error\(s\)\s+Checker reported:\s+(\d+) Warning\(s\)\s+(\d+) Error\(s\)",
+        log,
+    )
+    counts = dict(zip(("fmu", "warnings", "errors"), map(int, summary.groups()))) if summary else None
+    rows = list(csv.reader(out.open())) if out.is_file() else []
+    return log, counts, rows, done.returncode
+
+
+@pytest.mark.parametrize("model", ["chip", "plant"])
+def test_fmucheck_passes_the_fmi2_fmu(model, tmp_path):
+    log, counts, rows, status = fmucheck_run(pmdfmu.default_fmu(2, model), tmp_path)
+    assert status == 0 and counts == {"fmu": 0, "warnings": 0, "errors": 0}, log
+    assert not re.search(r"^\[(WARNING|ERROR|FATAL)\]", log, re.M), log
+    assert "[INFO][FMUCHK] Simulation finished successfully" in log
+    assert len(rows) > 400  # the header and its simulation's rows: it did co-simulate
+
+
+def test_fmucheck_refuses_fmi3(tmp_path):
+    """fmuCheck's development stopped before FMI 3: its FMI Library parses FMI 1 and 2 only."""
+    log, _, _, status = fmucheck_run(pmdfmu.default_fmu(3), tmp_path)
+    assert status == 1 and "This version of FMI standard is not supported (fmiVersion=3.0)" in log, log
+
+
+def assert_rows_equal_fmpy(fmu, rows, step, stop):
+    """fmuCheck's rows (time, then its output columns) are FMPy's run of the same grid, bit for bit;
+    returns FMPy's step numbers of the rows. fmuCheck adds the step up, FMPy multiplies: the times
+    differ in the last bits, not the chip cycle they reach."""
+    names, body = rows[0][1:], rows[1:]
+    ref = fmpy.simulate_fmu(str(fmu), output=names, output_interval=step, stop_time=stop)
+    times = np.array([float(row[0]) for row in body])
+    steps = np.rint(times / step).astype(int)
+    assert np.abs(times - ref["time"][steps]).max() < 1e-12
+    ref = ref[steps]
+    for j, name in enumerate(names, 1):
+        column, expected = [row[j] for row in body], ref[name]
+        if expected.dtype.kind == "f":
+            assert np.array(column, dtype=np.float64).view(np.uint64).tolist() == expected.view(np.uint64).tolist(), (
+                name
+            )
+        elif expected.dtype.kind == "b":
+            assert column == [str(int(x)) for x in expected], name
+        elif expected.dtype.kind in "iu":
+            assert [int(x) for x in column] == expected.tolist(), name
+        else:
+            assert column == [x.decode() if isinstance(x, bytes) else x for x in expected.tolist()], name
+    return steps.tolist()
+
+
+def default_grid(fmu):
+    """fmuCheck's default run: the DefaultExperiment's stopTime in 500 steps"""
+    stop = float(fmpy.read_model_description(str(fmu)).defaultExperiment.stopTime)
+    return stop / 500, stop
+
+
+@pytest.mark.parametrize("model", ["chip", "plant"])
+def test_fmucheck_simulates_the_fmu_as_fmpy_does(model, packed, tmp_path):
+    """Its default step (-n 0: a row every step), the chip with examples/two_axis.script packed, every
+    output: the same values as FMPy's at the same grid points."""
+    fmu = packed[2] if model == "chip" else pmdfmu.default_fmu(2, model)
+    log, counts, rows, status = fmucheck_run(fmu, tmp_path, "-n", "0")
+    assert status == 0 and counts == {"fmu": 0, "warnings": 0, "errors": 0}, log
+    step, stop = default_grid(fmu)
+    assert assert_rows_equal_fmpy(fmu, rows, step, stop) == list(range(501))
+    assert len(rows[0]) == 1 + (131 if model == "chip" else 5)  # time and every output
+
+
+def test_fmucheck_runs_one_chip_cycle_a_step_as_fmpy_does(packed, tmp_path):
+    _, counts, rows, status = fmucheck_run(
+        packed[2], tmp_path, "-h", repr(CYCLE), "-s", repr(CYCLES * CYCLE), "-n", "0"
+    )
+    assert status == 0 and counts["errors"] == counts["warnings"] == 0
+    assert assert_rows_equal_fmpy(packed[2], rows, CYCLE, CYCLES * CYCLE) == list(range(CYCLES + 1))
+    assert int(rows[-1][rows[0].index("axis1.commandedPosition")]) > 0  # the profile moved
+
+
+@pytest.mark.parametrize("fmu", ["chip", "Feedthrough"])
+def test_fmucheck_drops_a_row_where_its_summed_time_falls_short_of_its_output_grid(fmu, packed, tmp_path):
+    """Without -n 0 it writes a row when its time, a sum of steps, reaches stopTime * k / 500: after
+    23 steps of 0.1 / 500 the sum is an ulp short of 0.0046, so that row is missing (the next rows
+    all come one step late of the gate, so only one). Reference-FMUs' Feedthrough alike: the
+    checker's defect. Fails when fmuCheck writes every grid point."""
+    from reference_fmus import reference_fmu
+
+    path = packed[2] if fmu == "chip" else reference_fmu("Feedthrough", 2)
+    _, counts, rows, status = fmucheck_run(path, tmp_path, "-k", "cs", "-s", "0.1")
+    assert status == 0 and counts["errors"] == 0
+    steps = np.rint(np.array([float(row[0]) for row in rows[1:]]) / 2e-4).astype(int).tolist()
+    assert steps == [k for k in range(501) if k != 23]
+    if fmu == "chip":
+        assert_rows_equal_fmpy(path, rows, 2e-4, 0.1)  # the rows it writes are right
+
+
+@pytest.mark.parametrize("fmu", ["chip", "Feedthrough"])
+def test_fmucheck_counts_the_independent_time_as_a_local_variable(fmu, tmp_path):
+    """FMI Library 2.0.3 counts causality "independent" as local (fmi2_import_convenience.c; later
+    releases count it right): the chip's `time`, and Reference-FMUs' Feedthrough's. Cosmetic."""
+    from reference_fmus import reference_fmu
+
+    path = pmdfmu.default_fmu(2) if fmu == "chip" else reference_fmu("Feedthrough", 2)
+    with zipfile.ZipFile(path) as z:
+        xml = z.read("modelDescription.xml").decode()
+    assert xml.count('causality="independent"') == 1 and 'causality="local"' not in xml
+    log, *_ = fmucheck_run(path, tmp_path, "-x")
+    assert "\n1 local variables\n0 independent variables\n" in log, log
+
+
+BROKEN = {  # (the edit of the chip's modelDescription.xml, fmuCheck's message, its exit status)
+    "a causality misspelt": (
+        (
+            'name="chipTime" valueReference="10" causality="output"',
+            'name="chipTime" valueReference="10" causality="outptu"',
+        ),
+        "[ERROR][FMI2XML] XML element 'ScalarVariable': could not parse value for enumeration attribute 'causality'='outptu'",
+        0,
+    ),
+    "a parameter without its start": (
+        ('max="0.065535" start="0.0001"', 'max="0.065535"'),
+        "[ERROR][FMI2XML] Start attribute is required for this causality, variability and initial combination",
+        0,
+    ),
+    "a valueReference missing": (
+        ('name="chipTime" valueReference="10" ', 'name="chipTime" '),
+        "[FATAL][FMI2XML] Parsing XML element 'ScalarVariable': required attribute 'valueReference' not found",
+        1,
+    ),
+}
+
+
+@pytest.mark.parametrize("broken", list(BROKEN))
+def test_fmucheck_reports_a_broken_model_description(broken, tmp_path):
+    (old, new), message, exit_status = BROKEN[broken]
+    good = pmdfmu.default_fmu(2)
+    fmu = tmp_path / good.name
+    with zipfile.ZipFile(good) as src, zipfile.ZipFile(fmu, "w", zipfile.ZIP_DEFLATED) as dst:
+        for item in src.infolist():
+            data = src.read(item)
+            if item.filename == "modelDescription.xml":
+                xml = data.decode()
+                assert xml.count(old) == 1
+                data = xml.replace(old, new).encode()
+            dst.writestr(item, data)
+    log, counts, _, status = fmucheck_run(fmu, tmp_path, "-k", "cs")
+    assert message in log.splitlines(), log
+    assert counts["errors"] >= 1 and status == exit_status, log
 
 
 # ---- INTO-CPS Maestro 3.1.1 (Java, Maven Central) -------------------------------------------------
