@@ -38,7 +38,6 @@ def sanitizers_available(tmp_path) -> bool:
     return built.returncode == 0 and subprocess.run([str(tmp_path / "probe")], capture_output=True).returncode == 0
 
 
-
 def fuzz_driver():
     """fuzz/run.py, the fuzzers' own list of targets and how each is built"""
     import sys
@@ -71,6 +70,7 @@ def replayer(tmp_path, fuzz, gen, target, flags=()):
         check=True,
     )
     return exe
+
 
 @pytest.mark.slow
 @pytest.mark.skipif(not shutil.which("cc"), reason="no C compiler")
