@@ -826,6 +826,7 @@ pmdfmu CMD --help: a command's options. docs/cli.md, docs/verify.md."""
 
 FMI_VERSION_HELP = "FMI version of the built FMU to use: 2 or 3 (default 2)"
 FMU_HELP = "the FMU to use (default: the built one)"
+MACHINE_HELP = "a machine file: switches and index that follow the axes (docs/machine.md)"
 MAX_CYCLES_HELP = (
     "at most this many cycles (default 1000000); a run that stops here before the profile ends is an error (exit 1)"
 )
@@ -870,6 +871,28 @@ def _run_limits(p: argparse.ArgumentParser) -> None:
     group.add_argument("--cycles", type=_positive_int, metavar="N", help=CYCLES_HELP)
 
 
+def _chip_options(p: argparse.ArgumentParser, fmi_version: bool = True) -> None:
+    """--fmu, --fmi-version and --cycle-time: which FMU runs the chip, and its cycle."""
+    p.add_argument("--fmu", type=Path, help=FMU_HELP)
+    if fmi_version:
+        p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
+    p.add_argument(
+        "--cycle-time",
+        type=_cycle_time,
+        default=DEFAULT_CYCLE_TIME,
+        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
+    )
+
+
+def _upload_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--upload",
+        choices=("memory", "command"),
+        default="memory",
+        help="fill the buffers through the dual-port memory or with WriteBuffer",
+    )
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="pmdfmu", description=__doc__, epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -901,13 +924,7 @@ def _parser() -> argparse.ArgumentParser:
         ("run", cmd_run, "run a script or a segment table; write CSV and plot"),
     ):
         p = command(name, help_)
-        p.add_argument("--fmu", type=Path, help=FMU_HELP)
-        p.add_argument(
-            "--cycle-time",
-            type=_cycle_time,
-            default=DEFAULT_CYCLE_TIME,
-            help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
-        )
+        _chip_options(p, fmi_version=name == "run")
         p.set_defaults(func=func)
         if name == "demo":
             p.add_argument("--out", type=Path, default=Path("demo-out"), help="output folder (default demo-out)")
@@ -917,7 +934,6 @@ def _parser() -> argparse.ArgumentParser:
                 type=Path,
                 help="a script, or a CSV segment table (position and optional axis, velocity, acceleration, jerk, time: docs/scripts.md)",
             )
-            p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
             p.add_argument(
                 "--csv",
                 type=Path,
@@ -938,16 +954,9 @@ def _parser() -> argparse.ArgumentParser:
                 metavar="FILE",
                 help="write an interactive page here (zoom, pan, every column; opens offline): the 'html' extra",
             )
-            p.add_argument(
-                "--upload",
-                choices=("memory", "command"),
-                default="memory",
-                help="fill the buffers through the dual-port memory or with WriteBuffer",
-            )
+            _upload_option(p)
             _run_limits(p)
-            p.add_argument(
-                "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
-            )
+            p.add_argument("--machine", type=Path, help=MACHINE_HELP)
 
     p = command(
         "trace",
@@ -959,18 +968,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("file", type=Path, help="the script")
     p.add_argument("--plot", type=_trace_plot_path, help="write the scope here: an image (PNG, SVG, PDF) or .html")
     p.add_argument("--csv", type=Path, help="write the samples here (a .npz name writes compressed numpy)")
-    p.add_argument("--fmu", type=Path, help=FMU_HELP)
-    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
-    p.add_argument(
-        "--cycle-time",
-        type=_cycle_time,
-        default=DEFAULT_CYCLE_TIME,
-        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
-    )
+    _chip_options(p)
     _run_limits(p)
-    p.add_argument(
-        "--machine", type=Path, help="a machine file: switches and index that follow the axes (docs/machine.md)"
-    )
+    p.add_argument("--machine", type=Path, help=MACHINE_HELP)
     p.set_defaults(func=cmd_trace)
 
     p = command("machine", "check a machine file and say what it means")
@@ -1053,20 +1053,8 @@ def _parser() -> argparse.ArgumentParser:
         default=Path("verify-out"),
         help="where a failure's diff plot and recording go (default verify-out)",
     )
-    p.add_argument("--fmu", type=Path, help=FMU_HELP)
-    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
-    p.add_argument(
-        "--cycle-time",
-        type=_cycle_time,
-        default=DEFAULT_CYCLE_TIME,
-        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
-    )
-    p.add_argument(
-        "--upload",
-        choices=("memory", "command"),
-        default="memory",
-        help="fill the buffers through the dual-port memory or with WriteBuffer",
-    )
+    _chip_options(p)
+    _upload_option(p)
     _run_limits(p)
     p.set_defaults(func=cmd_verify)
 
@@ -1091,16 +1079,9 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--serial", type=Path, metavar="PATH", help="make a pty and a symlink PATH to its slave side")
     where.add_argument("--tcp", type=_tcp_endpoint, metavar="HOST:PORT", help="listen on TCP (port 0: any free)")
     p.add_argument("--chips", type=_chip_count, default=1, help="chips on the line, multi-drop addresses 0..N-1")
-    p.add_argument("--fmu", type=Path, help="FMU to use (default: the built one)")
-    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
-    p.add_argument(
-        "--cycle-time",
-        type=_cycle_time,
-        default=DEFAULT_CYCLE_TIME,
-        help=f"chip cycle time in s (default {DEFAULT_CYCLE_TIME:g})",
-    )
+    _chip_options(p)
     p.add_argument("--script", type=Path, help="a command script the chip runs from time 0")
-    p.add_argument("--machine", type=Path, help="a machine file (docs/machine.md)")
+    p.add_argument("--machine", type=Path, help=MACHINE_HELP)
     p.add_argument("--realtime", action="store_true", help="pace chip cycles to the wall clock")
     p.add_argument("--reset-on-connect", action="store_true", help="a new client gets chips as after power-up")
     p.add_argument("--record", type=Path, help="write the chips' cycles here when the server stops (CSV or .npz)")
