@@ -2,7 +2,8 @@
 /* Benchmark 2: one doStep of many cycles through the
  * FMU's real FMI 3 binary (dlopen), recorded (record.enabled, every cycle's
  * row in record.data) and not recorded (fast-forward where it pays), from the
- * same state (an FMU state taken after initialization), in turns.
+ * same state (an FMU state taken after initialization), in turns run by run
+ * (bench/engine.py makes min / median / max of the runs).
  *
  *   bench_dostep FMU.so TOKEN SCRIPT MEMORY_WORDS CYCLES RUNS
  *

@@ -17,7 +17,10 @@
  * floors the position's fraction with each of several divisions, its loop
  * over the axes as written and unrolled (as the core's cycle() has it); the
  * fastest of them is the baseline (bench/engine.py takes it). Every one must
- * store the core's rows bit for bit, or the program fails.
+ * store the core's rows bit for bit, or the program fails. The contenders
+ * take turns within each run (the engine, then every bare loop, run after
+ * run), so that the shared machine's load falls on all alike; bench/engine.py
+ * makes min / median / max of the runs.
  *
  *   bench_engine RUNS [FAMILY [NAME]]
  *

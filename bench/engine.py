@@ -7,6 +7,9 @@
 2a/2b  bench/dostep.c: one doStep of 10^6 cycles through the FMU's FMI 3 binary, not recorded
        against recorded (record.data), over short and over long segments.
 2c     a coarse doStep: 100 segments x 10^7 cycles, against cycle by cycle.
+The C programs take the contenders in turns within each run (A B A B ...) and print every run's
+time; here they become min / median / max (common.Spread), the ratio of medians, the machine's load
+beside them; 2c alternates its two contenders run by run (common.interleave).
 """
 
 from __future__ import annotations
@@ -21,7 +24,7 @@ from pathlib import Path
 from fmpy import read_model_description
 
 import pmdfmu
-from common import REPO, RUNS, Figure, repeat, report, timed
+from common import REPO, RUNS, Spread, interleave, load, report, timed
 
 BUILD = Path(os.environ.get("PMDFMU_FMU_DIR") or REPO / "build")
 AXES = 4
@@ -56,12 +59,12 @@ def build() -> Path:
 
 
 def figures(lines, key_fields: int) -> dict:
-    """'KEY... SECONDS' lines -> {key: Figure} (best and median of the runs)."""
+    """'KEY... SECONDS' lines, a line per run and contender -> {key: Spread} (least, median, greatest)."""
     times = {}
     for line in lines:
         *key, seconds = line.split()
         times.setdefault(" ".join(key[:key_fields]), []).append(float(seconds))
-    return {k: Figure.of(v) for k, v in times.items()}
+    return {k: Spread.of(v) for k, v in times.items()}
 
 
 def engine(tree: Path) -> None:
@@ -77,7 +80,7 @@ def engine(tree: Path) -> None:
         lo, hi = FAMILIES[family]
         ratio = core.median / bare.median
         report(
-            f"{label} engine, {lo}-{hi}-cycle random segments, 4 axes, every cycle stored",
+            f"{label} engine, {lo}-{hi}-cycle random segments, 4 axes, every cycle stored ({load()})",
             core.text(1e9, "ns/axis-cycle"),
             f"bare C loop ({name}) {bare.text(1e9, 'ns')}",
             ratio,
@@ -135,7 +138,7 @@ def dostep(tmp: Path, tree: Path) -> None:
         lo, hi = FAMILIES[family]
         ratio = plain.median / recorded.median
         report(
-            f"{label} doStep of 10^6 cycles, {lo}-{hi}-cycle segments, not recorded",
+            f"{label} doStep of 10^6 cycles, {lo}-{hi}-cycle segments, not recorded ({load()})",
             plain.text(1e9, "ns/cycle"),
             f"recorded (record.data) {recorded.text(1e9, 'ns')}",
             ratio,
@@ -159,13 +162,13 @@ def coarse() -> None:
                 chip.axis(1).SetBreakpoint(0, 1, 0, pmdfmu.PMDBreakpointTime)
             return timed(lambda: chip.run(cycles))
 
-    fast = repeat(lambda: run(10**9, False))
-    slow = repeat(lambda: run(1_000_000, True), runs=RUNS).per(1_000_000)
+    t = interleave({"fast": lambda: run(10**9, False), "slow": lambda: run(1_000_000, True)})
+    fast, slow = t["fast"], t["slow"].per(1_000_000)
     extrapolated = slow.median * 1e9
     report(
-        "2c coarse doStep, 100 segments x 10^7 cycles (ratio: speed-up)",
+        f"2c coarse doStep, 100 segments x 10^7 cycles (ratio: speed-up; {load()})",
         fast.text(1e3, "ms"),
-        f"cycle by cycle {slow.min * 1e9:.0f} / {extrapolated:.0f} s (extrapolated)",
+        f"cycle by cycle {slow.min * 1e9:.0f} / {extrapolated:.0f} / {slow.max * 1e9:.0f} s (extrapolated)",
         extrapolated / fast.median,
         "< 10 ms",
         fast.median < 0.010,

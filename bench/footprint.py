@@ -1,19 +1,21 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The FMU as any importer sees it: the cost of one FMI step through
 FMPy against a do-nothing FMU with the same variables, and the heap an
-instance holds. Part of ./dev bench (bench/run.py)."""
+instance holds. The two FMUs step in turns run by run (A B A B ...): min / median / max, the ratio of
+medians, the machine's load beside them. Part of ./dev bench (bench/run.py)."""
 
 from __future__ import annotations
 
 import shutil
 import subprocess
 import zipfile
+from contextlib import ExitStack
 from pathlib import Path
 
 from fmpy import read_model_description
 
 import pmdfmu
-from common import REPO, repeat, report, timed
+from common import REPO, interleave, load, report, timed
 
 FMI_HEADERS = Path(__import__("fmpy").__file__).parent / "c-code"
 
@@ -48,29 +50,33 @@ def per_step(tmp: Path) -> None:
     """FMPy's own calls, one cycle per step: set the host inputs, doStep, get 12 outputs."""
     steps = 20_000
 
-    def loop(path):
-        with pmdfmu.Chip(fmu=path) as chip:
-            vr = chip.variables
-            inputs = [vr[n].valueReference for n in ("host.wordCount", "host.strobe", "memory.strobe")]
-            outputs = [
-                vr[f"axis{n}.{q}"].valueReference
-                for n in range(1, 5)
-                for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")
-            ]
-            fmu, dt, done = chip.fmu, chip.cycle_time, [0]
+    def stepper(chip):
+        """A run of `steps` steps on the open chip, timed (each run goes on where the last stopped)."""
+        vr = chip.variables
+        inputs = [vr[n].valueReference for n in ("host.wordCount", "host.strobe", "memory.strobe")]
+        outputs = [
+            vr[f"axis{n}.{q}"].valueReference
+            for n in range(1, 5)
+            for q in ("commandedPosition", "commandedVelocity", "commandedAcceleration")
+        ]
+        fmu, dt, done = chip.fmu, chip.cycle_time, [0]
 
-            def run():
-                for k in range(done[0], done[0] + steps):
-                    fmu.setInteger(inputs, [0, 0, 0])
-                    fmu.doStep(k * dt, dt)
-                    fmu.getInteger(outputs)
-                done[0] += steps
+        def run():
+            for k in range(done[0], done[0] + steps):
+                fmu.setInteger(inputs, [0, 0, 0])
+                fmu.doStep(k * dt, dt)
+                fmu.getInteger(outputs)
+            done[0] += steps
 
-            return repeat(lambda: timed(run)).per(steps)
+        return lambda: timed(run)
 
-    ours, baseline = loop(pmdfmu.default_fmu(2)), loop(trivial_fmu(tmp))
+    with ExitStack() as stack:
+        ours = stack.enter_context(pmdfmu.Chip(fmu=pmdfmu.default_fmu(2)))
+        trivial = stack.enter_context(pmdfmu.Chip(fmu=trivial_fmu(tmp)))
+        t = interleave({"ours": stepper(ours), "trivial": stepper(trivial)})
+    ours, baseline = t["ours"].per(steps), t["trivial"].per(steps)
     report(
-        "per step through FMPy (set, doStep, get 12)",
+        f"per step through FMPy (set, doStep, get 12; {load()})",
         ours.text(1e6, "us"),
         f"trivial FMU {baseline.text(1e6, 'us')}",
         ours.median / baseline.median,

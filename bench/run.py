@@ -36,7 +36,7 @@ TOPICS = [
     "serve",
     "model_description",
 ]
-HEAD = ("benchmark", "figure (best / median)", "baseline, same run (best / median)", "ratio", "target", "met")
+HEAD = ("benchmark", "figure (min / median / max)", "baseline, same run (min / median / max)", "ratio", "target", "met")
 
 
 def main(argv) -> int:

@@ -20,7 +20,7 @@ from pathlib import Path
 import pmdfmu
 from pmdfmu import serial_protocol as sp
 from pmdfmu.chip import COMMANDS, encode, instruction_word
-from common import Figure, report, timed
+from common import Spread, load, report, timed
 
 ROUND_TRIPS = 2000
 RUNS = 7
@@ -81,10 +81,10 @@ def benchmarks(tmp: Path) -> None:
         for _ in range(RUNS):  # interleaved: the machine's load falls on both alike
             served.append(round_trips(chip_fd, get_time, 6, ROUND_TRIPS) / ROUND_TRIPS)
             echoed.append(round_trips(slave, get_time, 6, ROUND_TRIPS) / ROUND_TRIPS)
-        s, e = Figure.of(served), Figure.of(echoed)
+        s, e = Spread.of(served), Spread.of(echoed)
         ratio = s.median / e.median
         report(
-            "serve: GetTime round trip over the pty",
+            f"serve: GetTime round trip over the pty ({load()})",
             s.text(1e6, "us"),
             "raw pty echo of the same bytes: " + e.text(1e6, "us"),
             ratio,
@@ -106,7 +106,7 @@ def benchmarks(tmp: Path) -> None:
                 while not ax.GetEventStatus() & pmdfmu.PMDEventMotionCompleteMask:
                     pass
 
-            moves = Figure.of(timed(move) for _ in range(3))
+            moves = Spread.of([timed(move) for _ in range(3)])
         report(
             "serve: a 5064-cycle (0.51 s chip time) move polled to motion complete",
             moves.text(1e3, "ms"),

@@ -9,7 +9,8 @@ alone, no refill: its time is the baseline). Part of ./dev bench.
 
 Every streamed run is checked against the whole-table run (cycles, commanded
 position, velocity and activity at the end): the figure is that of a stream
-that delivered the profile."""
+that delivered the profile. The two take turns run by run (A B A B ...):
+min / median / max, the ratio of medians, the machine's load beside them."""
 
 from __future__ import annotations
 
@@ -20,7 +21,7 @@ from typing import Sequence
 import numpy as np
 
 import pmdfmu
-from common import RUNS, Figure, report
+from common import RUNS, Spread, load, report
 
 ENTRIES = 4096  # buffer entries per column (the seed's buffer_length)
 SEGMENTS = 50_000  # segments streamed per run (plus the time-0 row that ends the profile)
@@ -121,18 +122,20 @@ def streamed(version: int, rows: np.ndarray, record: Sequence[str]):
 
 def one(version: int, cycles: Sequence[int], record: Sequence[str], target: bool) -> None:
     rows = profile(cycles)
-    runs = [streamed(version, rows, record) for _ in range(RUNS)]
-    plain = [whole(version, rows, record) for _ in range(RUNS)]
+    runs, plain = [], []
+    for _ in range(RUNS):  # in turns, as common.interleave takes them: each run returns more than a time
+        runs.append(streamed(version, rows, record))
+        plain.append(whole(version, rows, record))
     ends = {r[2] for r in runs} | {p[1] for p in plain}
     if len(ends) != 1:
         raise AssertionError(f"the streamed run ended elsewhere than the whole table's: {ends}")
     shares = [r[0] / r[1] for r in runs]
-    loop = Figure.of(r[1] for r in runs)
-    base = Figure.of(p[0] for p in plain)
-    share = Figure.of(shares)
+    loop = Spread.of([r[1] for r in runs])
+    base = Spread.of([p[0] for p in plain])
+    share = Spread.of(shares)
     what = f"{'recorded (3 outputs)' if record else 'not recorded'}, {cycles[0]}-{cycles[1]}-cycle segments"
     report(
-        f"streamed run, FMI {version}, {what}: share refilling",
+        f"streamed run, FMI {version}, {what}: share refilling ({load()})",
         f"{share.text(100, '%', '.1f')} of {loop.text(1e3, 'ms', '.1f')}",
         f"the same profile from one table {base.text(1e3, 'ms', '.1f')}",
         loop.median / base.median,

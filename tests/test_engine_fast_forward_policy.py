@@ -158,3 +158,33 @@ def test_a_chip_at_rest_with_loopback_off_takes_a_huge_step_at_once():
         chip.run(cycles)
         assert chip.get("chipTime") == wrap32(cycles - 1)
         assert ax.GetActualPosition() == 1 and ax.GetCommandedPosition() == 0
+
+
+def test_steps_of_a_host_polls_size_equal_recorded_steps_through_a_servoed_move():
+    """A host polling over a slow interface steps the chip a dozen cycles at a time (Chip.wait_for):
+    a doStep too short for a fast-forward runs as one batch, its ideal servo's filter brought up to
+    date at its end; the outputs and the motor command are those of a recorded run (every cycle run)
+    and of cycle by cycle."""
+    rng = random.Random(3)
+    with pmdfmu.Chip() as plain, pmdfmu.Chip() as recorded, pmdfmu.Chip() as single:
+        for chip in (plain, recorded, single):
+            ax = chip.axis(0)
+            for name, *args in [
+                ("SetProfileMode", 0),
+                ("SetPosition", 3000),
+                ("SetVelocity", 0x80000),
+                ("SetAcceleration", 0x1000),
+                ("SetDeceleration", 0x1000),
+                ("Update",),
+            ]:
+                getattr(ax, name)(*args)
+        while plain.cycles < 1200:
+            n = rng.choice([1, 2, 3, 14, FAST_FORWARD_MIN - 1, FAST_FORWARD_MIN, FAST_FORWARD_MIN + 1, 200])
+            rows = recorded.run(n, record=OUT)
+            plain.run(n)
+            assert snapshot(plain)[: len(OUT)] == [int(rows[name][-1]) for name in OUT]
+            assert snapshot(plain) == snapshot(recorded)
+        assert plain.axis(0).GetEventStatus() & pmdfmu.PMDEventMotionCompleteMask
+        while single.cycles < plain.cycles:
+            single.run(1)
+        assert snapshot(plain) == snapshot(single)
