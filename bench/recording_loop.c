@@ -63,27 +63,30 @@ static double now(void)
 
 /* ---- the chip with the profile started ---- */
 
-static uint32_t table[AXES][PMD_FUNCTIONS][1024];
+/* the most segments per axis whose five buffers of four axes fit the memory from TABLE_ADDRESS on */
+#define MAX_ROWS ((MEMORY_WORDS - TABLE_ADDRESS) / (AXES * PMD_FUNCTIONS))
+
+static uint32_t table[AXES][PMD_FUNCTIONS][MAX_ROWS];
 static uint32_t rows;
 
 static void read_table(const char *path)
 {
     FILE *f = fopen(path, "r");
     uint32_t a, i;
-    int f_;
-    if (!f || fscanf(f, "%u", &rows) != 1 || rows == 0 || rows > 1024) {
-        fprintf(stderr, "%s: no segment table of 1..1024 rows\n", path);
+    int function;
+    if (!f || fscanf(f, "%u", &rows) != 1 || rows == 0 || rows > MAX_ROWS) {
+        fprintf(stderr, "%s: no segment table of 1..%d rows\n", path, MAX_ROWS);
         exit(2);
     }
     for (a = 0; a < AXES; a++)
         for (i = 0; i < rows; i++)
-            for (f_ = 0; f_ < PMD_FUNCTIONS; f_++) {
+            for (function = 0; function < PMD_FUNCTIONS; function++) {
                 long long v;
                 if (fscanf(f, "%lld", &v) != 1) {
                     fprintf(stderr, "%s: axis %u, row %u: not 5 numbers\n", path, a + 1, i);
                     exit(2);
                 }
-                table[a][f_][i] = (uint32_t)v;
+                table[a][function][i] = (uint32_t)v;
             }
     fclose(f);
 }
