@@ -6,16 +6,27 @@ target >= 20 M; and the ratio to fmpy.simulate_fmu recording the same outputs of
 one output per cycle (stop_time = cycles x cycleTime, step_size = output_interval = cycleTime), at
 20 000 and 10^6 cycles, target >= 200x.
 
+Against a bare C loop writing the same rows (bench/recording_loop.c: the chip core run every cycle,
+each row written in the result's packed layout, nothing else), both column sets, 20 000 and 10^6
+cycles, FMI 2 and FMI 3, the four contenders taking turns: run(out=) into a result a former run
+filled against the loop into a buffer it filled before, target <= 1.5x; run() into a fresh result
+against the loop into a fresh malloc'd buffer (freed in the timed span, as the dropped result is),
+target <= 3x. The loop's rows are checked to be run()'s bytes first.
+
 simulate_fmu's fastest honest form is the baseline: the FMU already extracted, no validation, the
 prepared instance handed over (fmu_instance, initialize=False), so that it runs the same profile
 and nothing but its loop is timed."""
 
 from __future__ import annotations
 
+import os
 import random
+import subprocess
+import sys
 from pathlib import Path
 
 import fmpy
+import numpy as np
 
 import common
 import pmdfmu
@@ -25,6 +36,8 @@ from pmdfmu.profile import load_external_profile, record_outputs, start_external
 
 AXES = 4
 SETS = {"12 commanded": RECORDED, "status + Reals (7/axis)": record_outputs(range(AXES))}
+# each set's name in bench/recording_loop.c
+LOOP_SETS = {"12 commanded": "commanded", "status + Reals (7/axis)": "status"}
 CYCLES = (20_000, 1_000_000)
 # simulate_fmu at 10^6 cycles takes 6-18 s a run (4 of them): 3 runs there keep the module under ~3 min; its
 # spread is a few %, far below the ratio's distance from the target. Every other figure: common.RUNS.
@@ -127,36 +140,7 @@ def benchmarks(tmp: Path) -> None:
                     ratio >= 200,
                 )
     lending(table)
-    reused(table)
-
-
-def reused(table) -> None:
-    """run(out=) into an array a former run filled (its pages mapped) against a fresh result, interleaved
-    run by run, at 10^6 cycles: what reusing the result saves (the kernel's zeroing of a fresh result's
-    pages, ~5 ns a cycle at 156 bytes a row)."""
-    cycles = CYCLES[-1]
-    for version in (2, 3):
-        for label, names in SETS.items():
-            with prepared(version, table) as chip:
-                out = chip.run(cycles, record=names)
-            fresh, reuse = [], []
-            for _ in range(common.RUNS):
-                for times, into in ((fresh, None), (reuse, out)):
-                    with prepared(version, table) as chip:
-                        times.append(
-                            common.timed(
-                                lambda chip=chip, into=into, names=names: chip.run(cycles, record=names, out=into)
-                            )
-                        )
-            fresh_f, reuse_f = common.Spread.of(fresh), common.Spread.of(reuse)
-            common.report(
-                f"run(out=) reused vs fresh result, FMI {version}, {label}, {cycles:,} cycles ({common.load()})",
-                reuse_f.per(cycles).text(1e9, "ns/row"),
-                f"fresh {fresh_f.per(cycles).text(1e9, 'ns/row')}",
-                fresh_f.median / reuse_f.median,
-                "report (fresh / reused)",
-                True,
-            )
+    against_bare_loop(tmp, table)
 
 
 def lending(table) -> None:
@@ -185,3 +169,95 @@ def lending(table) -> None:
             f"report (the copy costs {saved:.0%} of a lent row: the extension stays if > 10 %)",
             True,
         )
+
+
+class BareLoop:
+    """bench/recording_loop.c, built by CMake with the FMUs' settings (Release, link-time optimization), running
+    as a child process that takes one command a line: its own clock times each run, so that no pipe is timed."""
+
+    def __init__(self, tmp: Path, table):
+        tree = Path(os.environ.get("PMDFMU_FMU_DIR") or common.REPO / "build") / "bench" / "recording"
+        configure = ["cmake", "-S", str(common.REPO), "-B", str(tree), "-DCMAKE_BUILD_TYPE=Release"]
+        subprocess.run(configure + [f"-DPython3_EXECUTABLE={sys.executable}"], check=True, stdout=subprocess.DEVNULL)
+        target = "bench_recording_loop"
+        subprocess.run(["cmake", "--build", str(tree), "--target", target], check=True, stdout=subprocess.DEVNULL)
+        rows = len(table[0])
+        text = [str(rows)] + [" ".join(str(v) for v in row) for axis in range(AXES) for row in table[axis]]
+        path = tmp / "segments.txt"
+        path.write_text("\n".join(text) + "\n")
+        self.tmp = tmp
+        self.process = subprocess.Popen(
+            [str(tree / target), str(path)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+        )
+
+    def _ask(self, line: str) -> str:
+        self.process.stdin.write(line + "\n")
+        self.process.stdin.flush()
+        answer = self.process.stdout.readline()
+        if not answer:
+            raise RuntimeError(f"bench_recording_loop stopped at {line!r} (exit {self.process.wait()})")
+        return answer.strip()
+
+    def run(self, label: str, cycles: int, result: str) -> float:
+        """One run's seconds: result "reused" (a buffer a former run filled) or "fresh" (malloc'd, freed)."""
+        return float(self._ask(f"run {LOOP_SETS[label]} {cycles} {result}"))
+
+    def rows(self, label: str, cycles: int) -> np.ndarray:
+        """The loop's rows of `cycles` cycles from the start, as bytes."""
+        path = self.tmp / "rows.bin"
+        self._ask(f"dump {LOOP_SETS[label]} {cycles} {path}")
+        try:
+            return np.fromfile(path, dtype=np.uint8)
+        finally:
+            path.unlink()
+
+    def close(self) -> None:
+        self.process.stdin.close()
+        self.process.wait()
+
+
+def against_bare_loop(tmp: Path, table) -> None:
+    loop = BareLoop(tmp, table)
+    try:
+        for label, names in SETS.items():
+            for cycles in CYCLES:
+                expected = loop.rows(label, cycles)
+                for version in (2, 3):
+                    with prepared(version, table) as chip:
+                        out = chip.run(cycles, record=names)
+                    # "the same rows": the same values in the same layout, byte for byte, before anything is timed
+                    if out.dtype.itemsize * cycles != expected.size or not np.array_equal(
+                        out.view(np.uint8).reshape(-1), expected
+                    ):
+                        raise AssertionError(f"bench_recording_loop's {label} rows are not run()'s (FMI {version})")
+                    t = common.interleave(
+                        {
+                            "reused": measure(
+                                version,
+                                table,
+                                lambda chip, cycles=cycles, names=names, out=out: chip.run(
+                                    cycles, record=names, out=out
+                                ),
+                            ),
+                            "loop reused": lambda label=label, cycles=cycles: loop.run(label, cycles, "reused"),
+                            "fresh": measure(
+                                version, table, lambda chip, cycles=cycles, names=names: chip.run(cycles, record=names)
+                            ),
+                            "loop fresh": lambda label=label, cycles=cycles: loop.run(label, cycles, "fresh"),
+                        }
+                    )
+                    name = f"run() vs bare C loop, FMI {version}, {label}, {cycles:,} cycles ({common.load()})"
+                    for result, target in (("reused", 1.5), ("fresh", 3.0)):
+                        ours, bare = t[result], t[f"loop {result}"]
+                        ratio = ours.median / bare.median
+                        common.report(
+                            f"{name}: {'run(out=) reused' if result == 'reused' else 'run() fresh'} result",
+                            ours.per(cycles).text(1e9, "ns/row"),
+                            f"bare C loop, {result} buffer {bare.per(cycles).text(1e9, 'ns/row')}",
+                            ratio,
+                            f"<= {target}x",
+                            ratio <= target,
+                        )
+                del expected
+    finally:
+        loop.close()

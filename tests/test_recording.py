@@ -8,6 +8,7 @@ from fmpy.fmi1 import FMICallException
 
 import pmdfmu
 from pmdfmu.chip import RECORDED
+from pmdfmu.profile import record_outputs
 from scenarios import busy_chip
 from stepwise import run_stepwise
 
@@ -103,6 +104,21 @@ def test_a_run_into_a_reused_array_records_what_a_fresh_array_gets(version, kind
             got = reused.run(cycles, record=names, out=out)
             assert got is out
             assert got.tobytes() == want.tobytes()
+
+
+@pytest.mark.parametrize("names", (RECORDED, record_outputs(range(4))), ids=("commanded", "status + Reals"))
+def test_copied_rows_in_cache_sized_chunks_are_the_rows_of_capacity_chunks(names, monkeypatch):
+    """FMI 3 copies record.data into the result in chunks of COPIED_CHUNK_BYTES at most (the rows still in
+    the cache): the same bytes as one chunk of record.capacity (65 536 rows), with chunks of 641 / 1923 rows too."""
+    from pmdfmu import recording
+
+    runs = []
+    for chunk_bytes in (recording.COPIED_CHUNK_BYTES, 100_000, 1 << 40):
+        monkeypatch.setattr(recording, "COPIED_CHUNK_BYTES", chunk_bytes)
+        with pmdfmu.Chip(fmi_version=3) as chip:
+            busy_chip(chip)
+            runs.append(chip.run(30_000, record=names).tobytes())
+    assert runs[0] == runs[1] == runs[2]
 
 
 @pytest.mark.parametrize(

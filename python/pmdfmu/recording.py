@@ -5,9 +5,10 @@ a test's oracle).
 
 In bulk, the FMU's way: the FMU writes each cycle's row into record.data itself
 (record.columns names the columns), one doStep and one read per record.capacity
-cycles; FMI 2 reads record.data through the FMU's extension function
-pmdfmu_fmi2GetRecordData (`record_data`), or has the FMU write the rows straight into
-the result, lent for one doStep inside one native call (`lent_stepper`).
+cycles (per COPIED_CHUNK_BYTES of rows where they are copied); FMI 2 reads
+record.data through the FMU's extension function pmdfmu_fmi2GetRecordData
+(`record_data`), or has the FMU write the rows straight into the result, lent for
+one doStep inside one native call (`lent_stepper`).
 
 Cycle by cycle in the harness's native library (native/record_loop.c), for an FMU
 without bulk recording of the columns (an older build) or a run that records
@@ -54,6 +55,9 @@ CTYPE = {
     native.BOOL: np.bool_,
 }
 GRID = ("time", "nextCycleTime", "activeCycleTime")
+# the rows of a chunk the harness copies out of record.data: at most this many bytes, so that they are still in the
+# core's L2 cache when the copy reads them (docs/performance.md, "Recording"); rows lent to the FMU are not copied
+COPIED_CHUNK_BYTES = 1 << 20
 
 
 def _function(fmu, name: str):
@@ -331,7 +335,8 @@ class Recorder:
         return out
 
     def _bulk(self, cycles: int, out: Optional[np.ndarray]) -> np.ndarray:
-        """One doStep and one read per chunk of record.capacity cycles instead of FMI calls every cycle. A
+        """One doStep and one read per chunk of record.capacity cycles (COPIED_CHUNK_BYTES of rows at most where
+        they are copied out of record.data) instead of FMI calls every cycle. A
         chunk in which a script step may change the grid (SetSampleTime) starts from a saved FMU state and is
         redone cycle by cycle if it did, so that its rows are those of a master stepping cycle by cycle."""
         chip = self.chip
@@ -353,13 +358,15 @@ class Recorder:
             script_end = chip.get("script.lastCycle") if chip.get("script.axes") else -1
         # FMI 2: the FMU writes the rows straight into the result, lent for one doStep at a time, no copy
         step_into = lent_stepper(chip) if rows.lendable else None
+        # rows copied out of record.data: chunks the cache holds (docs/performance.md, "Against a bare C loop")
+        chunk = capacity if step_into else min(capacity, max(1, COPIED_CHUNK_BYTES // rows.row.itemsize))
         # record.enabled stays on for the run: close() turns it off on every way out, interrupts included
         chip._recording = True
         try:
             chip.set("record.enabled", True)
             done = 0
             while done < cycles:
-                n = min(capacity, cycles - done)
+                n = min(chunk, cycles - done)
                 before = chip.cycles if script_end >= 0 else None
                 state = chip._fmu_state()
                 try:
