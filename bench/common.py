@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""What every benchmark module shares: runs repeated, figures as
-min / median, a report table. Benchmarks, not tests: nothing asserts a time.
+"""What every benchmark module shares: contenders run in turns, figures as
+min / median / max, a report table. Benchmarks, not tests: nothing asserts a time.
 
 A benchmark module (bench/<topic>.py) defines benchmarks(tmp: Path) -> None,
 which measures and calls report(); bench/run.py runs them all."""
@@ -14,40 +14,9 @@ from pathlib import Path
 from typing import Callable, List, Tuple
 
 REPO = Path(__file__).resolve().parent.parent
-RUNS = 5  # every figure: min and median of at least this many runs
+RUNS = 5  # every figure: min, median and max of at least this many runs
 
 rows: List[Tuple[str, ...]] = []
-
-
-@dataclass(frozen=True)
-class Figure:
-    """A time measured RUNS times or more: the least (best) and the median."""
-
-    min: float
-    median: float
-
-    @staticmethod
-    def of(values) -> "Figure":
-        """The least and the median of measured values."""
-        values = sorted(values)
-        return Figure(values[0], statistics.median(values))
-
-    def per(self, n: float) -> "Figure":
-        """time per item"""
-        return Figure(self.min / n, self.median / n)
-
-    def rate(self, n: float) -> "Figure":
-        """n items over the time: items per second, the best run's first (recording.py, upload.py)"""
-        return Figure(n / self.min, n / self.median)
-
-    def text(self, scale: float, unit: str, fmt: str = ".2f") -> str:
-        """'best / median unit', each value times scale (1e9: ns, 1e-6: M/s ...)"""
-        return f"{self.min * scale:{fmt}} / {self.median * scale:{fmt}} {unit}"
-
-
-def repeat(f: Callable[[], float], runs: int = RUNS) -> Figure:
-    """f() returns a time in seconds; it runs `runs` times."""
-    return Figure.of(f() for _ in range(runs))
 
 
 def timed(f: Callable[[], object]) -> float:
