@@ -31,6 +31,7 @@ TOPICS = [
     "instances",
     "upload",
     "streaming",
+    "streaming_to_disk",
     "sweep",
     "footprint",
     "serve",
