@@ -25,6 +25,7 @@ import common  # noqa: E402  (this folder's modules import it by name)
 
 TOPICS = [
     "engine",
+    "c_library",
     "host_command",
     "system",
     "recording",
