@@ -13,42 +13,17 @@ turns run by run inside the program (CLOCK_MONOTONIC); here min / median / max a
 from __future__ import annotations
 
 import subprocess
-import sys
-from pathlib import Path
 
-from common import REPO, RUNS, load, report
-from engine import BUILD, figures
+from common import RUNS, build, load, report
+from engine import figures
 from fmpy import read_model_description
 
 COMMANDS = 1_000_000  # per run and contender (~60 ms)
 PAIRS = 2 * RUNS + 1  # runs are short (tens of ms): more pairs for a steadier median
 
 
-def build() -> Path:
-    """bench_c_library with the C library and the FMI 2 FMU it loads, built by CMake with the FMUs'
-    own settings (Release, link-time optimization) in a build dir of its own under the FMU's."""
-    tree = BUILD / "bench" / "c_library"
-    subprocess.run(
-        [
-            "cmake",
-            "-S",
-            str(REPO),
-            "-B",
-            str(tree),
-            "-DCMAKE_BUILD_TYPE=Release",
-            f"-DPython3_EXECUTABLE={sys.executable}",
-        ],
-        check=True,
-        stdout=subprocess.DEVNULL,
-    )
-    subprocess.run(
-        ["cmake", "--build", str(tree), "--target", "bench_c_library"], check=True, stdout=subprocess.DEVNULL
-    )
-    return tree
-
-
 def benchmarks(tmp) -> None:
-    tree = build()
+    tree = build("bench_c_library")
     fmu = tree / "fmi2"
     description = read_model_description(str(fmu / "modelDescription.xml"))
     binary = fmu / "binaries" / "linux64" / f"{description.coSimulation.modelIdentifier}.so"

@@ -7,16 +7,30 @@ which measures and calls report(); bench/run.py runs them all."""
 
 from __future__ import annotations
 
+import os
 import statistics
+import subprocess
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, List, Tuple
 
 REPO = Path(__file__).resolve().parent.parent
+BUILD = Path(os.environ.get("PMDFMU_FMU_DIR") or REPO / "build")
 RUNS = 5  # every figure: min, median and max of at least this many runs
 
 rows: List[Tuple[str, ...]] = []
+
+
+def build(*targets: str) -> Path:
+    """The bench's C programs (CMake targets), built with the FMUs' own settings (Release, link-time
+    optimization) in one build dir under the FMU's, beside the FMUs built there; the dir."""
+    tree = BUILD / "bench" / "programs"
+    configure = ["cmake", "-S", str(REPO), "-B", str(tree), "-DCMAKE_BUILD_TYPE=Release"]
+    subprocess.run(configure + [f"-DPython3_EXECUTABLE={sys.executable}"], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(["cmake", "--build", str(tree), "--target", *targets], check=True, stdout=subprocess.DEVNULL)
+    return tree
 
 
 def timed(f: Callable[[], object]) -> float:

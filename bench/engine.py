@@ -14,48 +14,20 @@ beside them; 2c alternates its two contenders run by run (common.interleave).
 
 from __future__ import annotations
 
-import os
 import random
 import subprocess
-import sys
 import zipfile
 from pathlib import Path
 
 from fmpy import read_model_description
 
 import pmdfmu
-from common import REPO, RUNS, Spread, interleave, load, report, timed
+from common import RUNS, Spread, build, interleave, load, report, timed
 
-BUILD = Path(os.environ.get("PMDFMU_FMU_DIR") or REPO / "build")
 AXES = 4
 FAMILIES = {"short": (1, 7), "long": (1000, 2000)}  # segment times, cycles
 DOSTEP_CYCLES = 10**6
 CYCLES_ENGINE = 1_000_000  # bench/engine.c's CYCLES
-
-
-def build() -> Path:
-    """bench_engine and bench_dostep, built by CMake with the FMUs' own settings (Release,
-    link-time optimization) in a build dir of their own under the FMU's."""
-    tree = BUILD / "bench" / "engine"
-    subprocess.run(
-        [
-            "cmake",
-            "-S",
-            str(REPO),
-            "-B",
-            str(tree),
-            "-DCMAKE_BUILD_TYPE=Release",
-            f"-DPython3_EXECUTABLE={sys.executable}",
-        ],
-        check=True,
-        stdout=subprocess.DEVNULL,
-    )
-    subprocess.run(
-        ["cmake", "--build", str(tree), "--target", "bench_engine", "bench_dostep"],
-        check=True,
-        stdout=subprocess.DEVNULL,
-    )
-    return tree
 
 
 def figures(lines, key_fields: int) -> dict:
@@ -176,7 +148,7 @@ def coarse() -> None:
 
 
 def benchmarks(tmp: Path) -> None:
-    tree = build()
+    tree = build("bench_engine", "bench_dostep")
     engine(tree)
     dostep(tmp, tree)
     coarse()

@@ -330,6 +330,18 @@ def test_a_refused_monitor_closes_the_line_it_opened():
         assert refused.traceback and len(os.listdir("/proc/self/fd")) == fds
 
 
+def test_a_chip_the_monitor_refuses_closes_the_line_and_the_monitor(tmp_path):
+    """`chip 5` on a line of one chip: the monitor's refusal is raised, and what the LineChip opened
+    (the line, the monitor's connection) is closed before it is."""
+    link = tmp_path / "pmd"
+    with Server("--serial", link, "--monitor", "127.0.0.1:0") as s:
+        fds = len(os.listdir("/proc/self/fd"))
+        with pytest.raises(pmdfmu.line.MonitorRefusal) as refused:
+            LineChip(f"serial:{link}", address=5, monitor="tcp:" + monitor_of(s))
+        assert refused.traceback and len(os.listdir("/proc/self/fd")) == fds
+        assert s.stop()[0] == 0
+
+
 def test_the_monitor_gives_a_line_chip_what_the_twin_in_process_gives(tmp_path):
     """Chip(device=..., monitor=...): commands over the line, cycles, waits, FMU variables, the dual-port
     memory and the host clock through the monitor; every value equals the twin in-process timed as a

@@ -52,7 +52,7 @@ REALS = ["axis1.position", "axis2.velocity", "nextCycleTime"]
 INT32 = [n for n in INTEGERS if n.split(".")[-1].startswith("commanded")]
 
 MAESTRO = "org.into-cps.maestro:maestro:3.1.1:jar:jar-with-dependencies"
-# where .ci/run (and the first test run) puts the Java tools: the user's cache, not the source tree
+# the Java tools, where .ci/run (Maestro) and the first test run put them: the user's cache, not the source tree
 CACHE = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "pmdfmu"
 MAESTRO_JAR = CACHE / "maestro-3.1.1-jar-with-dependencies.jar"
 VDMCHECK2 = CACHE / "vdmcheck2-1.1.3"
@@ -153,32 +153,51 @@ def vdmcheck2():
     return ["java", "-jar", str(VDMCHECK2 / "vdmcheck2.jar")]
 
 
-def vdmcheck2_says(fmu):
+def vdmcheck2_says(fmu, tmp_path):
+    """What it prints; its VDM model of the description goes to tmp_path (by default a file named
+    "null" beside its jar, which every run would share)."""
     # It only reads the model description: the JVM needs no ASan runtime (./dev sanitize preloads it)
     env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
-    out = subprocess.run([*vdmcheck2(), str(fmu)], capture_output=True, text=True, timeout=300, env=env)
+    command = [*vdmcheck2(), "-v", str(tmp_path / "model.vdmsl"), str(fmu)]
+    out = subprocess.run(command, capture_output=True, text=True, timeout=300, env=env)
     return out.stdout + out.stderr  # it exits 0 either way
 
 
+def verdict(said):
+    """Its one line of verdict (before the line naming the VDM file), or None."""
+    lines = [line for line in said.splitlines() if line in ("No errors found.", "Errors found.")]
+    return lines[0] if len(lines) == 1 else None
+
+
 @pytest.mark.parametrize("model", ["chip", "plant", "packed chip"])
-def test_vdmcheck2_finds_no_error(model, packed):
+def test_vdmcheck2_finds_no_error(model, packed, tmp_path):
     fmu = packed[2] if model == "packed chip" else pmdfmu.default_fmu(2, model)
-    assert vdmcheck2_says(fmu).strip().splitlines()[-1] == "No errors found."
+    said = vdmcheck2_says(fmu, tmp_path)
+    assert verdict(said) == "No errors found." and "VDM source written to" in said, said
+
+
+def broken_chip(tmp_path, old, new):
+    """A copy of the FMI 2 chip whose modelDescription.xml has its one OLD replaced by NEW."""
+    good = pmdfmu.default_fmu(2)
+    fmu = tmp_path / good.name
+    with zipfile.ZipFile(good) as src, zipfile.ZipFile(fmu, "w", zipfile.ZIP_DEFLATED) as dst:
+        for item in src.infolist():
+            data = src.read(item)
+            if item.filename == "modelDescription.xml":
+                xml = data.decode()
+                assert xml.count(old) == 1
+                data = xml.replace(old, new).encode()
+            dst.writestr(item, data)
+    return fmu
 
 
 def test_vdmcheck2_finds_an_output_missing_from_the_model_structure(tmp_path):
-    """The check can fail: the first output's Unknown made to name a parameter."""
-    fmu = pmdfmu.default_fmu(2)
-    broken = tmp_path / "broken.fmu"
-    with zipfile.ZipFile(fmu) as z, zipfile.ZipFile(broken, "w") as out:
-        for item in z.infolist():
-            data = z.read(item)
-            if item.filename == "modelDescription.xml":
-                data = re.sub(rb'(<Outputs>\s*<Unknown index=")\d+', rb"\g<1>2", data, count=1)
-            out.writestr(item, data)
-    said = vdmcheck2_says(broken)
-    assert "validOutputs: Outputs section does not match output variables" in said
-    assert said.strip().splitlines()[-1] == "Errors found."
+    """The check can fail: the first output's Unknown made to name a parameter (cycleTime, index 2)."""
+    xml = zipfile.ZipFile(pmdfmu.default_fmu(2)).read("modelDescription.xml").decode()
+    first = re.search(r'<Outputs>\s*<Unknown index="\d+"', xml).group(0)
+    said = vdmcheck2_says(broken_chip(tmp_path, first, re.sub(r'"\d+"$', '"2"', first)), tmp_path)
+    assert "validOutputs: Outputs section does not match output variables" in said, said
+    assert verdict(said) == "Errors found.", said
 
 
 # The profile reaches the FMU two ways, both run in every tool: "parameter", the built FMU with the
@@ -505,10 +524,10 @@ def test_fmucheck_simulates_the_fmu_as_fmpy_does(model, packed, tmp_path):
 
 
 def test_fmucheck_runs_one_chip_cycle_a_step_as_fmpy_does(packed, tmp_path):
-    _, counts, rows, status = fmucheck_run(
+    log, counts, rows, status = fmucheck_run(
         packed[2], tmp_path, "-h", repr(CYCLE), "-s", repr(CYCLES * CYCLE), "-n", "0"
     )
-    assert status == 0 and counts["errors"] == counts["warnings"] == 0
+    assert status == 0 and counts == {"fmu": 0, "warnings": 0, "errors": 0}, log
     assert assert_rows_equal_fmpy(packed[2], rows, CYCLE, CYCLES * CYCLE) == list(range(CYCLES + 1))
     assert int(rows[-1][rows[0].index("axis1.commandedPosition")]) > 0  # the profile moved
 
@@ -521,9 +540,10 @@ def test_fmucheck_drops_a_row_where_its_summed_time_falls_short_of_its_output_gr
     checker's defect. Fails when fmuCheck writes every grid point."""
     from reference_fmus import reference_fmu
 
+    fmucheck()  # skipped without it before Reference-FMUs are built
     path = packed[2] if fmu == "chip" else reference_fmu("Feedthrough", 2)
-    _, counts, rows, status = fmucheck_run(path, tmp_path, "-k", "cs", "-s", "0.1")
-    assert status == 0 and counts["errors"] == 0
+    log, counts, rows, status = fmucheck_run(path, tmp_path, "-k", "cs", "-s", "0.1")
+    assert status == 0 and counts is not None and counts["errors"] == 0, log
     steps = np.rint(np.array([float(row[0]) for row in rows[1:]]) / 2e-4).astype(int).tolist()
     assert steps == [k for k in range(501) if k != 23]
     if fmu == "chip":
@@ -536,6 +556,7 @@ def test_fmucheck_counts_the_independent_time_as_a_local_variable(fmu, tmp_path)
     releases count it right): the chip's `time`, and Reference-FMUs' Feedthrough's. Cosmetic."""
     from reference_fmus import reference_fmu
 
+    fmucheck()
     path = pmdfmu.default_fmu(2) if fmu == "chip" else reference_fmu("Feedthrough", 2)
     with zipfile.ZipFile(path) as z:
         xml = z.read("modelDescription.xml").decode()
@@ -569,19 +590,11 @@ BROKEN = {  # (the edit of the chip's modelDescription.xml, fmuCheck's message, 
 @pytest.mark.parametrize("broken", list(BROKEN))
 def test_fmucheck_reports_a_broken_model_description(broken, tmp_path):
     (old, new), message, exit_status = BROKEN[broken]
-    good = pmdfmu.default_fmu(2)
-    fmu = tmp_path / good.name
-    with zipfile.ZipFile(good) as src, zipfile.ZipFile(fmu, "w", zipfile.ZIP_DEFLATED) as dst:
-        for item in src.infolist():
-            data = src.read(item)
-            if item.filename == "modelDescription.xml":
-                xml = data.decode()
-                assert xml.count(old) == 1
-                data = xml.replace(old, new).encode()
-            dst.writestr(item, data)
+    fmucheck()
+    fmu = broken_chip(tmp_path, old, new)
     log, counts, _, status = fmucheck_run(fmu, tmp_path, "-k", "cs")
     assert message in log.splitlines(), log
-    assert counts["errors"] >= 1 and status == exit_status, log
+    assert counts is not None and counts["errors"] >= 1 and status == exit_status, log
 
 
 # ---- INTO-CPS Maestro 3.1.1 (Java, Maven Central) -------------------------------------------------

@@ -98,6 +98,7 @@ class LineChip:
         self.device = device
         self.address = address
         self._monitor: Optional[socket.socket] = None
+        self._replies = None
         kind, _, where = device.partition(":")
         self._sock: Optional[socket.socket] = None
         self._fd = -1
@@ -119,20 +120,21 @@ class LineChip:
             kind, _, where = monitor.partition(":")
             try:
                 self._monitor = _connect(where) if kind == "tcp" else None
-            except OSError:  # refused: the line opened above is closed, not left to the collector
+                if self._monitor is None:
+                    raise ValueError(f"monitor {monitor!r}: tcp:HOST:PORT (pmdfmu serve --monitor's)")
+                self._replies = self._monitor.makefile("r", encoding="ascii", newline="\n")
+                self._ask("chip", f"chip {address}")
+            except (OSError, ValueError):  # MonitorRefusal too: what opened here is closed, not left to the collector
                 self.close()
                 raise
-            if self._monitor is None:
-                self.close()
-                raise ValueError(f"monitor {monitor!r}: tcp:HOST:PORT (pmdfmu serve --monitor's)")
-            self._replies = self._monitor.makefile("r", encoding="ascii", newline="\n")
-            self._ask("chip", f"chip {address}")
 
     # ---- life cycle ----
 
     def close(self) -> None:
-        if self._monitor is not None:
+        if self._replies is not None:
             self._replies.close()
+            self._replies = None
+        if self._monitor is not None:
             self._monitor.close()
             self._monitor = None
         if self._sock is not None:
