@@ -134,7 +134,7 @@ def assert_intact(chip, run, tmp_path):
         assert chip.cycles == fresh.cycles
     if run != "copied columns":
         # a loan the FMU still held would limit this step's rows to what it holds: rows wider than the run's
-        # do not fit, and the step would be refused ("the memory lent by pmdfmu_fmi2SetRecordBuffer holds")
+        # do not fit, and the step would be refused ("the memory lent by pmdfmu_fmi*SetRecordBuffer holds")
         chip.set("record.columns", ",".join(record_outputs(range(4))))
         chip.set("record.enabled", True)
         chip._step(CAPACITY)
