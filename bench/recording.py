@@ -158,9 +158,7 @@ def lending(table) -> None:
                     recording.lent_stepper = stepper
                     try:
                         with prepared(version, table) as chip:
-                            times.append(
-                                common.timed(lambda chip=chip, cycles=cycles: chip.run(cycles, record=names))
-                            )
+                            times.append(common.timed(lambda chip=chip, cycles=cycles: chip.run(cycles, record=names)))
                     finally:
                         recording.lent_stepper = real
             lent_f, copied_f = common.Spread.of(lent), common.Spread.of(copied)
