@@ -30,7 +30,7 @@
  *     so that uninitialized bytes in the state show as a difference;
  *   - recording (op_columns, op_lend, op_record_data): record.columns and
  *     record.rowSize read back as set, a refused value leaves both as they
- *     were; FMI 2 memory lent by pmdfmu_fmi2SetRecordBuffer is written only
+ *     were; memory lent by pmdfmu_fmi2/3SetRecordBuffer is written only
  *     inside the bytes lent, and only while lent (the rest of the fuzzer's
  *     area, guard bytes, is checked after every call); record.data holds
  *     whole rows of the last step that ran, of consecutive chip times, in the
@@ -77,9 +77,10 @@ enum { OK = 0, ERROR = 3 };          /* fmi2Status and fmi3Status agree on these
 #define MAX_COLUMNS 8                /* names of a record.columns value it sets */
 #define DEFAULT_ROW_BYTES (4 * PMD_RECORD_WORDS)     /* a row of record.columns "" */
 
-/* pmdfmu's FMI 2 extension (fmi/record_fmi2.c, docs/performance.md "Recording"): no header declares it */
+/* pmdfmu's extensions (fmi/record_fmi2.c, record_fmi3.c, docs/performance.md "Recording"): no header declares them */
 fmi2Status pmdfmu_fmi2GetRecordData(fmi2Component c, const void **data, size_t *size);
 fmi2Status pmdfmu_fmi2SetRecordBuffer(fmi2Component c, void *rows, size_t size);
+fmi3Status pmdfmu_fmi3SetRecordBuffer(fmi3Instance c, void *rows, size_t size);
 
 static int tracing;                  /* FUZZ_SEQUENCE_TRACE */
 static const char *known;            /* FUZZ_SEQUENCE_KNOWN */
@@ -178,7 +179,7 @@ typedef struct {
     void *probe;          /* the state object the properties snapshot into */
     void *saved, *restored;   /* op_replay's and op_restore's states (here: freed after a known finding) */
     /* recording as the sequence set it up (the FMU's getters are checked against it) */
-    int lending;          /* FMI 2: lendArea[lentAt, lentAt + lentSize) is lent to the FMU */
+    int lending;          /* lendArea[lentAt, lentAt + lentSize) is lent to the FMU */
     size_t lentAt, lentSize;
     char columns[MAX_COLUMNS * 64];   /* record.columns as last set ("" after a reset) */
     uint32_t rowBytes;    /* record.rowSize it makes */
@@ -1604,12 +1605,12 @@ static void op_columns(Fuzz *f, Reader *r)
 
 static int lend(Fuzz *f, void *rows, size_t size)
 {
-    say("  pmdfmu_fmi2SetRecordBuffer(%s + %zu, %zu bytes)\n", rows ? "area" : "NULL",
+    say("  pmdfmu_fmi%dSetRecordBuffer(%s + %zu, %zu bytes)\n", f->fmi3 ? 3 : 2, rows ? "area" : "NULL",
         rows ? (size_t)((unsigned char *)rows - lendArea) : 0, size);
-    return pmdfmu_fmi2SetRecordBuffer(f->c, rows, size);
+    return f->fmi3 ? pmdfmu_fmi3SetRecordBuffer(f->c, rows, size) : pmdfmu_fmi2SetRecordBuffer(f->c, rows, size);
 }
 
-/* FMI 2: memory of the fuzzer's lend area lent for the rows (pmdfmu_fmi2SetRecordBuffer): whole rows of
+/* Memory of the fuzzer's lend area lent for the rows (pmdfmu_fmi2/3SetRecordBuffer): whole rows of
  * record.columns as they stand (at any byte offset: the default rows need 4-byte alignment, a step refuses
  * others), any number of bytes, NULL (record.data's own buffer again), or 0 bytes. The area outside the loan
  * holds PAINT, checked after every call (property_lent). */
@@ -1617,8 +1618,6 @@ static void op_lend(Fuzz *f, Reader *r)
 {
     unsigned kind = below(r, 4);
     size_t at = below(r, 8), p = bytes(r, 2), size;
-    if (f->fmi3)
-        return;
     size = kind == 0 ? p % 512 * f->rowBytes : kind == 1 ? p : 0;
     if (size > LEND_AREA - at)
         size = LEND_AREA - at;

@@ -65,6 +65,7 @@ def sources(target: str, gen: Path):
             "fmi_common/fmi3_not_provided.c",
             "fmi_common/token.c",
             "fmi/model3.c",
+            "fmi/record_fmi3.c",
         ],
     }.get(target, [])
     extra = [str(ROOT / "fmu_src" / n) for n in extra]

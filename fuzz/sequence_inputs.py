@@ -553,6 +553,49 @@ class Seq:
 # ---- seeds: short sequences into deep states ---------------------------------------------
 
 
+def lent_sequence(fmi3, wide):
+    """Memory lent for the rows and taken back every way (seeds())."""
+    return (
+        Seq(fmi3=fmi3)
+        .record(True)
+        .move(1, 0, 0x20000, 0x800, axis=1)
+        .lend("rows", 100)
+        .step(50)
+        .record_data()
+        .columns("valid", ["axis2.velocity", "axis2.commandedPosition"])
+        .step(60)
+        .record_data()
+        .columns("valid", wide)
+        .step(90)
+        .sample_time(10, pending=True)
+        .step(5)
+        .record_data()
+        .save(1)
+        .step(3)
+        .restore(1, via_bytes=True)
+        .record_data()
+        .step(2)
+        .record_data()
+        .replay(2, 1)
+        .lend("bytes", 12, offset=3)
+        .step(3)
+        .columns("empty")
+        .step(1)
+        .lend("bytes", 1000, offset=2)
+        .step(1)
+        .lend("empty")
+        .step(1)
+        .lend("null")
+        .step(20)
+        .record_data()
+        .lend("rows", 300, offset=4)
+        .step(10)
+        .reinitialize(capacity=200, record=True)
+        .step(10)
+        .record_data()
+    )
+
+
 def seeds():
     out = {}
     # a trace armed to start on the next Update, buffer 0 then changed, then Update (the first legal-call finding's shape)
@@ -791,48 +834,12 @@ def seeds():
             .step(7)
             .replay(4, 2)
         )
-    # FMI 2's lent memory: lent while recording, columns widened while lent, the grid made finer, a state
-    # saved and restored while lent, memory too small (refused), misaligned (default rows), 0 bytes, NULL,
-    # then lent again and forgotten by a reset
-    out["record-buffer-lent-widened-restored-reset"] = (
-        Seq()
-        .record(True)
-        .move(1, 0, 0x20000, 0x800, axis=1)
-        .lend("rows", 100)
-        .step(50)
-        .record_data()
-        .columns("valid", ["axis2.velocity", "axis2.commandedPosition"])
-        .step(60)
-        .record_data()
-        .columns("valid", wide)
-        .step(90)
-        .sample_time(10, pending=True)
-        .step(5)
-        .record_data()
-        .save(1)
-        .step(3)
-        .restore(1, via_bytes=True)
-        .record_data()
-        .step(2)
-        .record_data()
-        .replay(2, 1)
-        .lend("bytes", 12, offset=3)
-        .step(3)
-        .columns("empty")
-        .step(1)
-        .lend("bytes", 1000, offset=2)
-        .step(1)
-        .lend("empty")
-        .step(1)
-        .lend("null")
-        .step(20)
-        .record_data()
-        .lend("rows", 300, offset=4)
-        .step(10)
-        .reinitialize(capacity=200, record=True)
-        .step(10)
-        .record_data()
-    )
+    # lent memory (FMI 2, and FMI 3's pmdfmu_fmi3SetRecordBuffer): lent while recording, columns widened while
+    # lent, the grid made finer, a state saved and restored while lent, memory too small (refused), misaligned
+    # (default rows), 0 bytes, NULL, then lent again and forgotten by a reset
+    for fmi3 in (False, True):
+        out["record-buffer-lent-widened-restored-reset" + ("-fmi3" if fmi3 else "")] = lent_sequence(fmi3, wide)
+
     # memory.data as a block: FMI 2 runs from any element, past memory.data[64], split, with an element
     # twice, after memory.count or memory.address; FMI 3 the array, after memory.address, twice, a wrong
     # nValues; a write of the block's words after each

@@ -819,7 +819,7 @@ def main(outdir: Path, sources) -> None:
 
 
 FMI2_ONLY = {"fmi2.c", "fmi2_not_provided.c", "record_fmi2.c"}
-FMI3_ONLY = {"fmi3.c", "fmi3_not_provided.c", "model3.c", "variables3.c"}
+FMI3_ONLY = {"fmi3.c", "fmi3_not_provided.c", "model3.c", "record_fmi3.c", "variables3.c"}
 
 if __name__ == "__main__":
     if len(sys.argv) < 2:

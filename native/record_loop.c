@@ -140,8 +140,23 @@ int pmd_record_fmi3(PmdFmiFunction do_step_fn, void *instance, const PmdLoopGrou
                   row_bytes, cycles, stop);
 }
 
-int pmd_record_step_lent(PmdFmiFunction set_buffer, PmdFmiFunction get_data, PmdFmiFunction do_step_fn,
-                         void *instance, double now, double step, void *rows, size_t size, size_t *recorded, int *call)
+/* Where record.data's rows lie after a doStep: FMI 2's extension, FMI 3's Binary getter. */
+static int record_data(int fmi3, PmdFmiFunction get_data, unsigned int data_vr, void *instance, const void **data,
+                       size_t *bytes)
+{
+    if (fmi3) {
+        fmi3ValueReference vr = data_vr;
+        fmi3Binary value = NULL;
+        int status = ((fmi3GetBinaryTYPE *)get_data)(instance, &vr, 1, bytes, &value, 1);
+        *data = value;
+        return status;
+    }
+    return ((PmdGetRecordData *)get_data)(instance, data, bytes);
+}
+
+int pmd_record_step_lent(int fmi3, PmdFmiFunction set_buffer, PmdFmiFunction get_data, unsigned int data_vr,
+                         PmdFmiFunction do_step_fn, void *instance, double now, double step, void *rows, size_t size,
+                         size_t *recorded, int *call)
 {
     const void *data = NULL;
     size_t bytes = 0;
@@ -152,9 +167,9 @@ int pmd_record_step_lent(PmdFmiFunction set_buffer, PmdFmiFunction get_data, Pmd
     if (PMD_FAILED(status))
         return status;
     *call = PMD_STEP_DO_STEP;
-    status = do_step(0, do_step_fn, instance, now, step);
+    status = do_step(fmi3, do_step_fn, instance, now, step);
     if (!PMD_FAILED(status)) {
-        got = ((PmdGetRecordData *)get_data)(instance, &data, &bytes);
+        got = record_data(fmi3, get_data, data_vr, instance, &data, &bytes);
         if (PMD_FAILED(got)) {
             *call = PMD_STEP_GET_DATA;
             status = got;

@@ -66,23 +66,28 @@ PMD_NATIVE_EXPORT int pmd_record_fmi3(PmdFmiFunction do_step, void *instance, co
 /* The call pmd_record_fmi2/3 name when a column's size is none of 1, 2, 4, 8: no call ran */
 enum { PMD_LOOP_FIELD_SIZE = -2 };
 
-/* The FMU's extension functions beside the FMI 2 ones (fmu_src/fmi/record_fmi2.c) */
+/* The FMU's extension functions beside the FMI ones (fmu_src/fmi/record_fmi2.c, record_fmi3.c):
+ * pmdfmu_fmi2SetRecordBuffer and pmdfmu_fmi3SetRecordBuffer have the same C type; FMI 2's
+ * record.data, which FMI 3 reads with fmi3GetBinary */
 typedef int PmdSetRecordBuffer(void *instance, void *rows, size_t size);
 typedef int PmdGetRecordData(void *instance, const void **data, size_t *size);
 
 /* Which call of pmd_record_step_lent failed */
 enum { PMD_STEP_LEND, PMD_STEP_DO_STEP, PMD_STEP_GET_DATA, PMD_STEP_END_LOAN };
 
-/* One recording doStep of an FMI 2 FMU into the caller's memory (Chip.run):
- * `rows` (`size` bytes) lent to the FMU (pmdfmu_fmi2SetRecordBuffer), the
- * step from `now` of `step` s, the bytes it recorded there asked for
- * (pmdfmu_fmi2GetRecordData: *recorded, 0 if the rows are elsewhere) and the
- * loan ended, in this one call: no Python code (a KeyboardInterrupt, an
- * exception) runs while the FMU holds a pointer into the caller's memory, so
- * the loan cannot outlive it. Returns the doStep's status (Warning: a grid
- * change inside the step), or that of the first call that failed (*call). */
-PMD_NATIVE_EXPORT int pmd_record_step_lent(PmdFmiFunction set_buffer, PmdFmiFunction get_data,
-                                           PmdFmiFunction do_step, void *instance, double now, double step,
-                                           void *rows, size_t size, size_t *recorded, int *call);
+/* One recording doStep of an FMU into the caller's memory (Chip.run):
+ * `rows` (`size` bytes) lent to the FMU (set_buffer: pmdfmu_fmi2SetRecordBuffer,
+ * pmdfmu_fmi3SetRecordBuffer), the step from `now` of `step` s (do_step:
+ * fmi2DoStep, fmi3DoStep), the bytes it recorded there asked for (get_data:
+ * pmdfmu_fmi2GetRecordData, or fmi3GetBinary of record.data, value reference
+ * data_vr; *recorded, 0 if the rows are elsewhere) and the loan ended, in
+ * this one call: no Python code (a KeyboardInterrupt, an exception) runs
+ * while the FMU holds a pointer into the caller's memory, so the loan cannot
+ * outlive it. Returns the doStep's status (Warning: a grid change inside the
+ * step), or that of the first call that failed (*call). */
+PMD_NATIVE_EXPORT int pmd_record_step_lent(int fmi3, PmdFmiFunction set_buffer, PmdFmiFunction get_data,
+                                           unsigned int data_vr, PmdFmiFunction do_step, void *instance,
+                                           double now, double step, void *rows, size_t size, size_t *recorded,
+                                           int *call);
 
 #endif

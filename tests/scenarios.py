@@ -75,6 +75,13 @@ WORKED_TABLE = [
 ]
 
 
+def without_lending(chip):
+    """The chip as one of an FMU without pmdfmu_fmi*SetRecordBuffer (an older build): the harness copies its
+    rows out of record.data. Its own copy of the extensions its FMU's Chips share, the function absent."""
+    chip._extensions = {**chip._extensions, f"pmdfmu_fmi{chip.fmi_version}SetRecordBuffer": None}
+    return chip
+
+
 def run_worked_example(chip):
     """The seed's two rows, started as examples/worked_example.py starts them (the
     first read at chip time 11003), and the 11 cycles of the seed's table."""

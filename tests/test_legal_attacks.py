@@ -180,7 +180,7 @@ recorded, size = chip_of(True, n if how != "lent" else 65536)
 guard = 64
 if how == "lent":                   # the memory lent holds n rows, record.capacity more
     lent = np.full(n * size + 2 * guard, 0xA5, dtype=np.uint8)
-    lend = extension(recorded, "pmdfmu_fmi2SetRecordBuffer", c_void_p, c_size_t)
+    lend = extension(recorded, f"pmdfmu_fmi{version}SetRecordBuffer", c_void_p, c_size_t)
     assert lend(recorded.fmu.component, lent.ctypes.data + guard, n * size) == 0
 recorded.fmu.doStep(0.0, n * COARSE)
 rows = rows_of(recorded)
@@ -213,11 +213,12 @@ print(json.dumps({
         (2, "script", "axis1.position,axis1.motorCommand"),
         (2, "lent", ""),
         (2, "lent", "axis1.commandedPosition,axis2.activityStatus"),
+        (3, "lent", "axis1.commandedPosition,axis2.activityStatus"),
     ],
 )
 @pytest.mark.slow
 def test_cycles_past_a_recording_steps_room_run_as_an_unrecorded_step_does(tmp_path, fmi_version, how, columns):
-    """The rows past record.capacity (or the memory lent by pmdfmu_fmi2SetRecordBuffer) are not kept: they
+    """The rows past record.capacity (or the memory lent by pmdfmu_fmi*SetRecordBuffer) are not kept: they
     run as a step that records nothing runs them, fast-forwarded (60 000 coarse cycles: 4 * 10^9 fine ones,
     minutes one by one). The step ends where the unrecorded one does, the rows kept are the first ones."""
     n = 60_000
@@ -244,7 +245,7 @@ def test_cycles_past_a_recording_steps_room_run_as_an_unrecorded_step_does(tmp_p
     assert found["position"][0] == found["position"][1] != 0
     assert found["same state"], "the recorded step ended elsewhere than the unrecorded one"
     assert found["rows"] == n and found["rows as a step of n cycles"]
-    limit = "the memory lent by pmdfmu_fmi2SetRecordBuffer" if how == "lent" else "record.capacity"
+    limit = f"the memory lent by pmdfmu_fmi{fmi_version}SetRecordBuffer" if how == "lent" else "record.capacity"
     assert any(f"record.data holds the first {n} ({limit})" in w for w in found["warnings"]), found["warnings"]
     assert found["guards"], "a row was written outside the memory lent"
 

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-2-Clause
-"""Chip.run(record=...) in bulk (the FMU's record.data and record.columns, FMI 2
-through pmdfmu_fmi2GetRecordData) and through the native loop (native/record_loop.c,
+"""Chip.run(record=...) in bulk (the FMU's record.data and record.columns, rows lent
+or copied) and through the native loop (native/record_loop.c,
 pmdfmu.recording) is the harness's cycle-by-cycle Python loop (tests/stepwise.py,
 kept as the reference), bit for bit: rows, errors, log messages, host clock
 ."""

@@ -12,7 +12,7 @@ import pmdfmu
 from pmdfmu import recording
 from pmdfmu.chip import DTYPES
 from pmdfmu.profile import record_outputs
-from scenarios import busy_chip
+from scenarios import busy_chip, without_lending
 from stepwise import run_stepwise
 
 VERSIONS = pytest.mark.parametrize("version", (2, 3))
@@ -93,12 +93,19 @@ def test_the_fmi2_extension_checks_its_instance_and_pointers():
 
 
 def lend_function(chip):
-    lend = chip.fmu.dll.pmdfmu_fmi2SetRecordBuffer
+    lend = getattr(chip.fmu.dll, f"pmdfmu_fmi{chip.fmi_version}SetRecordBuffer")
     lend.restype, lend.argtypes = c_int, [c_void_p, c_void_p, c_size_t]
     return lend
 
 
 def record_data(chip):
+    """Where record.data's bytes lie, (address, size): FMI 3's fmi3GetBinary, FMI 2's extension."""
+    if chip.fmi_version == 3:
+        from fmpy.fmi3 import fmi3Binary, fmi3ValueReference
+
+        vrs, size, value = (fmi3ValueReference * 1)(chip._vr["record.data"]), (c_size_t * 1)(), (fmi3Binary * 1)()
+        chip.fmu.fmi3GetBinary(chip.fmu.component, vrs, 1, size, value, 1)
+        return c_void_p.from_buffer(value).value, size[0]
     get = chip.fmu.dll.pmdfmu_fmi2GetRecordData
     get.restype, get.argtypes = c_int, [c_void_p, POINTER(c_void_p), POINTER(c_size_t)]
     data, size = c_void_p(), c_size_t()
@@ -106,12 +113,14 @@ def record_data(chip):
     return data.value, size.value
 
 
-@pytest.mark.parametrize("names", [record_outputs(range(4)), []])
-def test_rows_recorded_into_lent_memory_are_record_datas_rows(names):
-    """pmdfmu_fmi2SetRecordBuffer: the rows of a recording doStep go into the caller's memory, byte for byte
-    those record.data's own buffer holds (record.columns, and the default rows); record.data reports them
-    there; NULL gives the buffer back; a step recording more cycles than fit is refused and runs nothing."""
-    with pmdfmu.Chip(fmi_version=2) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+@VERSIONS
+@pytest.mark.parametrize("names", [record_outputs(range(4)), []], ids=("status + Reals", "default rows"))
+def test_rows_recorded_into_lent_memory_are_record_datas_rows(version, names):
+    """pmdfmu_fmi2SetRecordBuffer, pmdfmu_fmi3SetRecordBuffer: the rows of a recording doStep go into the
+    caller's memory, byte for byte those record.data's own buffer holds (record.columns, and the default
+    rows); record.data reports them there; NULL gives the buffer back; a step recording more cycles than
+    fit is refused, naming the function, and runs nothing."""
+    with pmdfmu.Chip(fmi_version=version) as chip, pmdfmu.Chip(fmi_version=version) as ref:
         for c in (chip, ref):
             busy_chip(c)
             c.set("record.columns", ",".join(names))
@@ -129,7 +138,8 @@ def test_rows_recorded_into_lent_memory_are_record_datas_rows(names):
         assert (lent[nbytes:] == 0xA5).all()  # nothing past the lent size
         with pytest.raises(FMICallException):
             chip._step(401)
-        assert any("holds 400 rows" in m.message for m in chip.messages if m.status == "Error")
+        lender = f"the memory lent by pmdfmu_fmi{version}SetRecordBuffer holds 400 rows"
+        assert any(lender in m.message for m in chip.messages if m.status == "Error")
         assert chip.cycles == ref.cycles  # the refused step ran nothing
         assert lend(chip.fmu.component, None, 0) == 0
         chip._step(1000)
@@ -138,8 +148,9 @@ def test_rows_recorded_into_lent_memory_are_record_datas_rows(names):
         assert string_at(*record_data(chip)) == string_at(*record_data(ref))
 
 
-def test_lent_memory_is_checked_and_a_reset_forgets_it():
-    with pmdfmu.Chip(fmi_version=2) as chip:
+@VERSIONS
+def test_lent_memory_is_checked_and_a_reset_forgets_it(version):
+    with pmdfmu.Chip(fmi_version=version) as chip:
         lend = lend_function(chip)
         buffer = np.zeros(64, dtype=np.uint8)
         chip.set("record.enabled", True)
@@ -147,7 +158,7 @@ def test_lent_memory_is_checked_and_a_reset_forgets_it():
         with pytest.raises(FMICallException):  # the default rows are int32 words
             chip._step(1)
         assert any(
-            "pmdfmu_fmi2SetRecordBuffer" in m.message and "not aligned to 4 bytes" in m.message
+            f"pmdfmu_fmi{version}SetRecordBuffer" in m.message and "not aligned to 4 bytes" in m.message
             for m in chip.messages
             if m.status == "Error"
         )
@@ -174,6 +185,8 @@ def spy_loans(monkeypatch):
 
     def spy(chip):
         step_into = real(chip)
+        if step_into is None:  # an FMU that cannot be lent memory: its rows are copied
+            return None
         return lambda address, size, *step: (loans.append((address, size)), step_into(address, size, *step))[1]
 
     monkeypatch.setattr(recording, "lent_stepper", spy)
@@ -189,12 +202,16 @@ def holds_no_loan(chip, loans):
     return record_data(chip)[0] not in {address for address, _ in loans}
 
 
-def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkeypatch):
+@VERSIONS
+def test_the_harness_records_rows_in_place_and_gives_the_memory_back(version, monkeypatch):
     """Chip.run lends its result to the FMU chunk by chunk (no copy), each loan ending with its doStep; a
     run refused before any cycle lends nothing."""
     loans = spy_loans(monkeypatch)
     names = record_outputs(range(2))
-    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 700}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+    with (
+        pmdfmu.Chip(fmi_version=version, **{"record.capacity": 700}) as chip,
+        pmdfmu.Chip(fmi_version=version) as ref,
+    ):
         for c in (chip, ref):
             busy_chip(c)
         rows = chip.run(2000, record=names)
@@ -208,7 +225,8 @@ def test_the_harness_records_fmi2_rows_in_place_and_gives_the_memory_back(monkey
         assert not loans
 
 
-def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(monkeypatch, tmp_path):
+@VERSIONS
+def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(version, monkeypatch, tmp_path):
     """A script's SetSampleTime inside a lent chunk: the harness goes back to the chunk's saved state and
     writes the stepwise rows over what the FMU wrote there; the next chunks are lent again."""
     loans = spy_loans(monkeypatch)
@@ -216,8 +234,8 @@ def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(monkeypatch, tmp_path)
     script.write_text("@500\nSetSampleTime(Axis1, 50);\n@900\nSetSampleTime(Axis1, 20);\n")
     names = record_outputs(range(2))
     with (
-        pmdfmu.Chip(fmi_version=2, script=script, **{"record.capacity": 300}) as chip,
-        pmdfmu.Chip(fmi_version=2, script=script) as ref,
+        pmdfmu.Chip(fmi_version=version, script=script, **{"record.capacity": 300}) as chip,
+        pmdfmu.Chip(fmi_version=version, script=script) as ref,
     ):
         rows = chip.run(2000, record=names)
         assert rows.tobytes() == run_stepwise(ref, 2000, names).tobytes()
@@ -225,11 +243,15 @@ def test_a_chunk_redone_stepwise_overwrites_its_lent_rows(monkeypatch, tmp_path)
         assert len(loans) == 7 and holds_no_loan(chip, loans)  # 7 chunks of at most 300 cycles
 
 
-def test_an_interrupt_after_a_lent_step_leaves_no_loan_and_recording_off(monkeypatch):
+@VERSIONS
+def test_an_interrupt_after_a_lent_step_leaves_no_loan_and_recording_off(version, monkeypatch):
     """A KeyboardInterrupt landing just after the second chunk's doStep: the loan ended inside that native
     call, record.enabled is off again, and the next run records as a fresh chip's."""
     loans = spy_loans(monkeypatch)
-    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 100}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+    with (
+        pmdfmu.Chip(fmi_version=version, **{"record.capacity": 100}) as chip,
+        pmdfmu.Chip(fmi_version=version) as ref,
+    ):
         for c in (chip, ref):
             busy_chip(c)
         spy = recording.lent_stepper
@@ -255,12 +277,16 @@ def test_an_interrupt_after_a_lent_step_leaves_no_loan_and_recording_off(monkeyp
         assert holds_no_loan(chip, loans)
 
 
-def test_a_lent_step_whose_dostep_fails_ends_the_loan_and_the_next_run_is_a_fresh_chips(monkeypatch):
+@VERSIONS
+def test_a_lent_step_whose_dostep_fails_ends_the_loan_and_the_next_run_is_a_fresh_chips(version, monkeypatch):
     """The second chunk's doStep refused inside the native lent step (a communication point the FMU is not
-    at): FMICallException naming fmi2DoStep, the loan ended by that same call, record.enabled off, and the
-    next run records as a fresh chip at the same cycle does."""
+    at): FMICallException naming fmi2DoStep / fmi3DoStep, the loan ended by that same call, record.enabled
+    off, and the next run records as a fresh chip at the same cycle does."""
     loans = spy_loans(monkeypatch)
-    with pmdfmu.Chip(fmi_version=2, **{"record.capacity": 100}) as chip, pmdfmu.Chip(fmi_version=2) as ref:
+    with (
+        pmdfmu.Chip(fmi_version=version, **{"record.capacity": 100}) as chip,
+        pmdfmu.Chip(fmi_version=version) as ref,
+    ):
         for c in (chip, ref):
             busy_chip(c)
         spy = recording.lent_stepper
@@ -270,14 +296,40 @@ def test_a_lent_step_whose_dostep_fails_ends_the_loan_and_the_next_run_is_a_fres
             return lambda address, size, now, step: step_into(address, size, now + (len(loans) == 1), step)
 
         monkeypatch.setattr(recording, "lent_stepper", failing)
-        with pytest.raises(FMICallException, match="fmi2DoStep"):
+        with pytest.raises(FMICallException, match=f"fmi{version}DoStep"):
             chip.run(300, record=record_outputs([0]))
         assert len(loans) == 2 and chip.cycles == 100 and not chip.get("record.enabled")
-        assert any("fmi2DoStep" in m.message for m in chip.messages if m.status == "Error")
+        assert any(f"fmi{version}DoStep" in m.message for m in chip.messages if m.status == "Error")
         monkeypatch.setattr(recording, "lent_stepper", spy)
         ref.run(100)
         assert chip.run(300, record=record_outputs([0])).tobytes() == ref.run(300, record=record_outputs([0])).tobytes()
         assert holds_no_loan(chip, loans)
+
+
+@VERSIONS
+@pytest.mark.parametrize(
+    "names", [record_outputs(range(4)), ["axis2.eventStatus", "io.output[1]", "host.interrupt", "axis3.motorOutput"]]
+)
+def test_lent_rows_are_the_copied_rows_byte_for_byte(version, names, monkeypatch):
+    """The same runs with the rows lent to the FMU and copied out of record.data (an FMU without
+    pmdfmu_fmi*SetRecordBuffer: an older build), fresh and into a reused array, over capacity chunks: the
+    same bytes, and the same as a master stepping cycle by cycle."""
+    runs, loans = {}, spy_loans(monkeypatch)
+    for how in ("lent", "copied"):
+        with pmdfmu.Chip(fmi_version=version, **{"record.capacity": 900}) as chip:
+            if how == "copied":
+                without_lending(chip)
+            busy_chip(chip)
+            fresh = chip.run(2000, record=names)
+            out = np.empty_like(fresh)
+            out.view(np.uint8)[:] = 0xFF
+            chip.run(2000, record=names, out=out)
+            runs[how] = fresh.tobytes() + out.tobytes()
+        assert len(loans) == 6  # the lent runs' 3 chunks each, none copied
+    with pmdfmu.Chip(fmi_version=version) as ref:
+        busy_chip(ref)
+        expected = run_stepwise(ref, 2000, names).tobytes() + run_stepwise(ref, 2000, names).tobytes()
+    assert runs["lent"] == runs["copied"] == expected
 
 
 def test_a_grid_change_the_harness_cannot_redo_raises(monkeypatch, tmp_path):

@@ -74,7 +74,8 @@ def test_a_script_changing_the_sample_time_during_a_bulk_recording_is_recorded_a
         assert bulk.cycles == stepping.cycles == 100
 
 
-# every way a run records: the commanded table, record.columns (FMI 2 lent, FMI 3 copied), the native loop
+# every way a run records: the commanded table, record.columns (lent; copied: tests/test_record_columns.py), the
+# native loop
 OUT_KINDS = {
     "commanded": (list(RECORDED[:5]), {}),
     "columns": (["axis1.commandedPosition", "axis2.activityStatus", "axis1.motorCommand", "loopback"], {}),
@@ -108,10 +109,12 @@ def test_a_run_into_a_reused_array_records_what_a_fresh_array_gets(version, kind
 
 @pytest.mark.parametrize("names", (RECORDED, record_outputs(range(4))), ids=("commanded", "status + Reals"))
 def test_copied_rows_in_cache_sized_chunks_are_the_rows_of_capacity_chunks(names, monkeypatch):
-    """FMI 3 copies record.data into the result in chunks of COPIED_CHUNK_BYTES at most (the rows still in
-    the cache): the same bytes as one chunk of record.capacity (65 536 rows), with chunks of 641 / 1923 rows too."""
+    """Rows copied out of record.data (the commanded table; record.columns from an FMU that cannot be lent
+    memory) go into the result in chunks of COPIED_CHUNK_BYTES at most (the rows still in the cache): the
+    same bytes as one chunk of record.capacity (65 536 rows), with chunks of 641 / 1923 rows too."""
     from pmdfmu import recording
 
+    monkeypatch.setattr(recording, "lent_stepper", lambda chip: None)
     runs = []
     for chunk_bytes in (recording.COPIED_CHUNK_BYTES, 100_000, 1 << 40):
         monkeypatch.setattr(recording, "COPIED_CHUNK_BYTES", chunk_bytes)

@@ -56,6 +56,7 @@ static void set_defaults(PmdInstance *inst)
     inst->recordBytes = 0;
     inst->recordLent = NULL;
     inst->recordLentBytes = 0;
+    inst->recordLender = NULL;
     inst->recordCapacity = 65536;
     inst->recordCount = 0;
     pmd_record_columns_free(&inst->columns);
@@ -463,15 +464,15 @@ PmdStatus pmd_model_do_step(PmdInstance *inst, const char *fn, double t, double 
     if (inst->s.recordEnabled && inst->recordLent) {
         if (end - inst->s.nextCycle > pmd_record_room(inst)) {
             pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: recording a step of %lld cycles, but the memory "
-                             "lent by pmdfmu_fmi2SetRecordBuffer holds %lld rows of %u bytes: not run", fn,
-                             (long long)(end - inst->s.nextCycle), (long long)pmd_record_room(inst),
+                             "lent by %s holds %lld rows of %u bytes: not run", fn,
+                             (long long)(end - inst->s.nextCycle), inst->recordLender, (long long)pmd_record_room(inst),
                              (unsigned)inst->columns.rowBytes);
             return PMD_ERROR;
         }
         if (!inst->columns.count && (uintptr_t)inst->recordLent % sizeof(int32_t)) {
-            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: the memory lent by pmdfmu_fmi2SetRecordBuffer (%p) "
+            pmd_instance_log(inst, PMD_ERROR, PMD_LOG_ERRORS, "%s: the memory lent by %s (%p) "
                              "is not aligned to 4 bytes, as the default rows of int32 words need: not run", fn,
-                             (void *)inst->recordLent);
+                             inst->recordLender, (void *)inst->recordLent);
             return PMD_ERROR;
         }
     }
@@ -515,9 +516,9 @@ PmdStatus pmd_model_do_step(PmdInstance *inst, const char *fn, double t, double 
     inst->recordCount = (uint32_t)recorded;
     if (ran > recorded) {
         pmd_instance_log(inst, PMD_WARNING, PMD_LOG_WARNINGS, "%s: SetSampleTime restarted the cycle grid during a "
-                         "recording step: it ran %lld cycles, record.data holds the first %lld (%s)", fn,
-                         (long long)ran, (long long)recorded,
-                         inst->recordLent ? "the memory lent by pmdfmu_fmi2SetRecordBuffer" : "record.capacity");
+                         "recording step: it ran %lld cycles, record.data holds the first %lld (%s%s)", fn,
+                         (long long)ran, (long long)recorded, inst->recordLent ? "the memory lent by " : "",
+                         inst->recordLent ? inst->recordLender : "record.capacity");
         return PMD_WARNING;
     }
     return PMD_OK;

@@ -115,11 +115,13 @@ struct PmdModel {
     size_t recordBytes;              /* bytes the record buffer holds */
     uint32_t recordCount;            /* cycles recorded by the last doStep */
     uint32_t recordRowBytes;         /* bytes of each of those rows (as record.columns stood at that doStep) */
-    /* FMI 2: the caller's memory the rows go to instead of the buffer while it
-     * lends it (pmdfmu_fmi2SetRecordBuffer), NULL when it does not; the FMU
-     * never frees it nor keeps it past the caller's NULL or a reset */
+    /* the caller's memory the rows go to instead of the buffer while it lends
+     * it (pmdfmu_fmi2SetRecordBuffer, pmdfmu_fmi3SetRecordBuffer: recordLender,
+     * which messages name), NULL when it does not; the FMU never frees it nor
+     * keeps it past the caller's NULL or a reset */
     unsigned char *recordLent;
     size_t recordLentBytes;
+    const char *recordLender;
     PmdRecordColumns columns;        /* record.columns */
     PmdRecordColumns stagedColumns;  /* a set call's new record.columns, compiled by its check */
 

@@ -75,9 +75,10 @@ int64_t pmd_record_room(const PmdInstance *inst)
 /* The rows go straight into the caller's memory, which spares it a copy of
  * record.data's (docs/performance.md, "Recording"). The rows recorded so far
  * are in the other memory: record.data holds none until the next doStep. */
-void pmd_record_lend(PmdInstance *inst, void *rows, size_t bytes)
+void pmd_record_lend(PmdInstance *inst, const char *fn, void *rows, size_t bytes)
 {
     /* any memory may be lent: doStep checks that its rows fit */
+    inst->recordLender = fn;
     inst->recordLent = (unsigned char *)rows;
     inst->recordLentBytes = rows ? bytes : 0;
     inst->recordCount = 0;

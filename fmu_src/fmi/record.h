@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
-/* Bulk recording (record.c): record.data's buffer, the memory an FMI 2
- * caller lends for it, and record.columns, the values a recording doStep
+/* Bulk recording (record.c): record.data's buffer, the memory a caller
+ * lends for it, and record.columns, the values a recording doStep
  * writes per cycle besides the chip time. Independent of the FMI version. */
 #ifndef PMD_RECORD_H
 #define PMD_RECORD_H
@@ -12,9 +12,9 @@
 PmdStatus pmd_record_allocate(PmdInstance *inst, const char *fn);
 /* record.data's bytes: the rows the last doStep recorded (lent until the next call). */
 void pmd_record_data(const PmdInstance *inst, const unsigned char **data, size_t *size);
-/* FMI 2's pmdfmu_fmi2SetRecordBuffer: the caller's memory for the rows of the recording doSteps that follow, or
- * NULL for record.data's buffer again. */
-void pmd_record_lend(PmdInstance *inst, void *rows, size_t bytes);
+/* pmdfmu_fmi2SetRecordBuffer and pmdfmu_fmi3SetRecordBuffer (fn, which messages about the memory name): the
+ * caller's memory for the rows of the recording doSteps that follow, or NULL for record.data's buffer again. */
+void pmd_record_lend(PmdInstance *inst, const char *fn, void *rows, size_t bytes);
 /* Where a recording doStep writes its rows, and how many fit there (record.columns as it stands). */
 unsigned char *pmd_record_rows(const PmdInstance *inst);
 int64_t pmd_record_room(const PmdInstance *inst);

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: BSD-2-Clause */
 /* The chip's two functions beside the FMI 2 ones, in its FMI 2 binary only:
  * bulk recording (record.c) for FMI 2, which has no Binary type
- * (docs/performance.md, "Recording"; the harness's native/record_loop.c). */
+ * (docs/performance.md, "Recording"; the harness's native/record_loop.c).
+ * FMI 3 has the second one as pmdfmu_fmi3SetRecordBuffer (record_fmi3.c). */
 #include "fmi2.h"
 #include "instance.h"
 
@@ -30,9 +31,10 @@ FMI2_Export fmi2Status pmdfmu_fmi2GetRecordData(fmi2Component c, const void **da
  * than fit is refused, as one beyond record.capacity is. */
 FMI2_Export fmi2Status pmdfmu_fmi2SetRecordBuffer(fmi2Component c, void *rows, size_t size)
 {
-    PmdInstance *inst = pmd_fmi2_begin(c, "pmdfmu_fmi2SetRecordBuffer", PMD_ANY_STATE);
+    static const char fn[] = "pmdfmu_fmi2SetRecordBuffer";
+    PmdInstance *inst = pmd_fmi2_begin(c, fn, PMD_ANY_STATE);
     if (!inst)
         return fmi2Error;
-    pmd_record_lend(inst, rows, size);
+    pmd_record_lend(inst, fn, rows, size);
     return fmi2OK;
 }

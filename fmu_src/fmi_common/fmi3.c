@@ -30,7 +30,7 @@ static void log_to_environment(void *environment, const char *instanceName, PmdS
         comp->logMessage(comp->environment, status_of[status], category, message);
 }
 
-static PmdModel *begin(fmi3Instance c, const char *fn, unsigned states)
+PmdModel *pmd_fmi3_begin(fmi3Instance c, const char *fn, unsigned states)
 {
     PmdModel *m = c ? ((Component *)c)->inst : NULL;
     if (m && !(pmd_model_fmi_state(m) & states)) {
@@ -39,6 +39,8 @@ static PmdModel *begin(fmi3Instance c, const char *fn, unsigned states)
     }
     return m;
 }
+
+#define begin pmd_fmi3_begin
 
 static int arrays_given(const PmdModel *m, const char *fn, size_t n, const void *a, const void *b)
 {

@@ -1054,7 +1054,8 @@ class Chip:
         an array's element goes by its FMI 2 name ("io.output[3]") in FMI 3 too.
 
         The FMU records the rows itself (record.data, record.columns: one doStep per
-        record.capacity cycles, FMI 2 through its extension pmdfmu_fmi2GetRecordData);
+        record.capacity cycles, written straight into the result where it lends the
+        memory for them: pmdfmu_fmi2SetRecordBuffer, pmdfmu_fmi3SetRecordBuffer);
         the rows are what a master stepping cycle by cycle would read, also where a
         script's SetSampleTime changes the grid (that chunk is redone cycle by cycle
         from a saved FMU state). Recording `time`, or an FMU without record.columns,

@@ -5,10 +5,11 @@ a test's oracle).
 
 In bulk, the FMU's way: the FMU writes each cycle's row into record.data itself
 (record.columns names the columns), one doStep and one read per record.capacity
-cycles (per COPIED_CHUNK_BYTES of rows where they are copied); FMI 2 reads
-record.data through the FMU's extension function pmdfmu_fmi2GetRecordData
-(`record_data`), or has the FMU write the rows straight into the result, lent for
-one doStep inside one native call (`lent_stepper`).
+cycles (per COPIED_CHUNK_BYTES of rows where they are copied); the harness has the
+FMU write the rows straight into the result, lent for one doStep inside one native
+call (`lent_stepper`: the FMU's extension pmdfmu_fmi2SetRecordBuffer or
+pmdfmu_fmi3SetRecordBuffer), or copies them out of record.data (`record_data`:
+fmi3GetBinary, FMI 2's extension pmdfmu_fmi2GetRecordData).
 
 Cycle by cycle in the harness's native library (native/record_loop.c), for an FMU
 without bulk recording of the columns (an older build) or a run that records
@@ -203,24 +204,30 @@ def record_data(chip) -> Optional[Callable[[], Tuple[int, int]]]:
 
 
 def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int, int]]]:
-    """A function running one recording doStep (from `now`, of `step` s) of an FMI 2 FMU into (address, size
-    in bytes) of the caller's memory, returning (doStep's status, the bytes of rows recorded there): the
-    memory is lent (pmdfmu_fmi2SetRecordBuffer), the step run and the loan ended in one native call
-    (native pmd_record_step_lent), so no Python code, a KeyboardInterrupt included, runs while the FMU
+    """A function running one recording doStep (from `now`, of `step` s) into (address, size in bytes) of the
+    caller's memory, returning (doStep's status, the bytes of rows recorded there): the memory is lent
+    (pmdfmu_fmi2SetRecordBuffer, pmdfmu_fmi3SetRecordBuffer), the step run and the loan ended in one native
+    call (native pmd_record_step_lent), so no Python code, a KeyboardInterrupt included, runs while the FMU
     holds a pointer into the caller's memory. Spares the copy of record.data into the result. None where
-    the FMU has no such function (FMI 3: its binary exports the FMI 3 functions only)."""
-    if chip.fmi_version != 2:
-        return None
-    pointers = [c_void_p, c_void_p, c_size_t]
-    lend = extension(chip, "pmdfmu_fmi2SetRecordBuffer", pointers)
-    get = extension(chip, "pmdfmu_fmi2GetRecordData", [c_void_p, POINTER(c_void_p), POINTER(c_size_t)])
+    the FMU has no such function (an older build)."""
+    version = chip.fmi_version
+    lend = extension(chip, f"pmdfmu_fmi{version}SetRecordBuffer", [c_void_p, c_void_p, c_size_t])
+    if version == 2:
+        # record.data: FMI 2's extension; FMI 3's Binary getter of its value reference
+        get_name = "pmdfmu_fmi2GetRecordData"
+        get = extension(chip, get_name, [c_void_p, POINTER(c_void_p), POINTER(c_size_t)])
+    else:
+        get_name = "fmi3GetBinary"
+        get = _function(chip.fmu, get_name)
     if lend is None or get is None:
         return None
     fn = native.library().pmd_record_step_lent
     fn.restype = c_int
     fn.argtypes = [
+        c_int,
         c_void_p,
         c_void_p,
+        c_uint32,
         c_void_p,
         c_void_p,
         c_double,
@@ -230,13 +237,20 @@ def lent_stepper(chip) -> Optional[Callable[[int, int, float, float], Tuple[int,
         POINTER(c_size_t),
         POINTER(c_int),
     ]
-    functions = native.address(lend), native.address(get), native.address(_function(chip.fmu, "fmi2DoStep"))
+    do_step = f"fmi{version}DoStep"
+    functions = (
+        int(version == 3),
+        native.address(lend),
+        native.address(get),
+        chip._vr["record.data"] if version == 3 else 0,
+        native.address(_function(chip.fmu, do_step)),
+    )
     recorded, call = c_size_t(), c_int()
     names = {
-        native.STEP_LEND: "pmdfmu_fmi2SetRecordBuffer",
-        native.STEP_DO_STEP: "fmi2DoStep",
-        native.STEP_GET_DATA: "pmdfmu_fmi2GetRecordData",
-        native.STEP_END_LOAN: "pmdfmu_fmi2SetRecordBuffer",
+        native.STEP_LEND: f"pmdfmu_fmi{version}SetRecordBuffer",
+        native.STEP_DO_STEP: do_step,
+        native.STEP_GET_DATA: get_name,
+        native.STEP_END_LOAN: f"pmdfmu_fmi{version}SetRecordBuffer",
     }
 
     def step_into(address: int, size: int, now: float, step: float) -> Tuple[int, int]:
@@ -286,7 +300,7 @@ class _Commanded:
 class _Columns:
     """The result of a run recording record.columns: the FMU's packed little-endian row is the result's
     record (the chip time, then each column in its FMI 3 type's width), whole rows copied as one block,
-    or written in place by the FMU (FMI 2, lendable)."""
+    or written in place by the FMU (lendable)."""
 
     lendable = True
 
@@ -356,7 +370,7 @@ class Recorder:
         script_end = float("inf")
         if "script.lastCycle" in chip.variables:
             script_end = chip.get("script.lastCycle") if chip.get("script.axes") else -1
-        # FMI 2: the FMU writes the rows straight into the result, lent for one doStep at a time, no copy
+        # the FMU writes the rows straight into the result, lent for one doStep at a time, no copy
         step_into = lent_stepper(chip) if rows.lendable else None
         # rows copied out of record.data: chunks the cache holds (docs/performance.md, "Against a bare C loop")
         chunk = capacity if step_into else min(capacity, max(1, COPIED_CHUNK_BYTES // rows.row.itemsize))
