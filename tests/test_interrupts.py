@@ -22,6 +22,10 @@ from pmdfmu import recording
 pytestmark = pytest.mark.slow  # tests/README.md: ./dev test -m "not slow" leaves them out
 
 
+# The second interrupt (a SIGALRM whose handler raises KeyboardInterrupt) may land inside a garbage
+# collector callback (hypothesis installs one), where Python reports it as unraisable and drops it:
+# not the harness's doing, and the chip is checked as after any other run.
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
 @pytest.mark.parametrize("run", sorted(RUNS))
 def test_an_interrupt_at_any_point_of_a_recording_run_leaves_the_chip_exact(run, tmp_path):
     total = line_count(run, tmp_path)
