@@ -148,6 +148,40 @@ def test_an_interrupt_is_answered_with_one_line_and_130(tmp_path, command):
     assert not (tmp_path / "p.fmu").exists() and not partial_files(tmp_path)
 
 
+# Ctrl-C inside a garbage collector callback, as one once landed in a weakref callback of matplotlib's
+DROPPED = """
+import gc
+from pmdfmu.cli import console
+collections = []
+def interrupt(phase, info):
+    collections.append(phase)
+    if len(collections) == 4:  # inside the command's work (pack sees ~50 collections, verify ~8)
+        raise KeyboardInterrupt
+gc.callbacks.append(interrupt)
+console()
+"""
+
+
+@pytest.mark.parametrize("command", ["verify", "pack"])
+def test_an_interrupt_python_drops_inside_a_callback_still_interrupts(tmp_path, command):
+    """Python drops an exception raised in a callback (reports it as unraisable, with a traceback) and the
+    code around it runs on: the program delivers the interrupt again, so the command ends as at any other
+    Ctrl-C, and leaves no file."""
+    for name in ("two_axis.script", "two_axis_table.csv"):
+        shutil.copy(EXAMPLES / name, tmp_path)
+    argv = (
+        ["pack", tmp_path / "two_axis.script", "--out", tmp_path / "p.fmu"]
+        if command == "pack"
+        else ["verify", SQUARE, "--against", GOLDEN, "--out", tmp_path / "report"]
+    )
+    child = subprocess.run(
+        [sys.executable, "-c", DROPPED, *map(str, argv)], cwd=tmp_path, capture_output=True, text=True
+    )
+    assert (child.returncode, child.stderr) == (130, f"pmdfmu {command}: interrupted\n")
+    assert not (tmp_path / "p.fmu").exists() and not (tmp_path / "report").exists()
+    assert not partial_files(tmp_path)
+
+
 def test_an_interrupt_inside_a_zip_members_write_reaches_the_caller_as_itself(tmp_path, monkeypatch):
     """Ctrl-C inside zipfile's write of a member (where the random signals of the test above landed once):
     pack raises KeyboardInterrupt, not the ValueError ("seek of closed file") that closing the half-written

@@ -17,12 +17,14 @@ pmdfmu info       the FMU's variables and the chip's commands
 
 from __future__ import annotations
 
+import _thread
 import argparse
 import math
 import os
 import signal
 import subprocess
 import sys
+import threading
 import zipfile
 from pathlib import Path
 from typing import Iterable, List, Optional, Tuple
@@ -807,9 +809,21 @@ def main(argv: Optional[List[str]] = None) -> int:
         progress.show(None)
 
 
+def _interrupt_again(unraisable) -> None:
+    """The program's sys.unraisablehook. A Ctrl-C that lands in a weakref or garbage collector callback or a
+    finalizer (matplotlib's, FMPy's) is dropped there by Python with a traceback, and the command would
+    run on to its end: it is delivered again once the callback is over. A timer thread delivers it, since
+    one raised here would land in this hook and be dropped too."""
+    if issubclass(unraisable.exc_type, KeyboardInterrupt):
+        threading.Timer(0.001, _thread.interrupt_main).start()
+    else:
+        sys.__unraisablehook__(unraisable)
+
+
 def console() -> None:
     """The `pmdfmu` program: main, then exit with its status. Its files are written once main returns, so a
     Ctrl-C from then on is ignored, not left to kill Python's exit by SIGINT."""
+    sys.unraisablehook = _interrupt_again
     status = main()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     sys.exit(status)
