@@ -46,6 +46,22 @@ def test_pack_reads_fmi_as_an_abbreviation_of_fmi_version():
     assert args.fmi_version == 3
 
 
+def test_every_fmi_version_option_is_spelt_fmi_version():
+    """path's was --fmi, so `pmdfmu path --fmi-version 3`, as every other command spells it, was refused."""
+    _, choices = commands()
+    for name, command in choices.items():
+        for action in command._actions:
+            assert "--fmi" not in action.option_strings, f"pmdfmu {name}: --fmi, not --fmi-version"
+    assert _parser().parse_args(["path", "plant", "--fmi-version", "3"]).fmi_version == 3
+
+
+def test_an_unknown_option_is_named_by_its_command(capsys):
+    with pytest.raises(SystemExit) as exit:
+        main(["path", "chip", "--bogus"])
+    assert exit.value.code == 2
+    assert capsys.readouterr().err == "pmdfmu path: unrecognized arguments: --bogus (pmdfmu path --help)\n"
+
+
 def test_version(capsys):
     with pytest.raises(SystemExit) as exit:
         main(["--version"])

@@ -154,3 +154,12 @@ def test_a_file_that_is_not_a_zip_gives_only_the_librarys_log_line(programs, tmp
     lines = out.stderr.splitlines()
     assert len(lines) == 1 and lines[0].startswith("L transport 3 cannot unpack"), out.stderr
     assert "not-a-zip.fmu" in lines[0] and re.search(r"zipfile", lines[0]), out.stderr
+
+
+def test_an_fmu_named_but_missing_is_named_in_the_log(programs, tmp_path):
+    """PMDFMU_FMU or PMDFMUOptions.fmu set to a path that is not there: the line names that path and
+    why, not "set PMDFMU_FMU" to a user who did."""
+    out = run(programs, "cmotion_log", "fmu", tmp_path / "missing.fmu")
+    assert out.stdout.split() == ["S", f"0x{PMD_ERR_OpeningPort:X}"]
+    lines = out.stderr.splitlines()
+    assert lines == [f"L transport 3 cannot open the FMU {tmp_path / 'missing.fmu'}: No such file or directory"]

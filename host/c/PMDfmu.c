@@ -456,8 +456,13 @@ static PMDresult open_device(PMDFMUDevice *d, const char *fmu)
     fmi2InstantiateTYPE *instantiate;
     fmi2SetDebugLoggingTYPE *setDebugLogging;
 
-    if (!fmu || stat(fmu, &st) != 0) {
+    if (!fmu || !*fmu) {
         log_text(d, "no FMU: set PMDFMUOptions.fmu or PMDFMU_FMU to the .fmu file or its unpacked directory");
+        return PMD_ERR_OpeningPort;
+    }
+    if (stat(fmu, &st) != 0) {     /* named, but not there: say which name, not that none was given */
+        snprintf(why, sizeof why, "cannot open the FMU %s: %s", fmu, error_text(errno, path, sizeof path));
+        log_text(d, why);
         return PMD_ERR_OpeningPort;
     }
     if (!S_ISDIR(st.st_mode)) {

@@ -698,7 +698,7 @@ def cmd_validate(args) -> int:
 
 
 def cmd_path(args) -> int:
-    print(default_fmu(args.fmi, args.model))
+    print(default_fmu(args.fmi_version, args.model))
     return 0
 
 
@@ -784,6 +784,15 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str):
         self.exit(EXIT_INPUT, f"{self.prog}: {message} ({self.prog} --help)\n")
+
+    def parse_args(self, args=None, namespace=None):
+        # argparse reports a subcommand's unknown option from the top parser ("pmdfmu: unrecognized
+        # arguments"): the command's own parser says it, so that the line names the command and its help
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            sub = next(a for a in self._actions if isinstance(a, argparse._SubParsersAction))
+            sub.choices.get(getattr(parsed, "command", None), self).error(f"unrecognized arguments: {' '.join(extras)}")
+        return parsed
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -1121,9 +1130,9 @@ def _parser() -> argparse.ArgumentParser:
         )
         p.set_defaults(func=func)
 
-    p = command("path", "print the path of a built FMU: the chip's or the plant's (pmdfmu path plant --fmi 3)")
+    p = command("path", "print the path of a built FMU: the chip's or the plant's (pmdfmu path plant --fmi-version 3)")
     p.add_argument("model", nargs="?", choices=("chip", "plant"), default="chip", help="which FMU (default: chip)")
-    p.add_argument("--fmi", type=int, choices=(2, 3), default=2, help="the FMI version (default: 2)")
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help=FMI_VERSION_HELP)
     p.set_defaults(func=cmd_path)
 
     return parser
