@@ -135,6 +135,15 @@ def test_pmdfmu_run_a_script_writes_csv_and_plot(tmp_path):
     assert len(lines) > 3000 and (tmp_path / "o.png").stat().st_size > 10_000
 
 
+def test_pmdfmu_run_a_script_without_outputs_says_where_the_axes_ended(capsys):
+    """cli.md's `pmdfmu run two_axis.script --machine ...` asks for no file: it printed nothing at all."""
+    assert main(["run", str(EXAMPLES / "two_axis.script")]) == 0
+    assert capsys.readouterr().out.splitlines() == [
+        "axis 1: ended at position 750 after 4000 cycles",
+        "axis 2: ended at position 5000 after 4000 cycles",
+    ]
+
+
 # ---- files that are not a script or a table (hangs and silent acceptance once) ----
 
 

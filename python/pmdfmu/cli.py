@@ -326,7 +326,19 @@ def cmd_run(args) -> int:
     run.window = bool(args.cycles)
     for m in run.messages:
         print(f"{m.status}: {m.message}", file=sys.stderr)
-    return _write_run(run, csv_path, plot_path, title, html_path=html_path)
+    status = _write_run(run, csv_path, plot_path, title, html_path=html_path)
+    if status:
+        return status
+    # as for a table: a run with no output asked for still says what it did
+    rec = run.recording
+    for axis in run.axes:
+        n = axis + 1
+        position = int(rec[f"axis{n}.commandedPosition"][-1])
+        if run.ended:
+            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
+        else:
+            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
+    return 0
 
 
 def cmd_trace(args) -> int:
