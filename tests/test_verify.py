@@ -294,7 +294,7 @@ def test_a_malformed_or_missing_npz_is_an_input_error(tmp_path):
 @pytest.mark.parametrize(
     "text,message",
     [
-        ("units = counts\n", r"a.toml: not TOML: .*line 1"),
+        ("units = counts\n", r"a.toml:1: not TOML: "),
         ("[axis1]\nmax_velocity = 10\nmax_speed = 3\n", "a.toml:3: axis1.max_speed: unknown limit"),
         ("limits = 3\n", "a.toml:1: limits: unknown key"),
         ('units = "mm"\n', "a.toml:1: units: 'mm' is not one of counts, raw"),

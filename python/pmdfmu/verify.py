@@ -167,7 +167,8 @@ def _read_npz(path: Path) -> Golden:
     except InputError:
         raise
     except Exception as e:  # a missing file, not a zip, a damaged member, a pickled array
-        raise InputError(f"{path}: cannot read the golden trace: {e}") from None
+        why = e.strerror if isinstance(e, OSError) and e.strerror else e  # not "[Errno 2] ...: 'path'" again
+        raise InputError(f"{path}: cannot read the golden trace: {why}") from None
     if rec.dtype.names is None or rec.ndim != 1:
         raise InputError(f"{path}: {NPZ_KEY!r} is not a recording (a 1-d structured array)")
     if ended.shape != () or ended.dtype.kind != "b":
@@ -327,7 +328,11 @@ def _read_assertion_file(path: Path) -> Tuple[dict, str]:
     tomllib = _toml()
     try:
         return tomllib.loads(text), text
-    except tomllib.TOMLDecodeError as e:  # its message ends "(at line L, column C)"
+    except tomllib.TOMLDecodeError as e:  # its message ends "(at line L, column C)": file:line: reason
+        where = re.search(r" \(at line (\d+), column (\d+)\)$", str(e))
+        if where:
+            reason = f"{str(e)[: where.start()]} (column {where.group(2)})"
+            raise InputError(f"{path}:{where.group(1)}: not TOML: {reason}") from None
         raise InputError(f"{path}: not TOML: {e}") from None
     except RecursionError:  # tomllib nests a Python call per [ or { of the file
         raise InputError(f"{path}: not TOML this parser reads: arrays or tables nested too deeply") from None
