@@ -139,7 +139,10 @@ def test_command_line_limits_go_over_the_file(tmp_path, capsys):
         (["--against", "{tmp}/missing.csv"], "missing.csv: cannot read the golden trace"),
         (["--against", "{tmp}/bad.csv"], "bad.csv:3: column 2 (axis1.commandedPosition): 'zz' is not a number"),
         (["--assertions", "{tmp}/bad.toml"], "bad.toml:2: axis1.max_speed: unknown limit"),
-        (["--assertions", "{tmp}/broken.toml"], "broken.toml:1: not TOML: Expected ']' at the end of a table declaration (column 7)"),
+        (
+            ["--assertions", "{tmp}/broken.toml"],
+            "broken.toml:1: not TOML: Expected ']' at the end of a table declaration (column 7)",
+        ),
         (["--against", "{tmp}/missing.npz"], "missing.npz: cannot read the golden trace: No such file or directory\n"),
         (["--tolerance", "axis1.speed=1e-9", "--no-host-errors"], "axis1.speed: unknown column"),
         (["--max-velocity", "5=1"], "'5' is not an axis"),
