@@ -383,6 +383,36 @@ def test_pmdfmu_max_cycles_ends_a_poll_that_never_finishes_naming_it(homing):
     )
 
 
+VENDOR_POLL = """#include "c-motion.h"
+int main(void)
+{
+    PMDAxisHandle hAxis;
+    PMDuint16 status = 0;
+    if (PMDSetupAxisInterface_Serial(&hAxis, PMDAxis1, 1) != PMD_ERR_OK)
+        return 1;
+    while (!(status & PMDEventMotionCompleteMask))
+        PMDGetEventStatus(&hAxis, &status);
+    return 0;
+}
+"""
+
+
+def test_pmdfmu_max_cycles_says_it_once_to_a_program_opened_the_vendors_way(tmp_path):
+    """Such an opening's transport lines go to stderr already: the limit's line came twice, once
+    prefixed "pmdfmu: "."""
+    if not shutil.which("cc"):
+        pytest.skip("no C compiler")
+    (tmp_path / "poll.c").write_text(VENDOR_POLL)
+    exe = compile_program(tmp_path / "poll.c", tmp_path / "poll", generate(tmp_path / "gen"))
+    out = run_c(exe, PMDFMU_MAX_CYCLES="300", PMDFMU_MACHINE="")
+    assert out.returncode == 124
+    assert out.stderr.splitlines() == [
+        "PMDFMU_MAX_CYCLES=300: the chip has run 300 cycles and the program is still waiting: "
+        f"its last command was PMDGetEventStatus on axis 0 (PMDAxis1), sent {out.stderr.split('sent ')[-1].split()[0]}"
+        " times in a row"
+    ]
+
+
 def test_a_bad_machine_file_in_the_environment_is_named_on_stderr(homing, tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text("[axis1]\nhome = [2, 1]\n")

@@ -50,16 +50,6 @@ PMDresult PMDFMU_SetOpenOptions(const PMDFMUOptions *options)
     return PMD_ERR_OK;
 }
 
-/* Without options of its own a vendor-style program still hears why an opening failed: the
-   transport's lines (never the chip's refusals, which its own error path sees) go to stderr. */
-static void stderr_log(void *context, const char *category, int status, const char *message)
-{
-    (void)context;
-    (void)status;
-    if (strcmp(category, "transport") == 0)
-        fprintf(stderr, "pmdfmu: %s\n", message);
-}
-
 static void transport_line(const PMDFMUOptions *options, const char *format, ...)
 {
     char text[512];
@@ -123,7 +113,7 @@ static PMDresult open_twin_at(PMDAxisHandle *handle, PMDAxis axis, const char *h
 #endif
     } else {
         PMDFMUOptionsInit(&options);
-        options.log = stderr_log;
+        options.log = PMDFMU_LogTransportToStderr;
         options.logCategories = no_categories;
     }
     pthread_mutex_unlock(&open_options_lock);

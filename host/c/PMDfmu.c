@@ -121,6 +121,16 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
         d->options.log(d->options.logContext, category ? category : "", (int)status, text);
 }
 
+/* Without options of its own a vendor-style program still hears why an opening failed: the
+   transport's lines (never the chip's refusals, which its own error path sees) go to stderr. */
+void PMDFMU_LogTransportToStderr(void *context, const char *category, int status, const char *message)
+{
+    (void)context;
+    (void)status;
+    if (strcmp(category, "transport") == 0)
+        fprintf(stderr, "pmdfmu: %s\n", message);
+}
+
 static void log_text(PMDFMUDevice *d, const char *text)
 {
     if (d->options.log)
@@ -181,7 +191,8 @@ static void give_up(PMDFMUDevice *d)
                  "still waiting: its last command was PMD%s on axis %d (PMDAxis%d), sent %lu time%s in a row",
                  (unsigned long long)d->maxCycles, (unsigned long long)d->cycles, name ? name : "(unknown)",
                  d->lastAxis, d->lastAxis + 1, d->lastRepeats, d->lastRepeats == 1 ? "" : "s");
-    log_text(d, text);
+    if (d->options.log != PMDFMU_LogTransportToStderr)     /* which would print it a second time */
+        log_text(d, text);
     fprintf(stderr, "%s\n", text);
     fflush(NULL);
     exit(PMDFMU_EXIT_MAX_CYCLES);

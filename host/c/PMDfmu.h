@@ -32,6 +32,10 @@ struct PMDHostInterface;    /* host/c/PMDhosttime.h */
    call that made the FMU log. */
 typedef void (*PMDFMULogCallback)(void *context, const char *category, int status, const char *message);
 
+/* The log of an opening made without options (PMDFMU_SetOpenOptions not called): the transport's
+   lines on stderr, prefixed "pmdfmu: ", and nothing else. */
+void PMDFMU_LogTransportToStderr(void *context, const char *category, int status, const char *message);
+
 /* Called after every chip cycle the transport runs (then it steps the FMU one cycle at a time),
    with a handle of the chip (axis 1). It may read the chip's outputs (PMDFMU_GetInteger,
    PMDFMU_GetReal) but send no command, and close no chip (the run that calls it goes on). */
