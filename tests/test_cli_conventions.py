@@ -4,6 +4,8 @@ on every option, one spelling per option across commands, -q/--quiet and -v/--ve
 in `pmdfmu --help`, a sweep whose failed cases change its status only on request."""
 
 import argparse
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -77,6 +79,18 @@ def test_help_lists_the_exit_statuses(capsys):
     with pytest.raises(SystemExit):
         main(["verify", "--help"])
     assert "exit status: pmdfmu --help" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_a_reader_that_goes_away_ends_the_command_quietly():
+    """`pmdfmu info | head -1` said "pmdfmu info: [Errno 32] Broken pipe" and exited 2, bad input: under
+    a CI shell's pipefail a gate would read that as a malformed file."""
+    info = subprocess.Popen(
+        [sys.executable, "-m", "pmdfmu.cli", "info"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    info.stdout.close()  # before its first line: it is still importing
+    assert info.wait(timeout=120) == 141
+    assert info.stderr.read() == ""
 
 
 @pytest.mark.slow

@@ -60,6 +60,7 @@ INPUT_ERRORS = (
     extras.MissingExtra,  # --html without the 'html' extra, --plot without 'plot': which one installs it
 )
 EXIT_INTERRUPTED = 130  # 128 + SIGINT: what a shell reports for a command ended by Ctrl-C
+EXIT_BROKEN_PIPE = 141  # 128 + SIGPIPE: what a shell reports for a tool whose reader went away
 # what the FMU's initialization error says after the FMI function's name (fmu_src/fmi/instance.c); its
 # file:line: reason follows
 _SCRIPT_REFUSED = ": script refused: "
@@ -818,6 +819,14 @@ def main(argv: Optional[List[str]] = None) -> int:
         _verbosity = args.verbosity
         progress.show(True if args.progress else False if _verbosity < 0 else None)
         return args.func(args)
+    except BrokenPipeError:
+        # the reader went away (`pmdfmu info | head`): no input was bad. Stop quietly, as a tool that
+        # SIGPIPE ends does, with its status; files being written are removed as for any error
+        try:  # Python's own flush at exit would fail again, with a traceback
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError):  # stdout is no file (a test's capture)
+            pass
+        return EXIT_BROKEN_PIPE
     except INPUT_ERRORS as e:
         print(f"{command}: {one_line(e)}", file=sys.stderr)
         return EXIT_INPUT
@@ -856,6 +865,7 @@ EPILOG = """exit status:
        its profile ended (give --cycles N for a window), sweep --fail-on-error with a failed case
   2    bad input: one line on standard error, `pmdfmu CMD: file:line: reason`
   130  interrupted (Ctrl-C): one line, `pmdfmu CMD: interrupted`; no partial file is left
+  141  standard output closed early (`pmdfmu info | head`): nothing said, no partial file left
 
 pmdfmu CMD --help: a command's options. docs/cli.md, docs/verify.md."""
 
