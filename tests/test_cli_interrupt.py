@@ -2,7 +2,7 @@
 """Ctrl-C (SIGINT) at a random point of `pmdfmu verify --cases` and of `pmdfmu pack`: the command ends
 with exit status 130 and one line, `pmdfmu CMD: interrupted`, no traceback; every file it documents is
 there whole (as an uninterrupted run writes it) or not at all, no temporary file is left, and an older
-output is intact (README, "The command line")."""
+output is intact (docs/cli.md)."""
 
 import random
 import shutil

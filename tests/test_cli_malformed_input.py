@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """A bad input on the command line answers with one line, `pmdfmu CMD: file:line: reason`, and exit
 status 2 -- never a traceback, never status 1 (verify's "the profile failed"); nothing overwrites a
-user's file (README, "The command line"; docs/verify.md, "Exit status"). Each finding of the attack on
+user's file (docs/cli.md; docs/verify.md, "Exit status"). Each finding of the attack on
 the CLI first, then generated malformed inputs (hypothesis)."""
 
 import os

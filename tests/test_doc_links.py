@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """The documentation's links lead somewhere: every relative link of the README and docs/ names a file of
 the project, every #anchor a heading of its page (GitHub's slug), and every prose reference of the form
-`verify.md, "Whole runs and windows"` a heading or a bold paragraph lead of that page."""
+`verify.md, "Whole runs and windows"` or `README "A first CI gate"` a heading or a bold paragraph lead
+of that page."""
 
 import re
 from pathlib import Path
@@ -73,6 +74,9 @@ def broken(page: Path) -> list:
             found.append(f"{name}: no such file")
         elif not any(s == section or s.startswith(section) for s in sections(target.read_text())):
             found.append(f'{name}, "{section}": no such heading or bold lead')
+    for section in re.findall(r"README(?:'s|,)? \"([^\"]+)\"", prose(page.read_text())):  # the README's own
+        if not any(s == section or s.startswith(section) for s in sections((REPO / "README.md").read_text())):
+            found.append(f'README "{section}": no such heading or bold lead')
     return found
 
 
@@ -81,12 +85,14 @@ def test_the_checker_finds_what_is_broken(tmp_path):
     page = tmp_path / "a.md"
     page.write_text(
         '[ok](b.md#two-words) [ok](b.md#pmdfmu-run-windows) [ok](https://x.org/#y) (b.md, "Golden traces")\n'
-        '[gone](c.md) [bad](b.md#three-words) (b.md, "Silver traces")\n```\n[code](not/a/link.md)\n```\n'
+        '[gone](c.md) [bad](b.md#three-words) (b.md, "Silver traces") README "Scripts"\n'
+        "```\n[code](not/a/link.md)\n```\n"
     )
     assert broken(page) == [
         f"{tmp_path / 'c.md'}: no such file",
         f"{tmp_path / 'b.md'}#three-words: no such heading",
         'b.md, "Silver traces": no such heading or bold lead',
+        'README "Scripts": no such heading or bold lead',
     ]
 
 

@@ -93,7 +93,7 @@ def one_line(error: BaseException) -> str:
 
 def _script_file(path: Path) -> Path:
     """A script named on the command line, for the FMU's `script` parameter: a file, never text. A value
-    holding a line feed is the script's text to the FMU (README, "Scripts"), so such a path cannot be
+    holding a line feed is the script's text to the FMU (docs/scripts.md), so such a path cannot be
     given to it."""
     if "\n" in str(path):
         raise CommandLineError(
@@ -288,7 +288,7 @@ def cmd_demo(args) -> int:
 
 
 def cmd_run(args) -> int:
-    """A .csv file is a segment table; anything else is a script (README, "Scripts"). profile.run_profile
+    """A .csv file is a segment table; anything else is a script (docs/scripts.md). profile.run_profile
     runs either, as `pmdfmu verify` does. Exit status 1 when --max-cycles stopped the run before the
     profile ended, unless --cycles asked for a window."""
     path, fmu = args.file, _fmu_file(args.fmu)

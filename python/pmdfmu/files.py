@@ -2,8 +2,8 @@
 """A user's files as the harness reads and writes them.
 
 Reading: only a regular file is read; a FIFO, a device or a folder is refused at
-once, never waited on -- as the FMU refuses them for a script or a table (README,
-"Scripts").
+once, never waited on -- as the FMU refuses them for a script or a table
+(docs/scripts.md).
 
 Writing: a file the harness writes (a recording, a plot, a report, a packed FMU)
 is written whole into a new file beside it and renamed over it when complete, so

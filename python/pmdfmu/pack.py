@@ -3,7 +3,7 @@
 
 The copy carries the script and every segment table it loads under
 resources/profile/, in their relative layout, and the `script` parameter starts
-at the script's path there (README, "Scripts"): modelDescription.xml's start
+at the script's path there (docs/scripts.md): modelDescription.xml's start
 value says so, and resources/script.start holds the same value for the binary,
 which reads it at instantiation (fmu_src/script/script.h, PMD_SCRIPT_START), so
 an importer that sets no start values runs the profile too.

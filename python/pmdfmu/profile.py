@@ -455,7 +455,7 @@ def run_profile(
     path = Path(source) if isinstance(source, (str, Path)) else None
     table = path is None or is_segment_table(path)
     tables = (source if path is None else read_segment_table(path)) if table else None
-    params["script"] = "" if table else path  # a file, never a script's text (README, "Scripts")
+    params["script"] = "" if table else path  # a file, never a script's text (docs/scripts.md)
     with (
         Chip(fmi_version=fmi_version, fmu=fmu, log_categories=["warnings"], **params) as chip,
         progress.bar(f"run {path.name if path is not None else 'segment tables'}") as bar,
