@@ -158,6 +158,23 @@ def test_a_variable_value_that_does_not_fit_is_refused(any_chip):
     assert chip.get("axis1.actualPosition") == -(2**31)
 
 
+def test_a_value_of_another_type_is_refused_naming_the_variable(any_chip):
+    """A Boolean, Real or String variable given a value of another type: ctypes' TypeError ("'str' object
+    cannot be interpreted as an integer") named neither the variable nor the value."""
+    chip = any_chip
+    refused(chip, lambda: chip.set("axis1.home", "no"), "axis1.home", "not a Boolean")
+    refused(chip, lambda: chip.set("axis1.home", None), "axis1.home", "not a Boolean")
+    refused(chip, lambda: chip.set("axis1.home", 2), "axis1.home", "not a Boolean")
+    refused(chip, lambda: chip.set("analog[2]", 1.0), r"analog\[2\]", "not an integer")
+    with pytest.raises(ValueError, match=r"set: cycleTime = '1e-4' is not a number"):
+        pmdfmu.Chip(chip.fmi_version, cycleTime="1e-4")
+    with pytest.raises(ValueError, match=r"set: loopback = 'no' is not a Boolean"):
+        pmdfmu.Chip(chip.fmi_version, loopback="no")
+    chip.set("axis1.home", True)
+    chip.set("axis1.home", 0)
+    assert chip.get("axis1.home") in (False, 0)
+
+
 # ---- fixed point through the chip ----
 
 

@@ -15,6 +15,7 @@ import threading
 from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint32
 from dataclasses import dataclass, field
 from fractions import Fraction
+from numbers import Real
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
@@ -567,6 +568,15 @@ class Chip:
             ]
             if (self.fmi_version == 2 and bits == 32) or name in SIGNED:  # the same bits, signed
                 values = [x - (1 << bits) if x >> (bits - 1) else x for x in values]
+        else:  # the other types: checked here too, so that a wrong one is named, not a ctypes TypeError
+            for i, x in enumerate(values):
+                what = f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else "")
+                if v.type in ("Real", "Float64") and (isinstance(x, (bool, np.bool_)) or not isinstance(x, Real)):
+                    raise ValueError(f"{what} = {x!r} is not a number")
+                if v.type == "Boolean" and not (isinstance(x, (bool, np.bool_)) or (type(x) is int and x in (0, 1))):
+                    raise ValueError(f"{what} = {x!r} is not a Boolean (True or False)")
+                if v.type == "String" and not isinstance(x, (str, os.PathLike)):
+                    raise ValueError(f"{what} = {x!r} is not a string (a path, or the text itself)")
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)
 
