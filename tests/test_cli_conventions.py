@@ -122,3 +122,25 @@ def test_quiet_prints_only_what_went_wrong_and_verbose_every_check(tmp_path, cap
     with pytest.raises(SystemExit) as exit:
         main(["run", square, "-q", "-v"])
     assert exit.value.code == 2 and "not allowed with argument" in capsys.readouterr().err
+
+
+def test_build_finds_the_checkout_from_an_installed_package(tmp_path, monkeypatch, capsys):
+    """./dev installs pmdfmu into .venv, where the package has no sources beside it: `pmdfmu build` took
+    .venv/lib/python3.X for the source folder and cmake failed. It builds the working directory's checkout."""
+    import pmdfmu.cli as cli
+
+    monkeypatch.setattr(cli, "REPO", tmp_path / "lib")  # an installed package's two folders up: no checkout
+    monkeypatch.chdir(tmp_path)
+    assert main(["build"]) == 2
+    assert capsys.readouterr().err == (
+        "pmdfmu build: no pmdfmu checkout to build: run pmdfmu build in its top folder, or give --source\n"
+    )
+    (tmp_path / "CMakeLists.txt").write_text("")
+    (tmp_path / "fmu_src").mkdir()
+    commands = []
+    monkeypatch.setattr(
+        cli.subprocess, "run", lambda command: commands.append(command) or argparse.Namespace(returncode=0)
+    )
+    assert main(["build"]) == 0
+    assert commands[0][1:5] == ["-S", str(Path.cwd()), "-B", str(Path.cwd() / "build")]
+    assert commands[1] == ["cmake", "--build", str(Path.cwd() / "build")]

@@ -242,8 +242,20 @@ def _platforms(value: str) -> list[str]:
     return names
 
 
+def _source_folder(given: Optional[Path]) -> Path:
+    """--source, else the checkout this package runs from (python/ of a checkout), else the working directory:
+    an installed package (./dev's .venv) has no sources beside it."""
+    for folder in [given] if given is not None else [REPO, Path.cwd()]:
+        if (folder / "CMakeLists.txt").is_file() and (folder / "fmu_src").is_dir():
+            return folder
+    if given is not None:
+        raise CommandLineError(f"--source {given}: not a pmdfmu checkout (no CMakeLists.txt and fmu_src/ there)")
+    raise CommandLineError("no pmdfmu checkout to build: run pmdfmu build in its top folder, or give --source")
+
+
 def cmd_build(args) -> int:
-    source, build = args.source, args.build_dir
+    source = _source_folder(args.source)
+    build = args.build_dir if args.build_dir is not None else source / "build"
     platforms = ";".join(args.platforms)  # CMake's list; empty: this host's binaries only
     for command in (
         [
@@ -952,8 +964,12 @@ def _parser() -> argparse.ArgumentParser:
         return p
 
     p = command("build", "build the FMU with CMake")
-    p.add_argument("--source", type=Path, default=REPO, help="the source folder (default: this checkout)")
-    p.add_argument("--build-dir", type=Path, default=REPO / "build", help="the build folder (default build/)")
+    p.add_argument(
+        "--source",
+        type=Path,
+        help="the pmdfmu checkout (default: the one this package runs from, else the working directory)",
+    )
+    p.add_argument("--build-dir", type=Path, help="the build folder (default: SOURCE/build)")
     p.add_argument(
         "--platforms",
         type=_platforms,
