@@ -282,6 +282,8 @@ def test_realtime_says_so_in_its_first_line_and_chip_time_follows_the_wall_clock
         (["--tcp", "127.0.0.1:0", "--chips", "33"], "invalid number of chips 1..32 value"),
         (["--serial", "{existing}"], "exists already"),
         (["--tcp", "127.0.0.1:0", "--script", "{missing}"], "No such file"),
+        # at once, not when Ctrl-C ends the session whose recording it was
+        (["--tcp", "127.0.0.1:0", "--record", "{missing}/r.csv"], "is no folder to write it in"),
     ],
 )
 def test_bad_command_lines_exit_2_with_one_line(tmp_path, args, reason):

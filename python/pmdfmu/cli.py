@@ -686,6 +686,8 @@ def cmd_serve(args) -> int:
     machine = _machine_file(args.machine)
     inputs = [args.script, args.machine, fmu]
     _refuse_overwriting([("--record", args.record), ("--log", args.log)], inputs)
+    if args.record is not None and not args.record.parent.is_dir():  # known now, not when the session is over
+        raise CommandLineError(f"--record {args.record}: {args.record.parent} is no folder to write it in")
     if args.serial is not None and "\n" in str(args.serial):
         raise CommandLineError(f"--serial {files.shown_path(args.serial)}: the link's path holds a line feed")
     parameters = {"cycleTime": args.cycle_time}
