@@ -70,7 +70,9 @@ def test_pmdfmu_trace_draws_the_scope(tmp_path, capsys):
     png = tmp_path / "trace.png"
     assert main(["trace", str(EXAMPLE), "--plot", str(png), "--csv", str(tmp_path / "t.csv")]) == 0
     assert png.stat().st_size > 10_000 and png.read_bytes()[:4] == b"\x89PNG"
-    assert "150 samples of time, axis1.commandedPosition" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "150 samples of time, axis1.commandedPosition" in out
+    assert out.splitlines()[-2:] == [f"wrote {tmp_path / 't.csv'} (150 samples)", f"wrote {png}"]
     assert (tmp_path / "t.csv").read_text().splitlines()[1].startswith("1199,1199,8004,")
 
 

@@ -384,8 +384,10 @@ def cmd_trace(args) -> int:
         from .verify import write_recording
 
         write_recording(args.csv, trace.samples)
+        _say(f"wrote {args.csv} ({len(trace)} samples)")
     if args.plot is not None:
         trace.plot(args.plot, title=f"pmdfmu trace {path}")
+        _say(f"wrote {args.plot}")  # as run says what it wrote
     return 0
 
 
