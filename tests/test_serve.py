@@ -321,6 +321,18 @@ def test_a_device_that_is_no_line_is_refused_by_its_name(device):
         LineChip(device)
 
 
+def test_a_line_that_cannot_be_opened_is_named(tmp_path):
+    """The OSError keeps its type, and says which device: ConnectionRefusedError said only
+    "[Errno 111] Connection refused"."""
+    with socket.create_server(("127.0.0.1", 0)) as gone:
+        closed = "tcp:127.0.0.1:%d" % gone.getsockname()[1]
+    with pytest.raises(ConnectionRefusedError, match=f"device '{closed}': cannot connect: Connection refused"):
+        pmdfmu.Chip(device=closed)
+    missing = f"serial:{tmp_path / 'pmd'}"
+    with pytest.raises(FileNotFoundError, match=f"device '{missing}': cannot open the line: No such file"):
+        pmdfmu.Chip(device=missing)
+
+
 def test_a_refused_monitor_closes_the_line_it_opened():
     with socket.create_server(("127.0.0.1", 0)) as line, socket.create_server(("127.0.0.1", 0)) as gone:
         closed = "tcp:127.0.0.1:%d" % gone.getsockname()[1]

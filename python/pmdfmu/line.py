@@ -61,13 +61,21 @@ MONITORED = ("run", "get", "write_memory", "wait", "wait_ns", "cycles", "host_ti
 _SPEEDS = {b: getattr(termios, f"B{b}") for b in sp.BAUD_RATES.values() if hasattr(termios, f"B{b}")}
 
 
-def _connect(where: str) -> Optional[socket.socket]:
+def _named(e: OSError, what: str) -> OSError:
+    """e, of its own type (ConnectionRefusedError, FileNotFoundError, ...), saying which line or monitor."""
+    return type(e)(e.errno, f"{what}: {e.strerror or e}")
+
+
+def _connect(where: str, what: str) -> Optional[socket.socket]:
     """A connection to HOST:PORT (a [v6] address too), Nagle off: every packet waits for its reply.
-    None where WHERE is no HOST:PORT."""
+    None where WHERE is no HOST:PORT; an OSError naming `what` (the device or monitor) if it cannot connect."""
     host, colon, port = where.rpartition(":")
     if not colon or not port.isdigit():
         return None
-    sock = socket.create_connection((host.strip("[]"), int(port)))
+    try:
+        sock = socket.create_connection((host.strip("[]"), int(port)))
+    except OSError as e:
+        raise _named(e, f"{what}: cannot connect") from None
     sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
     return sock
 
@@ -103,7 +111,10 @@ class LineChip:
         self._sock: Optional[socket.socket] = None
         self._fd = -1
         if kind == "serial" and where:
-            self._fd = os.open(where, os.O_RDWR | os.O_NOCTTY)
+            try:
+                self._fd = os.open(where, os.O_RDWR | os.O_NOCTTY)
+            except OSError as e:
+                raise _named(e, f"device {device!r}: cannot open the line") from None
             try:
                 tty.setraw(self._fd, termios.TCSANOW)
                 if baud in _SPEEDS:
@@ -112,14 +123,14 @@ class LineChip:
                     termios.tcsetattr(self._fd, termios.TCSANOW, attrs)
             except termios.error:
                 pass  # a file or a FIFO that is no tty: bytes all the same
-        elif kind == "tcp" and (sock := _connect(where)) is not None:
+        elif kind == "tcp" and (sock := _connect(where, f"device {device!r}")) is not None:
             self._sock, self._fd = sock, sock.fileno()
         else:
             raise ValueError(f"device {device!r}: serial:PATH or tcp:HOST:PORT (or fmu for the twin in-process)")
         if monitor is not None:
             kind, _, where = monitor.partition(":")
             try:
-                self._monitor = _connect(where) if kind == "tcp" else None
+                self._monitor = _connect(where, f"monitor {monitor!r}") if kind == "tcp" else None
                 if self._monitor is None:
                     raise ValueError(f"monitor {monitor!r}: tcp:HOST:PORT (pmdfmu serve --monitor's)")
                 self._replies = self._monitor.makefile("r", encoding="ascii", newline="\n")
