@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: BSD-2-Clause
 """docs/commands.md lists every opcode with its status, and the FMU agrees."""
 
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -30,3 +32,12 @@ def test_every_opcode_is_either_implemented_or_invalid(chip):
     for opcode in range(256):
         if opcode not in implemented:
             assert chip.batch([opcode])[0] == 0x02, hex(opcode)
+
+
+def test_the_generator_run_elsewhere_says_where_to_run_it(tmp_path):
+    """In a folder with no docs/ it raised FileNotFoundError with a traceback."""
+    done = subprocess.run([sys.executable, "-m", "pmdfmu.docs"], cwd=tmp_path, capture_output=True, text=True)
+    assert done.returncode == 1 and not (tmp_path / "docs").exists()
+    assert (
+        done.stderr == "python -m pmdfmu.docs: docs/commands.md: no folder docs: run it in the checkout's top folder\n"
+    )

@@ -139,5 +139,7 @@ def commands_markdown() -> str:
 
 if __name__ == "__main__":
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("docs/commands.md")
+    if not out.parent.is_dir():  # run elsewhere than the checkout's top folder: one line, no traceback
+        sys.exit(f"python -m pmdfmu.docs: {out}: no folder {out.parent}: run it in the checkout's top folder")
     out.write_text(commands_markdown())
     print(f"wrote {out}")
