@@ -29,7 +29,7 @@ import pmdfmu
 TABLE = Path(__file__).resolve().parent.parent / "modelDescription" / "plant.csv"
 ROWS = list(csv.DictReader(open(TABLE, newline="")))
 START = {r["name"]: float(r["start"]) for r in ROWS if r["start"]}
-FULL_SCALE = 32767
+FULL_SCALE = 32768  # 2^15 counts of the chip's motor command (docs/servo.md)
 
 
 def plant_fmu(fmi_version: int) -> Path:
@@ -262,7 +262,7 @@ def test_steady_speed_and_current_are_the_closed_form_ones(plants, fmi_version):
     (k V/R - Tc) / c, the current at (V - k w) / R, which balances friction; the
     fixed point of the implicit step is exactly that speed."""
     J, c, k_over_R, _ = motor()
-    p = plants(fmi_version, {"motorCommand": FULL_SCALE})
+    p = plants(fmi_version, {"motorOutput": 1.0})
     p.step(1e-3, 1000)  # 1 s, over 30 time constants
     w = (k_over_R * START["supplyVoltage"] - START["coulombFriction"]) / c
     assert p.get("speed") == pytest.approx(w, rel=1e-12)
@@ -290,7 +290,7 @@ def test_spin_up_follows_the_exponential_within_the_implicit_eulers_error(plants
     w_ss = (k_over_R * START["supplyVoltage"] - START["coulombFriction"]) / c
     errors = []
     for h in (START["internalStep"], START["internalStep"] / 2):
-        p = plants(2, {"motorCommand": FULL_SCALE, "internalStep": h})
+        p = plants(2, {"motorOutput": 1.0, "internalStep": h})
         worst = 0.0
         for n in range(1, 301):  # 0.03 s, one time constant
             p.step(1e-4)
@@ -320,7 +320,7 @@ def test_coulomb_friction_holds_the_shaft_below_breakaway_and_stops_it_without_c
     assert all(s > 0 for s in speeds[: first_zero - 1]) and set(speeds[first_zero - 1 :]) == {0.0}
 
 
-def test_the_amplifier_scales_the_command_and_saturates_at_minus_full_scale(plants):
+def test_the_amplifier_scales_the_command_and_minus_32768_is_minus_full_scale(plants):
     p = plants(2, {"motorCommand": 16384})
     p.step(1e-4)
     assert p.get("voltage") == START["supplyVoltage"] * 16384 / FULL_SCALE
@@ -383,7 +383,7 @@ def test_a_rest_shorter_than_an_internal_step_is_one_shorter_step(plants):
     each the implicit step (J + h c) w' = J w + h (k V/R - Tc)."""
     J, c, k_over_R, _ = motor()
     drive = k_over_R * START["supplyVoltage"] - START["coulombFriction"]
-    p = plants(2, {"motorCommand": FULL_SCALE})
+    p = plants(2, {"motorOutput": 1.0})
     p.step(1.5e-5)
     w, angle = 0.0, 0.0
     for h in (1e-5, 1.5e-5 - 1e-5):
@@ -551,13 +551,17 @@ def test_the_docs_counts_and_cycles_follow_from_the_start_values():
 
 
 def test_the_real_motor_output_drives_as_the_integer_command_does(plants, fmi_version):
-    """motorOutput (a fraction of full scale, the chip's axisN.motorOutput) and motorCommand / 32767
-    are one input: the same fraction gives the same shaft, bit for bit; the sum saturates at 1."""
-    by_word = plants(fmi_version, {"motorCommand": FULL_SCALE // 2}).step(1e-4, 50)
-    by_fraction = plants(fmi_version, {"motorOutput": (FULL_SCALE // 2) / FULL_SCALE}).step(1e-4, 50)
-    assert by_fraction.outputs() == by_word.outputs()
-    both = plants(fmi_version, {"motorOutput": 1.0, "motorCommand": FULL_SCALE}).step(1e-4, 1)
+    """motorOutput (a fraction of full scale, the chip's axisN.motorOutput: motorCommand / 2^15) and
+    motorCommand / 32768 are one input: the chip's two outputs of one command give the same shaft, bit
+    for bit, whatever the command; the sum saturates at -1 .. 1."""
+    for command in (-32768, -12345, -1, 1, 364, 16383, 32767):
+        by_word = plants(fmi_version, {"motorCommand": command}).step(1e-4, 50)
+        by_fraction = plants(fmi_version, {"motorOutput": command / FULL_SCALE}).step(1e-4, 50)
+        assert by_fraction.outputs() == by_word.outputs(), command
+    both = plants(fmi_version, {"motorOutput": 1.0, "motorCommand": 32767}).step(1e-4, 1)
     assert both.get("voltage") == START["supplyVoltage"]
+    both = plants(fmi_version, {"motorOutput": -1.0, "motorCommand": -32768}).step(1e-4, 1)
+    assert both.get("voltage") == -START["supplyVoltage"]
 
 
 def test_the_plant_declares_the_chips_cycle_as_its_step_and_default_fmu_finds_it(fmi_version):

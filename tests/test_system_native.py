@@ -46,6 +46,13 @@ def test_the_system_equals_the_fmpy_master_bit_for_bit(algorithm, version, motor
     assert systems.motion_complete(rows) is not None
 
 
+@pytest.mark.parametrize("algorithm", ["gauss-seidel", "jacobi"])
+def test_the_two_motor_wires_give_one_run(algorithm):
+    """The plant takes the chip's Integer motor command and its Real motor output at the same 2^15 counts
+    to full scale (docs/systems.md): over either wire the system runs alike, bit for bit."""
+    assert np.array_equal(native_run(algorithm, 2, 3000), native_run(algorithm, 2, 3000, wiring=REAL))
+
+
 def test_a_run_in_pieces_equals_one_run():
     whole = native_run("gauss-seidel", 2, 600)
     with chip(2) as c, pmdfmu.System(c) as system:

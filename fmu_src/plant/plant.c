@@ -4,7 +4,7 @@
 
 #include "plant.h"
 
-#define FULL_SCALE 32767.0       /* the chip's motor command at 100 % (docs/servo.md) */
+#define FULL_SCALE 32768.0       /* 2^15 counts of the chip's motor command: 100/2^15 % a count (docs/servo.md) */
 #define TWO_PI 6.283185307179586
 #define TWO_POW_32 4294967296.0
 /* A rest of a communication step shorter than this many internal steps is a
@@ -26,15 +26,13 @@ int32_t plant_encoder_count(const PlantModel *m)
 }
 
 /* The amplifier: a voltage source proportional to the command, the sum of the
- * two inputs (a model wires one of them), saturating at full scale: the
- * chip's -32768 is one count beyond it. */
+ * two inputs (a model wires one of them), saturating at full scale. Full scale
+ * is the chip's (its axisN.motorOutput is axisN.motorCommand / 2^15), and a
+ * power of two, so the Integer wire and the Real one give the same voltage
+ * bit for bit. */
 static double amplifier_voltage(const PlantModel *m)
 {
-    double command;
-    if (m->motorOutput == 0.0)      /* the Integer wire alone: supply * command / full scale, as ever */
-        return m->supplyVoltage * (m->motorCommand < -FULL_SCALE ? -FULL_SCALE : (double)m->motorCommand) /
-               FULL_SCALE;
-    command = (double)m->motorCommand / FULL_SCALE + m->motorOutput;
+    double command = (double)m->motorCommand / FULL_SCALE + m->motorOutput;
     if (command > 1.0)
         command = 1.0;
     else if (command < -1.0)

@@ -3,7 +3,7 @@
  * viscous and Coulomb friction, read by a quadrature encoder. Plain data and
  * plain functions, nothing of FMI (plant_fmu.c is the FMU around it).
  *
- *   V  = supplyVoltage * u                     u: motorCommand / 32767 + motorOutput, clamped to -1..1
+ *   V  = supplyVoltage * u                     u: motorCommand / 32768 + motorOutput, clamped to -1..1
  *   i  = (V - k w) / R                         k: torqueConstant (= back-EMF constant), R: armatureResistance
  *   J dw/dt = k i - b w - Tc sgn(w) + loadTorque   J = rotorInertia + loadInertia,
  *                                              b: viscousFriction, Tc: coulombFriction
@@ -42,7 +42,7 @@ typedef struct {
     double initialSpeed;         /* rad/s */
 
     /* inputs */
-    int32_t motorCommand;        /* -32768..32767, full scale 32767 */
+    int32_t motorCommand;        /* -32768..32767, full scale 32768 (2^15) */
     double loadTorque;           /* N.m */
     double motorOutput;          /* fraction of full scale, -1..1 */
 
