@@ -31,7 +31,7 @@ from fmpy.fmi2 import (
 )
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3FMUState, fmi3True, fmi3ValueReference
 
-from . import calls, host_port, hosttime, memory_port, native, progress, recording, tables
+from . import calls, files, host_port, hosttime, memory_port, native, progress, recording, tables
 
 # the calls' layer, re-exported here where users and docs have named it (pmdfmu.chip.COMMANDS ...)
 from .calls import (  # noqa: F401
@@ -244,7 +244,7 @@ _unpack_root: List[str] = []  # this process's folder of extracted FMU files, on
 def _identity(path: Path) -> tuple:
     """An FMU file as the cache knows it: a file rewritten in place or replaced (pmdfmu pack
     writes FMUs) is another file, extracted anew."""
-    resolved = path.resolve()
+    resolved = files.resolved(path)
     st = resolved.stat()
     return str(resolved), st.st_size, st.st_mtime_ns, st.st_ino, st.st_dev
 
@@ -458,7 +458,7 @@ class Chip:
             return text
         path = Path(text)
         if not path.is_absolute() and not Path(self._unzipdir, "resources", text).exists():
-            return str(path.resolve())
+            return str(files.resolved(path))
         return text
 
     def _initialize(self, parameters) -> None:

@@ -84,6 +84,15 @@ def check_regular(path: PathLike) -> None:
         os.close(fd)
 
 
+def resolved(path: PathLike) -> Path:
+    """Path(path).resolve(); a symlink loop is an OSError (ELOOP), as Python 3.13 raises it, not the
+    RuntimeError of earlier Pythons, which no caller takes for a user's bad file."""
+    try:
+        return Path(path).resolve()
+    except RuntimeError:
+        raise OSError(errno.ELOOP, os.strerror(errno.ELOOP), str(path)) from None
+
+
 def shown(value, limit: int = 40) -> str:
     """repr(value) for a one-line message about a user's file, cut to about limit characters (a cell may
     be 100 000 characters long)."""

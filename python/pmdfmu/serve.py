@@ -488,6 +488,13 @@ def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool
             client.close()
 
 
+def record_paths(record: Optional[Path], chips: int) -> List[Path]:
+    """The files --record writes: record itself for one chip, else NAME-chipK.SUFFIX for chip K."""
+    if record is None:
+        return []
+    return [record] if chips == 1 else [record.with_name(f"{record.stem}-chip{k}{record.suffix}") for k in range(chips)]
+
+
 def serve(
     serial: Optional[Path] = None,
     tcp: Optional[tuple] = None,
@@ -531,8 +538,7 @@ def serve(
         (_serve_pty if serial is not None else _serve_tcp)(end, line, stop, reset_on_connect, watcher)
         print(f"pmdfmu serve: stopped after {line.packets} packets", file=out, flush=True)
         if record is not None:
-            for k, c in enumerate(served):
-                path = record if chips == 1 else record.with_name(f"{record.stem}-chip{k}{record.suffix}")
+            for path, c in zip(record_paths(record, chips), served):
                 write_recording(path, c.recording())
                 print(f"wrote {path}", file=out, flush=True)
         return 0

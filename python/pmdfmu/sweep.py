@@ -151,7 +151,7 @@ def _cases(path: Path, text: str) -> List[Case]:
 
         def resolve(key, row=row):
             value = (row.get(key) or "").strip()
-            return str((path.parent / value).resolve()) if value else None
+            return str(files.resolved(path.parent / value)) if value else None
 
         if not (row.get("name") or "").strip():
             raise ValueError(f"{path}:{n}: a case needs a name")
