@@ -158,6 +158,16 @@ def test_a_variable_value_that_does_not_fit_is_refused(any_chip):
     assert chip.get("axis1.actualPosition") == -(2**31)
 
 
+@pytest.mark.parametrize("cycles", [2.5, 0.9, 3.0, "3"])
+def test_a_cycle_count_that_is_no_integer_is_refused(any_chip, cycles):
+    """The attacker's finding: Chip.run(2.5) ran 2 cycles and run(0.9) one, silently; with record= it
+    raised numpy's TypeError, and System.run ctypes' ArgumentError."""
+    refused(any_chip, lambda: any_chip.run(cycles), "run: cycles", "not an integer")
+    refused(any_chip, lambda: any_chip.run(cycles, record=["axis1.commandedPosition"]), "not an integer")
+    with pmdfmu.System(any_chip) as loop:
+        refused(any_chip, lambda: loop.run(cycles), "run: cycles", "not an integer")
+
+
 # ---- fixed point through the chip ----
 
 

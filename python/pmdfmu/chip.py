@@ -1083,6 +1083,7 @@ class Chip:
         "Recording to disk"); returns None, and np.load(to) (mmap_mode="r" for a long run) gives what
         run(cycles, record) would have returned. The file appears whole when the run ends (written
         beside it and renamed, files.replaced); a run that fails or is interrupted leaves none."""
+        cycles = integer(cycles, "run: cycles")  # never rounded: run(2.5) used to run 2 cycles
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         if out is not None and not record:

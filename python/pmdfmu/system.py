@@ -17,6 +17,7 @@ from typing import Dict, List, Optional, Sequence, Union
 import numpy as np
 
 from . import native
+from .fixed import integer
 
 # the axis-1 loop: the chip's motor command drives the plant, its encoder count is the chip's actual position
 WIRING = {"chip.axis1.motorCommand": "plant.motorCommand", "plant.encoderCount": "chip.axis1.actualPosition"}
@@ -270,6 +271,7 @@ class System:
 
         from . import recording
 
+        cycles = integer(cycles, "run: cycles")  # never rounded, nor left to ctypes to refuse
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         names = tuple(record)
