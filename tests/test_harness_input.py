@@ -3,6 +3,7 @@
 that does not fit is refused with a ValueError naming it, before anything reaches the
 FMU; the in-range boundary values do exactly what they say, through FMI 2 and FMI 3."""
 
+import math
 import re
 
 import pytest
@@ -166,6 +167,21 @@ def test_a_cycle_count_that_is_no_integer_is_refused(any_chip, cycles):
     refused(any_chip, lambda: any_chip.run(cycles, record=["axis1.commandedPosition"]), "not an integer")
     with pmdfmu.System(any_chip) as loop:
         refused(any_chip, lambda: loop.run(cycles), "run: cycles", "not an integer")
+
+
+WRAPS = 2**64 / 1e9 + 1e-3  # s: 2^64 ns + 1 ms, which the native loop's int64 ns read as 1 ms
+
+
+@pytest.mark.parametrize("timeout", [-0.5, -1e-9, math.nan, math.inf, WRAPS])
+def test_a_timeout_that_is_negative_not_finite_or_past_the_host_clock_is_refused(any_chip, timeout):
+    """The attacker's finding: wait_for(mask, timeout=-0.5) polled for ever (a negative limit is the native
+    loop's "no limit"), a timeout of 2^64 ns + 1 ms timed out after 1 ms, and NaN raised Fraction's bare
+    "cannot convert NaN to integer ratio"."""
+    refused(any_chip, lambda: any_chip.wait_for(0x0800, 0, timeout=timeout), "wait_for: timeout")
+    refused(any_chip, lambda: any_chip.wait_for_motion_complete(0, timeout=timeout), "wait_for: timeout")
+    if timeout != WRAPS:  # a long wait, not refused
+        refused(any_chip, lambda: any_chip.wait_for_interrupt(timeout), "wait_for_interrupt: timeout")
+        refused(any_chip, lambda: any_chip.wait(timeout), "wait: seconds = ")
 
 
 # ---- fixed point through the chip ----

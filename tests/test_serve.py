@@ -3,6 +3,7 @@
 pmdfmu.Chip(device=...). Every reply equals, byte for byte, what the twin in-process answers
 with host_interface="serial" to the same commands, so chip times equal the host timing model's."""
 
+import math
 import os
 import signal
 import socket
@@ -380,6 +381,31 @@ def test_the_monitor_gives_a_line_chip_what_the_twin_in_process_gives(tmp_path):
         assert s.stop()[0] == 0
     rows = np.loadtxt(record, delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
     assert rows[:, 0].tolist() == list(range(len(rows))) and len(rows) == expected[-1]
+
+
+def test_a_line_chip_refuses_what_chip_refuses_and_sends_nothing(tmp_path):
+    """The attacker's finding: Chip(device=...).write_memory(0x300, [1.5]) wrote the word 1 and
+    wait_ns(2.5) waited 2 ns (int() truncated them), wait(nan) raised Fraction's bare message, where the
+    twin in-process refuses each with a ValueError naming it."""
+    with Server("--tcp", "127.0.0.1:0", "--monitor", "127.0.0.1:0") as s:
+        host, port = s.tcp
+        with pmdfmu.Chip(device=f"tcp:{host}:{port}", monitor="tcp:" + monitor_of(s)) as chip:
+            chip.write_memory(0x300, [7])
+            for call, message in (
+                (lambda: chip.write_memory(0x300, [1.5]), "write_memory: words\\[0\\] = 1.5 is not an integer"),
+                (lambda: chip.write_memory(768.0, [1]), "write_memory: address = 768.0 is not an integer"),
+                (lambda: chip.wait_ns(2.5), "wait_ns: nanoseconds = 2.5 is not an integer"),
+                (lambda: chip.wait(math.nan), "wait: seconds = nan is not a finite number"),
+                (lambda: chip.wait(-1), "wait: seconds = -1 s is negative"),
+            ):
+                with pytest.raises(ValueError, match=message):
+                    call()
+            assert chip.host_time_ns == 0 and chip.cycles == 0
+            ax = chip.axis(pmdfmu.PMDAxis1)
+            ax.SetBufferStart(0, 0x300)
+            ax.SetBufferLength(0, 1)
+            assert ax.ReadBuffer(0) == 7
+        assert s.stop()[0] == 0
 
 
 def test_the_monitor_answers_every_request_with_one_line_and_refuses_bad_ones(tmp_path):

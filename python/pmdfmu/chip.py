@@ -14,7 +14,6 @@ import tempfile
 import threading
 from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint32
 from dataclasses import dataclass, field
-from fractions import Fraction
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
@@ -977,10 +976,7 @@ class Chip:
         """Host time passes without a command (a host program's sleep): the host clock moves on
         by `seconds` (an int, float or Fraction; rounded to the nearest ns) and the chip runs
         every cycle now due. Works with every host interface, none included."""
-        ns = round(Fraction(seconds) * hosttime.NS_PER_S)
-        if ns < 0:
-            raise ValueError(f"wait: {seconds} s is negative")
-        self.wait_ns(ns)
+        self.wait_ns(hosttime.ns_of(seconds, "wait: seconds"))
 
     @_refusals
     def wait_ns(self, nanoseconds: int) -> None:
@@ -997,7 +993,7 @@ class Chip:
         would: the chip runs cycle by cycle until one raises it, and the host clock moves to
         that cycle's time (the host sees the line at once). True at once if it is already
         high; False if `timeout` s (None: no limit) of host time pass first."""
-        limit = None if timeout is None else self._host_ns + round(Fraction(timeout) * hosttime.NS_PER_S)
+        limit = None if timeout is None else self._host_ns + hosttime.ns_of(timeout, "wait_for_interrupt: timeout")
         while not self.get("host.interrupt"):
             next_ns, _cycle_ns = self._grid_ns()
             if limit is not None and next_ns > limit:
@@ -1020,7 +1016,9 @@ class Chip:
         if not 0 < mask <= 0xFFFF:
             raise ValueError(f"wait_for: mask {mask} is not a 16-bit event mask")
         axis = axis_number(axis)
-        limit = -1 if timeout is None else self._host_ns + round(Fraction(timeout) * hosttime.NS_PER_S)
+        limit = -1 if timeout is None else self._host_ns + hosttime.ns_of(timeout, "wait_for: timeout")
+        if limit >= 1 << 63:  # the native loop's int64 ns would wrap: 2^64 ns + 1 ms timed out after 1 ms
+            raise ValueError(f"wait_for: timeout = {timeout!r} s reaches past the host clock's 2^63 ns")
         if self._recording:
             recording.close(self)
         get = COMMANDS["GetEventStatus"]

@@ -16,9 +16,9 @@ import socket
 import termios
 import time
 import tty
-from fractions import Fraction
 from typing import List, Optional, Sequence, Tuple, Union
 
+from . import hosttime
 from . import serial_protocol as sp
 from .calls import (
     BATCH_WORDS,
@@ -34,7 +34,7 @@ from .calls import (
     sent_name,
     sent_words,
 )
-from .fixed import to_word
+from .fixed import integer, to_word
 from .tables import Command
 
 # how long a reply may take before the host gives up on it and resynchronises, s
@@ -189,17 +189,19 @@ class LineChip:
 
     def write_memory(self, address: int, words: Sequence[int]) -> None:
         """32-bit words into the chip's dual-port memory, as Chip.write_memory (the server checks them)."""
-        words = [int(w) for w in words]
-        self._ask("write_memory", "write " + " ".join(str(int(w)) for w in [address, *words]))
+        address = integer(address, "write_memory: address")  # never truncated: int(1.5) wrote the word 1
+        words = [integer(w, f"write_memory: words[{i}]") for i, w in enumerate(words)]
+        self._ask("write_memory", "write " + " ".join(str(w) for w in [address, *words]))
 
     def wait(self, seconds) -> None:
         """Host time passes without a command: the line's clock moves on, the chips run the cycles due."""
-        self.wait_ns(round(Fraction(seconds) * 1_000_000_000))
+        self.wait_ns(hosttime.ns_of(seconds, "wait: seconds"))
 
     def wait_ns(self, nanoseconds: int) -> None:
+        nanoseconds = integer(nanoseconds, "wait_ns: nanoseconds")
         if nanoseconds < 0:
             raise ValueError(f"wait_ns: {nanoseconds} ns is negative")
-        self._ask("wait", f"wait {int(nanoseconds)}")
+        self._ask("wait", f"wait {nanoseconds}")
 
     @property
     def host_time_ns(self) -> int:
