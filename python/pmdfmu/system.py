@@ -39,6 +39,29 @@ TYPES = {
     },
 }
 
+# the values an integer or Boolean FMI type holds: a wire carries its output's values exactly when they are
+# all its input's (an Int16 into an Int32, an Integer into a Real); native/system.c would truncate a Real
+# into an Integer and wrap an Int32 into an Int16, silently
+RANGES = {
+    "Integer": (-(2**31), 2**31 - 1),
+    "Int32": (-(2**31), 2**31 - 1),
+    "UInt32": (0, 2**32 - 1),
+    "Int16": (-(2**15), 2**15 - 1),
+    "UInt16": (0, 2**16 - 1),
+    "Boolean": (0, 1),
+}
+
+
+def _carries(output_type: str, input_type: str) -> bool:
+    """Whether every value of output_type reaches an input of input_type unchanged (a double holds every
+    32-bit integer)."""
+    if input_type not in RANGES:
+        return True
+    if output_type not in RANGES:
+        return False
+    (lo, hi), (input_lo, input_hi) = RANGES[output_type], RANGES[input_type]
+    return input_lo <= lo and hi <= input_hi
+
 
 @lru_cache(maxsize=None)
 def _runner():
@@ -139,6 +162,13 @@ class PlantInstance:
             self.fmu = None
 
 
+def _plant_variables(path: Path, fmi_version: int) -> dict:
+    """The plant FMU's variables by name, read before it is instantiated (the wiring is checked first)."""
+    from .chip import _unpack
+
+    return _unpack(path, fmi_version)[0].variables
+
+
 class System:
     """The chip and a plant, connected by `wiring` ({"chip.<output>": "plant.<input>", "plant.<output>":
     "chip.<input>"}: the axis-1 loop, WIRING, when None), stepped together one chip cycle a step:
@@ -172,6 +202,8 @@ class System:
             for end in (a, b):
                 if end.split(".", 1)[0] not in ("chip", "plant") or "." not in end:
                     raise ValueError(f"wiring: {end!r} is not chip.<variable> or plant.<variable>")
+        self._variables = {"chip": chip.variables, "plant": _plant_variables(plant.path(chip), version)}
+        self._check_wiring()
         into_plant = [(a, b) for a, b in self.wiring.items() if b.startswith("plant.")]
         self.plant = PlantInstance(
             plant.path(chip),
@@ -181,7 +213,29 @@ class System:
             lambda p: [p.set(b[6:], chip.get(a[5:])) for a, b in into_plant],
         )
         self._fmus = {"chip": chip.fmu, "plant": self.plant.fmu}
-        self._variables = {"chip": chip.variables, "plant": self.plant.variables}
+
+    def _check_wiring(self) -> None:
+        """Each wire from an output to an input of the other FMU, of a type that carries the output's every
+        value, and no input driven twice: else ValueError naming the wire (a second wire into one input
+        overwrote the first silently; a Real into an Integer was truncated)."""
+        driven: Dict[str, str] = {}
+        for a, b in self.wiring.items():
+            (source, out), (target, into) = self._variable(a), self._variable(b)
+            if source == target:
+                raise ValueError(f"wiring: {a} -> {b}: a wire goes from one FMU to the other")
+            if out.causality != "output" or into.causality != "input":
+                raise ValueError(
+                    f"wiring: {a} -> {b}: a wire goes from an output to an input, not from {out.causality} "
+                    f"{a} to {into.causality} {b}"
+                )
+            if not _carries(out.type, into.type):
+                raise ValueError(
+                    f"wiring: {a} -> {b}: a {out.type} does not fit a {into.type} input unchanged (it would be "
+                    "truncated or wrap): wire variables of types that hold the output's values"
+                )
+            if b in driven:
+                raise ValueError(f"wiring: {b} is driven by both {driven[b]} and {a}")
+            driven[b] = a
 
     def close(self) -> None:
         self.plant.close()
