@@ -91,6 +91,17 @@ def test_a_plants_parameters_go_in_the_plant_or_as_keywords_and_are_its_variable
             pmdfmu.System(chip, pmdfmu.Plant(loadInertiaa=1e-5))
 
 
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_plant_parameter_the_plant_refuses_raises_with_the_plants_reason(version):
+    """The attacker's finding: Plant(loadInertia=-1) raised FMPy's bare "fmi2SetReal failed with status 3"
+    and left the plant's instance allocated."""
+    with pmdfmu.Chip(version, loopback=False) as c:
+        with pytest.raises(pmdfmu.FMURefusal, match=r"loadInertia = -1 is not in 0 \.\. inf"):
+            pmdfmu.System(c, pmdfmu.Plant(loadInertia=-1))
+        with pmdfmu.System(c) as system:  # the chip goes on with a good plant
+            assert len(system.run(3, record=["plant.angle"])) == 3
+
+
 def test_bad_wiring_and_algorithm_are_refused():
     with pmdfmu.Chip(2, loopback=False) as chip:
         with pytest.raises(ValueError, match="algorithm"):

@@ -108,7 +108,9 @@ class PlantInstance:
     and initialized, its inputs given by `inputs` before the end of initialization."""
 
     def __init__(self, path: Path, fmi_version: int, start: float, parameters: dict, inputs):
-        from .chip import LogMessage, STATUS_NAMES, _Slave2, _Slave3, _unpack, _UNPACKED_LOCK
+        from fmpy.fmi1 import FMICallException
+
+        from .chip import FMURefusal, LogMessage, STATUS_NAMES, _Slave2, _Slave3, _unpack, _UNPACKED_LOCK
 
         unpacked, functions = _unpack(path, fmi_version)
         self.path, self.fmi_version, self.messages = path, fmi_version, []
@@ -136,14 +138,23 @@ class PlantInstance:
             self.fmu.setupExperiment(startTime=start)
         else:
             self.fmu.instantiate(logMessage=lambda env, status, cat, msg: log(status, msg))
-        for name, value in parameters.items():
-            self.set(name, value)
-        if fmi_version == 2:
-            self.fmu.enterInitializationMode()
-        else:
-            self.fmu.enterInitializationMode(startTime=start)
-        inputs(self)
-        self.fmu.exitInitializationMode()
+        try:  # a refusal says the plant's reason, as Chip's do, and frees the instance
+            for name, value in parameters.items():
+                self.set(name, value)
+            if fmi_version == 2:
+                self.fmu.enterInitializationMode()
+            else:
+                self.fmu.enterInitializationMode(startTime=start)
+            inputs(self)
+            self.fmu.exitInitializationMode()
+        except FMICallException as e:
+            self.fmu.freeInstance()
+            self.fmu = None
+            raise FMURefusal(e.function, e.status, [m.message for m in self.messages if m.status != "OK"]) from None
+        except BaseException:
+            self.fmu.freeInstance()
+            self.fmu = None
+            raise
 
     def set(self, name: str, value) -> None:
         v = self.variables.get(name)
