@@ -424,6 +424,7 @@ def test_the_monitor_answers_every_request_with_one_line_and_refuses_bad_ones(tm
                 (b"write 16384 1", "error write_memory: 1 words at address 16384 leave the 16384-word memory"),
                 (b"write 0 4294967296", "error write_memory:"),
                 (b"\xff\xfe run", "error"),
+                (b"get script", "error get script: a String variable; the monitor answers numbers"),  # was float('')'s
                 (b"time", "ok 0"),
                 (b"get nextCycle", "ok 0"),
                 (b"chip 1", "ok"),

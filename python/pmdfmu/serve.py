@@ -433,6 +433,10 @@ class Monitor:
             return "ok" if not n else f"error stopped with {n} cycles not run: the server is stopping"
         if verb == "get" and len(args) == 1:
             value = chip.get(args[0])  # a Boolean as 0 or 1, a Real in the digits that read back the same
+            if isinstance(value, str):  # a script's text may hold line feeds: no one-line answer
+                raise ValueError(
+                    f"get {args[0]}: a String variable; the monitor answers numbers (Integer, Boolean, Real)"
+                )
             return f"ok {int(value)}" if isinstance(value, (bool, int)) else f"ok {float(value)!r}"
         if verb == "write" and len(args) >= 2:
             chip.write_memory(_count(args[0], "write: address"), [int(w, 0) for w in args[1:]])
