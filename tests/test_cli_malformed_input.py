@@ -138,6 +138,41 @@ def test_no_output_overwrites_a_table_the_script_loads_or_the_machine_file(profi
     assert {p: p.read_bytes() for p in folder.iterdir()} == before
 
 
+@pytest.mark.parametrize(
+    "argv,bommed",
+    [
+        (["run", "{script}"], "{script}"),
+        (["run", "{table}"], "{table}"),
+        (["run", "{script}"], "{table}"),  # the FMU's LoadSegmentTable
+        (["machine", "--check", "{machine}"], "{machine}"),
+        (["run", "{script}", "--machine", "{machine}"], "{machine}"),
+        (["verify", "{table}", "--against", "{golden}"], "{golden}"),
+        (["verify", "{table}", "--assertions", "{assertions}"], "{assertions}"),
+        (["sweep", "{cases}", "--scheduler", "serial"], "{cases}"),
+    ],
+    ids=["script", "table", "loaded table", "machine", "run --machine", "golden", "assertions", "case table"],
+)
+def test_a_file_beginning_with_a_byte_order_mark_is_refused_by_name(profile, capsys, argv, bommed):
+    """The attacker's finding: a UTF-8 BOM (Notepad, Excel's "CSV UTF-8") was an invisible character in
+    the first command, column or key: `expected Command(...), got ''`, and for a machine file whose first
+    line is a comment, `expected a key, a [table] or a comment`."""
+    folder = profile.parent
+    names = {
+        "script": profile,
+        "table": folder / "two_axis_table.csv",
+        "machine": shutil.copy(MACHINE, folder / "m.toml"),
+        "golden": shutil.copy(GOLDEN, folder / "g.csv"),
+        "assertions": folder / "a.toml",
+        "cases": folder / "cases.csv",
+    }
+    names["assertions"].write_text("# limits\n[axis1]\nmax_velocity = 1e9\n")
+    names["cases"].write_text("name,script\none,s.script\n")
+    path = Path(bommed.format(**names))
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    argv = [a.format(**names) for a in argv]
+    assert_one_line(cli(capsys, *argv), argv[0], path.name, "byte order mark (BOM)")
+
+
 @pytest.mark.parametrize("command", ["run", "trace", "pack"])
 def test_a_script_path_in_a_symlink_loop_answers_with_one_line(tmp_path, capsys, monkeypatch, command):
     """The attacker's finding: Path.resolve raised RuntimeError (Python < 3.13) for a symlink loop, a

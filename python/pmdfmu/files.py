@@ -68,9 +68,23 @@ def read_bytes(path: PathLike) -> bytes:
         os.close(fd)
 
 
+BOM = b"\xef\xbb\xbf"  # UTF-8's byte order mark: some editors and Excel's "CSV UTF-8" put it first
+
+
 def read_text(path: PathLike) -> str:
-    """read_bytes as UTF-8 text, line ends as they are (a UnicodeDecodeError for other bytes)."""
-    return read_bytes(path).decode("utf-8")
+    """read_bytes as UTF-8 text, line ends as they are (a UnicodeDecodeError for other bytes, and for a
+    byte order mark first, which the FMU refuses too: read as text it was an invisible character in the
+    first column's name)."""
+    data = read_bytes(path)
+    if data.startswith(BOM):
+        raise UnicodeDecodeError(
+            "utf-8",
+            data,
+            0,
+            len(BOM),
+            "the file begins with a UTF-8 byte order mark (BOM): save it as UTF-8 without one",
+        )
+    return data.decode("utf-8")
 
 
 def check_regular(path: PathLike) -> None:
