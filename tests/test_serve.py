@@ -383,6 +383,34 @@ def test_the_monitor_gives_a_line_chip_what_the_twin_in_process_gives(tmp_path):
     assert rows[:, 0].tolist() == list(range(len(rows))) and len(rows) == expected[-1]
 
 
+def _flood_until_the_server_stops_reading(sock, data: bytes) -> None:
+    """Sends data again and again, reading nothing, until the server has taken nothing for a second: its
+    replies fill the client's small receive buffer and the server's send buffer."""
+    sock.setblocking(False)
+    burst, last = data * 1000, time.monotonic()
+    while time.monotonic() - last < 1.0:
+        try:
+            if sock.send(burst):
+                last = time.monotonic()
+        except BlockingIOError:
+            time.sleep(0.02)
+
+
+def test_a_client_that_reads_no_replies_does_not_keep_the_server_from_stopping():
+    """The attacker's finding: replies were written to a blocking socket, so a TCP client that sent
+    requests and read nothing blocked the server in its write for ever; SIGTERM and Ctrl-C could not stop
+    it. (The monitor's clients and the pty share _write_all, which now gives up when the server stops.)"""
+    with Server("--tcp", "127.0.0.1:0", "--monitor", "127.0.0.1:0") as s:
+        host, number = s.tcp
+        with socket.socket() as sock:
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 2048)
+            sock.connect((host, number))
+            _flood_until_the_server_stops_reading(sock, packet("GetVersion"))
+            s.process.send_signal(signal.SIGTERM)
+            out, _err = s.process.communicate(timeout=15)  # it stops within a second or so
+        assert s.process.returncode == 0 and "stopped after" in out
+
+
 def test_a_line_chip_refuses_what_chip_refuses_and_sends_nothing(tmp_path):
     """The attacker's finding: Chip(device=...).write_memory(0x300, [1.5]) wrote the word 1 and
     wait_ns(2.5) waited 2 ns (int() truncated them), wait(nan) raised Fraction's bare message, where the

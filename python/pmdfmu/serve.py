@@ -202,10 +202,14 @@ class _Stop:
         os.close(self.w)
 
 
-def _write_all(fd: int, data: bytes) -> bool:
-    """Writes data whole; False if the client went meanwhile."""
+def _write_all(fd: int, data: bytes, stop: "_Stop") -> bool:
+    """Writes data whole into a non-blocking fd; False if the client went meanwhile, or if the server is
+    stopping while a client that reads no replies keeps the fd full (a blocking write waited for it for
+    ever: SIGTERM and Ctrl-C could not stop the server)."""
     view = memoryview(data)
     while view:
+        if stop.signal:
+            return False
         try:
             n = os.write(fd, view)
         except BlockingIOError:
@@ -292,7 +296,7 @@ def _serve_pty(end: PtyEndpoint, line: Line, stop: _Stop, reset_on_connect: bool
             if reset_on_connect:
                 line.restart()
         reply = line.receive(data)
-        if reply and not _write_all(end.master, reply):
+        if reply and not _write_all(end.master, reply, stop):
             end.connected = False
             line.disconnected("the client closed the port before the reply")
 
@@ -349,11 +353,14 @@ class Monitor:
         if sock is self.endpoint.listener:
             client, _peer = sock.accept()
             client.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            client.setblocking(False)  # _write_all
             self.clients[client] = [b"", 0, False]  # bytes received, the chip selected, inside a line refused
             return
         state = self.clients[sock]
         try:
             data = sock.recv(65536)
+        except BlockingIOError:
+            return
         except OSError:
             data = b""
         if not data:
@@ -375,7 +382,7 @@ class Monitor:
             else:
                 state[0] = rest
                 reply = too_long if len(request) > MONITOR_LINE else self.answer(request, state)
-            if reply is not None and not _write_all(sock.fileno(), (reply + "\n").encode()):
+            if reply is not None and not _write_all(sock.fileno(), (reply + "\n").encode(), self.stop):
                 self._drop(sock)
                 return
             if not newline:
@@ -470,11 +477,14 @@ def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool
             if client is None:
                 client, _peer = end.listener.accept()
                 client.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+                client.setblocking(False)  # _write_all
                 if reset_on_connect:
                     line.restart()
                 continue
             try:
                 data = client.recv(65536)
+            except BlockingIOError:
+                continue
             except OSError:
                 data = b""
             if not data:
@@ -483,7 +493,7 @@ def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool
                 line.disconnected("the client disconnected")
                 continue
             reply = line.receive(data)
-            if reply and not _write_all(client.fileno(), reply):
+            if reply and not _write_all(client.fileno(), reply, stop):
                 client.close()
                 client = None
                 line.disconnected("the client disconnected before the reply")
