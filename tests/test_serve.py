@@ -411,6 +411,24 @@ def test_a_client_that_reads_no_replies_does_not_keep_the_server_from_stopping()
         assert s.process.returncode == 0 and "stopped after" in out
 
 
+def test_a_line_chips_batch_cut_short_or_with_an_unknown_opcode_does_what_chips_does():
+    """The attacker's finding: Chip(device=...).batch sent a command whose data words the batch cut short
+    as a short packet: the device waited for the rest, the line chip timed out after 4 s with LineError
+    and resynchronised; after an unknown opcode it went on sending the batch's words as commands, where
+    the twin in-process ends the batch there."""
+    set_position, bogus = instruction_word(COMMANDS["SetPosition"].opcode, 0), 0x00FF
+    assert bogus & 0xFF not in {c.opcode for c in COMMANDS.values()}
+    with Server("--tcp", "127.0.0.1:0") as s:
+        host, port = s.tcp
+        with pmdfmu.Chip(device=f"tcp:{host}:{port}") as chip, pmdfmu.Chip() as twin:
+            started = time.monotonic()
+            with pytest.raises(ValueError, match="SetPosition .* needs 2 data words, the batch ends after 1"):
+                chip.batch([set_position, 0, 7, set_position, 0])
+            assert time.monotonic() - started < 1 and chip.axis(0).GetPosition() == 0
+            assert chip.batch([bogus, set_position, 0, 7]) == twin.batch([bogus, set_position, 0, 7]) == (0x02, [])
+            assert chip.axis(0).GetPosition() == twin.axis(0).GetPosition() == 0
+
+
 def test_a_line_chip_refuses_what_chip_refuses_and_sends_nothing(tmp_path):
     """The attacker's finding: Chip(device=...).write_memory(0x300, [1.5]) wrote the word 1 and
     wait_ns(2.5) waited 2 ns (int() truncated them), wait(nan) raised Fraction's bare message, where the
