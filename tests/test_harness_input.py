@@ -184,6 +184,23 @@ def test_a_timeout_that_is_negative_not_finite_or_past_the_host_clock_is_refused
         refused(any_chip, lambda: any_chip.wait(timeout), "wait: seconds = ")
 
 
+def test_a_boolean_real_or_string_value_of_another_kind_is_refused(any_chip):
+    """The attacker's finding: FMI 3 set a Boolean input to Python's truth value of anything (0.5, "no",
+    5: True; None: False) and FMI 2 took 5 and -1 as true; a Real took a string with ctypes' TypeError
+    naming no variable, a String an int with AttributeError."""
+    chip = any_chip
+    for value in (0.5, "no", None, 5, -1):
+        refused(chip, lambda v=value: chip.set("axis1.positiveLimit", v), "set: axis1.positiveLimit", "not a Boolean")
+    for value in (True, 1, 0, False):
+        chip.set("axis1.positiveLimit", value)
+        assert chip.get("axis1.positiveLimit") == bool(value)
+    refused(chip, lambda: chip.set("record.columns", 5), "set: record.columns = 5 is not a str")
+    with pytest.raises(ValueError, match="cycleTime = 'x' is not a number"):
+        pmdfmu.Chip(chip.fmi_version, cycleTime="x")
+    with pytest.raises(ValueError, match=r"cycleTime = 1000.*\(401 characters\) is not a number a double holds"):
+        pmdfmu.Chip(chip.fmi_version, cycleTime=10**400)
+
+
 # ---- fixed point through the chip ----
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 import atexit
 import difflib
 import functools
+import operator
 import os
 import re
 import shutil
@@ -115,6 +116,31 @@ for _v in tables.read_variables(tables_dir() / "variables.csv"):
             SIGNED.update((_v.name, _v.name.split("[")[0]))
 del _v
 _ELEMENT = re.compile(r"(.+)\[(\d+)\]")
+
+
+def _boolean(value, what: str) -> bool:
+    """A Boolean variable's value: True, False, 1 or 0. Anything else raises ValueError naming what: FMPy
+    took Python's truth value, so that FMI 3 set 0.5, "no" and 5 to True and None to False."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    try:
+        n = operator.index(value)
+    except TypeError:
+        n = None
+    if n not in (0, 1):
+        raise ValueError(f"{what} = {files.shown(value)} is not a Boolean (True, False, 1 or 0)")
+    return bool(n)
+
+
+def _real(value, what: str) -> float:
+    """A Real variable's value: a number a double holds (int, float, Fraction, Decimal); a string or one
+    too large raises ValueError naming what, not ctypes' TypeError or float's OverflowError."""
+    if isinstance(value, (str, bytes)):
+        raise ValueError(f"{what} = {files.shown(value)} is not a number")
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{what} = {files.shown(value)} is not a number a double holds") from None
 
 
 def _array_element(variables, name: str) -> Optional[Tuple[str, int]]:
@@ -566,6 +592,13 @@ class Chip:
             ]
             if (self.fmi_version == 2 and bits == 32) or name in SIGNED:  # the same bits, signed
                 values = [x - (1 << bits) if x >> (bits - 1) else x for x in values]
+        elif v.type in ("Boolean", "Real", "Float64"):
+            check = _boolean if v.type == "Boolean" else _real
+            values = [
+                check(x, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else "")) for i, x in enumerate(values)
+            ]
+        elif v.type == "String" and not all(isinstance(x, str) for x in values):
+            raise ValueError(f"set: {name} = {value!r} is not a str")
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)
 
