@@ -623,14 +623,26 @@ def test_verify_and_sweep_of_a_malformed_case_table_exit_2(tmp_path_factory, cap
     assert not (folder / "out").exists()
 
 
-@pytest.mark.parametrize("how", ["the table's folder, the table named summary.csv", "a case named after its table"])
+@pytest.mark.parametrize(
+    "how",
+    [
+        "the table's folder, the table named summary.csv",
+        "a case named after its table",
+        "a case named after the table its script loads",
+    ],
+)
 def test_sweep_refuses_an_output_that_is_one_of_its_inputs(tmp_path, capsys, how):
-    """`--out .` beside the case table: summary.csv or NAME.csv must not replace an input."""
+    """`--out .` beside the case table: summary.csv or NAME.csv must not replace an input. The third is
+    the attacker's finding: a table a case's script loads was no input, and the sweep wrote over it."""
     shutil.copy(SQUARE, tmp_path / "square.csv")
     # the table named summary.csv, or a case named after the table it runs
     name = "a" if how.startswith("the table") else "square"
     cases = tmp_path / ("summary.csv" if name == "a" else "cases.csv")
     cases.write_text(f"name,table\n{name},square.csv\n")
+    if how.endswith("its script loads"):
+        shutil.copy(SCRIPT, tmp_path / "s.script")
+        shutil.copy(TABLE, tmp_path / "two_axis_table.csv")
+        cases.write_text("name,script\ntwo_axis_table,s.script\n")
     before = {p: p.read_bytes() for p in tmp_path.iterdir()}
     result = cli(capsys, "sweep", cases, "--scheduler", "serial", "--out", tmp_path)
     assert_one_line(result, "sweep", "would write over its input", "give another --out")
