@@ -221,3 +221,16 @@ def test_a_bad_monitor_or_host_interface_fails_the_opening_with_a_transport_line
     )
     assert out.returncode == 0x1205 & 0xFF
     assert out.stderr.startswith("pmdfmu: " + line)
+
+
+def test_a_regular_file_named_as_the_serial_line_is_refused_and_left_as_it_was(programs, tmp_path):
+    """The attacker's finding: PMDFMU_DEVICE=serial:FILE (and Chip(device="serial:FILE")) opened a regular
+    file as the line and wrote the packets into it; a typo in the path overwrote the user's file."""
+    victim = tmp_path / "notes.txt"
+    victim.write_text("the user's notes\n")
+    code, out, err = run(programs["cmotion5_host"], f"serial:{victim}")
+    assert code == 0x1205 & 0xFF
+    assert err.startswith(f"pmdfmu: PMDFMU_DEVICE=serial:{victim}: {victim}: a regular file, not a serial line")
+    with pytest.raises(ValueError, match="a regular file, not a serial line: nothing was written"):
+        pmdfmu.Chip(device=f"serial:{victim}")
+    assert victim.read_text() == "the user's notes\n"

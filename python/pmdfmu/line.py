@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 import select
 import socket
+import stat
 import termios
 import time
 import tty
@@ -104,6 +105,9 @@ class LineChip:
         self._fd = -1
         if kind == "serial" and where:
             self._fd = os.open(where, os.O_RDWR | os.O_NOCTTY)
+            if stat.S_ISREG(os.fstat(self._fd).st_mode):  # the packets were written into the user's file
+                os.close(self._fd)
+                raise ValueError(f"device {device!r}: a regular file, not a serial line: nothing was written")
             try:
                 tty.setraw(self._fd, termios.TCSANOW)
                 if baud in _SPEEDS:
