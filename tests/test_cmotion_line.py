@@ -234,3 +234,15 @@ def test_a_regular_file_named_as_the_serial_line_is_refused_and_left_as_it_was(p
     with pytest.raises(ValueError, match="a regular file, not a serial line: nothing was written"):
         pmdfmu.Chip(device=f"serial:{victim}")
     assert victim.read_text() == "the user's notes\n"
+
+
+def test_a_tcp_port_past_65535_is_refused_not_wrapped(programs):
+    """The attacker's finding: getaddrinfo took tcp:HOST:99999 as port 99999 mod 65536 = 34463, and the
+    library and the harness connected there (to whatever listens on it)."""
+    code, _out, err = run(programs["cmotion5_host"], "tcp:127.0.0.1:99999")
+    assert code == 0x1205 & 0xFF
+    assert err.startswith("pmdfmu: PMDFMU_DEVICE=tcp:127.0.0.1:99999: port 99999 is not 0 .. 65535"), err
+    with pytest.raises(ValueError, match="port 99999 is not 0 .. 65535"):
+        pmdfmu.Chip(device="tcp:127.0.0.1:99999")
+    with pytest.raises(ValueError, match="port 70000 is not 0 .. 65535"):
+        pmdfmu.Chip(device="serial:/dev/null", monitor="tcp:127.0.0.1:70000")

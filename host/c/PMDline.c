@@ -84,6 +84,11 @@ static int open_tcp(const char *where, char *why, size_t size)
         snprintf(why, size, "expected tcp:HOST:PORT");
         return -1;
     }
+    if (strspn(colon + 1, "0123456789") == strlen(colon + 1) && (strlen(colon + 1) > 5 || atol(colon + 1) > 65535)) {
+        /* getaddrinfo takes 99999 as 99999 mod 65536: another server's port */
+        snprintf(why, size, "port %s is not 0 .. 65535", colon + 1);
+        return -1;
+    }
     memcpy(host, where, n);
     host[n] = '\0';
     if (host[0] == '[' && n > 2 && host[n - 1] == ']') {       /* [::1] */

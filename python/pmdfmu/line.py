@@ -68,6 +68,8 @@ def _connect(where: str) -> Optional[socket.socket]:
     host, colon, port = where.rpartition(":")
     if not colon or not port.isdigit():
         return None
+    if int(port) > 65535:  # getaddrinfo took 99999 as 99999 mod 65536: another server's port
+        raise ValueError(f"{where}: port {port} is not 0 .. 65535")
     sock = socket.create_connection((host.strip("[]"), int(port)))
     sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
     return sock
