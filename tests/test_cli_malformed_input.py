@@ -96,6 +96,95 @@ def test_run_and_verify_write_no_output_over_an_input(profile, capsys):
     assert profile.read_bytes() == script and Path(golden).read_bytes() == GOLDEN.read_bytes()
 
 
+MACHINE = EXAMPLES / "machine" / "stage.toml"
+TRACE = """@ 0
+SetBufferStart(Axis1, 0, 0x1000);
+SetBufferLength(Axis1, 0, 400);
+SetTraceMode(Axis1, PMDTraceOneTime);
+SetTraceVariable(Axis1, PMDTrace1, PMDAxis2, PMDTraceCommandedPosition);
+SetTraceStart(Axis1, PMDAxis1, PMDTraceConditionImmediate, 0, PMDTraceTriggerStateLow);
+"""  # a trace for pmdfmu trace to write, before two_axis.script
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["run", "{script}", "--csv", "{table}"],
+        ["run", "{script}", "--machine", "{machine}", "--csv", "{machine}"],
+        ["run", "{script}", "--out", "{npz}"],
+        ["run", "{script}", "--machine", "{npz}", "--out", "{npz}"],
+        ["trace", "{script}", "--csv", "{table}"],
+        ["trace", "{script}", "--machine", "{machine}", "--csv", "{machine}"],
+        ["verify", "{script}", "--max-velocity", "all=1e9", "--junit", "{table}"],
+        ["serve", "--tcp", "127.0.0.1:0", "--script", "{script}", "--log", "{table}"],
+        ["serve", "--tcp", "127.0.0.1:0", "--script", "{script}", "--record", "{table}"],
+    ],
+    ids=lambda argv: " ".join(a for a in argv if a.startswith("--") or a.isalpha()),
+)
+def test_no_output_overwrites_a_table_the_script_loads_or_the_machine_file(profile, capsys, argv):
+    """The attacker's finding: only the files named on the command line were inputs; the segment table a
+    script loads (LoadSegmentTable) and the --machine file were written over by the run's output."""
+    folder = profile.parent
+    shutil.copy(MACHINE, folder / "m.toml")
+    table = folder / "t.npz"  # a table the script loads may have any name
+    table.write_bytes((folder / "two_axis_table.csv").read_bytes())
+    shutil.copy(MACHINE, folder / "m.npz")
+    profile.write_text(TRACE + SCRIPT.read_text() + '\n@ 4000\nLoadSegmentTable(Axis3, "t.npz", 0x400, 2);\n')
+    names = {"script": profile, "table": folder / "two_axis_table.csv", "machine": folder / "m.toml"}
+    names["npz"] = table if "--machine" not in argv else folder / "m.npz"
+    argv = [a.format(**names) for a in argv]
+    before = {p: p.read_bytes() for p in folder.iterdir()}
+    assert_one_line(cli(capsys, *argv), argv[0], "names the input")
+    assert {p: p.read_bytes() for p in folder.iterdir()} == before
+
+
+@pytest.mark.parametrize(
+    "argv,bommed",
+    [
+        (["run", "{script}"], "{script}"),
+        (["run", "{table}"], "{table}"),
+        (["run", "{script}"], "{table}"),  # the FMU's LoadSegmentTable
+        (["machine", "--check", "{machine}"], "{machine}"),
+        (["run", "{script}", "--machine", "{machine}"], "{machine}"),
+        (["verify", "{table}", "--against", "{golden}"], "{golden}"),
+        (["verify", "{table}", "--assertions", "{assertions}"], "{assertions}"),
+        (["sweep", "{cases}", "--scheduler", "serial"], "{cases}"),
+    ],
+    ids=["script", "table", "loaded table", "machine", "run --machine", "golden", "assertions", "case table"],
+)
+def test_a_file_beginning_with_a_byte_order_mark_is_refused_by_name(profile, capsys, argv, bommed):
+    """The attacker's finding: a UTF-8 BOM (Notepad, Excel's "CSV UTF-8") was an invisible character in
+    the first command, column or key: `expected Command(...), got ''`, and for a machine file whose first
+    line is a comment, `expected a key, a [table] or a comment`."""
+    folder = profile.parent
+    names = {
+        "script": profile,
+        "table": folder / "two_axis_table.csv",
+        "machine": shutil.copy(MACHINE, folder / "m.toml"),
+        "golden": shutil.copy(GOLDEN, folder / "g.csv"),
+        "assertions": folder / "a.toml",
+        "cases": folder / "cases.csv",
+    }
+    names["assertions"].write_text("# limits\n[axis1]\nmax_velocity = 1e9\n")
+    names["cases"].write_text("name,script\none,s.script\n")
+    path = Path(bommed.format(**names))
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    argv = [a.format(**names) for a in argv]
+    assert_one_line(cli(capsys, *argv), argv[0], path.name, "byte order mark (BOM)")
+
+
+@pytest.mark.parametrize("command", ["run", "trace", "pack"])
+def test_a_script_path_in_a_symlink_loop_answers_with_one_line(tmp_path, capsys, monkeypatch, command):
+    """The attacker's finding: Path.resolve raised RuntimeError (Python < 3.13) for a symlink loop, a
+    traceback and exit status 1 (a relative name is resolved before the FMU gets it)."""
+    monkeypatch.chdir(tmp_path)
+    Path("a.script").symlink_to("b.script")
+    Path("b.script").symlink_to("a.script")
+    argv = ["--out", "p.fmu"] if command == "pack" else []
+    assert_one_line(cli(capsys, command, "a.script", *argv), command, "a.script")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.script", "b.script"]
+
+
 # ---- 3: verify's own malformed inputs ----------------------------------------------------------------
 
 
@@ -534,14 +623,26 @@ def test_verify_and_sweep_of_a_malformed_case_table_exit_2(tmp_path_factory, cap
     assert not (folder / "out").exists()
 
 
-@pytest.mark.parametrize("how", ["the table's folder, the table named summary.csv", "a case named after its table"])
+@pytest.mark.parametrize(
+    "how",
+    [
+        "the table's folder, the table named summary.csv",
+        "a case named after its table",
+        "a case named after the table its script loads",
+    ],
+)
 def test_sweep_refuses_an_output_that_is_one_of_its_inputs(tmp_path, capsys, how):
-    """`--out .` beside the case table: summary.csv or NAME.csv must not replace an input."""
+    """`--out .` beside the case table: summary.csv or NAME.csv must not replace an input. The third is
+    the attacker's finding: a table a case's script loads was no input, and the sweep wrote over it."""
     shutil.copy(SQUARE, tmp_path / "square.csv")
     # the table named summary.csv, or a case named after the table it runs
     name = "a" if how.startswith("the table") else "square"
     cases = tmp_path / ("summary.csv" if name == "a" else "cases.csv")
     cases.write_text(f"name,table\n{name},square.csv\n")
+    if how.endswith("its script loads"):
+        shutil.copy(SCRIPT, tmp_path / "s.script")
+        shutil.copy(TABLE, tmp_path / "two_axis_table.csv")
+        cases.write_text("name,script\ntwo_axis_table,s.script\n")
     before = {p: p.read_bytes() for p in tmp_path.iterdir()}
     result = cli(capsys, "sweep", cases, "--scheduler", "serial", "--out", tmp_path)
     assert_one_line(result, "sweep", "would write over its input", "give another --out")

@@ -221,3 +221,28 @@ def test_a_bad_monitor_or_host_interface_fails_the_opening_with_a_transport_line
     )
     assert out.returncode == 0x1205 & 0xFF
     assert out.stderr.startswith("pmdfmu: " + line)
+
+
+def test_a_regular_file_named_as_the_serial_line_is_refused_and_left_as_it_was(programs, tmp_path):
+    """The attacker's finding: PMDFMU_DEVICE=serial:FILE (and Chip(device="serial:FILE")) opened a regular
+    file as the line and wrote the packets into it; a typo in the path overwrote the user's file."""
+    victim = tmp_path / "notes.txt"
+    victim.write_text("the user's notes\n")
+    code, out, err = run(programs["cmotion5_host"], f"serial:{victim}")
+    assert code == 0x1205 & 0xFF
+    assert err.startswith(f"pmdfmu: PMDFMU_DEVICE=serial:{victim}: {victim}: a regular file, not a serial line")
+    with pytest.raises(ValueError, match="a regular file, not a serial line: nothing was written"):
+        pmdfmu.Chip(device=f"serial:{victim}")
+    assert victim.read_text() == "the user's notes\n"
+
+
+def test_a_tcp_port_past_65535_is_refused_not_wrapped(programs):
+    """The attacker's finding: getaddrinfo took tcp:HOST:99999 as port 99999 mod 65536 = 34463, and the
+    library and the harness connected there (to whatever listens on it)."""
+    code, _out, err = run(programs["cmotion5_host"], "tcp:127.0.0.1:99999")
+    assert code == 0x1205 & 0xFF
+    assert err.startswith("pmdfmu: PMDFMU_DEVICE=tcp:127.0.0.1:99999: port 99999 is not 0 .. 65535"), err
+    with pytest.raises(ValueError, match="port 99999 is not 0 .. 65535"):
+        pmdfmu.Chip(device="tcp:127.0.0.1:99999")
+    with pytest.raises(ValueError, match="port 70000 is not 0 .. 65535"):
+        pmdfmu.Chip(device="serial:/dev/null", monitor="tcp:127.0.0.1:70000")

@@ -3,6 +3,7 @@
 that does not fit is refused with a ValueError naming it, before anything reaches the
 FMU; the in-range boundary values do exactly what they say, through FMI 2 and FMI 3."""
 
+import math
 import re
 
 import pytest
@@ -158,21 +159,49 @@ def test_a_variable_value_that_does_not_fit_is_refused(any_chip):
     assert chip.get("axis1.actualPosition") == -(2**31)
 
 
-def test_a_value_of_another_type_is_refused_naming_the_variable(any_chip):
-    """A Boolean, Real or String variable given a value of another type: ctypes' TypeError ("'str' object
-    cannot be interpreted as an integer") named neither the variable nor the value."""
+@pytest.mark.parametrize("cycles", [2.5, 0.9, 3.0, "3"])
+def test_a_cycle_count_that_is_no_integer_is_refused(any_chip, cycles):
+    """The attacker's finding: Chip.run(2.5) ran 2 cycles and run(0.9) one, silently; with record= it
+    raised numpy's TypeError, and System.run ctypes' ArgumentError."""
+    refused(any_chip, lambda: any_chip.run(cycles), "run: cycles", "not an integer")
+    refused(any_chip, lambda: any_chip.run(cycles, record=["axis1.commandedPosition"]), "not an integer")
+    with pmdfmu.System(any_chip) as loop:
+        refused(any_chip, lambda: loop.run(cycles), "run: cycles", "not an integer")
+
+
+WRAPS = 2**64 / 1e9 + 1e-3  # s: 2^64 ns + 1 ms, which the native loop's int64 ns read as 1 ms
+
+
+@pytest.mark.parametrize("timeout", [-0.5, -1e-9, math.nan, math.inf, WRAPS])
+def test_a_timeout_that_is_negative_not_finite_or_past_the_host_clock_is_refused(any_chip, timeout):
+    """The attacker's finding: wait_for(mask, timeout=-0.5) polled for ever (a negative limit is the native
+    loop's "no limit"), a timeout of 2^64 ns + 1 ms timed out after 1 ms, and NaN raised Fraction's bare
+    "cannot convert NaN to integer ratio"."""
+    refused(any_chip, lambda: any_chip.wait_for(0x0800, 0, timeout=timeout), "wait_for: timeout")
+    refused(any_chip, lambda: any_chip.wait_for_motion_complete(0, timeout=timeout), "wait_for: timeout")
+    if timeout != WRAPS:  # a long wait, not refused
+        refused(any_chip, lambda: any_chip.wait_for_interrupt(timeout), "wait_for_interrupt: timeout")
+        refused(any_chip, lambda: any_chip.wait(timeout), "wait: seconds = ")
+
+
+def test_a_boolean_real_or_string_value_of_another_kind_is_refused(any_chip):
+    """The attacker's finding: FMI 3 set a Boolean input to Python's truth value of anything (0.5, "no",
+    5: True; None: False) and FMI 2 took 5 and -1 as true; a Real took a string with ctypes' TypeError
+    naming no variable, a String an int with AttributeError."""
     chip = any_chip
-    refused(chip, lambda: chip.set("axis1.home", "no"), "axis1.home", "not a Boolean")
-    refused(chip, lambda: chip.set("axis1.home", None), "axis1.home", "not a Boolean")
-    refused(chip, lambda: chip.set("axis1.home", 2), "axis1.home", "not a Boolean")
-    refused(chip, lambda: chip.set("analog[2]", 1.0), r"analog\[2\]", "not an integer")
-    with pytest.raises(ValueError, match=r"set: cycleTime = '1e-4' is not a number"):
-        pmdfmu.Chip(chip.fmi_version, cycleTime="1e-4")
-    with pytest.raises(ValueError, match=r"set: loopback = 'no' is not a Boolean"):
+    for value in (0.5, "no", None, 5, -1):
+        refused(chip, lambda v=value: chip.set("axis1.positiveLimit", v), "set: axis1.positiveLimit", "not a Boolean")
+    for value in (True, 1, 0, False):
+        chip.set("axis1.positiveLimit", value)
+        assert chip.get("axis1.positiveLimit") == bool(value)
+    refused(chip, lambda: chip.set("record.columns", 5), "set: record.columns = 5 is not a str")
+    with pytest.raises(ValueError, match="cycleTime = 'x' is not a number"):
+        pmdfmu.Chip(chip.fmi_version, cycleTime="x")
+    with pytest.raises(ValueError, match=r"cycleTime = 1000.*\(401 characters\) is not a number a double holds"):
+        pmdfmu.Chip(chip.fmi_version, cycleTime=10**400)
+    with pytest.raises(ValueError, match="set: loopback = 'no' is not a Boolean"):
         pmdfmu.Chip(chip.fmi_version, loopback="no")
-    chip.set("axis1.home", True)
-    chip.set("axis1.home", 0)
-    assert chip.get("axis1.home") in (False, 0)
+    refused(chip, lambda: chip.set("analog[2]", 1.0), r"analog\[2\]", "not an integer")
 
 
 # ---- fixed point through the chip ----

@@ -356,9 +356,9 @@ def homing(tmp_path_factory):
     return compile_program(ROOT / "tests" / "c" / "machine_homing.c", tmp / "machine_homing", generate(tmp / "gen"))
 
 
-def run_c(exe, *args, **env):
+def run_c(exe, *args, timeout=300, **env):
     env = {**os.environ, "PMDFMU_FMU": str(pmdfmu.default_fmu(2)), "PMDFMU_MACHINE": str(STAGE), **env}
-    return subprocess.run([str(exe), *args], capture_output=True, text=True, env=env, timeout=300)
+    return subprocess.run([str(exe), *args], capture_output=True, text=True, env=env, timeout=timeout)
 
 
 def test_a_c_motion_program_homes_against_the_machine_file_and_runs_to_completion(homing):
@@ -411,6 +411,15 @@ def test_pmdfmu_max_cycles_says_it_once_to_a_program_opened_the_vendors_way(tmp_
         f"its last command was PMDGetEventStatus on axis 0 (PMDAxis1), sent {out.stderr.split('sent ')[-1].split()[0]}"
         " times in a row"
     ]
+
+
+@pytest.mark.parametrize("value", ["200k", "-5", "99999999999999999999", "0", " 7"])
+def test_a_max_cycles_that_is_no_whole_number_opens_no_chip_and_says_so(homing, value):
+    """The attacker's finding: "200k" was ignored (one line on stderr) and "-5" read by strtoull as
+    2^64 - 5, so the program waited for ever without the guard the user had set."""
+    out = run_c(homing, "forever", PMDFMU_MAX_CYCLES=value, timeout=60)
+    assert out.returncode == 1 and out.stdout == "E PMDSetupAxisInterface_FMU 0x1205\n"  # PMD_ERR_OpeningPort
+    assert f"PMDFMU_MAX_CYCLES={value} is not a whole number of cycles 1 .. 2^64-1: no chip opened" in out.stderr
 
 
 def test_a_bad_machine_file_in_the_environment_is_named_on_stderr(homing, tmp_path):

@@ -83,3 +83,17 @@ def test_pmdfmu_run_takes_a_table_in_counts_per_cycle(tmp_path, capsys):
     (tmp_path / "c.csv").write_text("# units: counts/cycle\nposition,velocity,time\n0,2.5,100\n250,0,0\n")
     assert main(["run", str(tmp_path / "c.csv")]) == 0
     assert "axis 1: ended at position 250" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("upload", ["memory", "command"])
+def test_a_table_value_that_does_not_fit_32_bits_is_refused_by_either_upload(upload):
+    """The attacker's finding: load_external_profile's memory upload masked every value with 0xFFFFFFFF,
+    so a position of 2^32 + 5 was loaded as 5, where the command upload (WriteBuffer) refused it."""
+    from pmdfmu.profile import load_external_profile
+
+    with pmdfmu.Chip() as chip:
+        with pytest.raises(ValueError, match="4294967301 .* does not fit 32 bits"):
+            load_external_profile(chip, {0: [(2**32 + 5, 0, 0, 0, 1)]}, upload=upload)
+        ids = load_external_profile(chip, {0: [(-5, -(2**31), 0xFFFFFFFF, 0, 1)]}, upload=upload)
+        ax = chip.axis(0)
+        assert [ax.ReadBuffer(i) for i in ids[0][:3]] == [-5, -(2**31), -1]

@@ -3,6 +3,7 @@
 pmdfmu.Chip(device=...). Every reply equals, byte for byte, what the twin in-process answers
 with host_interface="serial" to the same commands, so chip times equal the host timing model's."""
 
+import math
 import os
 import signal
 import socket
@@ -396,6 +397,77 @@ def test_the_monitor_gives_a_line_chip_what_the_twin_in_process_gives(tmp_path):
     assert rows[:, 0].tolist() == list(range(len(rows))) and len(rows) == expected[-1]
 
 
+def _flood_until_the_server_stops_reading(sock, data: bytes) -> None:
+    """Sends data again and again, reading nothing, until the server has taken nothing for a second: its
+    replies fill the client's small receive buffer and the server's send buffer."""
+    sock.setblocking(False)
+    burst, last = data * 1000, time.monotonic()
+    while time.monotonic() - last < 1.0:
+        try:
+            if sock.send(burst):
+                last = time.monotonic()
+        except BlockingIOError:
+            time.sleep(0.02)
+
+
+def test_a_client_that_reads_no_replies_does_not_keep_the_server_from_stopping():
+    """The attacker's finding: replies were written to a blocking socket, so a TCP client that sent
+    requests and read nothing blocked the server in its write for ever; SIGTERM and Ctrl-C could not stop
+    it. (The monitor's clients and the pty share _write_all, which now gives up when the server stops.)"""
+    with Server("--tcp", "127.0.0.1:0", "--monitor", "127.0.0.1:0") as s:
+        host, number = s.tcp
+        with socket.socket() as sock:
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 2048)
+            sock.connect((host, number))
+            _flood_until_the_server_stops_reading(sock, packet("GetVersion"))
+            s.process.send_signal(signal.SIGTERM)
+            out, _err = s.process.communicate(timeout=15)  # it stops within a second or so
+        assert s.process.returncode == 0 and "stopped after" in out
+
+
+def test_a_line_chips_batch_cut_short_or_with_an_unknown_opcode_does_what_chips_does():
+    """The attacker's finding: Chip(device=...).batch sent a command whose data words the batch cut short
+    as a short packet: the device waited for the rest, the line chip timed out after 4 s with LineError
+    and resynchronised; after an unknown opcode it went on sending the batch's words as commands, where
+    the twin in-process ends the batch there."""
+    set_position, bogus = instruction_word(COMMANDS["SetPosition"].opcode, 0), 0x00FF
+    assert bogus & 0xFF not in {c.opcode for c in COMMANDS.values()}
+    with Server("--tcp", "127.0.0.1:0") as s:
+        host, port = s.tcp
+        with pmdfmu.Chip(device=f"tcp:{host}:{port}") as chip, pmdfmu.Chip() as twin:
+            started = time.monotonic()
+            with pytest.raises(ValueError, match="SetPosition .* needs 2 data words, the batch ends after 1"):
+                chip.batch([set_position, 0, 7, set_position, 0])
+            assert time.monotonic() - started < 1 and chip.axis(0).GetPosition() == 0
+            assert chip.batch([bogus, set_position, 0, 7]) == twin.batch([bogus, set_position, 0, 7]) == (0x02, [])
+            assert chip.axis(0).GetPosition() == twin.axis(0).GetPosition() == 0
+
+
+def test_a_line_chip_refuses_what_chip_refuses_and_sends_nothing(tmp_path):
+    """The attacker's finding: Chip(device=...).write_memory(0x300, [1.5]) wrote the word 1 and
+    wait_ns(2.5) waited 2 ns (int() truncated them), wait(nan) raised Fraction's bare message, where the
+    twin in-process refuses each with a ValueError naming it."""
+    with Server("--tcp", "127.0.0.1:0", "--monitor", "127.0.0.1:0") as s:
+        host, port = s.tcp
+        with pmdfmu.Chip(device=f"tcp:{host}:{port}", monitor="tcp:" + monitor_of(s)) as chip:
+            chip.write_memory(0x300, [7])
+            for call, message in (
+                (lambda: chip.write_memory(0x300, [1.5]), "write_memory: words\\[0\\] = 1.5 is not an integer"),
+                (lambda: chip.write_memory(768.0, [1]), "write_memory: address = 768.0 is not an integer"),
+                (lambda: chip.wait_ns(2.5), "wait_ns: nanoseconds = 2.5 is not an integer"),
+                (lambda: chip.wait(math.nan), "wait: seconds = nan is not a finite number"),
+                (lambda: chip.wait(-1), "wait: seconds = -1 s is negative"),
+            ):
+                with pytest.raises(ValueError, match=message):
+                    call()
+            assert chip.host_time_ns == 0 and chip.cycles == 0
+            ax = chip.axis(pmdfmu.PMDAxis1)
+            ax.SetBufferStart(0, 0x300)
+            ax.SetBufferLength(0, 1)
+            assert ax.ReadBuffer(0) == 7
+        assert s.stop()[0] == 0
+
+
 def test_the_monitor_answers_every_request_with_one_line_and_refuses_bad_ones(tmp_path):
     """Bad requests get `error REASON` and change nothing; a line too long is refused; `chip K` selects
     a chip of a multi-drop line; a client killed mid-request leaves the server answering the next."""
@@ -412,6 +484,7 @@ def test_the_monitor_answers_every_request_with_one_line_and_refuses_bad_ones(tm
                 (b"write 16384 1", "error write_memory: 1 words at address 16384 leave the 16384-word memory"),
                 (b"write 0 4294967296", "error write_memory:"),
                 (b"\xff\xfe run", "error"),
+                (b"get script", "error get script: a String variable; the monitor answers numbers"),  # was float('')'s
                 (b"time", "ok 0"),
                 (b"get nextCycle", "ok 0"),
                 (b"chip 1", "ok"),

@@ -98,6 +98,17 @@ def test_a_plants_parameters_go_in_the_plant_or_as_keywords_and_are_its_variable
             pmdfmu.System(chip, pmdfmu.Plant(loadInertiaa=1e-5))
 
 
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_plant_parameter_the_plant_refuses_raises_with_the_plants_reason(version):
+    """The attacker's finding: Plant(loadInertia=-1) raised FMPy's bare "fmi2SetReal failed with status 3"
+    and left the plant's instance allocated."""
+    with pmdfmu.Chip(version, loopback=False) as c:
+        with pytest.raises(pmdfmu.FMURefusal, match=r"loadInertia = -1 is not in 0 \.\. inf"):
+            pmdfmu.System(c, pmdfmu.Plant(loadInertia=-1))
+        with pmdfmu.System(c) as system:  # the chip goes on with a good plant
+            assert len(system.run(3, record=["plant.angle"])) == 3
+
+
 def test_bad_wiring_and_algorithm_are_refused():
     with pmdfmu.Chip(2, loopback=False) as chip:
         with pytest.raises(ValueError, match="algorithm"):
@@ -106,3 +117,29 @@ def test_bad_wiring_and_algorithm_are_refused():
             pmdfmu.System(chip, wiring={"motor.x": "plant.motorCommand"})
         with pmdfmu.System(chip) as system, pytest.raises(ValueError, match="no scalar variable"):
             system.run(1, record=["plant.nothing"])
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize(
+    "wiring,message",
+    [
+        ({"plant.angle": "chip.axis1.actualPosition"}, "does not fit a"),  # Real into Integer: truncated
+        ({"chip.axis1.motorOutput": "plant.motorCommand"}, "does not fit a"),  # was TypeError from ctypes
+        ({"chip.axis1.motorCommand": "plant.encoderCount"}, "from an output to an input"),
+        ({"plant.encoderCount": "chip.memorySize"}, "from an output to an input"),
+        ({"chip.axis1.motorCommand": "chip.axis1.actualPosition"}, "from one FMU to the other"),
+        (
+            {"chip.axis1.motorCommand": "plant.motorCommand", "chip.axis2.motorCommand": "plant.motorCommand"},
+            "plant.motorCommand is driven by both chip.axis1.motorCommand and chip.axis2.motorCommand",
+        ),
+    ],
+)
+def test_a_wire_that_would_change_or_lose_its_values_is_refused_before_anything_runs(version, wiring, message):
+    """The attacker's finding: a Real output wired to an Integer input was truncated (and NaN or a huge
+    value undefined) in native/system.c, a second wire into one input overwrote the first, and a wire into
+    an output or a fixed parameter failed at its first set with FMPy's bare "status 3"."""
+    with pmdfmu.Chip(version, loopback=False) as c:
+        before = c.get_state()
+        with pytest.raises(ValueError, match=message):
+            pmdfmu.System(c, wiring=wiring)
+        assert c.get_state() == before

@@ -39,6 +39,11 @@
 #include "script.h"
 #include "wide.h"
 
+/* A UTF-8 byte order mark, which some editors and Excel's "CSV UTF-8" put first: refused by name, as the
+ * harness's files.read_text refuses it; read as text it was an invisible character in the first
+ * command, column or key ("expected a key, a [table] or a comment" of a comment line). */
+#define UTF8_BOM "\xEF\xBB\xBF"
+#define BOM_REASON "the file begins with a UTF-8 byte order mark (BOM): save it as UTF-8 without one"
 #define MAX_LINE 4096                /* a line has at most MAX_LINE - 1 characters besides its newline */
 #define MAX_FILE (1L << 30)          /* bytes in a script or table; also keeps line numbers within an int */
 #define TOO_LARGE "larger than 1 GiB, the limit for a script or table"
@@ -232,6 +237,8 @@ static int read_line(Reader *r, char *line)
     n = end ? (size_t)(end - start) : left;
     if (memchr(start, '\0', n < MAX_LINE ? n : MAX_LINE))
         return fail(&r->w, "NUL byte in the line (a script or table is text)");
+    if (r->w.line == 1 && n >= 3 && memcmp(start, UTF8_BOM, 3) == 0)
+        return fail(&r->w, BOM_REASON);
     if (n > MAX_LINE - 1)
         return fail(&r->w, "line longer than %d characters", MAX_LINE - 1);
     if (!end && r->readError)
@@ -1103,6 +1110,11 @@ int pmd_parameter_file(const char *value, const PmdScriptPlaces *places, const c
     if (memchr(in.text, '\0', in.length)) {
         close_reader(&in);
         snprintf(error, errorSize, "%s: NUL byte in the file (a %s is text)", path, what);
+        return -1;
+    }
+    if (in.length >= 3 && memcmp(in.text, UTF8_BOM, 3) == 0) {
+        close_reader(&in);
+        snprintf(error, errorSize, "%s:1: %s", path, BOM_REASON);
         return -1;
     }
     if ((*text = (char *)malloc(in.length + 1)) != NULL && (*name = (char *)malloc(strlen(path) + 1)) != NULL) {

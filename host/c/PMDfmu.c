@@ -611,13 +611,19 @@ PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumb
     d->options.hostInterface = NULL;        /* copied: the caller's may go */
     d->lastOpcode = -1;
     {
+        /* the user's guard against a program that waits for ever: a value that is no whole number
+           1 .. 2^64-1 opens no chip, rather than let the program run without it ("200k" was ignored,
+           "-5" read by strtoull as 2^64 - 5, a number past 2^64 as 2^64 - 1) */
         const char *max = getenv("PMDFMU_MAX_CYCLES");
         char *end = NULL;
         if (max && *max) {
-            d->maxCycles = strtoull(max, &end, 10);
-            if (*end != '\0' || d->maxCycles == 0) {
-                fprintf(stderr, "PMDFMU_MAX_CYCLES=%s is not a whole number of cycles above 0: ignored\n", max);
-                d->maxCycles = 0;
+            errno = 0;
+            d->maxCycles = max[0] >= '0' && max[0] <= '9' ? strtoull(max, &end, 10) : 0;
+            if (!end || *end != '\0' || errno == ERANGE || d->maxCycles == 0) {
+                fprintf(stderr, "PMDFMU_MAX_CYCLES=%s is not a whole number of cycles 1 .. 2^64-1: no chip opened\n",
+                        max);
+                free_device(d);
+                return PMD_ERR_OpeningPort;
             }
         }
     }

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -49,9 +50,16 @@ static speed_t speed_of(PMDuint32 baud)
 static int open_serial(const char *path, PMDuint32 baud, char *why, size_t size)
 {
     struct termios t;
+    struct stat s;
     int fd = open(path, O_RDWR | O_NOCTTY);
     if (fd < 0) {
         snprintf(why, size, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    /* a regular file is no line: the packets were written into the user's file (a typo in the path) */
+    if (fstat(fd, &s) == 0 && S_ISREG(s.st_mode)) {
+        close(fd);
+        snprintf(why, size, "%s: a regular file, not a serial line: nothing was written", path);
         return -1;
     }
     /* raw 8N1 (a file that is no tty is used as it is) */
@@ -74,6 +82,11 @@ static int open_tcp(const char *where, char *why, size_t size)
     size_t n = colon ? (size_t)(colon - where) : 0;
     if (!colon || n == 0 || n >= sizeof host || !colon[1]) {
         snprintf(why, size, "expected tcp:HOST:PORT");
+        return -1;
+    }
+    if (strspn(colon + 1, "0123456789") == strlen(colon + 1) && (strlen(colon + 1) > 5 || atol(colon + 1) > 65535)) {
+        /* getaddrinfo takes 99999 as 99999 mod 65536: another server's port */
+        snprintf(why, size, "port %s is not 0 .. 65535", colon + 1);
         return -1;
     }
     memcpy(host, where, n);

@@ -7,6 +7,7 @@ from __future__ import annotations
 import atexit
 import difflib
 import functools
+import operator
 import os
 import re
 import shutil
@@ -14,8 +15,6 @@ import tempfile
 import threading
 from ctypes import POINTER, Array, byref, c_double, c_int32, c_uint32
 from dataclasses import dataclass, field
-from fractions import Fraction
-from numbers import Real
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
@@ -32,7 +31,7 @@ from fmpy.fmi2 import (
 )
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64, fmi3FMUState, fmi3True, fmi3ValueReference
 
-from . import calls, host_port, hosttime, memory_port, native, progress, recording, tables
+from . import calls, files, host_port, hosttime, memory_port, native, progress, recording, tables
 
 # the calls' layer, re-exported here where users and docs have named it (pmdfmu.chip.COMMANDS ...)
 from .calls import (  # noqa: F401
@@ -117,6 +116,31 @@ for _v in tables.read_variables(tables_dir() / "variables.csv"):
             SIGNED.update((_v.name, _v.name.split("[")[0]))
 del _v
 _ELEMENT = re.compile(r"(.+)\[(\d+)\]")
+
+
+def _boolean(value, what: str) -> bool:
+    """A Boolean variable's value: True, False, 1 or 0. Anything else raises ValueError naming what: FMPy
+    took Python's truth value, so that FMI 3 set 0.5, "no" and 5 to True and None to False."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    try:
+        n = operator.index(value)
+    except TypeError:
+        n = None
+    if n not in (0, 1):
+        raise ValueError(f"{what} = {files.shown(value)} is not a Boolean (True, False, 1 or 0)")
+    return bool(n)
+
+
+def _real(value, what: str) -> float:
+    """A Real variable's value: a number a double holds (int, float, Fraction, Decimal); a string or one
+    too large raises ValueError naming what, not ctypes' TypeError or float's OverflowError."""
+    if isinstance(value, (str, bytes)):
+        raise ValueError(f"{what} = {files.shown(value)} is not a number")
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{what} = {files.shown(value)} is not a number a double holds") from None
 
 
 def _array_element(variables, name: str) -> Optional[Tuple[str, int]]:
@@ -245,7 +269,7 @@ _unpack_root: List[str] = []  # this process's folder of extracted FMU files, on
 def _identity(path: Path) -> tuple:
     """An FMU file as the cache knows it: a file rewritten in place or replaced (pmdfmu pack
     writes FMUs) is another file, extracted anew."""
-    resolved = path.resolve()
+    resolved = files.resolved(path)
     st = resolved.stat()
     return str(resolved), st.st_size, st.st_mtime_ns, st.st_ino, st.st_dev
 
@@ -459,7 +483,7 @@ class Chip:
             return text
         path = Path(text)
         if not path.is_absolute() and not Path(self._unzipdir, "resources", text).exists():
-            return str(path.resolve())
+            return str(files.resolved(path))
         return text
 
     def _initialize(self, parameters) -> None:
@@ -568,15 +592,13 @@ class Chip:
             ]
             if (self.fmi_version == 2 and bits == 32) or name in SIGNED:  # the same bits, signed
                 values = [x - (1 << bits) if x >> (bits - 1) else x for x in values]
-        else:  # the other types: checked here too, so that a wrong one is named, not a ctypes TypeError
-            for i, x in enumerate(values):
-                what = f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else "")
-                if v.type in ("Real", "Float64") and (isinstance(x, (bool, np.bool_)) or not isinstance(x, Real)):
-                    raise ValueError(f"{what} = {x!r} is not a number")
-                if v.type == "Boolean" and not (isinstance(x, (bool, np.bool_)) or (type(x) is int and x in (0, 1))):
-                    raise ValueError(f"{what} = {x!r} is not a Boolean (True or False)")
-                if v.type == "String" and not isinstance(x, (str, os.PathLike)):
-                    raise ValueError(f"{what} = {x!r} is not a string (a path, or the text itself)")
+        elif v.type in ("Boolean", "Real", "Float64"):
+            check = _boolean if v.type == "Boolean" else _real
+            values = [
+                check(x, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else "")) for i, x in enumerate(values)
+            ]
+        elif v.type == "String" and not all(isinstance(x, str) for x in values):
+            raise ValueError(f"set: {name} = {value!r} is not a str")
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)
 
@@ -987,10 +1009,7 @@ class Chip:
         """Host time passes without a command (a host program's sleep): the host clock moves on
         by `seconds` (an int, float or Fraction; rounded to the nearest ns) and the chip runs
         every cycle now due. Works with every host interface, none included."""
-        ns = round(Fraction(seconds) * hosttime.NS_PER_S)
-        if ns < 0:
-            raise ValueError(f"wait: {seconds} s is negative")
-        self.wait_ns(ns)
+        self.wait_ns(hosttime.ns_of(seconds, "wait: seconds"))
 
     @_refusals
     def wait_ns(self, nanoseconds: int) -> None:
@@ -1007,7 +1026,7 @@ class Chip:
         would: the chip runs cycle by cycle until one raises it, and the host clock moves to
         that cycle's time (the host sees the line at once). True at once if it is already
         high; False if `timeout` s (None: no limit) of host time pass first."""
-        limit = None if timeout is None else self._host_ns + round(Fraction(timeout) * hosttime.NS_PER_S)
+        limit = None if timeout is None else self._host_ns + hosttime.ns_of(timeout, "wait_for_interrupt: timeout")
         while not self.get("host.interrupt"):
             next_ns, _cycle_ns = self._grid_ns()
             if limit is not None and next_ns > limit:
@@ -1030,7 +1049,9 @@ class Chip:
         if not 0 < mask <= 0xFFFF:
             raise ValueError(f"wait_for: mask {mask} is not a 16-bit event mask")
         axis = axis_number(axis)
-        limit = -1 if timeout is None else self._host_ns + round(Fraction(timeout) * hosttime.NS_PER_S)
+        limit = -1 if timeout is None else self._host_ns + hosttime.ns_of(timeout, "wait_for: timeout")
+        if limit >= 1 << 63:  # the native loop's int64 ns would wrap: 2^64 ns + 1 ms timed out after 1 ms
+            raise ValueError(f"wait_for: timeout = {timeout!r} s reaches past the host clock's 2^63 ns")
         if self._recording:
             recording.close(self)
         get = COMMANDS["GetEventStatus"]
@@ -1093,6 +1114,7 @@ class Chip:
         "Recording to disk"); returns None, and np.load(to) (mmap_mode="r" for a long run) gives what
         run(cycles, record) would have returned. The file appears whole when the run ends (written
         beside it and renamed, files.replaced); a run that fails or is interrupted leaves none."""
+        cycles = integer(cycles, "run: cycles")  # never rounded: run(2.5) used to run 2 cycles
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         if out is not None and not record:

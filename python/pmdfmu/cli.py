@@ -118,6 +118,18 @@ def _fmu_file(path: Optional[Path]) -> Optional[Path]:
     return path
 
 
+def _inputs(path: Optional[Path], fmu: Optional[Path], machine: Optional[Path], fmi_version: int, outputs) -> list:
+    """What a run of the script or table at path reads, which no output may overwrite: path, the FMU, the
+    machine file and the segment tables the script loads (the FMU's answer, pack.tables_loaded: it compiles
+    the script, only when one of the outputs exists already)."""
+    inputs = [path, fmu, machine]
+    if path is not None and not profile.is_segment_table(path) and any(o and os.path.lexists(o) for o in outputs):
+        from .pack import tables_loaded
+
+        inputs += tables_loaded(_script_file(path), fmi_version, fmu)
+    return inputs
+
+
 def _refuse_overwriting(outputs: Iterable[Tuple[str, Optional[Path]]], inputs: Iterable[Optional[Path]]) -> None:
     """No output names an input (the same file: also through a symlink or a hard link), nor another output."""
     inputs = [p for p in inputs if p is not None]
@@ -305,13 +317,13 @@ def cmd_run(args) -> int:
     profile ended, unless --cycles asked for a window."""
     path, fmu = args.file, _fmu_file(args.fmu)
     csv_path, plot_path, html_path = args.csv, args.plot, args.html
-    _refuse_overwriting([("--csv", csv_path), ("--plot", plot_path), ("--html", html_path)], [path, fmu])
+    outputs = [("--csv", csv_path), ("--plot", plot_path), ("--html", html_path), ("--out", args.out)]
+    _refuse_overwriting(outputs, _inputs(path, fmu, args.machine, args.fmi_version, [o for _, o in outputs]))
     title = f"pmdfmu run {path}"
     machine = _machine_file(args.machine)
     limit = args.cycles or args.max_cycles
     table = profile.is_segment_table(path)
     if args.out is not None:
-        _refuse_overwriting([("--out", args.out)], [path, fmu])
         return _stream_run(args, path if table else _script_file(path), fmu, machine, limit)
     if table and machine is None:
         return _run_table(
@@ -358,7 +370,10 @@ def cmd_trace(args) -> int:
     """Runs the script as `pmdfmu run` does, then reads the chip's trace (buffer 0) and shows it as a
     scope: --plot an image or an interactive .html page, --csv the samples."""
     path, fmu = args.file, _fmu_file(args.fmu)
-    _refuse_overwriting([("--plot", args.plot), ("--csv", args.csv)], [path, fmu])
+    _refuse_overwriting(
+        [("--plot", args.plot), ("--csv", args.csv)],
+        _inputs(path, fmu, args.machine, args.fmi_version, [args.plot, args.csv]),
+    )
     got = []
     run = profile.run_profile(
         _script_file(path),
@@ -468,7 +483,7 @@ def _machine_file(path: Optional[Path]) -> Optional[str]:
     if "\n" in str(path):
         raise CommandLineError(f"{files.shown_path(path)}: the machine file's path holds a line feed: rename it")
     files.check_regular(path)
-    return str(path.resolve())
+    return str(files.resolved(path))
 
 
 def cmd_machine(args) -> int:
@@ -585,14 +600,13 @@ def cmd_verify(args) -> int:
             "command line: --cycles checks a window of one profile; a case table asks for a case's window in "
             "its cycles column"
         )
-    _refuse_overwriting(
-        [
-            ("--junit", args.junit),
-            ("--summary", args.summary if args.summary != Path("-") else None),
-            ("--html", args.html),
-        ],
-        [args.file, args.cases, args.against, args.assertions, _fmu_file(args.fmu)],
-    )
+    outputs = [
+        ("--junit", args.junit),
+        ("--summary", args.summary if args.summary != Path("-") else None),
+        ("--html", args.html),
+    ]
+    inputs = _inputs(args.file, _fmu_file(args.fmu), None, args.fmi_version, [out for _flag, out in outputs])
+    _refuse_overwriting(outputs, [*inputs, args.cases, args.against, args.assertions])
     if args.cases:
         if args.against:
             raise InputError("command line: --against names one golden; a case table has a golden column")
@@ -679,17 +693,19 @@ _chip_count.__name__ = "number of chips 1..32"
 def cmd_serve(args) -> int:
     """Ctrl-C and SIGTERM are how a server is stopped: exit status 0, files written, the link removed
     (docs/device.md)."""
-    from .serve import serve
+    from .serve import record_paths, serve
 
     fmu = _fmu_file(args.fmu)
     if args.script:
         files.check_regular(args.script)
-    script = str(_script_file(args.script).resolve()) if args.script else None
+    script = str(files.resolved(_script_file(args.script))) if args.script else None
     machine = _machine_file(args.machine)
-    inputs = [args.script, args.machine, fmu]
-    _refuse_overwriting([("--record", args.record), ("--log", args.log)], inputs)
-    if args.record is not None and not args.record.parent.is_dir():  # known now, not when the session is over
-        raise CommandLineError(f"--record {args.record}: {args.record.parent} is no folder to write it in")
+    records = [("--record", path) for path in record_paths(args.record, args.chips)]
+    outputs = [*records, ("--log", args.log)]
+    _refuse_overwriting(outputs, _inputs(args.script, fmu, args.machine, args.fmi_version, [o for _, o in outputs]))
+    for _, record in records:  # known now, not when the session is over
+        if not record.parent.is_dir():
+            raise CommandLineError(f"--record {record}: {record.parent} is no folder to write it in")
     if args.serial is not None and "\n" in str(args.serial):
         raise CommandLineError(f"--serial {files.shown_path(args.serial)}: the link's path holds a line feed")
     parameters = {"cycleTime": args.cycle_time}

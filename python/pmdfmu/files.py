@@ -68,9 +68,23 @@ def read_bytes(path: PathLike) -> bytes:
         os.close(fd)
 
 
+BOM = b"\xef\xbb\xbf"  # UTF-8's byte order mark: some editors and Excel's "CSV UTF-8" put it first
+
+
 def read_text(path: PathLike) -> str:
-    """read_bytes as UTF-8 text, line ends as they are (a UnicodeDecodeError for other bytes)."""
-    return read_bytes(path).decode("utf-8")
+    """read_bytes as UTF-8 text, line ends as they are (a UnicodeDecodeError for other bytes, and for a
+    byte order mark first, which the FMU refuses too: read as text it was an invisible character in the
+    first column's name)."""
+    data = read_bytes(path)
+    if data.startswith(BOM):
+        raise UnicodeDecodeError(
+            "utf-8",
+            data,
+            0,
+            len(BOM),
+            "the file begins with a UTF-8 byte order mark (BOM): save it as UTF-8 without one",
+        )
+    return data.decode("utf-8")
 
 
 def check_regular(path: PathLike) -> None:
@@ -82,6 +96,15 @@ def check_regular(path: PathLike) -> None:
             raise NotRegularFile(path, mode)
     finally:
         os.close(fd)
+
+
+def resolved(path: PathLike) -> Path:
+    """Path(path).resolve(); a symlink loop is an OSError (ELOOP), as Python 3.13 raises it, not the
+    RuntimeError of earlier Pythons, which no caller takes for a user's bad file."""
+    try:
+        return Path(path).resolve()
+    except RuntimeError:
+        raise OSError(errno.ELOOP, os.strerror(errno.ELOOP), str(path)) from None
 
 
 def shown(value, limit: int = 40) -> str:

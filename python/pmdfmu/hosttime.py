@@ -10,6 +10,7 @@ generated from the same table), and tests/test_host_time.py compares the two."""
 from __future__ import annotations
 
 import csv
+from fractions import Fraction
 from pathlib import Path
 from typing import Dict, List, Tuple
 
@@ -35,6 +36,19 @@ def read_table(path: Path = None) -> List[Tuple[str, Dict[str, int]]]:
 
 KINDS: Dict[str, Dict[str, int]] = dict(read_table())
 NS_PER_S = 1_000_000_000
+
+
+def ns_of(seconds, what: str) -> int:
+    """seconds (an int, float or Fraction) of host time as whole ns, rounded to the nearest; ValueError
+    naming what for a negative one or one that is no finite number (a negative timeout made wait_for's
+    native loop poll without a limit, for ever)."""
+    try:
+        ns = round(Fraction(seconds) * NS_PER_S)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{what} = {seconds!r} is not a finite number of seconds") from None
+    if ns < 0:
+        raise ValueError(f"{what} = {seconds!r} s is negative")
+    return ns
 
 
 def _bits_ns(bits: int, rate: int) -> int:

@@ -13,12 +13,13 @@ from __future__ import annotations
 import os
 import select
 import socket
+import stat
 import termios
 import time
 import tty
-from fractions import Fraction
 from typing import List, Optional, Sequence, Tuple, Union
 
+from . import hosttime
 from . import serial_protocol as sp
 from .calls import (
     BATCH_WORDS,
@@ -34,7 +35,7 @@ from .calls import (
     sent_name,
     sent_words,
 )
-from .fixed import to_word
+from .fixed import integer, to_word
 from .tables import Command
 
 # how long a reply may take before the host gives up on it and resynchronises, s
@@ -72,6 +73,8 @@ def _connect(where: str, what: str) -> Optional[socket.socket]:
     host, colon, port = where.rpartition(":")
     if not colon or not port.isdigit():
         return None
+    if int(port) > 65535:  # getaddrinfo took 99999 as 99999 mod 65536: another server's port
+        raise ValueError(f"{where}: port {port} is not 0 .. 65535")
     try:
         sock = socket.create_connection((host.strip("[]"), int(port)))
     except OSError as e:
@@ -115,6 +118,9 @@ class LineChip:
                 self._fd = os.open(where, os.O_RDWR | os.O_NOCTTY)
             except OSError as e:
                 raise _named(e, f"device {device!r}: cannot open the line") from None
+            if stat.S_ISREG(os.fstat(self._fd).st_mode):  # the packets were written into the user's file
+                os.close(self._fd)
+                raise ValueError(f"device {device!r}: a regular file, not a serial line: nothing was written")
             try:
                 tty.setraw(self._fd, termios.TCSANOW)
                 if baud in _SPEEDS:
@@ -200,17 +206,19 @@ class LineChip:
 
     def write_memory(self, address: int, words: Sequence[int]) -> None:
         """32-bit words into the chip's dual-port memory, as Chip.write_memory (the server checks them)."""
-        words = [int(w) for w in words]
-        self._ask("write_memory", "write " + " ".join(str(int(w)) for w in [address, *words]))
+        address = integer(address, "write_memory: address")  # never truncated: int(1.5) wrote the word 1
+        words = [integer(w, f"write_memory: words[{i}]") for i, w in enumerate(words)]
+        self._ask("write_memory", "write " + " ".join(str(w) for w in [address, *words]))
 
     def wait(self, seconds) -> None:
         """Host time passes without a command: the line's clock moves on, the chips run the cycles due."""
-        self.wait_ns(round(Fraction(seconds) * 1_000_000_000))
+        self.wait_ns(hosttime.ns_of(seconds, "wait: seconds"))
 
     def wait_ns(self, nanoseconds: int) -> None:
+        nanoseconds = integer(nanoseconds, "wait_ns: nanoseconds")
         if nanoseconds < 0:
             raise ValueError(f"wait_ns: {nanoseconds} ns is negative")
-        self._ask("wait", f"wait {int(nanoseconds)}")
+        self._ask("wait", f"wait {nanoseconds}")
 
     @property
     def host_time_ns(self) -> int:
@@ -296,6 +304,17 @@ class LineChip:
         if len(words) > BATCH_WORDS:
             raise ValueError(f"a batch holds at most {BATCH_WORDS} words, not {len(words)}")
         words = [to_word(w, 16, f"batch: word {i}") for i, w in enumerate(words)]
+        i = 0
+        while i < len(words):  # a packet holds a whole command: one cut short cannot be sent, nor any before it
+            c = OPCODES.get(field_ex(words[i], "PMDInstructionOpcode"))
+            if c is None:
+                break
+            if i + 1 + c.arg_words > len(words):
+                raise ValueError(
+                    f"batch: {c.name} (word {i}) needs {c.arg_words} data words, the batch ends after "
+                    f"{len(words) - i - 1}: over a line each command is a packet of its own; nothing was sent"
+                )
+            i += 1 + c.arg_words
         first, replies, i = 0, [], 0
         while i < len(words):
             c = OPCODES.get(field_ex(words[i], "PMDInstructionOpcode"))
@@ -303,6 +322,8 @@ class LineChip:
             status, reply = self.exchange(words[i], words[i + 1 : i + 1 + n], c.reply_words if c else 0)
             first = first or status
             replies += reply
+            if c is None:  # the chip cannot tell where the next command starts: the batch ends (as Chip.batch)
+                break
             i += 1 + n
         return first, replies
 

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import Dict, Iterator, List, Optional, Tuple, Union
 
-from .files import replaced, shown_path
+from .files import replaced, resolved, shown_path
 from .chip import Chip, FMUError, default_fmu
 from .documentation import documentation_html
 
@@ -90,6 +90,16 @@ def _compile(fmi_version: int, fmu: Path, script: Optional[Path]) -> Tuple[_Read
             raise PackError(f"{fmu}: the FMU compiled no script file (script = {chip.get('script')!r})")
         read = _Read(read_from, tables, chip.get_state(), chip.get("script.axes"), chip.get("script.lastCycle"))
         return read, Path(chip._unzipdir)
+
+
+def tables_loaded(script: Path, fmi_version: int = 2, fmu: Optional[Path] = None) -> List[Path]:
+    """The files of the segment tables the script loads, as the FMU read them (pack's compile); none for a
+    script the FMU refuses, whose run then says why."""
+    try:
+        read, _ = _compile(fmi_version, fmu, script)
+    except (FMUError, PackError):
+        return []
+    return [path for _, _, path in read.tables]
 
 
 def _escape_attribute(value: str) -> str:
@@ -274,10 +284,10 @@ def _by_a_name_the_fmu_reads_as_a_path(script: Path) -> Iterator[Path]:
 def _refuse_outside(script: Path, tables) -> None:
     """A script compiled through the mirror of its folder: every table it loads must be the folder's (a
     relative name reaching out of it would have been looked for beside the mirror, in a shared folder)."""
-    folder = script.parent.resolve()
+    folder = resolved(script.parent)
     for line, name, path in tables:
-        resolved = Path(path).resolve()
-        if resolved != folder and folder not in resolved.parents:
+        table = resolved(path)
+        if table != folder and folder not in table.parents:
             raise PackError(
                 f"{shown_path(script)}:{line}: the table {name} lies outside the script's folder, which "
                 "pack cannot reach for a script whose name holds a line feed: rename the script"
@@ -296,7 +306,7 @@ def pack(
     after the profile (name, default: profile_name(script)); then initializes the copy without
     parameters and checks that it compiled the same script from inside itself.
     out is never one of these inputs; it is written whole or not at all (files.replaced)."""
-    script, out = Path(script).resolve(), Path(out)
+    script, out = resolved(script), Path(out)
     name = profile_name(script) if name is None else name
     if not re.fullmatch(r"[A-Za-z_]\w*", name, flags=re.ASCII):
         raise PackError(f"{name!r}: a profile's name is letters, digits and '_', not beginning with a digit")

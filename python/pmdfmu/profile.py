@@ -169,8 +169,8 @@ def load_external_profile(
             ax.SetBufferLength(buffer_id, length)
             ax.SetBufferFunction(variable, buffer_id)
             column = [r[variable] for r in rows]
-            if upload == "memory":
-                chip.write_memory(address, [v & 0xFFFFFFFF for v in column])
+            if upload == "memory":  # write_memory takes a negative word as its two's complement, never masks
+                chip.write_memory(address, column)
             else:
                 for v in column:
                     ax.WriteBuffer(buffer_id, v)

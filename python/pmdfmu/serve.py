@@ -202,10 +202,14 @@ class _Stop:
         os.close(self.w)
 
 
-def _write_all(fd: int, data: bytes) -> bool:
-    """Writes data whole; False if the client went meanwhile."""
+def _write_all(fd: int, data: bytes, stop: "_Stop") -> bool:
+    """Writes data whole into a non-blocking fd; False if the client went meanwhile, or if the server is
+    stopping while a client that reads no replies keeps the fd full (a blocking write waited for it for
+    ever: SIGTERM and Ctrl-C could not stop the server)."""
     view = memoryview(data)
     while view:
+        if stop.signal:
+            return False
         try:
             n = os.write(fd, view)
         except BlockingIOError:
@@ -292,7 +296,7 @@ def _serve_pty(end: PtyEndpoint, line: Line, stop: _Stop, reset_on_connect: bool
             if reset_on_connect:
                 line.restart()
         reply = line.receive(data)
-        if reply and not _write_all(end.master, reply):
+        if reply and not _write_all(end.master, reply, stop):
             end.connected = False
             line.disconnected("the client closed the port before the reply")
 
@@ -349,11 +353,14 @@ class Monitor:
         if sock is self.endpoint.listener:
             client, _peer = sock.accept()
             client.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            client.setblocking(False)  # _write_all
             self.clients[client] = [b"", 0, False]  # bytes received, the chip selected, inside a line refused
             return
         state = self.clients[sock]
         try:
             data = sock.recv(65536)
+        except BlockingIOError:
+            return
         except OSError:
             data = b""
         if not data:
@@ -375,7 +382,7 @@ class Monitor:
             else:
                 state[0] = rest
                 reply = too_long if len(request) > MONITOR_LINE else self.answer(request, state)
-            if reply is not None and not _write_all(sock.fileno(), (reply + "\n").encode()):
+            if reply is not None and not _write_all(sock.fileno(), (reply + "\n").encode(), self.stop):
                 self._drop(sock)
                 return
             if not newline:
@@ -433,6 +440,10 @@ class Monitor:
             return "ok" if not n else f"error stopped with {n} cycles not run: the server is stopping"
         if verb == "get" and len(args) == 1:
             value = chip.get(args[0])  # a Boolean as 0 or 1, a Real in the digits that read back the same
+            if isinstance(value, str):  # a script's text may hold line feeds: no one-line answer
+                raise ValueError(
+                    f"get {args[0]}: a String variable; the monitor answers numbers (Integer, Boolean, Real)"
+                )
             return f"ok {int(value)}" if isinstance(value, (bool, int)) else f"ok {float(value)!r}"
         if verb == "write" and len(args) >= 2:
             chip.write_memory(_count(args[0], "write: address"), [int(w, 0) for w in args[1:]])
@@ -466,11 +477,14 @@ def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool
             if client is None:
                 client, _peer = end.listener.accept()
                 client.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+                client.setblocking(False)  # _write_all
                 if reset_on_connect:
                     line.restart()
                 continue
             try:
                 data = client.recv(65536)
+            except BlockingIOError:
+                continue
             except OSError:
                 data = b""
             if not data:
@@ -479,13 +493,20 @@ def _serve_tcp(end: TcpEndpoint, line: Line, stop: _Stop, reset_on_connect: bool
                 line.disconnected("the client disconnected")
                 continue
             reply = line.receive(data)
-            if reply and not _write_all(client.fileno(), reply):
+            if reply and not _write_all(client.fileno(), reply, stop):
                 client.close()
                 client = None
                 line.disconnected("the client disconnected before the reply")
     finally:
         if client is not None:
             client.close()
+
+
+def record_paths(record: Optional[Path], chips: int) -> List[Path]:
+    """The files --record writes: record itself for one chip, else NAME-chipK.SUFFIX for chip K."""
+    if record is None:
+        return []
+    return [record] if chips == 1 else [record.with_name(f"{record.stem}-chip{k}{record.suffix}") for k in range(chips)]
 
 
 def serve(
@@ -531,8 +552,7 @@ def serve(
         (_serve_pty if serial is not None else _serve_tcp)(end, line, stop, reset_on_connect, watcher)
         print(f"pmdfmu serve: stopped after {line.packets} packets", file=out, flush=True)
         if record is not None:
-            for k, c in enumerate(served):
-                path = record if chips == 1 else record.with_name(f"{record.stem}-chip{k}{record.suffix}")
+            for path, c in zip(record_paths(record, chips), served):
                 write_recording(path, c.recording())
                 print(f"wrote {path}", file=out, flush=True)
         return 0

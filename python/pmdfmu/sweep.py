@@ -151,7 +151,7 @@ def _cases(path: Path, text: str) -> List[Case]:
 
         def resolve(key, row=row):
             value = (row.get(key) or "").strip()
-            return str((path.parent / value).resolve()) if value else None
+            return str(files.resolved(path.parent / value)) if value else None
 
         if not (row.get("name") or "").strip():
             raise ValueError(f"{path}:{n}: a case needs a name")
@@ -292,8 +292,17 @@ def written_files(cases: Sequence[Case], out: Union[str, Path]) -> List[Path]:
 
 def refuse_writing_over_inputs(cases: Sequence[Case], out: Union[str, Path], inputs: Sequence[Path] = ()) -> None:
     """ValueError before anything runs if a file the sweep writes to `out` is one of its inputs (the case
-    table, a case's script or table): `--out` the table's folder and a case named after a table, say."""
-    sources = [Path(p) for p in [*inputs, *(c.script or c.table for c in cases)] if p]
+    table, a case's script, table or FMU, a table a case's script loads: the FMU's answer, pack.tables_loaded,
+    asked only when a file the sweep writes exists already): `--out` the table's folder and a case named after
+    a table, say."""
+    if not any(written.exists() for written in written_files(cases, out)):
+        return
+    from .pack import tables_loaded
+
+    sources = [Path(p) for p in [*inputs, *(c.script or c.table for c in cases), *(c.fmu for c in cases)] if p]
+    for c in cases:
+        if c.script:
+            sources += tables_loaded(Path(c.script), c.fmi_version, Path(c.fmu) if c.fmu else None)
     for written in written_files(cases, out):
         for source in sources:
             if written.exists() and source.exists() and written.samefile(source):

@@ -17,6 +17,7 @@ from typing import Dict, List, Optional, Sequence, Union
 import numpy as np
 
 from . import native
+from .fixed import integer
 
 # the axis-1 loop: the chip's motor command drives the plant, its encoder count is the chip's actual position
 WIRING = {"chip.axis1.motorCommand": "plant.motorCommand", "plant.encoderCount": "chip.axis1.actualPosition"}
@@ -37,6 +38,29 @@ TYPES = {
         "Boolean": (native.BOOL, "Boolean", np.bool_),
     },
 }
+
+# the values an integer or Boolean FMI type holds: a wire carries its output's values exactly when they are
+# all its input's (an Int16 into an Int32, an Integer into a Real); native/system.c would truncate a Real
+# into an Integer and wrap an Int32 into an Int16, silently
+RANGES = {
+    "Integer": (-(2**31), 2**31 - 1),
+    "Int32": (-(2**31), 2**31 - 1),
+    "UInt32": (0, 2**32 - 1),
+    "Int16": (-(2**15), 2**15 - 1),
+    "UInt16": (0, 2**16 - 1),
+    "Boolean": (0, 1),
+}
+
+
+def _carries(output_type: str, input_type: str) -> bool:
+    """Whether every value of output_type reaches an input of input_type unchanged (a double holds every
+    32-bit integer)."""
+    if input_type not in RANGES:
+        return True
+    if output_type not in RANGES:
+        return False
+    (lo, hi), (input_lo, input_hi) = RANGES[output_type], RANGES[input_type]
+    return input_lo <= lo and hi <= input_hi
 
 
 @lru_cache(maxsize=None)
@@ -84,7 +108,9 @@ class PlantInstance:
     and initialized, its inputs given by `inputs` before the end of initialization."""
 
     def __init__(self, path: Path, fmi_version: int, start: float, parameters: dict, inputs):
-        from .chip import LogMessage, STATUS_NAMES, _Slave2, _Slave3, _unpack, _UNPACKED_LOCK
+        from fmpy.fmi1 import FMICallException
+
+        from .chip import FMURefusal, LogMessage, STATUS_NAMES, _Slave2, _Slave3, _unpack, _UNPACKED_LOCK
 
         unpacked, functions = _unpack(path, fmi_version)
         self.path, self.fmi_version, self.messages = path, fmi_version, []
@@ -112,14 +138,23 @@ class PlantInstance:
             self.fmu.setupExperiment(startTime=start)
         else:
             self.fmu.instantiate(logMessage=lambda env, status, cat, msg: log(status, msg))
-        for name, value in parameters.items():
-            self.set(name, value)
-        if fmi_version == 2:
-            self.fmu.enterInitializationMode()
-        else:
-            self.fmu.enterInitializationMode(startTime=start)
-        inputs(self)
-        self.fmu.exitInitializationMode()
+        try:  # a refusal says the plant's reason, as Chip's do, and frees the instance
+            for name, value in parameters.items():
+                self.set(name, value)
+            if fmi_version == 2:
+                self.fmu.enterInitializationMode()
+            else:
+                self.fmu.enterInitializationMode(startTime=start)
+            inputs(self)
+            self.fmu.exitInitializationMode()
+        except FMICallException as e:
+            self.fmu.freeInstance()
+            self.fmu = None
+            raise FMURefusal(e.function, e.status, [m.message for m in self.messages if m.status != "OK"]) from None
+        except BaseException:
+            self.fmu.freeInstance()
+            self.fmu = None
+            raise
 
     def set(self, name: str, value) -> None:
         v = self.variables.get(name)
@@ -136,6 +171,13 @@ class PlantInstance:
             self.fmu.terminate()
             self.fmu.freeInstance()
             self.fmu = None
+
+
+def _plant_variables(path: Path, fmi_version: int) -> dict:
+    """The plant FMU's variables by name, read before it is instantiated (the wiring is checked first)."""
+    from .chip import _unpack
+
+    return _unpack(path, fmi_version)[0].variables
 
 
 class System:
@@ -171,6 +213,8 @@ class System:
             for end in (a, b):
                 if end.split(".", 1)[0] not in ("chip", "plant") or "." not in end:
                     raise ValueError(f"wiring: {end!r} is not chip.<variable> or plant.<variable>")
+        self._variables = {"chip": chip.variables, "plant": _plant_variables(plant.path(chip), version)}
+        self._check_wiring()
         into_plant = [(a, b) for a, b in self.wiring.items() if b.startswith("plant.")]
         self.plant = PlantInstance(
             plant.path(chip),
@@ -180,7 +224,29 @@ class System:
             lambda p: [p.set(b[6:], chip.get(a[5:])) for a, b in into_plant],
         )
         self._fmus = {"chip": chip.fmu, "plant": self.plant.fmu}
-        self._variables = {"chip": chip.variables, "plant": self.plant.variables}
+
+    def _check_wiring(self) -> None:
+        """Each wire from an output to an input of the other FMU, of a type that carries the output's every
+        value, and no input driven twice: else ValueError naming the wire (a second wire into one input
+        overwrote the first silently; a Real into an Integer was truncated)."""
+        driven: Dict[str, str] = {}
+        for a, b in self.wiring.items():
+            (source, out), (target, into) = self._variable(a), self._variable(b)
+            if source == target:
+                raise ValueError(f"wiring: {a} -> {b}: a wire goes from one FMU to the other")
+            if out.causality != "output" or into.causality != "input":
+                raise ValueError(
+                    f"wiring: {a} -> {b}: a wire goes from an output to an input, not from {out.causality} "
+                    f"{a} to {into.causality} {b}"
+                )
+            if not _carries(out.type, into.type):
+                raise ValueError(
+                    f"wiring: {a} -> {b}: a {out.type} does not fit a {into.type} input unchanged (it would be "
+                    "truncated or wrap): wire variables of types that hold the output's values"
+                )
+            if b in driven:
+                raise ValueError(f"wiring: {b} is driven by both {driven[b]} and {a}")
+            driven[b] = a
 
     def close(self) -> None:
         self.plant.close()
@@ -270,6 +336,7 @@ class System:
 
         from . import recording
 
+        cycles = integer(cycles, "run: cycles")  # never rounded, nor left to ctypes to refuse
         if cycles < 0:
             raise ValueError("cycles must be >= 0")
         names = tuple(record)

@@ -1162,7 +1162,7 @@ def read_verify_cases(path: PathLike) -> List[VerifyCase]:
 
     def resolve(row, key):
         value = (row.get(key) or "").strip()
-        return str((path.parent / value).resolve()) if value else None
+        return str(files.resolved(path.parent / value)) if value else None
 
     return [VerifyCase(case, resolve(row, "golden"), resolve(row, "assertions")) for case, row in zip(cases, rows)]
 
