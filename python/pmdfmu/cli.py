@@ -21,6 +21,7 @@ import _thread
 import argparse
 import math
 import os
+import select
 import signal
 import subprocess
 import sys
@@ -826,7 +827,7 @@ class _Parser(argparse.ArgumentParser):
 
 def main(argv: Optional[List[str]] = None) -> int:
     """The command; exit status 0 done, 1 failed (verify: a check failed; validate: problems found), 2 an input
-    error (one line: INPUT_ERRORS), 130 interrupted (one line)."""
+    error (one line: INPUT_ERRORS), 130 interrupted (one line), 141 standard output's reader went away (silent)."""
     global _verbosity
     command = "pmdfmu"
     try:
@@ -835,15 +836,17 @@ def main(argv: Optional[List[str]] = None) -> int:
         _verbosity = args.verbosity
         progress.show(True if args.progress else False if _verbosity < 0 else None)
         return args.func(args)
-    except BrokenPipeError:
-        # the reader went away (`pmdfmu info | head`): no input was bad. Stop quietly, as a tool that
-        # SIGPIPE ends does, with its status; files being written are removed as for any error
-        try:  # Python's own flush at exit would fail again, with a traceback
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        except (OSError, ValueError):  # stdout is no file (a test's capture)
-            pass
-        return EXIT_BROKEN_PIPE
     except INPUT_ERRORS as e:
+        if isinstance(e, BrokenPipeError) and _reader_gone():
+            # the reader went away (`pmdfmu info | head`): no input was bad. Stop quietly, as a tool that
+            # SIGPIPE ends does, with its status; files being written are removed as for any error
+            try:  # Python's own flush at exit would fail again, with a traceback
+                devnull = os.open(os.devnull, os.O_WRONLY)
+                os.dup2(devnull, sys.stdout.fileno())
+                os.close(devnull)
+            except (OSError, ValueError):  # stdout is no file (a test's capture)
+                pass
+            return EXIT_BROKEN_PIPE
         print(f"{command}: {one_line(e)}", file=sys.stderr)
         return EXIT_INPUT
     except KeyboardInterrupt:
@@ -853,6 +856,21 @@ def main(argv: Optional[List[str]] = None) -> int:
     finally:
         _verbosity = 0
         progress.show(None)
+
+
+def _reader_gone() -> bool:
+    """Whether standard output or error is a pipe or socket its reader has closed: what a BrokenPipeError
+    from a print means. One from a pipe or socket of the command's own (a device's line, a worker's) is
+    an error to name, not a reason to end without a word."""
+    if not hasattr(select, "poll"):  # Windows: no poll to ask, as before
+        return True
+    poll = select.poll()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            poll.register(stream.fileno(), select.POLLOUT)
+        except (AttributeError, OSError, ValueError):  # no file (a test's capture): no reader to lose
+            pass
+    return any(events & (select.POLLERR | select.POLLHUP) for _, events in poll.poll(0))
 
 
 def _interrupt_again(unraisable) -> None:
