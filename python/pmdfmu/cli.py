@@ -877,11 +877,20 @@ def _interrupt_again(unraisable) -> None:
     """The program's sys.unraisablehook. A Ctrl-C that lands in a weakref or garbage collector callback or a
     finalizer (matplotlib's, FMPy's) is dropped there by Python with a traceback, and the command would
     run on to its end: it is delivered again once the callback is over. A timer thread delivers it, since
-    one raised here would land in this hook and be dropped too."""
+    one raised here would land in this hook and be dropped too; as a SIGINT to the main thread, which wakes
+    a wait there (on a lock, a sweep's cases) as a Ctrl-C does: interrupt_main's flag is seen only when
+    the wait is over."""
     if issubclass(unraisable.exc_type, KeyboardInterrupt):
-        threading.Timer(0.001, _thread.interrupt_main).start()
+        threading.Timer(0.001, _interrupt_main).start()
     else:
         sys.__unraisablehook__(unraisable)
+
+
+def _interrupt_main() -> None:
+    if hasattr(signal, "pthread_kill"):
+        signal.pthread_kill(threading.main_thread().ident, signal.SIGINT)
+    else:  # Windows
+        _thread.interrupt_main()
 
 
 def console() -> None:
