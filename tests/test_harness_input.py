@@ -4,6 +4,7 @@ that does not fit is refused with a ValueError naming it, before anything reache
 FMU; the in-range boundary values do exactly what they say, through FMI 2 and FMI 3."""
 
 import re
+from pathlib import Path
 
 import pytest
 
@@ -173,6 +174,13 @@ def test_a_value_of_another_type_is_refused_naming_the_variable(any_chip):
     chip.set("axis1.home", True)
     chip.set("axis1.home", 0)
     assert chip.get("axis1.home") in (False, 0)
+
+
+def test_a_string_variable_takes_a_path_as_its_text(any_chip):
+    """set's check takes a path for a String (`a path, or the text itself`): FMPy, which encodes a str,
+    raised AttributeError ("'PosixPath' object has no attribute 'encode'")."""
+    any_chip.set("record.columns", Path("axis1.commandedPosition"))
+    assert any_chip.get("record.columns") == "axis1.commandedPosition"
 
 
 # ---- fixed point through the chip ----

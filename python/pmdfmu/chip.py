@@ -577,6 +577,8 @@ class Chip:
                     raise ValueError(f"{what} = {x!r} is not a Boolean (True or False)")
                 if v.type == "String" and not isinstance(x, (str, os.PathLike)):
                     raise ValueError(f"{what} = {x!r} is not a string (a path, or the text itself)")
+            if v.type == "String":  # FMPy encodes a str: a Path is its text
+                values = [os.fspath(x) for x in values]
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)
 
