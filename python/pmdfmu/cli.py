@@ -214,17 +214,27 @@ def _run_table(
     status = _write_run(run, csv_path, plot_path, title, command, html_path)
     if status:
         return status
+    _say_where_axes_ended(run, {axis: rows[-1][0] for axis, rows in tables.items()})
+    return 0
+
+
+def _say_where_axes_ended(run: profile.ProfileRun, last_rows: Optional[dict] = None) -> None:
+    """What a run with no output asked for still says: where each axis ended (or stood at the window's
+    end), and for a table whether that is its last row's position (last_rows: axis -> position)."""
+    rec = run.recording
     for axis in run.axes:
         n = axis + 1
-        position, last = int(rec[f"axis{n}.commandedPosition"][-1]), tables[axis][-1][0]
-        if run.ended:
+        position = int(rec[f"axis{n}.commandedPosition"][-1])
+        if not run.ended:
+            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
+        elif last_rows is None:
+            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
+        else:
+            last = last_rows[axis]
             _say(
                 f"axis {n}: ended at position {position} after {len(rec)} cycles "
                 f"({'as' if position == last else 'NOT as'} the table's last row, {last})"
             )
-        else:
-            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
-    return 0
 
 
 # the platforms `pmdfmu build --platforms` cross-builds (CMakeLists.txt's PMD_PLATFORMS)
@@ -343,15 +353,7 @@ def cmd_run(args) -> int:
     status = _write_run(run, csv_path, plot_path, title, html_path=html_path)
     if status:
         return status
-    # as for a table: a run with no output asked for still says what it did
-    rec = run.recording
-    for axis in run.axes:
-        n = axis + 1
-        position = int(rec[f"axis{n}.commandedPosition"][-1])
-        if run.ended:
-            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
-        else:
-            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
+    _say_where_axes_ended(run)  # as for a table
     return 0
 
 
