@@ -26,6 +26,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 import zipfile
 from pathlib import Path
 from typing import Iterable, List, Optional, Tuple
@@ -894,17 +895,21 @@ def _reader_gone() -> bool:
 def _interrupt_again(unraisable) -> None:
     """The program's sys.unraisablehook. A Ctrl-C that lands in a weakref or garbage collector callback or a
     finalizer (matplotlib's, FMPy's) is dropped there by Python with a traceback, and the command would
-    run on to its end: it is delivered again once the callback is over. A timer thread delivers it, since
+    run on to its end: it is delivered again once the callback is over. A thread delivers it, since
     one raised here would land in this hook and be dropped too; as a SIGINT to the main thread, which wakes
     a wait there (on a lock, a sweep's cases) as a Ctrl-C does: interrupt_main's flag is seen only when
     the wait is over."""
     if issubclass(unraisable.exc_type, KeyboardInterrupt):
-        threading.Timer(0.001, _interrupt_main).start()
+        left = threading.Event()
+        threading.Thread(target=_interrupt_main, args=(left,), daemon=True).start()
+        left.set()  # the last thing done here: however late the main thread runs, the signal comes after
     else:
         sys.__unraisablehook__(unraisable)
 
 
-def _interrupt_main() -> None:
+def _interrupt_main(left: threading.Event) -> None:
+    left.wait()
+    time.sleep(0.001)  # the hook's return
     if hasattr(signal, "pthread_kill"):
         signal.pthread_kill(threading.main_thread().ident, signal.SIGINT)
     else:  # Windows
