@@ -18,7 +18,7 @@ that step, named `component.connector`.
 
     python examples/systems/systems.py ssp --out move.ssp
     python examples/systems/systems.py container --out move-container.fmu
-    python examples/systems/systems.py run {gauss-seidel,jacobi,fmpy-ssp,libcosim,container} [--fmi 2|3]
+    python examples/systems/systems.py run {gauss-seidel,jacobi,fmpy-ssp,libcosim,container} [--fmi-version 2|3]
 
 The .ssd wires the chip's Real axis1.motorOutput to the plant's Real
 motorOutput; motor="motorCommand" (run --motor motorCommand) wires the Integer
@@ -544,7 +544,7 @@ def main(argv=None) -> None:
     )
     r = sub.add_parser("run", help="run the system and print what it did")
     r.add_argument("master", choices=MASTERS)
-    r.add_argument("--fmi", type=int, choices=(2, 3), default=2, help="FMI version of the plain master's FMUs")
+    r.add_argument("--fmi-version", type=int, choices=(2, 3), default=2, help="FMI version of the plain master's FMUs")
     r.add_argument("--csv", type=Path, help="also write every step to this CSV file")
     r.add_argument(
         "--motor",
@@ -560,7 +560,7 @@ def main(argv=None) -> None:
     else:
         if args.motor != "motorOutput" and args.master not in ("gauss-seidel", "jacobi"):
             parser.error("--motor: the .ssp and the container wire the .ssd's motorOutput")
-        result = run(args.master, args.fmi, motor=args.motor)
+        result = run(args.master, args.fmi_version, motor=args.motor)
         print(
             f"{args.master}: {len(result)} cycles; motion complete after cycle {motion_complete(result)}; "
             f"encoder {result['plant.encoderCount'][-1]} counts (commanded "
