@@ -300,13 +300,25 @@ def refuse_writing_over_inputs(cases: Sequence[Case], out: Union[str, Path], inp
     from .pack import tables_loaded
 
     sources = [Path(p) for p in [*inputs, *(c.script or c.table for c in cases), *(c.fmu for c in cases)] if p]
-    for c in cases:
-        if c.script:
-            sources += tables_loaded(Path(c.script), c.fmi_version, Path(c.fmu) if c.fmu else None)
+    # each script compiled once (a sweep's cases mostly share one), each file stat'ed once: a file by its
+    # device and inode, as samefile compares them
+    for script, version, fmu in dict.fromkeys((c.script, c.fmi_version, c.fmu) for c in cases if c.script):
+        sources += tables_loaded(Path(script), version, Path(fmu) if fmu else None)
+    inputs_by_file = {}
+    for source in sources:
+        try:
+            st = source.stat()
+        except OSError:
+            continue
+        inputs_by_file.setdefault((st.st_dev, st.st_ino), source)
     for written in written_files(cases, out):
-        for source in sources:
-            if written.exists() and source.exists() and written.samefile(source):
-                raise ValueError(f"{written}: the sweep would write over its input {source}: give another --out")
+        try:
+            st = written.stat()
+        except OSError:
+            continue
+        source = inputs_by_file.get((st.st_dev, st.st_ino))
+        if source is not None:
+            raise ValueError(f"{written}: the sweep would write over its input {source}: give another --out")
 
 
 @dataclass
