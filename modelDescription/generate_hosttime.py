@@ -8,7 +8,9 @@ timing model's table (host/c/PMDhosttime.c includes it):
                         the table, in camelCase: bus_cycle_ns -> busCycleNs) and
                         PMD_HOST_INTERFACE_DEFAULTS, an initializer of one
                         PMDHostInterface per kind, in the table's order, holding
-                        the kind's defaults (0 for parameters it does not have)
+                        the kind's defaults (0 for parameters it does not have);
+                        PMD_HOST_INTERFACE_RANGES, each parameter's range by kind
+                        (kind, name, member offset, min, max: PMDHostInterfaceRefused)
 
 python/pmdfmu/hosttime.py reads the same table, so both sides take their
 defaults from one place; tests/test_host_time.py compares the two formulas.
@@ -27,20 +29,25 @@ from generating import write_files  # noqa: E402  (this folder's helper)
 TABLE = HERE / "host_interfaces.csv"
 
 
-def read_table(path=TABLE):
-    """[(kind, {parameter: default})] in the table's order; a kind's row with an
-    empty parameter (none) declares the kind without parameters."""
+UINT32_MAX = (1 << 32) - 1
+
+
+def read_table(path=TABLE, ranges=False):
+    """[(kind, {parameter: default})] in the table's order ({parameter: (default, min, max)} with
+    ranges, an empty max 2^32-1); a kind's row with an empty parameter (none) declares the kind
+    without parameters."""
     kinds = {}
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             params = kinds.setdefault(row["kind"], {})
             if row["parameter"]:
+                name = f"{path.name}: {row['kind']}.{row['parameter']}"
                 if row["parameter"] in params:
-                    raise ValueError(f"{path.name}: {row['kind']}.{row['parameter']} given twice")
-                value = int(row["default"])
-                if not 0 <= value < 1 << 32:
-                    raise ValueError(f"{path.name}: {row['kind']}.{row['parameter']} = {value} is not a uint32")
-                params[row["parameter"]] = value
+                    raise ValueError(f"{name} given twice")
+                value, lo, hi = int(row["default"]), int(row["min"]), int(row["max"] or UINT32_MAX)
+                if not 0 <= lo <= value <= hi <= UINT32_MAX:
+                    raise ValueError(f"{name}: default {value} is not in its range {lo} .. {hi} of uint32")
+                params[row["parameter"]] = (value, lo, hi) if ranges else value
     return list(kinds.items())
 
 
@@ -61,6 +68,7 @@ def header(table):
         "#ifndef PMD_HOSTTIME_TABLE_H",
         "#define PMD_HOSTTIME_TABLE_H",
         "",
+        "#include <stddef.h>",
         "#include <stdint.h>",
         "",
         "/* the host interface kinds, in the table's order */",
@@ -89,8 +97,17 @@ def header(table):
         "#define PMD_HOST_INTERFACE_DEFAULTS { \\",
     ]
     for k, params in table:
-        values = ", ".join(f".{camel(m)} = {v}u" for m, v in params.items())
+        values = ", ".join(f".{camel(m)} = {v}u" for m, (v, _lo, _hi) in params.items())
         out.append(f"    {{ .kind = {kind_constant(k)}{', ' + values if values else ''} }}, \\")
+    out += [
+        "}",
+        "",
+        "/* Each kind's parameters and their ranges (what a PMDHostInterface may hold). */",
+        "#define PMD_HOST_INTERFACE_RANGES { \\",
+    ]
+    for k, params in table:
+        for m, (_value, lo, hi) in params.items():
+            out.append(f'    {{ {kind_constant(k)}, "{m}", offsetof(PMDHostInterface, {camel(m)}), {lo}u, {hi}u }}, \\')
     out += ["}", "", "#endif", ""]
     return "\n".join(out)
 
@@ -100,7 +117,7 @@ def main(argv):
         sys.exit(__doc__)
     outdir = Path(argv[1])
     outdir.mkdir(parents=True, exist_ok=True)
-    write_files(outdir, {"PMDhosttime_table.h": header(read_table())})
+    write_files(outdir, {"PMDhosttime_table.h": header(read_table(ranges=True))})
 
 
 if __name__ == "__main__":

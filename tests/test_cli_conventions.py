@@ -93,6 +93,29 @@ def test_a_reader_that_goes_away_ends_the_command_quietly():
     assert info.stderr.read() == ""
 
 
+# a command whose own socket's peer went away, while its standard output is read on
+PEER_GONE = """
+import socket
+import pmdfmu.cli as cli
+line, peer = socket.socketpair()
+peer.close()
+def send(args):
+    line.sendall(b"x" * 100_000)
+    return 0
+cli.cmd_path = send
+raise SystemExit(cli.main(["path"]))
+"""
+
+
+@pytest.mark.slow
+def test_a_broken_pipe_of_the_commands_own_is_named_not_silenced():
+    """Only standard output's reader going away is the quiet 141: a line or socket of the command's own
+    that breaks is an error, and said."""
+    child = subprocess.run([sys.executable, "-c", PEER_GONE], capture_output=True, text=True, timeout=120)
+    assert (child.returncode, child.stdout) == (2, "")
+    assert child.stderr == "pmdfmu path: [Errno 32] Broken pipe\n"
+
+
 @pytest.mark.slow
 def test_sweep_leaves_its_status_0_for_a_failed_case_unless_asked(tmp_path, capsys):
     with pytest.raises(SystemExit):

@@ -182,6 +182,36 @@ def test_an_interrupt_python_drops_inside_a_callback_still_interrupts(tmp_path, 
     assert not partial_files(tmp_path)
 
 
+# the same, then a wait the command's main thread blocks in (as on a sweep's cases); the interrupt is
+# delivered again once the main thread waits there
+DROPPED_THEN_WAITING = """
+import gc, threading
+import pmdfmu.cli as cli
+Timer = threading.Timer
+cli.threading.Timer = lambda interval, function: Timer(0.5, function)
+def interrupt(phase, info):
+    gc.callbacks.clear()
+    raise KeyboardInterrupt
+def wait(args):
+    gc.callbacks.append(interrupt)
+    gc.collect()
+    threading.Event().wait(20)
+    return 0
+cli.cmd_path = wait
+cli.sys.argv = ["pmdfmu", "path"]
+cli.console()
+"""
+
+
+def test_an_interrupt_python_drops_wakes_a_wait_at_once():
+    """The interrupt delivered again wakes the main thread's wait, as a Ctrl-C does: _thread.interrupt_main
+    alone was seen only when the wait was over, here 20 s later."""
+    start = time.monotonic()
+    child = subprocess.run([sys.executable, "-c", DROPPED_THEN_WAITING], capture_output=True, text=True, timeout=120)
+    assert (child.returncode, child.stderr) == (130, "pmdfmu path: interrupted\n")
+    assert time.monotonic() - start < 15
+
+
 def test_an_interrupt_inside_a_zip_members_write_reaches_the_caller_as_itself(tmp_path, monkeypatch):
     """Ctrl-C inside zipfile's write of a member (where the random signals of the test above landed once):
     pack raises KeyboardInterrupt, not the ValueError ("seek of closed file") that closing the half-written

@@ -163,3 +163,17 @@ def test_an_fmu_named_but_missing_is_named_in_the_log(programs, tmp_path):
     assert out.stdout.split() == ["S", f"0x{PMD_ERR_OpeningPort:X}"]
     lines = out.stderr.splitlines()
     assert lines == [f"L transport 3 cannot open the FMU {tmp_path / 'missing.fmu'}: No such file or directory"]
+
+
+@pytest.mark.parametrize("baud", [0, 9600])
+def test_a_host_interface_parameter_outside_its_range_opens_no_chip(programs, baud):
+    """The attacker's finding: a serial line of 0 baud made every command take no time; the opening is
+    refused with one transport line naming the parameter and its range (modelDescription/host_interfaces.csv)."""
+    out = run(programs, "cmotion_log", "serial", baud)
+    if baud:
+        assert out.stdout.split() == ["S", "0x0"] and not out.stderr
+        return
+    assert out.stdout.split() == ["S", f"0x{PMD_ERR_OpeningPort:X}"]
+    assert out.stderr.splitlines() == [
+        "L transport 3 host interface serial: baud = 0 is not in 1 .. 4294967295: no chip opened"
+    ]

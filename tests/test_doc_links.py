@@ -25,8 +25,11 @@ def prose(text: str) -> str:
 
 
 def slug(heading: str) -> str:
-    """GitHub's anchor of a heading: lower case, markup and punctuation dropped, blanks to hyphens."""
-    text = re.sub(r"[`*_]|\[([^]]*)\]\([^)]*\)", r"\1", heading.strip()).lower()
+    """GitHub's anchor of a heading: lower case, markup and punctuation dropped, blanks to hyphens. An
+    underscore stays (in a code span or a word: `assert_trajectory`), unless it marks _emphasis_."""
+    parts = re.split(r"(`[^`]*`)", heading.strip())
+    markup = r"\*|(?<!\w)_|_(?!\w)|\[([^]]*)\]\([^)]*\)"
+    text = "".join(p[1:-1] if p.startswith("`") else re.sub(markup, r"\1", p) for p in parts).lower()
     return re.sub(r"[^\w\- ]", "", text).replace(" ", "-")
 
 
@@ -81,14 +84,18 @@ def broken(page: Path) -> list:
 
 
 def test_the_checker_finds_what_is_broken(tmp_path):
-    (tmp_path / "b.md").write_text("# Two words\n\n## `pmdfmu run`: windows\n\n**Golden traces** are ...\n")
+    (tmp_path / "b.md").write_text(
+        "# Two words\n\n## `pmdfmu run`: windows\n\n## `assert_trajectory` _as_ run_id\n\n**Golden traces** are ...\n"
+    )
     page = tmp_path / "a.md"
     page.write_text(
         '[ok](b.md#two-words) [ok](b.md#pmdfmu-run-windows) [ok](https://x.org/#y) (b.md, "Golden traces")\n'
+        "[ok](b.md#assert_trajectory-as-run_id) [bad](b.md#asserttrajectory-as-runid)\n"
         '[gone](c.md) [bad](b.md#three-words) (b.md, "Silver traces") README "Scripts"\n'
         "```\n[code](not/a/link.md)\n```\n"
     )
     assert broken(page) == [
+        f"{tmp_path / 'b.md'}#asserttrajectory-as-runid: no such heading",
         f"{tmp_path / 'c.md'}: no such file",
         f"{tmp_path / 'b.md'}#three-words: no such heading",
         'b.md, "Silver traces": no such heading or bold lead',

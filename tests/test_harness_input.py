@@ -6,6 +6,7 @@ FMU; the in-range boundary values do exactly what they say, through FMI 2 and FM
 import math
 import re
 from decimal import Decimal
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -218,6 +219,13 @@ def test_a_boolean_real_or_string_value_of_another_kind_is_refused(any_chip):
     with pytest.raises(ValueError, match="set: loopback = 'no' is not a Boolean"):
         pmdfmu.Chip(chip.fmi_version, loopback="no")
     refused(chip, lambda: chip.set("analog[2]", 1.0), r"analog\[2\]", "not an integer")
+
+
+def test_a_string_variable_takes_a_path_as_its_text(any_chip):
+    """set's check takes a path for a String (`a path, or the text itself`): FMPy, which encodes a str,
+    raised AttributeError ("'PosixPath' object has no attribute 'encode'")."""
+    any_chip.set("record.columns", Path("axis1.commandedPosition"))
+    assert any_chip.get("record.columns") == "axis1.commandedPosition"
 
 
 # ---- fixed point through the chip ----

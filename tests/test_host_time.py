@@ -8,6 +8,7 @@ detection (polling, and the breakpoint interrupt) against the exact reference mo
 plus the host's transfer times, computed here independently of the harness."""
 
 import ctypes
+import re
 import importlib.util
 import shutil
 import subprocess
@@ -28,7 +29,7 @@ from pmdfmu import (
     PMDExternalProfile,
     field_ex,
 )
-from pmdfmu.hosttime import KINDS, cycles_due
+from pmdfmu.hosttime import KINDS, RANGES, cycles_due
 from reference import ExternalProfile
 
 REPO = Path(__file__).resolve().parents[1]
@@ -88,6 +89,35 @@ def test_host_interface_refuses_what_the_table_does_not_have():
         HostInterface("serial", baud=9600.0)
     with pytest.raises(TypeError):
         pmdfmu.Chip(host_interface=3)
+
+
+# the attacker's finding: baud 0 made every byte take no time, parity 5 and stop_bits 7 were taken
+OUT_OF_RANGE = [
+    ("serial", "baud", 0, "1 .. 2^32-1"),
+    ("serial", "parity", 5, "0 .. 1"),
+    ("serial", "stop_bits", 7, "1 .. 2"),
+    ("serial", "stop_bits", 0, "1 .. 2"),
+    ("serial", "data_bits", 9, "5 .. 8"),
+    ("spi", "clock_hz", 0, "1 .. 2^32-1"),
+    ("parallel16", "checksum", 2, "0 .. 1"),
+    ("fixed", "reply_ns", 2**32, "0 .. 2^32-1"),
+]
+
+
+@pytest.mark.parametrize("kind, name, value, shown", OUT_OF_RANGE)
+def test_host_interface_refuses_a_parameter_outside_the_tables_range(kind, name, value, shown):
+    with pytest.raises(
+        ValueError, match=rf"host interface {kind}: {name} = {value} is not an integer {re.escape(shown)}$"
+    ):
+        HostInterface(kind, **{name: value})
+
+
+def test_every_default_lies_in_its_range_and_the_ranges_ends_are_taken():
+    for kind, ranges in RANGES.items():
+        for name, (lo, hi) in ranges.items():
+            assert lo <= KINDS[kind][name] <= hi, (kind, name)
+            assert HostInterface(kind, **{name: lo}).parameters[name] == lo
+            assert HostInterface(kind, **{name: hi}).parameters[name] == hi
 
 
 def test_every_number_of_the_table_has_a_unit_source_and_confidence():
@@ -190,6 +220,19 @@ def test_python_and_c_agree_on_every_interface_and_word_count(c_hosttime):
         assert lib.PMDHostInterfaceKind(kind.encode()) == k
     assert lib.PMDHostInterfaceDefault().kind == list(KINDS).index("parallel16")
     assert lib.PMDHostInterfaceKind(b"usb") == -1
+    lib.PMDHostInterfaceRefused.restype = ctypes.c_char_p
+    value, lo, hi = ctypes.c_uint32(), ctypes.c_uint32(), ctypes.c_uint32()
+    for host in INTERFACES:  # every one in range, as Python took it
+        assert lib.PMDHostInterfaceRefused(ctypes.byref(c_interface(Interface, generator, host)), value, lo, hi) is None
+    for kind, name, bad, _shown in OUT_OF_RANGE[:-1]:  # the same ranges: C refuses what Python does
+        s = c_interface(Interface, generator, HostInterface(kind))
+        setattr(s, generator.camel(name), bad)
+        refused = lib.PMDHostInterfaceRefused(ctypes.byref(s), ctypes.byref(value), ctypes.byref(lo), ctypes.byref(hi))
+        assert (refused.decode(), value.value, (lo.value, hi.value)) == (name, bad, RANGES[kind][name])
+    s = Interface(kind=len(KINDS))
+    assert (
+        lib.PMDHostInterfaceRefused(ctypes.byref(s), ctypes.byref(value), ctypes.byref(lo), ctypes.byref(hi)) == b"kind"
+    )
     for host in INTERFACES:
         s = ctypes.byref(c_interface(Interface, generator, host))
         for words in range(1, 66):

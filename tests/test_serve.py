@@ -334,6 +334,18 @@ def test_a_line_that_cannot_be_opened_is_named(tmp_path):
         pmdfmu.Chip(device=missing)
 
 
+def test_a_line_error_without_an_errno_is_named_without_one(monkeypatch):
+    """socket.create_connection raises OSError("getaddrinfo returns an empty list"), errno None."""
+
+    def empty(address):
+        raise OSError("getaddrinfo returns an empty list")
+
+    monkeypatch.setattr(socket, "create_connection", empty)
+    with pytest.raises(OSError) as info:
+        LineChip("tcp:example.invalid:1")
+    assert str(info.value) == "device 'tcp:example.invalid:1': cannot connect: getaddrinfo returns an empty list"
+
+
 def test_a_refused_monitor_closes_the_line_it_opened():
     with socket.create_server(("127.0.0.1", 0)) as line, socket.create_server(("127.0.0.1", 0)) as gone:
         closed = "tcp:127.0.0.1:%d" % gone.getsockname()[1]

@@ -607,6 +607,19 @@ PMDresult PMDSetupAxisInterface_FMU(PMDAxisHandle *axis_handle, PMDAxis axisNumb
 #ifdef PMD_HAVE_HOSTTIME
     d->hostInterface = d->options.hostInterface ? *d->options.hostInterface : PMDHostInterfaceDefault();
     d->commandsTakeTime = d->hostInterface.kind != PMDHostNone;
+    {
+        uint32_t value, min, max;
+        const char *refused = PMDHostInterfaceRefused(&d->hostInterface, &value, &min, &max);
+        if (refused) {
+            char text[160];
+            snprintf(text, sizeof text, "host interface %s: %s = %lu is not in %lu .. %lu: no chip opened",
+                     PMDHostInterfaceName(d->hostInterface.kind) ? PMDHostInterfaceName(d->hostInterface.kind) : "?",
+                     refused, (unsigned long)value, (unsigned long)min, (unsigned long)max);
+            log_text(d, text);
+            free_device(d);
+            return PMD_ERR_OpeningPort;
+        }
+    }
 #endif
     d->options.hostInterface = NULL;        /* copied: the caller's may go */
     d->lastOpcode = -1;

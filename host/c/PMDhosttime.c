@@ -33,6 +33,33 @@ const char *PMDHostInterfaceName(int kind)
     return kind >= 0 && kind < PMDHostKinds ? names[kind] : NULL;
 }
 
+static const struct {
+    int kind;
+    const char *name;
+    size_t offset;
+    uint32_t min, max;
+} ranges[] = PMD_HOST_INTERFACE_RANGES;
+
+const char *PMDHostInterfaceRefused(const PMDHostInterface *h, uint32_t *value, uint32_t *min, uint32_t *max)
+{
+    size_t i;
+    if (h->kind < 0 || h->kind >= PMDHostKinds) {
+        *value = (uint32_t)h->kind, *min = 0, *max = PMDHostKinds - 1;
+        return "kind";
+    }
+    for (i = 0; i < sizeof ranges / sizeof *ranges; i++) {
+        uint32_t v;
+        if (ranges[i].kind != h->kind)
+            continue;
+        memcpy(&v, (const char *)h + ranges[i].offset, sizeof v);
+        if (v < ranges[i].min || v > ranges[i].max) {
+            *value = v, *min = ranges[i].min, *max = ranges[i].max;
+            return ranges[i].name;
+        }
+    }
+    return NULL;
+}
+
 /* ceil(bits * 1e9 / rate): the time of `bits` bits at `rate` bits per second */
 static uint64_t bits_ns(uint64_t bits, uint32_t rate)
 {

@@ -30,6 +30,11 @@ PMDHostInterface PMDHostInterfaceDefault(void);
 int PMDHostInterfaceKind(const char *name);
 const char *PMDHostInterfaceName(int kind);
 
+/* The first parameter of h's kind outside its range in the table (a baud of 0 would make bytes take
+   no time, a parity of 5 five bits), or NULL if every one is in range: its name, with its value and
+   range in *value, *min and *max. A kind that is none of the table's is "kind". */
+const char *PMDHostInterfaceRefused(const PMDHostInterface *h, uint32_t *value, uint32_t *min, uint32_t *max);
+
 /* The request's transfer time: `words` host words sent (the instruction word and the data
    words, >= 1). */
 uint64_t PMDHostRequestNs(const PMDHostInterface *host, int words);

@@ -598,8 +598,10 @@ class Chip:
             values = [
                 check(x, f"set: {name}" + (f"[{i + 1}]" if len(values) > 1 else "")) for i, x in enumerate(values)
             ]
-        elif v.type == "String" and not all(isinstance(x, str) for x in values):
-            raise ValueError(f"set: {name} = {files.shown(value)} is not a str")
+        elif v.type == "String":  # FMPy encodes a str: a path is its text
+            if not all(isinstance(x, (str, os.PathLike)) for x in values):
+                raise ValueError(f"set: {name} = {files.shown(value)} is not a str (or a path)")
+            values = [os.fspath(x) for x in values]
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)
 

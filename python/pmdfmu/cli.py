@@ -21,10 +21,12 @@ import _thread
 import argparse
 import math
 import os
+import select
 import signal
 import subprocess
 import sys
 import threading
+import time
 import zipfile
 from pathlib import Path
 from typing import Iterable, List, Optional, Tuple
@@ -225,17 +227,27 @@ def _run_table(
     status = _write_run(run, csv_path, plot_path, title, command, html_path)
     if status:
         return status
+    _say_where_axes_ended(run, {axis: rows[-1][0] for axis, rows in tables.items()})
+    return 0
+
+
+def _say_where_axes_ended(run: profile.ProfileRun, last_rows: Optional[dict] = None) -> None:
+    """What a run with no output asked for still says: where each axis ended (or stood at the window's
+    end), and for a table whether that is its last row's position (last_rows: axis -> position)."""
+    rec = run.recording
     for axis in run.axes:
         n = axis + 1
-        position, last = int(rec[f"axis{n}.commandedPosition"][-1]), tables[axis][-1][0]
-        if run.ended:
+        position = int(rec[f"axis{n}.commandedPosition"][-1])
+        if not run.ended:
+            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
+        elif last_rows is None:
+            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
+        else:
+            last = last_rows[axis]
             _say(
                 f"axis {n}: ended at position {position} after {len(rec)} cycles "
                 f"({'as' if position == last else 'NOT as'} the table's last row, {last})"
             )
-        else:
-            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
-    return 0
 
 
 # the platforms `pmdfmu build --platforms` cross-builds (CMakeLists.txt's PMD_PLATFORMS)
@@ -354,15 +366,7 @@ def cmd_run(args) -> int:
     status = _write_run(run, csv_path, plot_path, title, html_path=html_path)
     if status:
         return status
-    # as for a table: a run with no output asked for still says what it did
-    rec = run.recording
-    for axis in run.axes:
-        n = axis + 1
-        position = int(rec[f"axis{n}.commandedPosition"][-1])
-        if run.ended:
-            _say(f"axis {n}: ended at position {position} after {len(rec)} cycles")
-        else:
-            _say(f"axis {n}: at position {position} at the window's end, after {len(rec)} cycles")
+    _say_where_axes_ended(run)  # as for a table
     return 0
 
 
@@ -848,7 +852,7 @@ class _Parser(argparse.ArgumentParser):
 
 def main(argv: Optional[List[str]] = None) -> int:
     """The command; exit status 0 done, 1 failed (verify: a check failed; validate: problems found), 2 an input
-    error (one line: INPUT_ERRORS), 130 interrupted (one line)."""
+    error (one line: INPUT_ERRORS), 130 interrupted (one line), 141 standard output's reader went away (silent)."""
     global _verbosity
     command = "pmdfmu"
     try:
@@ -857,15 +861,17 @@ def main(argv: Optional[List[str]] = None) -> int:
         _verbosity = args.verbosity
         progress.show(True if args.progress else False if _verbosity < 0 else None)
         return args.func(args)
-    except BrokenPipeError:
-        # the reader went away (`pmdfmu info | head`): no input was bad. Stop quietly, as a tool that
-        # SIGPIPE ends does, with its status; files being written are removed as for any error
-        try:  # Python's own flush at exit would fail again, with a traceback
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        except (OSError, ValueError):  # stdout is no file (a test's capture)
-            pass
-        return EXIT_BROKEN_PIPE
     except INPUT_ERRORS as e:
+        if isinstance(e, BrokenPipeError) and _reader_gone():
+            # the reader went away (`pmdfmu info | head`): no input was bad. Stop quietly, as a tool that
+            # SIGPIPE ends does, with its status; files being written are removed as for any error
+            try:  # Python's own flush at exit would fail again, with a traceback
+                devnull = os.open(os.devnull, os.O_WRONLY)
+                os.dup2(devnull, sys.stdout.fileno())
+                os.close(devnull)
+            except (OSError, ValueError):  # stdout is no file (a test's capture)
+                pass
+            return EXIT_BROKEN_PIPE
         print(f"{command}: {one_line(e)}", file=sys.stderr)
         return EXIT_INPUT
     except KeyboardInterrupt:
@@ -877,15 +883,43 @@ def main(argv: Optional[List[str]] = None) -> int:
         progress.show(None)
 
 
+def _reader_gone() -> bool:
+    """Whether standard output or error is a pipe or socket its reader has closed: what a BrokenPipeError
+    from a print means. One from a pipe or socket of the command's own (a device's line, a worker's) is
+    an error to name, not a reason to end without a word."""
+    if not hasattr(select, "poll"):  # Windows: no poll to ask, as before
+        return True
+    poll = select.poll()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            poll.register(stream.fileno(), select.POLLOUT)
+        except (AttributeError, OSError, ValueError):  # no file (a test's capture): no reader to lose
+            pass
+    return any(events & (select.POLLERR | select.POLLHUP) for _, events in poll.poll(0))
+
+
 def _interrupt_again(unraisable) -> None:
     """The program's sys.unraisablehook. A Ctrl-C that lands in a weakref or garbage collector callback or a
     finalizer (matplotlib's, FMPy's) is dropped there by Python with a traceback, and the command would
-    run on to its end: it is delivered again once the callback is over. A timer thread delivers it, since
-    one raised here would land in this hook and be dropped too."""
+    run on to its end: it is delivered again once the callback is over. A thread delivers it, since
+    one raised here would land in this hook and be dropped too; as a SIGINT to the main thread, which wakes
+    a wait there (on a lock, a sweep's cases) as a Ctrl-C does: interrupt_main's flag is seen only when
+    the wait is over."""
     if issubclass(unraisable.exc_type, KeyboardInterrupt):
-        threading.Timer(0.001, _thread.interrupt_main).start()
+        left = threading.Event()
+        threading.Thread(target=_interrupt_main, args=(left,), daemon=True).start()
+        left.set()  # the last thing done here: however late the main thread runs, the signal comes after
     else:
         sys.__unraisablehook__(unraisable)
+
+
+def _interrupt_main(left: threading.Event) -> None:
+    left.wait()
+    time.sleep(0.001)  # the hook's return
+    if hasattr(signal, "pthread_kill"):
+        signal.pthread_kill(threading.main_thread().ident, signal.SIGINT)
+    else:  # Windows
+        _thread.interrupt_main()
 
 
 def console() -> None:

@@ -24,19 +24,27 @@ def _tables_dir() -> Path:
     return installed if installed.is_dir() else _PACKAGE.parent.parent / "modelDescription"
 
 
-def read_table(path: Path = None) -> List[Tuple[str, Dict[str, int]]]:
-    """[(kind, {parameter: default})] in the table's order (modelDescription/generate_hosttime.py
-    reads it the same way)."""
-    kinds: Dict[str, Dict[str, int]] = {}
+UINT32_MAX = (1 << 32) - 1
+
+
+def read_table(path: Path = None) -> List[Tuple[str, Dict[str, Tuple[int, int, int]]]]:
+    """[(kind, {parameter: (default, min, max)})] in the table's order, an empty max 2^32-1
+    (modelDescription/generate_hosttime.py reads it the same way)."""
+    kinds: Dict[str, Dict[str, Tuple[int, int, int]]] = {}
     with open(path or _tables_dir() / "host_interfaces.csv", newline="") as f:
         for row in csv.DictReader(f):
             params = kinds.setdefault(row["kind"], {})
             if row["parameter"]:
-                params[row["parameter"]] = int(row["default"])
+                params[row["parameter"]] = (int(row["default"]), int(row["min"]), int(row["max"] or UINT32_MAX))
     return list(kinds.items())
 
 
-KINDS: Dict[str, Dict[str, int]] = dict(read_table())
+_TABLE = read_table()
+KINDS: Dict[str, Dict[str, int]] = {kind: {p: d for p, (d, _lo, _hi) in params.items()} for kind, params in _TABLE}
+# each parameter's range: a baud of 0 would make bytes take no time, a parity of 5 five bits
+RANGES: Dict[str, Dict[str, Tuple[int, int]]] = {
+    kind: {p: (lo, hi) for p, (_d, lo, hi) in params.items()} for kind, params in _TABLE
+}
 NS_PER_S = 1_000_000_000
 
 
@@ -64,7 +72,8 @@ def _bits_ns(bits: int, rate: int) -> int:
 class HostInterface:
     """A host interface: HostInterface("serial", baud=115200). kind is a kind of
     host_interfaces.csv (none, parallel16, parallel8, serial, spi, fixed);
-    parameters not given take the table's defaults; each is an integer 0 .. 2^32-1."""
+    parameters not given take the table's defaults; each is an integer in the table's range
+    (min .. max; baud 1 .. 2^32-1, parity 0 .. 1, stop_bits 1 .. 2)."""
 
     def __init__(self, kind: str = "parallel16", **parameters: int):
         if kind not in KINDS:
@@ -78,8 +87,10 @@ class HostInterface:
         self.kind = kind
         self.parameters: Dict[str, int] = dict(KINDS[kind])
         for name, value in parameters.items():
-            if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 1 << 32:
-                raise ValueError(f"host interface {kind}: {name} = {value!r} is not an integer 0 .. 2^32-1")
+            lo, hi = RANGES[kind][name]
+            if isinstance(value, bool) or not isinstance(value, int) or not lo <= value <= hi:
+                shown = "2^32-1" if hi == UINT32_MAX else hi
+                raise ValueError(f"host interface {kind}: {name} = {value!r} is not an integer {lo} .. {shown}")
             self.parameters[name] = value
 
     def __getattr__(self, name: str) -> int:

@@ -63,8 +63,10 @@ _SPEEDS = {b: getattr(termios, f"B{b}") for b in sp.BAUD_RATES.values() if hasat
 
 
 def _named(e: OSError, what: str) -> OSError:
-    """e, of its own type (ConnectionRefusedError, FileNotFoundError, ...), saying which line or monitor."""
-    return type(e)(e.errno, f"{what}: {e.strerror or e}")
+    """e, of its own type (ConnectionRefusedError, FileNotFoundError, ...), saying which line or monitor. One
+    without an errno (socket's "getaddrinfo returns an empty list") is not shown "[Errno None] ..."."""
+    text = f"{what}: {e.strerror or e}"
+    return type(e)(e.errno, text) if e.errno is not None else type(e)(text)
 
 
 def _connect(where: str, what: str) -> Optional[socket.socket]:

@@ -5,6 +5,8 @@
    Usage: cmotion_log script TEXT [CYCLES [CATEGORY ...]]   a chip running the script TEXT for
                                                             CYCLES cycles, logging the categories
           cmotion_log fmu PATH                              a chip of the FMU at PATH
+          cmotion_log serial BAUD                           a chip whose commands are timed as a
+                                                            serial line at BAUD
    Output: every message of the log callback on stderr, one line each:
              L <category> <status> <message>
            and on stdout the setup's result, then the run's:
@@ -14,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "c-motion.h"
+#include "PMDhosttime.h"
 
 #define MAX_CATEGORIES 8
 
@@ -28,17 +31,23 @@ int main(int argc, char **argv)
     PMDFMUOptions options;
     PMDAxisHandle axis;
     const char *categories[MAX_CATEGORIES + 1];
+    PMDHostInterface host = PMDHostInterfaceOf(PMDHostSerial);
     PMDresult r;
     int i, n = 0;
-    if (argc < 3 || (strcmp(argv[1], "script") != 0 && strcmp(argv[1], "fmu") != 0) ||
+    if (argc < 3 ||
+        (strcmp(argv[1], "script") != 0 && strcmp(argv[1], "fmu") != 0 && strcmp(argv[1], "serial") != 0) ||
         argc > 4 + MAX_CATEGORIES) {
-        fprintf(stderr, "usage: cmotion_log script TEXT [CYCLES [CATEGORY ...]] | cmotion_log fmu PATH\n");
+        fprintf(stderr, "usage: cmotion_log script TEXT [CYCLES [CATEGORY ...]] | cmotion_log fmu PATH | "
+                        "cmotion_log serial BAUD\n");
         return 2;
     }
     PMDFMUOptionsInit(&options);
     options.log = print_message;
     if (strcmp(argv[1], "fmu") == 0) {
         options.fmu = argv[2];
+    } else if (strcmp(argv[1], "serial") == 0) {
+        host.baud = (PMDuint32)strtoul(argv[2], NULL, 10);
+        options.hostInterface = &host;
     } else {
         options.script = argv[2];
         for (i = 4; i < argc; i++)
