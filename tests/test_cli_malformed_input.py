@@ -623,6 +623,40 @@ def test_verify_and_sweep_of_a_malformed_case_table_exit_2(tmp_path_factory, cap
     assert not (folder / "out").exists()
 
 
+@pytest.mark.parametrize("flag", ["--junit", "--summary"])
+@pytest.mark.parametrize("named", ["two_axis_table.csv", "g.csv"])
+def test_verify_cases_writes_no_report_over_a_cases_table_or_golden(tmp_path, capsys, flag, named):
+    """`verify --cases` checked its reports against the case table alone: --junit naming the table a
+    case's script loads, or a case's golden, wrote over it."""
+    shutil.copy(SCRIPT, tmp_path / "s.script")
+    shutil.copy(TABLE, tmp_path / "two_axis_table.csv")
+    shutil.copy(GOLDEN, tmp_path / "g.csv")
+    (tmp_path / "cases.csv").write_text("name,script,golden\none,s.script,g.csv\n")
+    before = {p: p.read_bytes() for p in tmp_path.iterdir()}
+    result = cli(capsys, "verify", "--cases", tmp_path / "cases.csv", "--scheduler", "serial", flag, tmp_path / named)
+    assert_one_line(result, "verify", "names the input")
+    assert {p: p.read_bytes() for p in tmp_path.iterdir()} == before
+
+
+def test_a_sweeps_check_of_its_inputs_compiles_each_script_once(tmp_path, monkeypatch):
+    """Re-running a sweep into its --out (its files exist) compiled every case's script to learn the tables
+    it loads: 500 cases of one script were 500 compiles before the first case ran."""
+    import pmdfmu.pack
+    from pmdfmu.sweep import Case, refuse_writing_over_inputs
+
+    shutil.copy(SCRIPT, tmp_path / "s.script")
+    shutil.copy(TABLE, tmp_path / "two_axis_table.csv")
+    (tmp_path / "summary.csv").write_text("an earlier sweep's\n")
+    compiled = []
+    real = pmdfmu.pack.tables_loaded
+    monkeypatch.setattr(pmdfmu.pack, "tables_loaded", lambda *a: compiled.append(a) or real(*a))
+    cases = [Case(f"c{k}", script=str(tmp_path / "s.script"), fmi_version=2 + k % 2) for k in range(500)]
+    refuse_writing_over_inputs(cases, tmp_path)
+    assert len(compiled) == 2  # one script, two FMI versions
+    with pytest.raises(ValueError, match="two_axis_table.csv: the sweep would write over its input"):
+        refuse_writing_over_inputs([*cases, Case("two_axis_table", script=str(tmp_path / "s.script"))], tmp_path)
+
+
 @pytest.mark.parametrize(
     "how",
     [

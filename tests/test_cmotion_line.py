@@ -246,3 +246,14 @@ def test_a_tcp_port_past_65535_is_refused_not_wrapped(programs):
         pmdfmu.Chip(device="tcp:127.0.0.1:99999")
     with pytest.raises(ValueError, match="port 70000 is not 0 .. 65535"):
         pmdfmu.Chip(device="serial:/dev/null", monitor="tcp:127.0.0.1:70000")
+    code, _out, err = run(programs["cmotion5_host"], "tcp:127.0.0.1:0099999")
+    assert code == 0x1205 & 0xFF and "port 0099999 is not 0 .. 65535" in err, err
+
+
+def test_a_tcp_port_with_leading_zeros_is_its_number_in_the_library_and_the_harness(programs):
+    """The port check refused a port of more than five digits: tcp:HOST:000001 was no port to the C
+    library, port 1 to the harness (both now try port 1, where nothing listens)."""
+    code, _out, err = run(programs["cmotion5_host"], "tcp:127.0.0.1:000001")
+    assert code == 0x1205 & 0xFF and "Connection refused" in err and "is not 0 .. 65535" not in err, err
+    with pytest.raises(ConnectionRefusedError):
+        pmdfmu.Chip(device="tcp:127.0.0.1:000001")

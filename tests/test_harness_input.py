@@ -5,8 +5,10 @@ FMU; the in-range boundary values do exactly what they say, through FMI 2 and FM
 
 import math
 import re
+from decimal import Decimal
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import pmdfmu
@@ -185,6 +187,18 @@ def test_a_timeout_that_is_negative_not_finite_or_past_the_host_clock_is_refused
         refused(any_chip, lambda: any_chip.wait(timeout), "wait: seconds = ")
 
 
+def test_a_timeout_given_as_text_is_refused_and_one_of_any_number_type_is_taken(any_chip):
+    """A string was read by Fraction ("1/3" s); a numpy float32, a number a user holds from an array, was
+    "no finite number of seconds"."""
+    for timeout in ("0.5", "1/3"):
+        refused(any_chip, lambda t=timeout: any_chip.wait_for(0x0800, 0, timeout=t), "wait_for: timeout")
+        refused(any_chip, lambda t=timeout: any_chip.wait(t), "wait: seconds = ")
+    assert any_chip.host_time_ns == 0
+    any_chip.wait(np.float32(0.5))
+    any_chip.wait(Decimal("0.25"))
+    assert any_chip.host_time_ns == 750_000_000
+
+
 def test_a_boolean_real_or_string_value_of_another_kind_is_refused(any_chip):
     """The attacker's finding: FMI 3 set a Boolean input to Python's truth value of anything (0.5, "no",
     5: True; None: False) and FMI 2 took 5 and -1 as true; a Real took a string with ctypes' TypeError
@@ -196,8 +210,10 @@ def test_a_boolean_real_or_string_value_of_another_kind_is_refused(any_chip):
         chip.set("axis1.positiveLimit", value)
         assert chip.get("axis1.positiveLimit") == bool(value)
     refused(chip, lambda: chip.set("record.columns", 5), "set: record.columns = 5 is not a str")
-    with pytest.raises(ValueError, match="cycleTime = 'x' is not a number"):
-        pmdfmu.Chip(chip.fmi_version, cycleTime="x")
+    for value in ("x", True):  # True was taken as 1 s
+        with pytest.raises(ValueError, match=f"cycleTime = {value!r} is not a number"):
+            pmdfmu.Chip(chip.fmi_version, cycleTime=value)
+    refused(chip, lambda: chip.set("record.columns", b"x" * 1000), r"is not a str", r"\(1003 characters\)")
     with pytest.raises(ValueError, match=r"cycleTime = 1000.*\(401 characters\) is not a number a double holds"):
         pmdfmu.Chip(chip.fmi_version, cycleTime=10**400)
     with pytest.raises(ValueError, match="set: loopback = 'no' is not a Boolean"):

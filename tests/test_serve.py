@@ -437,6 +437,30 @@ def test_a_client_that_reads_no_replies_does_not_keep_the_server_from_stopping()
         assert s.process.returncode == 0 and "stopped after" in out
 
 
+def test_a_reply_computed_as_the_server_is_told_to_stop_still_reaches_a_client_that_reads():
+    """The server stops between packets: a SIGTERM that lands while the chip computes a reply leaves the
+    reply to a client that reads (_write_all gave it up before its first write, and the client waited for
+    a reply that never came); only a client whose socket stays full is given up."""
+    from types import SimpleNamespace
+
+    from pmdfmu.serve import _write_all
+
+    stopping = SimpleNamespace(signal=signal.SIGTERM)
+    server, client = socket.socketpair()
+    with server, client:
+        server.setblocking(False)
+        assert _write_all(server.fileno(), b"reply", stopping)
+        assert client.recv(16) == b"reply"
+        while True:  # the client reads nothing more: its socket fills
+            try:
+                server.send(b"x" * 65536)
+            except BlockingIOError:
+                break
+        started = time.monotonic()
+        assert not _write_all(server.fileno(), b"reply", stopping)
+        assert time.monotonic() - started < 1
+
+
 def test_a_line_chips_batch_cut_short_or_with_an_unknown_opcode_does_what_chips_does():
     """The attacker's finding: Chip(device=...).batch sent a command whose data words the batch cut short
     as a short packet: the device waited for the rest, the line chip timed out after 4 s with LineError

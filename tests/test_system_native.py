@@ -128,6 +128,7 @@ def test_bad_wiring_and_algorithm_are_refused():
         ({"chip.axis1.motorCommand": "plant.encoderCount"}, "from an output to an input"),
         ({"plant.encoderCount": "chip.memorySize"}, "from an output to an input"),
         ({"chip.axis1.motorCommand": "chip.axis1.actualPosition"}, "from one FMU to the other"),
+        ({"plant.angle": "chip.record.columns"}, "a wire carries"),  # a String: was a bare KeyError
         (
             {"chip.axis1.motorCommand": "plant.motorCommand", "chip.axis2.motorCommand": "plant.motorCommand"},
             "plant.motorCommand is driven by both chip.axis1.motorCommand and chip.axis2.motorCommand",

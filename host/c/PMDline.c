@@ -78,13 +78,18 @@ static int open_tcp(const char *where, char *why, size_t size)
     char host[256];
     const char *colon = strrchr(where, ':');
     struct addrinfo hints, *list = NULL, *a;
+    const char *p;
+    unsigned long port = 0;
     int fd = -1, e, one = 1;
     size_t n = colon ? (size_t)(colon - where) : 0;
     if (!colon || n == 0 || n >= sizeof host || !colon[1]) {
         snprintf(why, size, "expected tcp:HOST:PORT");
         return -1;
     }
-    if (strspn(colon + 1, "0123456789") == strlen(colon + 1) && (strlen(colon + 1) > 5 || atol(colon + 1) > 65535)) {
+    for (p = colon + 1; *p >= '0' && *p <= '9'; p++)     /* by value: 000080 is port 80, as in the harness */
+        if ((port = port * 10 + (unsigned long)(*p - '0')) > 65535)
+            break;
+    if (port > 65535 && p[strspn(p, "0123456789")] == '\0') {
         /* getaddrinfo takes 99999 as 99999 mod 65536: another server's port */
         snprintf(why, size, "port %s is not 0 .. 65535", colon + 1);
         return -1;

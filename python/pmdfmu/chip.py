@@ -133,9 +133,10 @@ def _boolean(value, what: str) -> bool:
 
 
 def _real(value, what: str) -> float:
-    """A Real variable's value: a number a double holds (int, float, Fraction, Decimal); a string or one
-    too large raises ValueError naming what, not ctypes' TypeError or float's OverflowError."""
-    if isinstance(value, (str, bytes)):
+    """A Real variable's value: a number a double holds (int, float, Fraction, Decimal); a string, a bool
+    (cycleTime=True was 1 s) or one too large raises ValueError naming what, not ctypes' TypeError or
+    float's OverflowError."""
+    if isinstance(value, (str, bytes, bool, np.bool_)):
         raise ValueError(f"{what} = {files.shown(value)} is not a number")
     try:
         return float(value)
@@ -599,7 +600,7 @@ class Chip:
             ]
         elif v.type == "String":  # FMPy encodes a str: a path is its text
             if not all(isinstance(x, (str, os.PathLike)) for x in values):
-                raise ValueError(f"set: {name} = {value!r} is not a str (or a path)")
+                raise ValueError(f"set: {name} = {files.shown(value)} is not a str (or a path)")
             values = [os.fspath(x) for x in values]
         vrs = [self.variables[e].valueReference for e in elements] if elements else [v.valueReference]
         self._setters[v.type](vrs, values)

@@ -610,6 +610,12 @@ def cmd_verify(args) -> int:
         ("--html", args.html),
     ]
     inputs = _inputs(args.file, _fmu_file(args.fmu), None, args.fmi_version, [out for _flag, out in outputs])
+    if args.cases and any(out and os.path.lexists(out) for _flag, out in outputs):
+        from .sweep import case_inputs
+
+        read = v.read_verify_cases(args.cases)  # the cases' goldens, assertion files, scripts and their tables
+        inputs += [Path(p) for vc in read for p in (vc.golden, vc.assertions) if p]
+        inputs += case_inputs([vc.case for vc in read])
     _refuse_overwriting(outputs, [*inputs, args.cases, args.against, args.assertions])
     if args.cases:
         if args.against:

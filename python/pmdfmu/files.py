@@ -99,8 +99,9 @@ def check_regular(path: PathLike) -> None:
 
 
 def resolved(path: PathLike) -> Path:
-    """Path(path).resolve(); a symlink loop is an OSError (ELOOP), as Python 3.13 raises it, not the
-    RuntimeError of earlier Pythons, which no caller takes for a user's bad file."""
+    """Path(path).resolve(); a symlink loop is an OSError (ELOOP), as opening the path raises it, not the
+    RuntimeError of Pythons before 3.13, which no caller takes for a user's bad file (3.13 resolves a loop
+    without an error, and the file's opening then says ELOOP)."""
     try:
         return Path(path).resolve()
     except RuntimeError:

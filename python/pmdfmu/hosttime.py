@@ -10,7 +10,9 @@ generated from the same table), and tests/test_host_time.py compares the two."""
 from __future__ import annotations
 
 import csv
+from decimal import Decimal
 from fractions import Fraction
+from numbers import Rational
 from pathlib import Path
 from typing import Dict, List, Tuple
 
@@ -47,11 +49,14 @@ NS_PER_S = 1_000_000_000
 
 
 def ns_of(seconds, what: str) -> int:
-    """seconds (an int, float or Fraction) of host time as whole ns, rounded to the nearest; ValueError
-    naming what for a negative one or one that is no finite number (a negative timeout made wait_for's
-    native loop poll without a limit, for ever)."""
+    """seconds (an int, float, Fraction, Decimal or numpy number) of host time as whole ns, rounded to the
+    nearest; ValueError naming what for a negative one or one that is no finite number (a negative timeout
+    made wait_for's native loop poll without a limit, for ever), a string among them (Fraction read "1/3")."""
     try:
-        ns = round(Fraction(seconds) * NS_PER_S)
+        if isinstance(seconds, (str, bytes)):
+            raise TypeError(seconds)
+        exact = seconds if isinstance(seconds, (Rational, float, Decimal)) else float(seconds)  # np.float32
+        ns = round(Fraction(exact) * NS_PER_S)
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{what} = {seconds!r} is not a finite number of seconds") from None
     if ns < 0:

@@ -73,7 +73,7 @@ def _connect(where: str, what: str) -> Optional[socket.socket]:
     """A connection to HOST:PORT (a [v6] address too), Nagle off: every packet waits for its reply.
     None where WHERE is no HOST:PORT; an OSError naming `what` (the device or monitor) if it cannot connect."""
     host, colon, port = where.rpartition(":")
-    if not colon or not port.isdigit():
+    if not colon or not (port.isascii() and port.isdigit()):  # "²" is a digit, and no int
         return None
     if int(port) > 65535:  # getaddrinfo took 99999 as 99999 mod 65536: another server's port
         raise ValueError(f"{where}: port {port} is not 0 .. 65535")

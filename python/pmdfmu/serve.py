@@ -205,14 +205,15 @@ class _Stop:
 def _write_all(fd: int, data: bytes, stop: "_Stop") -> bool:
     """Writes data whole into a non-blocking fd; False if the client went meanwhile, or if the server is
     stopping while a client that reads no replies keeps the fd full (a blocking write waited for it for
-    ever: SIGTERM and Ctrl-C could not stop the server)."""
+    ever: SIGTERM and Ctrl-C could not stop the server). A client that reads gets its reply whole, also
+    when the signal came while the chip computed it: the server stops between packets."""
     view = memoryview(data)
     while view:
-        if stop.signal:
-            return False
         try:
             n = os.write(fd, view)
         except BlockingIOError:
+            if stop.signal:
+                return False
             select.select([], [fd], [], 1.0)
             continue
         except OSError as e:

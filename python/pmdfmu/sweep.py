@@ -290,23 +290,38 @@ def written_files(cases: Sequence[Case], out: Union[str, Path]) -> List[Path]:
     return [out / "summary.csv", out / "summary.png"] + [out / f"{c.name}.csv" for c in cases]
 
 
-def refuse_writing_over_inputs(cases: Sequence[Case], out: Union[str, Path], inputs: Sequence[Path] = ()) -> None:
-    """ValueError before anything runs if a file the sweep writes to `out` is one of its inputs (the case
-    table, a case's script, table or FMU, a table a case's script loads: the FMU's answer, pack.tables_loaded,
-    asked only when a file the sweep writes exists already): `--out` the table's folder and a case named after
-    a table, say."""
-    if not any(written.exists() for written in written_files(cases, out)):
-        return
+def case_inputs(cases: Sequence[Case]) -> List[Path]:
+    """What the cases read: their scripts, tables and FMUs, and the segment tables their scripts load (the
+    FMU's answer, pack.tables_loaded: each script compiled once, as a sweep's cases mostly share one)."""
     from .pack import tables_loaded
 
-    sources = [Path(p) for p in [*inputs, *(c.script or c.table for c in cases), *(c.fmu for c in cases)] if p]
-    for c in cases:
-        if c.script:
-            sources += tables_loaded(Path(c.script), c.fmi_version, Path(c.fmu) if c.fmu else None)
+    inputs = [Path(p) for p in [*(c.script or c.table for c in cases), *(c.fmu for c in cases)] if p]
+    for script, version, fmu in dict.fromkeys((c.script, c.fmi_version, c.fmu) for c in cases if c.script):
+        inputs += tables_loaded(Path(script), version, Path(fmu) if fmu else None)
+    return inputs
+
+
+def refuse_writing_over_inputs(cases: Sequence[Case], out: Union[str, Path], inputs: Sequence[Path] = ()) -> None:
+    """ValueError before anything runs if a file the sweep writes to `out` is one of its inputs (the case
+    table, case_inputs: asked only when a file the sweep writes exists already): `--out` the table's folder
+    and a case named after a table, say."""
+    if not any(written.exists() for written in written_files(cases, out)):
+        return
+    inputs_by_file = {}  # each file stat'ed once: by its device and inode, as samefile compares them
+    for source in [*(Path(p) for p in inputs), *case_inputs(cases)]:
+        try:
+            st = source.stat()
+        except OSError:
+            continue
+        inputs_by_file.setdefault((st.st_dev, st.st_ino), source)
     for written in written_files(cases, out):
-        for source in sources:
-            if written.exists() and source.exists() and written.samefile(source):
-                raise ValueError(f"{written}: the sweep would write over its input {source}: give another --out")
+        try:
+            st = written.stat()
+        except OSError:
+            continue
+        source = inputs_by_file.get((st.st_dev, st.st_ino))
+        if source is not None:
+            raise ValueError(f"{written}: the sweep would write over its input {source}: give another --out")
 
 
 @dataclass

@@ -239,6 +239,12 @@ class System:
                     f"wiring: {a} -> {b}: a wire goes from an output to an input, not from {out.causality} "
                     f"{a} to {into.causality} {b}"
                 )
+            carried = TYPES[self.chip.fmi_version]
+            if out.type not in carried or into.type not in carried:  # a String was a bare KeyError 'String'
+                raise ValueError(
+                    f"wiring: {a} -> {b}: a {out.type} output into a {into.type} input: a wire carries "
+                    f"{', '.join(carried)} values"
+                )
             if not _carries(out.type, into.type):
                 raise ValueError(
                     f"wiring: {a} -> {b}: a {out.type} does not fit a {into.type} input unchanged (it would be "
