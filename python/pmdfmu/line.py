@@ -306,27 +306,26 @@ class LineChip:
         if len(words) > BATCH_WORDS:
             raise ValueError(f"a batch holds at most {BATCH_WORDS} words, not {len(words)}")
         words = [to_word(w, 16, f"batch: word {i}") for i, w in enumerate(words)]
-        i = 0
-        while i < len(words):  # a packet holds a whole command: one cut short cannot be sent, nor any before it
-            c = OPCODES.get(field_ex(words[i], "PMDInstructionOpcode"))
-            if c is None:
-                break
-            if i + 1 + c.arg_words > len(words):
-                raise ValueError(
-                    f"batch: {c.name} (word {i}) needs {c.arg_words} data words, the batch ends after "
-                    f"{len(words) - i - 1}: over a line each command is a packet of its own; nothing was sent"
-                )
-            i += 1 + c.arg_words
-        first, replies, i = 0, [], 0
+        # the packets, found before any is sent: a packet holds a whole command, so one cut short cannot be
+        # sent, nor any before it; an unknown opcode is the last (the chip cannot tell where the next starts)
+        packets, i = [], 0
         while i < len(words):
             c = OPCODES.get(field_ex(words[i], "PMDInstructionOpcode"))
             n = c.arg_words if c else 0
-            status, reply = self.exchange(words[i], words[i + 1 : i + 1 + n], c.reply_words if c else 0)
-            first = first or status
-            replies += reply
-            if c is None:  # the chip cannot tell where the next command starts: the batch ends (as Chip.batch)
+            if i + 1 + n > len(words):
+                raise ValueError(
+                    f"batch: {c.name} (word {i}) needs {n} data words, the batch ends after "
+                    f"{len(words) - i - 1}: over a line each command is a packet of its own; nothing was sent"
+                )
+            packets.append((words[i], words[i + 1 : i + 1 + n], c.reply_words if c else 0))
+            if c is None:  # as Chip.batch: the batch ends
                 break
             i += 1 + n
+        first, replies = 0, []
+        for packet in packets:
+            status, reply = self.exchange(*packet)
+            first = first or status
+            replies += reply
         return first, replies
 
     def send(self, instruction: int, *data: int) -> Tuple[int, ...]:
