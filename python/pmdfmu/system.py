@@ -12,7 +12,7 @@ from __future__ import annotations
 from ctypes import POINTER, c_double, c_int, c_int64, c_size_t, c_void_p
 from functools import lru_cache
 from pathlib import Path
-from typing import Dict, List, Optional, Sequence, Union
+from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -39,28 +39,25 @@ TYPES = {
     },
 }
 
-# the values an integer or Boolean FMI type holds: a wire carries its output's values exactly when they are
-# all its input's (an Int16 into an Int32, an Integer into a Real); native/system.c would truncate a Real
-# into an Integer and wrap an Int32 into an Int16, silently
-RANGES = {
-    "Integer": (-(2**31), 2**31 - 1),
-    "Int32": (-(2**31), 2**31 - 1),
-    "UInt32": (0, 2**32 - 1),
-    "Int16": (-(2**15), 2**15 - 1),
-    "UInt16": (0, 2**16 - 1),
-    "Boolean": (0, 1),
-}
+
+def _values(numpy_type) -> Optional[Tuple[int, int]]:
+    """The values an integer or Boolean FMI type (its row's numpy type in TYPES) holds; None for a double."""
+    if numpy_type is np.bool_:
+        return 0, 1
+    if np.issubdtype(numpy_type, np.integer):
+        info = np.iinfo(numpy_type)
+        return int(info.min), int(info.max)
+    return None
 
 
-def _carries(output_type: str, input_type: str) -> bool:
-    """Whether every value of output_type reaches an input of input_type unchanged (a double holds every
-    32-bit integer)."""
-    if input_type not in RANGES:
+def _carries(output_type, input_type) -> bool:
+    """Whether every value of the output's numpy type reaches an input of input_type unchanged (an Int16 into
+    an Int32, an Integer into a Real: a double holds every 32-bit integer); native/system.c would truncate a
+    Real into an Integer and wrap an Int32 into an Int16, silently."""
+    output, into = _values(output_type), _values(input_type)
+    if into is None:
         return True
-    if output_type not in RANGES:
-        return False
-    (lo, hi), (input_lo, input_hi) = RANGES[output_type], RANGES[input_type]
-    return input_lo <= lo and hi <= input_hi
+    return output is not None and into[0] <= output[0] and output[1] <= into[1]
 
 
 @lru_cache(maxsize=None)
@@ -147,13 +144,12 @@ class PlantInstance:
                 self.fmu.enterInitializationMode(startTime=start)
             inputs(self)
             self.fmu.exitInitializationMode()
-        except FMICallException as e:
+        except BaseException as e:
             self.fmu.freeInstance()
             self.fmu = None
-            raise FMURefusal(e.function, e.status, [m.message for m in self.messages if m.status != "OK"]) from None
-        except BaseException:
-            self.fmu.freeInstance()
-            self.fmu = None
+            if isinstance(e, FMICallException):
+                refused = [m.message for m in self.messages if m.status != "OK"]
+                raise FMURefusal(e.function, e.status, refused) from None
             raise
 
     def set(self, name: str, value) -> None:
@@ -245,7 +241,7 @@ class System:
                     f"wiring: {a} -> {b}: a {out.type} output into a {into.type} input: a wire carries "
                     f"{', '.join(carried)} values"
                 )
-            if not _carries(out.type, into.type):
+            if not _carries(carried[out.type][2], carried[into.type][2]):
                 raise ValueError(
                     f"wiring: {a} -> {b}: a {out.type} does not fit a {into.type} input unchanged (it would be "
                     "truncated or wrap): wire variables of types that hold the output's values"
